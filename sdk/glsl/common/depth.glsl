@@ -1,0 +1,43 @@
+// The one place that knows the depth conventions: window depth -> linear view depth (for every
+// projection the SDK accepts), and linear view depth + pixel -> view-space position.
+// Needs FrameConstants (shader_interface.h).
+
+bool obscura_is_sky(float view_depth) { return !(view_depth < OBSCURA_SKY_THRESHOLD); }
+
+// Window depth written through the host projection -> positive view distance, or OBSCURA_SKY_DEPTH.
+float obscura_linearize_window_depth(float window_depth) {
+    if (window_depth == depth_params.x || isnan(window_depth) || isinf(window_depth)) return OBSCURA_SKY_DEPTH;
+    float z_ndc = window_depth * proj_offset.z + proj_offset.w;
+    // Solve z_ndc = (m10 z + m14) / (m11 z + m15): covers perspective and orthographic, standard and
+    // reversed-Z, finite and infinite far planes.
+    float z = (proj_depth.y - z_ndc * proj_depth.w) / (z_ndc * proj_depth.z - proj_depth.x);
+    float distance = -z;
+    if (!(distance > 0.0) || isinf(distance) || !(distance < OBSCURA_SKY_THRESHOLD)) return OBSCURA_SKY_DEPTH;
+    return distance;
+}
+
+// Linear depth given by the host: anything non-positive or non-finite is sky.
+float obscura_sanitize_linear_depth(float view_depth) {
+    if (!(view_depth > 0.0) || isinf(view_depth) || !(view_depth < OBSCURA_SKY_THRESHOLD)) return OBSCURA_SKY_DEPTH;
+    return view_depth;
+}
+
+// Clip w of a view point at distance `view_depth`: the distance itself (perspective) or 1 (orthographic).
+float obscura_clip_w(float view_depth) { return -view_depth * proj_depth.z + proj_depth.w; }
+
+// View-space position (camera looks down -z) of the centre of texel `pixel` at distance `view_depth`.
+vec3 obscura_view_position(ivec2 pixel, float view_depth) {
+    vec2 ndc = (vec2(pixel) + 0.5) * depth_params.zw * 2.0 - 1.0;
+    float z = -view_depth;
+    float w = obscura_clip_w(view_depth);
+    // ndc.x = (m0 x + m8 z + m12) / w, likewise y.
+    vec2 xy = (ndc * w - proj_scale.zw * z - proj_offset.xy) / proj_scale.xy;
+    return vec3(xy, z);
+}
+
+// Pixels covered by one view unit at distance `view_depth`, along y (square pixels assumed for x).
+float obscura_pixels_per_view_unit(float view_depth) {
+    return 0.5 * proj_scale.y * float(depth_size.y) / obscura_clip_w(view_depth);
+}
+
+bool obscura_is_perspective() { return proj_depth.z != 0.0; }

@@ -1,0 +1,14 @@
+// Deterministic per-pixel noise (the same every frame and run): a PCG-style integer hash.
+
+uint obscura_hash(uint v) {
+    uint state = v * 747796405u + 2891336453u;
+    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+// Two values in [0, 1) for a pixel.
+vec2 obscura_pixel_noise(ivec2 pixel) {
+    uint h = obscura_hash(uint(pixel.x) + obscura_hash(uint(pixel.y)));
+    uint g = obscura_hash(h);
+    return vec2(float(h >> 8u), float(g >> 8u)) * (1.0 / 16777216.0);
+}

@@ -1,0 +1,105 @@
+// Shared by the C++ passes and the GLSL shaders (included by both), so binding points, workgroup
+// sizes and the uniform-block layout cannot drift apart. Only #defines and the std140 block that
+// both languages can parse live here.
+#ifndef OBSCURA_SHADER_INTERFACE_H
+#define OBSCURA_SHADER_INTERFACE_H
+
+// ---- Texture / image / buffer binding points -------------------------------------------------
+// Texture units (samplers). The state guard saves and restores exactly these units.
+#define OBSCURA_UNIT_DEPTH 0        // host depth (sampler2D or sampler2DMS)
+#define OBSCURA_UNIT_NORMALS 1      // host normals, or the SDK's normal texture
+#define OBSCURA_UNIT_LINEAR_DEPTH 2 // linear view depth (R32F)
+#define OBSCURA_UNIT_SOURCE 3       // pass input (AO, blur intermediate)
+#define OBSCURA_TEXTURE_UNIT_COUNT 4
+
+// Image units (imageStore / imageLoad).
+#define OBSCURA_IMAGE_OUT0 0
+#define OBSCURA_IMAGE_OUT1 1
+#define OBSCURA_IMAGE_UNIT_COUNT 2
+
+// Uniform buffer binding points.
+#define OBSCURA_UBO_FRAME 0
+#define OBSCURA_UBO_PASS 1
+#define OBSCURA_UBO_COUNT 2
+
+// ---- Workgroup sizes (the dispatch math in C++ reads the same numbers) ------------------------
+#define OBSCURA_DEPTH_PREPARE_GROUP_X 8
+#define OBSCURA_DEPTH_PREPARE_GROUP_Y 8
+#define OBSCURA_HBAO_GROUP_X 8
+#define OBSCURA_HBAO_GROUP_Y 8
+#define OBSCURA_BLUR_GROUP_X 8
+#define OBSCURA_BLUR_GROUP_Y 8
+#define OBSCURA_COMPOSITE_GROUP_X 8
+#define OBSCURA_COMPOSITE_GROUP_Y 8
+
+// ---- Conventions ---------------------------------------------------------------------------------
+// Linear view depth is a positive distance from the eye plane in view units; sky pixels (far-plane
+// clear value, NaN, inf, behind the eye) are stored as OBSCURA_SKY_DEPTH and never occlude.
+#define OBSCURA_SKY_DEPTH 1.0e30
+#define OBSCURA_SKY_THRESHOLD 1.0e29
+
+// Depth-source kinds (FrameConstants.depth_mode.x).
+#define OBSCURA_DEPTH_SOURCE_HARDWARE 0
+#define OBSCURA_DEPTH_SOURCE_HARDWARE_MS 1
+#define OBSCURA_DEPTH_SOURCE_LINEAR 2
+#define OBSCURA_DEPTH_SOURCE_LINEAR_MS 3
+
+// Normal-source kinds (FrameConstants.depth_mode.y).
+#define OBSCURA_NORMALS_RECONSTRUCT 0
+#define OBSCURA_NORMALS_SIGNED 1   // float / snorm texture, used as is
+#define OBSCURA_NORMALS_UNSIGNED 2 // unorm texture, decoded as n * 2 - 1
+
+// ---- Uniform block: per-frame constants every pass sees (std140, vec4/ivec4 members only) -------
+#ifdef __cplusplus
+#include <cstdint>
+#define OBSCURA_VEC4(name) float name[4]
+#define OBSCURA_IVEC4(name) int32_t name[4]
+#define OBSCURA_BLOCK_BEGIN(name) struct name {
+#define OBSCURA_BLOCK_END(name) };
+#else
+#define OBSCURA_VEC4(name) vec4 name
+#define OBSCURA_IVEC4(name) ivec4 name
+#define OBSCURA_BLOCK_BEGIN(name) layout(std140, binding = OBSCURA_UBO_FRAME) uniform name {
+#define OBSCURA_BLOCK_END(name) };
+#endif
+
+OBSCURA_BLOCK_BEGIN(FrameConstants)
+  // Projection terms (column-major m[i]) that map view space <-> clip space; see depth.glsl.
+  OBSCURA_VEC4(proj_scale);     // m0, m5, m8, m9
+  OBSCURA_VEC4(proj_depth);     // m10, m14, m11, m15
+  OBSCURA_VEC4(proj_offset);    // m12, m13, clip-depth scale, clip-depth bias (z_ndc = d * s + b)
+  OBSCURA_VEC4(depth_params);   // sky window depth, metres-to-view-units, 1/width, 1/height
+  OBSCURA_IVEC4(depth_size);    // width, height, depth source kind, normal source kind
+  OBSCURA_IVEC4(output_rect);   // x, y, width, height of the output rectangle in the depth texture
+  OBSCURA_IVEC4(work_rect);     // x, y, width, height of the region a pass computes (rect + apron)
+  OBSCURA_IVEC4(target_params); // target x, target y, blend mode, debug view
+  OBSCURA_VEC4(debug_params);   // linear-depth debug scale (1 / (4 * radius in view units)), unused x3
+OBSCURA_BLOCK_END(FrameConstants)
+
+// ---- Uniform blocks of single passes (binding OBSCURA_UBO_PASS) --------------------------------
+// A shader declares the block it uses by defining OBSCURA_<PASS>_PASS before including this file;
+// GLSL then sees it with an instance name (hbao.falloff, blur.params).
+#ifdef __cplusplus
+#define OBSCURA_PASS_BLOCK_BEGIN(name) struct name {
+#define OBSCURA_PASS_BLOCK_END(name, instance) };
+#else
+#define OBSCURA_PASS_BLOCK_BEGIN(name) layout(std140, binding = OBSCURA_UBO_PASS) uniform name {
+#define OBSCURA_PASS_BLOCK_END(name, instance) } instance;
+#endif
+
+#if defined(__cplusplus) || defined(OBSCURA_HBAO_PASS)
+OBSCURA_PASS_BLOCK_BEGIN(HbaoConstants)
+  OBSCURA_VEC4(falloff);   // decay r (view units^2), C, radius (view units), max radius in pixels
+  OBSCURA_VEC4(shaping);   // bias, intensity, power, unused
+  OBSCURA_IVEC4(counts);   // K directions, N steps, estimator (1 horizon-split, 2 largest occluder), unused
+OBSCURA_PASS_BLOCK_END(HbaoConstants, hbao)
+#endif
+
+#if defined(__cplusplus) || defined(OBSCURA_BLUR_PASS)
+OBSCURA_PASS_BLOCK_BEGIN(BlurConstants)
+  OBSCURA_VEC4(params);    // sharpness, 1 / (2 sigma^2) of the spatial Gaussian, unused, unused
+  OBSCURA_IVEC4(config);   // radius in taps, axis x, axis y, unused
+OBSCURA_PASS_BLOCK_END(BlurConstants, blur)
+#endif
+
+#endif  // OBSCURA_SHADER_INTERFACE_H

@@ -1,0 +1,42 @@
+// Writes the result for the output rectangle into the host's target image: the AO (or a debug view)
+// overwriting the target or multiplying its colour. One variant per target format (OUTPUT_FORMAT).
+#include "common/shader_interface.h"
+#include "common/depth.glsl"
+#include "common/normal_encoding.glsl"
+
+layout(local_size_x = OBSCURA_COMPOSITE_GROUP_X, local_size_y = OBSCURA_COMPOSITE_GROUP_Y) in;
+
+layout(binding = OBSCURA_UNIT_SOURCE) uniform sampler2D u_ao;
+layout(binding = OBSCURA_UNIT_LINEAR_DEPTH) uniform sampler2D u_linear_depth;
+layout(binding = OBSCURA_UNIT_NORMALS) uniform sampler2D u_normals;
+layout(binding = OBSCURA_IMAGE_OUT0, OUTPUT_FORMAT) uniform image2D u_target;
+
+const int kDebugLinearDepth = 1;
+const int kDebugNormals = 2;
+const int kBlendMultiply = 1;
+
+void main() {
+    ivec2 i = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(i, output_rect.zw))) return;
+    ivec2 source = output_rect.xy + i;
+    ivec2 destination = target_params.xy + i;
+    int debug_view = target_params.w;
+
+    vec4 value;
+    if (debug_view == kDebugLinearDepth) {
+        float depth = texelFetch(u_linear_depth, source, 0).r;
+        float v = obscura_is_sky(depth) ? 1.0 : clamp(depth * debug_params.x, 0.0, 1.0);
+        value = vec4(v, v, v, 1.0);
+    } else if (debug_view == kDebugNormals) {
+        vec3 n = obscura_decode_normal(texelFetch(u_normals, source, 0).xy) * 0.5 + 0.5;
+        value = OUTPUT_CHANNELS == 1 ? vec4(n.z) : vec4(n, 1.0);
+    } else {
+        float v = texelFetch(u_ao, source, 0).r;
+        value = vec4(v, v, v, 1.0);
+    }
+    if (target_params.z == kBlendMultiply) {
+        vec4 previous = imageLoad(u_target, destination);
+        value = vec4(previous.rgb * value.r, previous.a);
+    }
+    imageStore(u_target, destination, value);
+}

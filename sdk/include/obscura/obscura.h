@@ -1,0 +1,375 @@
+/*
+ * obscura.h - Obscura: real-time ambient obscurance for OpenGL 4.3 renderers.
+ *
+ * This header is the whole public API. It is C99 and C++ compatible, includes no GL header
+ * (GL object names are uint32_t) and no C++ types.
+ *
+ * OVERVIEW
+ *   A host renderer creates one obscura_context per GL context with its own GL function loader,
+ *   fills an obscura_settings struct, and each frame calls obscura_render() with its depth buffer
+ *   (and optionally view-space normals). Obscura writes ambient *visibility* (1 = unoccluded,
+ *   0 = fully occluded) into a texture or framebuffer the host names. Every pass is a GLSL compute
+ *   shader embedded in the library; the SDK loads GL through the host's get_proc_address into a
+ *   private function table and defines no global gl* or glad* symbols.
+ *
+ * METHODS (papers in docs/algorithms.md)
+ *   OBSCURA_METHOD_HBAO       Horizon-based AO: K directions x N steps ray marching with the
+ *                             falloff rho0 of Timonen, "Line-Sweep Ambient Obscurance" (EGSR 2013), sec. 6.
+ *   OBSCURA_METHOD_SAO        McGuire et al., "Scalable Ambient Obscurance" (HPG 2012).     [not yet available]
+ *   OBSCURA_METHOD_LSAO       Timonen, "Line-Sweep Ambient Obscurance" (EGSR 2013).         [not yet available]
+ *   OBSCURA_METHOD_FFAO       Timonen, "Screen-Space Far-Field Ambient Obscurance" (HPG 2013). [not yet available]
+ *   OBSCURA_METHOD_REFERENCE  Screen-space ray-traced ground truth.                         [not yet available]
+ *   Methods not yet available return OBSCURA_STATUS_METHOD_NOT_AVAILABLE.
+ *
+ * INTEGRATION
+ *   1. obscura_context_desc desc = {0};
+ *      desc.struct_size = sizeof desc; desc.header_version = OBSCURA_VERSION;
+ *      desc.get_proc_address = my_get_proc_address;          // e.g. eglGetProcAddress, glfwGetProcAddress
+ *   2. obscura_context* ctx; if (obscura_create_context(&desc, &ctx) != OBSCURA_OK) ... ;
+ *   3. obscura_settings settings; obscura_default_settings(OBSCURA_METHOD_HBAO, &settings);
+ *      settings.hbao.radius = 1.5f;                           // metres
+ *   4. each frame: obscura_input in = {0}; in.struct_size = sizeof in;
+ *      in.depth_texture = depth_tex; in.projection = proj (column-major, as given to GL);
+ *      in.depth_width/height = depth size; in.output_rect = the visible part (guard band around it);
+ *      obscura_output out = {0}; out.struct_size = sizeof out; out.texture = ao_tex;
+ *      obscura_render(ctx, &in, &settings, &out);
+ *   5. obscura_destroy_context(ctx) with the GL context current.
+ *
+ * INPUT CONTRACT
+ *   - Depth: a GL_TEXTURE_2D or GL_TEXTURE_2D_MULTISAMPLE (sample 0 is used) holding either
+ *     hardware depth (GL_DEPTH_COMPONENT16/24/32/32F, DEPTH24_STENCIL8, DEPTH32F_STENCIL8) written
+ *     with `projection`, or linear view depth (R16F/R32F: positive distance from the eye plane,
+ *     in view units). Hardware depth may come from any projection GL can express: perspective or
+ *     orthographic, standard or reversed-Z, finite or infinite far plane, [-1,1] or [0,1] clip depth
+ *     (glClipControl). The projection is decoded from the matrix itself; its near/far layout is
+ *     validated ("looks transposed" is reported as such).
+ *   - Pixels at the far-plane clear value (1, or 0 with reversed-Z), NaN or inf are "sky": they
+ *     receive visibility 1 and occlude nothing.
+ *   - Guard band: the depth texture covers more than the visible image. Occluders are read from the
+ *     whole depth texture; AO is written only for `output_rect`. The papers use 10-20 % per side.
+ *   - Units: view units are the units of the host's view space; settings distances are metres and
+ *     are multiplied by `meters_to_view_units` (default 1).
+ *   - Normals (optional): view-space normals in a GL_TEXTURE_2D (RGB, signed float formats as is,
+ *     unsigned normalised formats decoded as n*2-1) the size of the depth texture. Without them the
+ *     SDK reconstructs face normals from depth.
+ *
+ * GL STATE CONTRACT
+ *   obscura_render() leaves every GL binding it touches as it found it (program, texture and
+ *   sampler bindings on the units it uses, image units, SSBO/UBO bindings, read/draw framebuffers,
+ *   active texture, pixel-store state) and leaves no GL error. It never calls glFinish or reads data
+ *   back, except when OBSCURA_CONTEXT_FLAG_SYNC_TIMING is set. One context per GL context, used
+ *   from the thread where that GL context is current.
+ *
+ * PERFORMANCE (measured, docs/performance.md)
+ *   HBAO K=8 N=12 with blur:   see docs/performance.md for the measured table (GPU and llvmpipe).
+ */
+#ifndef OBSCURA_OBSCURA_H
+#define OBSCURA_OBSCURA_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- Export ---------------------------------------------------------------------------------- */
+#if defined(OBSCURA_SHARED_LIBRARY)
+#  if defined(_WIN32)
+#    if defined(OBSCURA_BUILDING_LIBRARY)
+#      define OBSCURA_API __declspec(dllexport)
+#    else
+#      define OBSCURA_API __declspec(dllimport)
+#    endif
+#  else
+#    define OBSCURA_API __attribute__((visibility("default")))
+#  endif
+#else
+#  define OBSCURA_API
+#endif
+
+/* ---- Version --------------------------------------------------------------------------------- */
+#define OBSCURA_VERSION_MAJOR 0
+#define OBSCURA_VERSION_MINOR 1
+#define OBSCURA_VERSION_PATCH 0
+/* Packed version: major * 10000 + minor * 100 + patch. */
+#define OBSCURA_VERSION (OBSCURA_VERSION_MAJOR * 10000 + OBSCURA_VERSION_MINOR * 100 + OBSCURA_VERSION_PATCH)
+
+/* Returns the packed version of the library that is linked (compare with OBSCURA_VERSION). */
+OBSCURA_API uint32_t obscura_version(void);
+
+/* ---- Status codes ---------------------------------------------------------------------------- */
+/* One table generates the enum and obscura_status_string(): X(name, value, description). */
+#define OBSCURA_STATUS_LIST(X)                                                                        \
+    X(OK, 0, "success")                                                                               \
+    X(NULL_ARGUMENT, 1, "a required pointer argument is NULL")                                        \
+    X(INVALID_STRUCT_SIZE, 2, "struct_size does not match any version of the struct")                 \
+    X(VERSION_MISMATCH, 3, "header_version is not compatible with the linked library")                \
+    X(NO_GL_CONTEXT, 4, "no OpenGL context is current, or get_proc_address returned nothing")         \
+    X(GL_VERSION_UNSUPPORTED, 5, "the current OpenGL context is older than 4.3 core")                 \
+    X(MISSING_GL_FUNCTION, 6, "get_proc_address did not return a required OpenGL function")           \
+    X(WRONG_GL_CONTEXT, 7, "the current GL context is not the one the obscura context was created on") \
+    X(INVALID_SIZE, 8, "a size is zero, negative or larger than the GL implementation allows")        \
+    X(INVALID_RECT, 9, "the output rectangle is empty or not inside the depth texture")               \
+    X(INVALID_TEXTURE, 10, "a GL name is not a texture of the expected target, or its size differs")  \
+    X(UNSUPPORTED_FORMAT, 11, "a texture has an internal format the SDK cannot read or write")        \
+    X(INVALID_PROJECTION, 12, "the projection matrix is not a GL perspective or orthographic matrix") \
+    X(PROJECTION_TRANSPOSED, 13, "the projection matrix looks transposed (row-major given as column-major)") \
+    X(INVALID_SETTING, 14, "a setting is NaN, infinite or outside its documented range")              \
+    X(INVALID_ENUM, 15, "an enum field holds a value the SDK does not know")                          \
+    X(METHOD_NOT_AVAILABLE, 16, "the requested method is not implemented in this version")            \
+    X(INVALID_FRAMEBUFFER, 17, "the output framebuffer is incomplete or has no colour attachment 0")   \
+    X(SHADER_COMPILE_FAILED, 18, "an embedded shader failed to compile or link (log in message)")     \
+    X(OUT_OF_MEMORY, 19, "the allocator or the GL implementation ran out of memory")                  \
+    X(HOST_GL_ERROR, 20, "the host left a GL error pending before the call; nothing was rendered")    \
+    X(GL_ERROR, 21, "a GL error was raised inside the SDK; the message names the pass")               \
+    X(UNKNOWN_SETTING, 22, "no setting of that name exists for the method")                           \
+    X(INTERNAL_ERROR, 23, "an unexpected internal failure; please report it")
+
+#define OBSCURA_STATUS_ENUM_ENTRY_(name, value, desc) OBSCURA_STATUS_##name = value,
+typedef enum obscura_status {
+    OBSCURA_STATUS_LIST(OBSCURA_STATUS_ENUM_ENTRY_)
+    OBSCURA_STATUS_COUNT_
+} obscura_status;
+#undef OBSCURA_STATUS_ENUM_ENTRY_
+#define OBSCURA_OK OBSCURA_STATUS_OK
+
+/* Returns "OBSCURA_STATUS_<NAME>: <description>" for a status, or a fixed string for unknown codes. */
+OBSCURA_API const char* obscura_status_string(obscura_status status);
+
+/* ---- Host callbacks -------------------------------------------------------------------------- */
+typedef void* (*obscura_get_proc_address_fn)(const char* name);
+
+typedef enum obscura_log_level {
+    OBSCURA_LOG_ERROR = 0,
+    OBSCURA_LOG_WARNING = 1,
+    OBSCURA_LOG_INFO = 2
+} obscura_log_level;
+
+/* Receives every error (with the status it returns) and warnings such as shader logs. */
+typedef void (*obscura_log_fn)(obscura_log_level level, obscura_status status, const char* message,
+                               void* user_data);
+
+/* Optional allocator for all CPU memory the SDK owns. Both functions or neither. */
+typedef struct obscura_allocator {
+    void* (*alloc)(size_t size, void* user_data);
+    void (*free)(void* ptr, void* user_data);
+    void* user_data;
+} obscura_allocator;
+
+/* ---- Context --------------------------------------------------------------------------------- */
+typedef struct obscura_context obscura_context;
+
+enum {
+    /* Time every pass by glFinish + CPU clock instead of GL timer queries (for benchmarks on
+       drivers whose timer queries read 0, such as llvmpipe). Stalls: never use in production. */
+    OBSCURA_CONTEXT_FLAG_SYNC_TIMING = 1u << 0,
+    /* Check glGetError after every pass and report the pass that raised one (debugging aid). */
+    OBSCURA_CONTEXT_FLAG_VALIDATE_PASSES = 1u << 1
+};
+
+typedef struct obscura_context_desc {
+    uint32_t struct_size;                       /* sizeof(obscura_context_desc); required */
+    uint32_t header_version;                    /* OBSCURA_VERSION; required */
+    obscura_get_proc_address_fn get_proc_address; /* the host's GL loader; required */
+    obscura_allocator allocator;                /* zero: malloc/free */
+    obscura_log_fn log;                         /* zero: no logging */
+    void* log_user_data;
+    uint32_t flags;                             /* OBSCURA_CONTEXT_FLAG_* */
+} obscura_context_desc;
+
+/* Creates a context for the GL context current on this thread and compiles the shaders.
+   Returns OK, NULL_ARGUMENT, INVALID_STRUCT_SIZE, VERSION_MISMATCH, NO_GL_CONTEXT,
+   GL_VERSION_UNSUPPORTED, MISSING_GL_FUNCTION, SHADER_COMPILE_FAILED, OUT_OF_MEMORY. */
+OBSCURA_API obscura_status obscura_create_context(const obscura_context_desc* desc, obscura_context** out_context);
+
+/* Destroys the context and every GL object it owns. The same GL context must be current. NULL is a no-op. */
+OBSCURA_API void obscura_destroy_context(obscura_context* context);
+
+/* Returns the message of the last error on this context ("" if none). Valid until the next call. */
+OBSCURA_API const char* obscura_get_last_error(const obscura_context* context);
+
+/* ---- Methods and settings -------------------------------------------------------------------- */
+typedef enum obscura_method {
+    OBSCURA_METHOD_DEFAULT = 0, /* HBAO */
+    OBSCURA_METHOD_HBAO = 1,
+    OBSCURA_METHOD_SAO = 2,
+    OBSCURA_METHOD_LSAO = 3,
+    OBSCURA_METHOD_FFAO = 4,
+    OBSCURA_METHOD_REFERENCE = 5,
+    OBSCURA_METHOD_COUNT_
+} obscura_method;
+
+/* Returns "hbao", "sao", "lsao", "ffao", "reference", or NULL for an unknown method. */
+OBSCURA_API const char* obscura_method_name(obscura_method method);
+
+/* Returns 1 if the method is implemented in this library version, 0 otherwise. */
+OBSCURA_API int obscura_method_available(obscura_method method);
+
+typedef enum obscura_toggle {
+    OBSCURA_TOGGLE_DEFAULT = 0,
+    OBSCURA_TOGGLE_ON = 1,
+    OBSCURA_TOGGLE_OFF = 2
+} obscura_toggle;
+
+/* HBAO: LSAO paper sec. 3 and 6. Every field: 0 selects the default given after it. */
+typedef struct obscura_hbao_settings {
+    float radius;         /* metres, (0, 1e4]: distance where the falloff rho0 reaches 0; steps cover it. Default 1 */
+    float falloff_c;      /* C of rho0(d) = max(0, r(1+C)/(r+d^2) - C), (0, 1). Default 0.3 */
+    float decay_rate;     /* r of rho0 in m^2, (0, 1e8]. Default C*radius^2, so rho0 reaches 0 at radius */
+    int32_t directions;   /* K azimuthal directions, [1, 32]. Default 8 */
+    int32_t steps;        /* N steps per direction, [1, 128]. Default 12 */
+    int32_t estimator;    /* 1: horizon-split integration (Bavoil 2008); 2: largest falloff-weighted occluder
+                             only (LSAO paper eq. 1, what LSAO computes). Default 1 */
+    float bias;           /* subtracted from sin(h) - sin(t), [0, 0.5]. Default 0 (zero is the default) */
+    float intensity;      /* obscurance multiplier, (0, 16]. Default 1 */
+    float power;          /* visibility exponent, (0, 16]. Default 1 */
+    float max_radius_pixels; /* screen-space cap of the marched radius, [1, 4096]. Default 256 */
+    obscura_toggle blur;  /* depth-aware bilateral blur. Default on */
+    int32_t blur_radius;  /* taps each side, [1, 16]. Default 4 */
+    float blur_sharpness; /* depth edge sharpness, (0, 1000]. Default 16 */
+} obscura_hbao_settings;
+
+typedef struct obscura_settings {
+    uint32_t struct_size;   /* sizeof(obscura_settings); required */
+    obscura_method method;  /* which method renders. Default HBAO */
+    obscura_hbao_settings hbao;
+} obscura_settings;
+
+/* Fills `out` with the defaults of `method` (struct_size set, every field explicit).
+   Returns OK, NULL_ARGUMENT, INVALID_ENUM. */
+OBSCURA_API obscura_status obscura_default_settings(obscura_method method, obscura_settings* out);
+
+/* Replaces zero fields of `in` with their defaults, validates every field, and writes the values that
+   will be used to `out` (may alias `in`); for UIs and logs. `context` may be NULL (then the error
+   detail goes nowhere). Returns OK, NULL_ARGUMENT, INVALID_STRUCT_SIZE, INVALID_ENUM, INVALID_SETTING. */
+OBSCURA_API obscura_status obscura_resolve_settings(obscura_context* context, const obscura_settings* in,
+                                                    obscura_settings* out);
+
+/* ---- Settings metadata: declared once, read by the CLI, the viewer and the docs ----------------- */
+typedef enum obscura_setting_type {
+    OBSCURA_SETTING_FLOAT = 0,
+    OBSCURA_SETTING_INT = 1,
+    OBSCURA_SETTING_TOGGLE = 2 /* obscura_toggle; min 0 (off) max 1 (on) in the table */
+} obscura_setting_type;
+
+typedef struct obscura_setting_info {
+    const char* name;        /* spec key, e.g. "radius" */
+    obscura_setting_type type;
+    double default_value;
+    double min_value;        /* inclusive */
+    double max_value;        /* inclusive */
+    const char* unit;        /* "m", "m^2", "px", "" ... */
+    const char* description; /* one line */
+    size_t offset;           /* byte offset of the field inside obscura_settings */
+} obscura_setting_info;
+
+/* Sets *out_infos to the method's static table of settings and *out_count to its length.
+   Returns OK, NULL_ARGUMENT, INVALID_ENUM. */
+OBSCURA_API obscura_status obscura_get_setting_infos(obscura_method method, const obscura_setting_info** out_infos,
+                                                     uint32_t* out_count);
+
+/* Sets the setting `name` of settings->method to `value` (toggles: 0 off, 1 on). The value is range-checked.
+   Returns OK, NULL_ARGUMENT, UNKNOWN_SETTING, INVALID_SETTING, INVALID_ENUM. */
+OBSCURA_API obscura_status obscura_set_setting(obscura_settings* settings, const char* name, double value);
+
+/* Reads the setting `name` of settings->method as it will be used: zero fields report their default
+   (derived defaults such as hbao decay_rate included); toggles read 0 (off) or 1 (on).
+   Returns OK, NULL_ARGUMENT, UNKNOWN_SETTING, INVALID_ENUM. */
+OBSCURA_API obscura_status obscura_get_setting(const obscura_settings* settings, const char* name, double* out_value);
+
+/* ---- Per-frame input ------------------------------------------------------------------------- */
+typedef enum obscura_depth_kind {
+    OBSCURA_DEPTH_HARDWARE = 0,    /* window-space depth written through `projection` */
+    OBSCURA_DEPTH_LINEAR_VIEW = 1  /* positive distance from the eye plane in view units (R16F/R32F) */
+} obscura_depth_kind;
+
+typedef enum obscura_clip_depth {
+    OBSCURA_CLIP_DEPTH_NEGATIVE_ONE_TO_ONE = 0, /* GL default */
+    OBSCURA_CLIP_DEPTH_ZERO_TO_ONE = 1          /* glClipControl(..., GL_ZERO_TO_ONE), usual with reversed-Z */
+} obscura_clip_depth;
+
+typedef enum obscura_matrix_layout {
+    OBSCURA_MATRIX_COLUMN_MAJOR = 0, /* as glUniformMatrix4fv(..., GL_FALSE, m) expects (GLM, most engines) */
+    OBSCURA_MATRIX_ROW_MAJOR = 1
+} obscura_matrix_layout;
+
+typedef struct obscura_rect {
+    int32_t x, y, width, height; /* pixels, origin at the bottom-left as in GL */
+} obscura_rect;
+
+typedef struct obscura_input {
+    uint32_t struct_size;           /* sizeof(obscura_input); required */
+    uint32_t depth_texture;         /* GL texture name; required */
+    obscura_depth_kind depth_kind;  /* default HARDWARE */
+    int32_t depth_width;            /* size of the whole depth texture (guard band included); required */
+    int32_t depth_height;
+    obscura_rect output_rect;       /* visible part of the depth texture; zero: the whole texture */
+    float projection[16];           /* the projection the depth was rendered with, covering the whole texture; required */
+    obscura_matrix_layout projection_layout; /* default column-major */
+    obscura_clip_depth clip_depth;  /* default [-1, 1] */
+    float meters_to_view_units;     /* view units per metre, (0, 1e6]; default 1 */
+    uint32_t normal_texture;        /* optional view-space normals, same size as the depth; 0: reconstruct */
+} obscura_input;
+
+/* ---- Per-frame output ------------------------------------------------------------------------ */
+typedef enum obscura_blend_mode {
+    OBSCURA_BLEND_OVERWRITE = 0, /* target = visibility */
+    OBSCURA_BLEND_MULTIPLY = 1   /* target.rgb *= visibility (alpha kept) */
+} obscura_blend_mode;
+
+typedef enum obscura_debug_view {
+    OBSCURA_DEBUG_NONE = 0,        /* final AO */
+    OBSCURA_DEBUG_LINEAR_DEPTH = 1, /* view depth / (4 * radius), clamped: near = black */
+    OBSCURA_DEBUG_NORMALS = 2,     /* view-space normal * 0.5 + 0.5 in rgb (single-channel targets get z) */
+    OBSCURA_DEBUG_AO_BEFORE_BLUR = 3
+} obscura_debug_view;
+
+typedef struct obscura_output {
+    uint32_t struct_size;          /* sizeof(obscura_output); required */
+    uint32_t texture;              /* GL_TEXTURE_2D (R8, R16F, R32F, RG*, RGBA8, RGBA16F, RGBA32F) ... */
+    uint32_t framebuffer;          /* ... or a framebuffer object (colour attachment 0) when texture is 0.
+                                      Both 0: the default framebuffer. */
+    int32_t x, y;                  /* where the output rectangle lands in the target; default (0, 0) */
+    obscura_blend_mode blend;      /* default OVERWRITE */
+    obscura_debug_view debug_view; /* default NONE */
+} obscura_output;
+
+/* ---- Rendering ------------------------------------------------------------------------------- */
+
+/* Renders AO for input->output_rect with `settings` into `output`. Allocates per-size resources on the
+   first call and when the size or the settings' resource needs change (see obscura_prepare).
+   Returns OK or NULL_ARGUMENT, INVALID_STRUCT_SIZE, WRONG_GL_CONTEXT, HOST_GL_ERROR, INVALID_SIZE,
+   INVALID_RECT, INVALID_TEXTURE, UNSUPPORTED_FORMAT, INVALID_PROJECTION, PROJECTION_TRANSPOSED,
+   INVALID_SETTING, INVALID_ENUM, METHOD_NOT_AVAILABLE, INVALID_FRAMEBUFFER, OUT_OF_MEMORY, GL_ERROR. */
+OBSCURA_API obscura_status obscura_render(obscura_context* context, const obscura_input* input,
+                                          const obscura_settings* settings, const obscura_output* output);
+
+/* Allocates the resources a render of this size and these settings needs, so the first frame does not.
+   Optional. Returns the statuses of obscura_render that concern sizes and settings. */
+OBSCURA_API obscura_status obscura_prepare(obscura_context* context, int32_t depth_width, int32_t depth_height,
+                                           const obscura_settings* settings);
+
+/* Frees the per-size resources (they are recreated on the next render). */
+OBSCURA_API void obscura_release_resources(obscura_context* context);
+
+/* ---- Queries --------------------------------------------------------------------------------- */
+typedef struct obscura_timing {
+    const char* label; /* "total" first, then one entry per pass, e.g. "hbao.depth", "hbao.ao", "hbao.blur" */
+    double milliseconds;
+} obscura_timing;
+
+/* Copies the latest complete per-pass GPU timings (a few frames old; never waits on the GPU) into
+   `out` (up to `capacity` entries) and sets *out_count to the number available. Returns OK with
+   *out_count = 0 until a frame's queries have completed. Returns OK, NULL_ARGUMENT. */
+OBSCURA_API obscura_status obscura_get_timings(obscura_context* context, obscura_timing* out, uint32_t capacity,
+                                               uint32_t* out_count);
+
+/* Sets *out_bytes to the GPU memory the context has allocated (textures and buffers). Returns OK, NULL_ARGUMENT. */
+OBSCURA_API obscura_status obscura_get_memory_usage(const obscura_context* context, uint64_t* out_bytes);
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
+
+#endif /* OBSCURA_OBSCURA_H */

@@ -1,0 +1,190 @@
+// The C boundary: argument checks that need no GL, status mapping, and nothing else. Every call
+// below either returns a status with a message or forwards to Context; no exception crosses it.
+#include <cstring>
+#include <new>
+
+#include "context.h"
+#include "settings.h"
+
+using obscura::Context;
+using obscura::Error;
+
+namespace {
+
+#define OBSCURA_STATUS_STRING_ENTRY_(name, value, desc) "OBSCURA_STATUS_" #name ": " desc,
+const char* const kStatusStrings[] = {OBSCURA_STATUS_LIST(OBSCURA_STATUS_STRING_ENTRY_)};
+#undef OBSCURA_STATUS_STRING_ENTRY_
+
+const char* const kMethodNames[] = {"default", "hbao", "sao", "lsao", "ffao", "reference"};
+
+Context* as_context(obscura_context* context) { return static_cast<Context*>(context); }
+
+// Runs `body` (returning Error) and maps its result and any exception to a status on `context`.
+template <class Body>
+obscura_status guarded(Context* context, Body&& body) {
+    Error error;
+    try {
+        error = body();
+    } catch (const std::bad_alloc&) {
+        error = Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "the allocator returned NULL");
+    } catch (...) {
+        error = Error::make(OBSCURA_STATUS_INTERNAL_ERROR, "unexpected exception inside Obscura");
+    }
+    return context ? context->report(error) : error.status();
+}
+
+Error check_struct(uint32_t struct_size, size_t expected, const char* name) {
+    if (struct_size != expected) {
+        return Error::make(OBSCURA_STATUS_INVALID_STRUCT_SIZE,
+                           "%s.struct_size is %u but this library expects %u (set it to sizeof(%s))", name,
+                           struct_size, unsigned(expected), name);
+    }
+    return Error();
+}
+
+}  // namespace
+
+extern "C" {
+
+OBSCURA_API uint32_t obscura_version(void) { return OBSCURA_VERSION; }
+
+OBSCURA_API const char* obscura_status_string(obscura_status status) {
+    if (int(status) < 0 || int(status) >= int(OBSCURA_STATUS_COUNT_)) return "OBSCURA_STATUS_?: unknown status code";
+    return kStatusStrings[status];
+}
+
+OBSCURA_API const char* obscura_method_name(obscura_method method) {
+    if (int(method) < 0 || int(method) >= int(OBSCURA_METHOD_COUNT_)) return nullptr;
+    return kMethodNames[obscura::resolve_method(method)];
+}
+
+OBSCURA_API int obscura_method_available(obscura_method method) {
+    return obscura::resolve_method(method) == OBSCURA_METHOD_HBAO ? 1 : 0;
+}
+
+OBSCURA_API obscura_status obscura_create_context(const obscura_context_desc* desc, obscura_context** out_context) {
+    if (out_context) *out_context = nullptr;
+    auto fail = [&](const Error& error) {
+        if (desc && desc->log) desc->log(OBSCURA_LOG_ERROR, error.status(), error.message(), desc->log_user_data);
+        return error.status();
+    };
+    if (!desc || !out_context) {
+        return fail(Error::make(OBSCURA_STATUS_NULL_ARGUMENT, "obscura_create_context: desc and out_context are required"));
+    }
+    Error error = check_struct(desc->struct_size, sizeof(obscura_context_desc), "obscura_context_desc");
+    if (error) return fail(error);
+    // Same major version, and a header no newer than the library (its structs would be larger).
+    if (desc->header_version / 10000 != OBSCURA_VERSION_MAJOR || desc->header_version > OBSCURA_VERSION) {
+        return fail(Error::make(OBSCURA_STATUS_VERSION_MISMATCH,
+                                "header version %u is not compatible with library version %u", desc->header_version,
+                                unsigned(OBSCURA_VERSION)));
+    }
+    if (!desc->get_proc_address) {
+        return fail(Error::make(OBSCURA_STATUS_NULL_ARGUMENT, "obscura_context_desc.get_proc_address is required"));
+    }
+    if ((desc->allocator.alloc == nullptr) != (desc->allocator.free == nullptr)) {
+        return fail(Error::make(OBSCURA_STATUS_NULL_ARGUMENT, "obscura_allocator needs both alloc and free, or neither"));
+    }
+    Context* context = nullptr;
+    try {
+        error = Context::create(*desc, &context);
+    } catch (const std::bad_alloc&) {
+        error = Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "the allocator returned NULL");
+    } catch (...) {
+        error = Error::make(OBSCURA_STATUS_INTERNAL_ERROR, "unexpected exception inside Obscura");
+    }
+    if (error) return fail(error);
+    *out_context = context;
+    return OBSCURA_OK;
+}
+
+OBSCURA_API void obscura_destroy_context(obscura_context* context) { Context::destroy(as_context(context)); }
+
+OBSCURA_API const char* obscura_get_last_error(const obscura_context* context) {
+    if (!context) return "obscura_get_last_error: context is NULL";
+    return static_cast<const Context*>(context)->last_error();
+}
+
+OBSCURA_API obscura_status obscura_default_settings(obscura_method method, obscura_settings* out) {
+    if (!out) return OBSCURA_STATUS_NULL_ARGUMENT;
+    if (obscura::resolve_method(method) == OBSCURA_METHOD_COUNT_) return OBSCURA_STATUS_INVALID_ENUM;
+    obscura_settings zero;
+    std::memset(&zero, 0, sizeof zero);
+    zero.struct_size = sizeof zero;
+    zero.method = obscura::resolve_method(method);
+    return obscura::resolve_settings(zero, out).status();
+}
+
+OBSCURA_API obscura_status obscura_resolve_settings(obscura_context* context, const obscura_settings* in,
+                                                    obscura_settings* out) {
+    return guarded(as_context(context), [&]() -> Error {
+        if (!in || !out) return Error::make(OBSCURA_STATUS_NULL_ARGUMENT, "obscura_resolve_settings: in and out are required");
+        obscura_settings resolved;
+        Error error = obscura::resolve_settings(*in, &resolved);
+        if (!error) *out = resolved;
+        return error;
+    });
+}
+
+OBSCURA_API obscura_status obscura_get_setting_infos(obscura_method method, const obscura_setting_info** out_infos,
+                                                     uint32_t* out_count) {
+    if (!out_infos || !out_count) return OBSCURA_STATUS_NULL_ARGUMENT;
+    if (obscura::resolve_method(method) == OBSCURA_METHOD_COUNT_) return OBSCURA_STATUS_INVALID_ENUM;
+    *out_infos = obscura::setting_infos(method, out_count);
+    return OBSCURA_OK;
+}
+
+OBSCURA_API obscura_status obscura_set_setting(obscura_settings* settings, const char* name, double value) {
+    if (!settings || !name) return OBSCURA_STATUS_NULL_ARGUMENT;
+    return obscura::set_setting(settings, name, value).status();
+}
+
+OBSCURA_API obscura_status obscura_get_setting(const obscura_settings* settings, const char* name, double* out_value) {
+    if (!settings || !name || !out_value) return OBSCURA_STATUS_NULL_ARGUMENT;
+    return obscura::get_setting(*settings, name, out_value).status();
+}
+
+OBSCURA_API obscura_status obscura_render(obscura_context* context, const obscura_input* input,
+                                          const obscura_settings* settings, const obscura_output* output) {
+    if (!context) return OBSCURA_STATUS_NULL_ARGUMENT;
+    Context* ctx = as_context(context);
+    return guarded(ctx, [&]() -> Error {
+        if (!input || !settings || !output) {
+            return Error::make(OBSCURA_STATUS_NULL_ARGUMENT, "obscura_render: input, settings and output are required");
+        }
+        Error error = check_struct(input->struct_size, sizeof(obscura_input), "obscura_input");
+        if (!error) error = check_struct(output->struct_size, sizeof(obscura_output), "obscura_output");
+        if (!error) error = check_struct(settings->struct_size, sizeof(obscura_settings), "obscura_settings");
+        if (error) return error;
+        return ctx->render(*input, *settings, *output);
+    });
+}
+
+OBSCURA_API obscura_status obscura_prepare(obscura_context* context, int32_t depth_width, int32_t depth_height,
+                                           const obscura_settings* settings) {
+    if (!context) return OBSCURA_STATUS_NULL_ARGUMENT;
+    Context* ctx = as_context(context);
+    return guarded(ctx, [&]() -> Error {
+        if (!settings) return Error::make(OBSCURA_STATUS_NULL_ARGUMENT, "obscura_prepare: settings is required");
+        return ctx->prepare(depth_width, depth_height, *settings);
+    });
+}
+
+OBSCURA_API void obscura_release_resources(obscura_context* context) {
+    if (context) as_context(context)->release_resources();
+}
+
+OBSCURA_API obscura_status obscura_get_timings(obscura_context* context, obscura_timing* out, uint32_t capacity,
+                                               uint32_t* out_count) {
+    if (!context || !out_count || (!out && capacity > 0)) return OBSCURA_STATUS_NULL_ARGUMENT;
+    *out_count = as_context(context)->timings(out, capacity);
+    return OBSCURA_OK;
+}
+
+OBSCURA_API obscura_status obscura_get_memory_usage(const obscura_context* context, uint64_t* out_bytes) {
+    if (!context || !out_bytes) return OBSCURA_STATUS_NULL_ARGUMENT;
+    *out_bytes = static_cast<const Context*>(context)->memory_bytes();
+    return OBSCURA_OK;
+}
+
+}  // extern "C"

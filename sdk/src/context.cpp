@@ -1,0 +1,365 @@
+#include "context.h"
+
+#include <cmath>
+#include <new>
+
+#include "gl/state_guard.h"
+#include "settings.h"
+
+namespace obscura {
+namespace {
+
+// A frame's shared constants for a pass computing `work`.
+FrameConstants frame_constants(const FrameInput& input, const OutputTarget& target, const Region& work,
+                               float debug_depth_scale) {
+    const float* m = input.projection.m;
+    FrameConstants c = {};
+    c.proj_scale[0] = m[0]; c.proj_scale[1] = m[5]; c.proj_scale[2] = m[8]; c.proj_scale[3] = m[9];
+    c.proj_depth[0] = m[10]; c.proj_depth[1] = m[14]; c.proj_depth[2] = m[11]; c.proj_depth[3] = m[15];
+    c.proj_offset[0] = m[12]; c.proj_offset[1] = m[13];
+    c.proj_offset[2] = input.projection.clip_scale; c.proj_offset[3] = input.projection.clip_bias;
+    c.depth_params[0] = input.projection.sky_window_depth;
+    c.depth_params[1] = input.meters_to_view_units;
+    c.depth_params[2] = 1.0f / float(input.width);
+    c.depth_params[3] = 1.0f / float(input.height);
+    int source = input.depth_linear ? OBSCURA_DEPTH_SOURCE_LINEAR : OBSCURA_DEPTH_SOURCE_HARDWARE;
+    if (input.depth_multisample) source += 1;
+    c.depth_size[0] = input.width; c.depth_size[1] = input.height;
+    c.depth_size[2] = source; c.depth_size[3] = input.normal_mode;
+    c.output_rect[0] = input.output_rect.x; c.output_rect[1] = input.output_rect.y;
+    c.output_rect[2] = input.output_rect.width; c.output_rect[3] = input.output_rect.height;
+    c.work_rect[0] = work.x; c.work_rect[1] = work.y; c.work_rect[2] = work.width; c.work_rect[3] = work.height;
+    c.target_params[0] = target.kind == TargetKind::Image ? target.x : 0;
+    c.target_params[1] = target.kind == TargetKind::Image ? target.y : 0;
+    c.target_params[2] = int(target.blend);
+    c.target_params[3] = int(target.debug_view);
+    c.debug_params[0] = debug_depth_scale;
+    return c;
+}
+
+const char* gl_error_name(GLenum error) {
+    switch (error) {
+        case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
+        case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
+        case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
+        case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
+        case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
+        case GL_STACK_UNDERFLOW: return "GL_STACK_UNDERFLOW";
+        case GL_STACK_OVERFLOW: return "GL_STACK_OVERFLOW";
+        default: return "unknown GL error";
+    }
+}
+
+// Drains the GL error queue; returns the first error.
+GLenum take_gl_error(const gl::Table& gl) {
+    GLenum first = gl.GetError();
+    if (first == GL_NO_ERROR) return first;
+    for (int i = 0; i < 16 && gl.GetError() != GL_NO_ERROR; ++i) {}
+    return first;
+}
+
+}  // namespace
+
+Context::Context(const obscura_context_desc& desc)
+    : alloc_(AllocatorCallbacks::from(desc.allocator)),
+      log_(desc.log),
+      log_user_data_(desc.log_user_data),
+      flags_(desc.flags),
+      get_proc_address_(desc.get_proc_address) {}
+
+Context::~Context() {
+    // Members release their GL objects through gl_ (declared first, destroyed last).
+    timer_.destroy();
+}
+
+Error Context::create(const obscura_context_desc& desc, Context** out) {
+    AllocatorCallbacks alloc = AllocatorCallbacks::from(desc.allocator);
+    void* memory = alloc.allocate(sizeof(Context));
+    if (!memory) return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating the context failed");
+    Context* context = new (memory) Context(desc);
+    Error error = context->initialize();
+    if (error) {
+        destroy(context);
+        return error;
+    }
+    *out = context;
+    return Error();
+}
+
+void Context::destroy(Context* context) {
+    if (!context) return;
+    AllocatorCallbacks alloc = context->alloc_;
+    context->~Context();
+    alloc.release(context);
+}
+
+PassEnv Context::env() const {
+    return PassEnv{gl_, alloc_, log_, log_user_data_, sampler_.name(), uniform_buffer_.name()};
+}
+
+Error Context::initialize() {
+    // Probe for a current context before loading: glad would otherwise read a NULL version string.
+    using GetStringFn = const GLubyte* (*)(GLenum);
+    auto get_string = reinterpret_cast<GetStringFn>(get_proc_address_("glGetString"));
+    if (!get_string || !get_string(GL_VERSION)) {
+        return Error::make(OBSCURA_STATUS_NO_GL_CONTEXT,
+                           "no OpenGL context is current on this thread (glGetString(GL_VERSION) returned NULL)");
+    }
+    int version = obscura_gl_load_table(&gl_, get_proc_address_);
+    if (version == 0) {
+        return Error::make(OBSCURA_STATUS_NO_GL_CONTEXT, "loading OpenGL through get_proc_address failed");
+    }
+    if (version < 40003) {
+        return Error::make(OBSCURA_STATUS_GL_VERSION_UNSUPPORTED,
+                           "OpenGL %d.%d is current; Obscura needs 4.3 core (GL_VERSION \"%s\")", version / 10000,
+                           version % 10000, reinterpret_cast<const char*>(get_string(GL_VERSION)));
+    }
+    // Every function the SDK calls must have loaded (a host loader may return NULL for some).
+    struct Required { const void* fn; const char* name; };
+    const Required required[] = {
+        {reinterpret_cast<const void*>(gl_.DispatchCompute), "glDispatchCompute"},
+        {reinterpret_cast<const void*>(gl_.BindImageTexture), "glBindImageTexture"},
+        {reinterpret_cast<const void*>(gl_.MemoryBarrier), "glMemoryBarrier"},
+        {reinterpret_cast<const void*>(gl_.TexStorage2D), "glTexStorage2D"},
+        {reinterpret_cast<const void*>(gl_.QueryCounter), "glQueryCounter"},
+        {reinterpret_cast<const void*>(gl_.GetQueryObjectui64v), "glGetQueryObjectui64v"},
+        {reinterpret_cast<const void*>(gl_.BindBufferRange), "glBindBufferRange"},
+        {reinterpret_cast<const void*>(gl_.GetIntegeri_v), "glGetIntegeri_v"},
+        {reinterpret_cast<const void*>(gl_.GetInteger64i_v), "glGetInteger64i_v"},
+        {reinterpret_cast<const void*>(gl_.BindSampler), "glBindSampler"},
+        {reinterpret_cast<const void*>(gl_.BlitFramebuffer), "glBlitFramebuffer"},
+        {reinterpret_cast<const void*>(gl_.CreateShader), "glCreateShader"},
+        {reinterpret_cast<const void*>(gl_.GetTexLevelParameteriv), "glGetTexLevelParameteriv"},
+        {reinterpret_cast<const void*>(gl_.FramebufferTexture2D), "glFramebufferTexture2D"},
+    };
+    for (const Required& r : required) {
+        if (!r.fn) return Error::make(OBSCURA_STATUS_MISSING_GL_FUNCTION, "get_proc_address returned NULL for %s", r.name);
+    }
+    GLenum pending = take_gl_error(gl_);
+    if (pending != GL_NO_ERROR) {
+        return Error::make(OBSCURA_STATUS_HOST_GL_ERROR,
+                           "the host left %s (0x%04X) pending before obscura_create_context; it was consumed",
+                           gl_error_name(pending), unsigned(pending));
+    }
+
+    gl::StateGuard guard(gl_);
+    gl_.GetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &uniform_alignment_);
+    sampler_ = gl::create_sampler_nearest_clamp(gl_);
+    uniform_buffer_ = gl::Buffer::create(gl_, GL_UNIFORM_BUFFER, UniformArena::kCapacity);
+    timer_.create(gl_, (flags_ & OBSCURA_CONTEXT_FLAG_SYNC_TIMING) != 0);
+    PassEnv pass_env = env();
+    Error error = hbao_.create(pass_env);
+    if (!error) error = blur_.create(pass_env);
+    if (error) return error;
+    GLenum gl_error = take_gl_error(gl_);
+    if (gl_error != GL_NO_ERROR) {
+        return Error::make(OBSCURA_STATUS_GL_ERROR, "%s while creating the context's GL objects", gl_error_name(gl_error));
+    }
+    return Error();
+}
+
+obscura_status Context::report(const Error& error) {
+    if (error.ok()) {
+        last_error_[0] = '\0';
+        return OBSCURA_STATUS_OK;
+    }
+    std::snprintf(last_error_, sizeof last_error_, "%s", error.message());
+    if (log_) log_(OBSCURA_LOG_ERROR, error.status(), error.message(), log_user_data_);
+    return error.status();
+}
+
+uint64_t Context::memory_bytes() const { return resources_.bytes() + uniform_buffer_.bytes(); }
+
+Error Context::check_gl_context() {
+    const GLubyte* version = gl_.GetString(GL_VERSION);
+    if (!version) return Error::make(OBSCURA_STATUS_WRONG_GL_CONTEXT, "no OpenGL context is current on this thread");
+    // Samplers are per-context objects (unless shared): if ours is unknown here, another context is current.
+    if (!gl_.IsSampler(sampler_.name())) {
+        return Error::make(OBSCURA_STATUS_WRONG_GL_CONTEXT,
+                           "the current OpenGL context is not the one this obscura context was created on");
+    }
+    return Error();
+}
+
+Error Context::ensure_resources(int width, int height, const obscura_settings& settings) {
+    (void)settings;
+    if (resources_.width == width && resources_.height == height && resources_.linear_depth) return Error();
+    release_resources();
+    FrameResources r;
+    r.width = width;
+    r.height = height;
+    r.linear_depth = gl::Texture2D::create(gl_, GL_R32F, width, height);
+    r.normals = gl::Texture2D::create(gl_, GL_RG16_SNORM, width, height);
+    r.ao = gl::Texture2D::create(gl_, GL_R16F, width, height);
+    r.blur_temp = gl::Texture2D::create(gl_, GL_R16F, width, height);
+    r.ao_blurred = gl::Texture2D::create(gl_, GL_R16F, width, height);
+    if (!r.linear_depth || !r.normals || !r.ao || !r.blur_temp || !r.ao_blurred) {
+        return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating the %dx%d working textures failed", width, height);
+    }
+    resources_ = std::move(r);
+    return Error();
+}
+
+void Context::release_resources() { resources_ = FrameResources(); }
+
+Error Context::prepare(int width, int height, const obscura_settings& settings) {
+    obscura_settings resolved;
+    Error error = resolve_settings(settings, &resolved);
+    if (error) return error;
+    if (!obscura_method_available(resolved.method)) {
+        return Error::make(OBSCURA_STATUS_METHOD_NOT_AVAILABLE, "method %s is not available in this version",
+                           obscura_method_name(resolved.method));
+    }
+    GLint max_size = 0;
+    gl_.GetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+    if (width <= 0 || height <= 0 || width > max_size || height > max_size) {
+        return Error::make(OBSCURA_STATUS_INVALID_SIZE, "size %dx%d must be within 1..%d", width, height, max_size);
+    }
+    Error context_error = check_gl_context();
+    if (context_error) return context_error;
+    gl::StateGuard guard(gl_);
+    return ensure_resources(width, height, resolved);
+}
+
+Error Context::render(const obscura_input& input, const obscura_settings& settings, const obscura_output& output) {
+    Error error = check_gl_context();
+    if (error) return error;
+    GLenum pending = take_gl_error(gl_);
+    if (pending != GL_NO_ERROR) {
+        return Error::make(OBSCURA_STATUS_HOST_GL_ERROR,
+                           "the host left %s (0x%04X) pending before obscura_render; it was consumed and nothing "
+                           "was rendered",
+                           gl_error_name(pending), unsigned(pending));
+    }
+    obscura_settings resolved;
+    error = resolve_settings(settings, &resolved);
+    if (error) return error;
+    if (!obscura_method_available(resolved.method)) {
+        return Error::make(OBSCURA_STATUS_METHOD_NOT_AVAILABLE,
+                           "method %s is not available in this version of Obscura (%d.%d.%d)",
+                           obscura_method_name(resolved.method), OBSCURA_VERSION_MAJOR, OBSCURA_VERSION_MINOR,
+                           OBSCURA_VERSION_PATCH);
+    }
+    {
+        gl::StateGuard guard(gl_);
+        FrameInput frame;
+        error = validate_input(gl_, input, &frame);
+        if (!error) {
+            OutputTarget target;
+            error = validate_output(gl_, output, frame.output_rect, &target);
+            if (!error) error = ensure_resources(frame.width, frame.height, resolved);
+            if (!error) error = record_frame(frame, resolved, target);
+            restore_input_state(gl_, frame);
+        }
+        // A failed validation may leave a probing error (wrong texture target) behind: drain it.
+        GLenum gl_error = take_gl_error(gl_);
+        if (!error && gl_error != GL_NO_ERROR) {
+            error = Error::make(OBSCURA_STATUS_GL_ERROR, "%s (0x%04X) raised while rendering", gl_error_name(gl_error),
+                                unsigned(gl_error));
+        }
+    }
+    GLenum restore_error = take_gl_error(gl_);
+    if (!error && restore_error != GL_NO_ERROR) {
+        error = Error::make(OBSCURA_STATUS_GL_ERROR, "%s (0x%04X) raised while restoring the host's GL state",
+                            gl_error_name(restore_error), unsigned(restore_error));
+    }
+    return error;
+}
+
+Error Context::record_frame(const FrameInput& input, const obscura_settings& settings, const OutputTarget& target) {
+    PassEnv pass_env = env();
+    Error error = depth_prepare_.prepare(pass_env, input);
+    if (error) return error;
+    GLenum composite_format = target.kind == TargetKind::Image ? target.format : GL_RGBA8;
+    error = composite_.prepare(pass_env, composite_format);
+    if (error) return error;
+
+    const obscura_hbao_settings& hbao = settings.hbao;
+    bool blur = hbao.blur == OBSCURA_TOGGLE_ON;
+    int blur_radius = blur ? hbao.blur_radius : 0;
+    Region rect{input.output_rect.x, input.output_rect.y, input.output_rect.width, input.output_rect.height};
+    Region whole{0, 0, input.width, input.height};
+    // AO is computed where the blur will read it: the output rect plus the blur radius on both axes.
+    Region ao_region = rect.expanded(blur_radius, blur_radius, input.width, input.height);
+    Region blur_x_region = rect.expanded(0, blur_radius, input.width, input.height);
+
+    // Blit targets: compose into the staging texture at (0, 0), then blit it to the host framebuffer.
+    OutputTarget composite_target = target;
+    if (target.kind == TargetKind::Blit) {
+        composite_target.x = 0;
+        composite_target.y = 0;
+        if (!resources_.staging || resources_.staging.width() != rect.width || resources_.staging.height() != rect.height) {
+            resources_.staging = gl::Texture2D::create(gl_, GL_RGBA8, rect.width, rect.height);
+            resources_.staging_framebuffer = gl::create_framebuffer(gl_);
+            if (!resources_.staging) return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating the staging texture failed");
+            gl_.BindFramebuffer(GL_FRAMEBUFFER, resources_.staging_framebuffer.name());
+            gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, resources_.staging.name(), 0);
+        }
+    }
+    float debug_depth_scale = 1.0f / (4.0f * hbao.radius * input.meters_to_view_units);
+
+    uniforms_.reset(uniform_alignment_);
+    UniformRange frame_whole = uniforms_.push(frame_constants(input, composite_target, whole, debug_depth_scale));
+    UniformRange frame_ao = uniforms_.push(frame_constants(input, composite_target, ao_region, debug_depth_scale));
+    UniformRange frame_blur_x = uniforms_.push(frame_constants(input, composite_target, blur_x_region, debug_depth_scale));
+    UniformRange frame_blur_y = uniforms_.push(frame_constants(input, composite_target, rect, debug_depth_scale));
+    UniformRange hbao_pass = uniforms_.push(HbaoPass::constants(hbao, input));
+    UniformRange blur_x_pass = uniforms_.push(BilateralBlurPass::constants(blur_radius, hbao.blur_sharpness, 1, 0));
+    UniformRange blur_y_pass = uniforms_.push(BilateralBlurPass::constants(blur_radius, hbao.blur_sharpness, 0, 1));
+    uniforms_.upload(gl_, uniform_buffer_.name());
+
+    bool validate = (flags_ & OBSCURA_CONTEXT_FLAG_VALIDATE_PASSES) != 0;
+    auto after_pass = [&](const char* label) -> Error {
+        timer_.mark(label);
+        if (!validate) return Error();
+        GLenum e = take_gl_error(gl_);
+        if (e == GL_NO_ERROR) return Error();
+        return Error::make(OBSCURA_STATUS_GL_ERROR, "%s raised in pass %s", gl_error_name(e), label);
+    };
+
+    timer_.begin_frame();
+    depth_prepare_.run(pass_env, input, frame_whole, resources_);
+    error = after_pass("depth_prepare");
+    if (!error) {
+        hbao_.run(pass_env, frame_ao, hbao_pass, ao_region, resources_);
+        error = after_pass("hbao");
+    }
+    const gl::Texture2D* result = &resources_.ao;
+    if (!error && blur) {
+        blur_.run(pass_env, frame_blur_x, blur_x_pass, blur_x_region, resources_.linear_depth, resources_.ao,
+                  resources_.blur_temp);
+        blur_.run(pass_env, frame_blur_y, blur_y_pass, rect, resources_.linear_depth, resources_.blur_temp,
+                  resources_.ao_blurred);
+        result = &resources_.ao_blurred;
+        error = after_pass("blur");
+    }
+    if (!error) {
+        const gl::Texture2D& source = target.debug_view == OBSCURA_DEBUG_AO_BEFORE_BLUR ? resources_.ao : *result;
+        if (target.kind == TargetKind::Image) {
+            composite_.run(pass_env, frame_blur_y, input.output_rect, source, resources_, target.texture, target.format);
+        } else {
+            // Multiply needs the framebuffer's colour first: blit it into the staging texture.
+            gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, target.framebuffer);
+            gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, resources_.staging_framebuffer.name());
+            gl_.Disable(GL_SCISSOR_TEST);
+            if (target.blend == OBSCURA_BLEND_MULTIPLY) {
+                gl_.BlitFramebuffer(target.x, target.y, target.x + rect.width, target.y + rect.height, 0, 0, rect.width,
+                                    rect.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+            }
+            composite_.run(pass_env, frame_blur_y, input.output_rect, source, resources_, resources_.staging.name(),
+                           GL_RGBA8);
+            gl_.MemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT);
+            gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, resources_.staging_framebuffer.name());
+            gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, target.framebuffer);
+            gl_.BlitFramebuffer(0, 0, rect.width, rect.height, target.x, target.y, target.x + rect.width,
+                                target.y + rect.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        }
+        error = after_pass("composite");
+    }
+    // The host may read the result any way (sampling, image load, framebuffer, readback).
+    gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
+    timer_.end_frame();
+    return error;
+}
+
+}  // namespace obscura

@@ -1,0 +1,70 @@
+// Context: one per host GL context. Owns the GL function table (loaded from the host's
+// get_proc_address), the compiled passes, the per-size resources and the timers, and runs a frame:
+// validate -> (re)allocate -> constants -> passes -> composite, all under one StateGuard.
+#ifndef OBSCURA_CONTEXT_H
+#define OBSCURA_CONTEXT_H
+
+#include "error.h"
+#include "frame_input.h"
+#include "gl/gl_objects.h"
+#include "gpu_timer.h"
+#include "host_allocator.h"
+#include "passes/bilateral_blur.h"
+#include "passes/composite.h"
+#include "passes/depth_prepare.h"
+#include "passes/hbao.h"
+#include "passes/pass_common.h"
+
+struct obscura_context {};  // the opaque handle type; Context derives from it
+
+namespace obscura {
+
+class Context : public obscura_context {
+public:
+    // Creates a context in memory from the desc's allocator. Errors as obscura_create_context.
+    static Error create(const obscura_context_desc& desc, Context** out);
+    static void destroy(Context* context);
+
+    Error render(const obscura_input& input, const obscura_settings& settings, const obscura_output& output);
+    Error prepare(int width, int height, const obscura_settings& settings);
+    void release_resources();
+    uint32_t timings(obscura_timing* out, uint32_t capacity) { return timer_.latest(out, capacity); }
+    uint64_t memory_bytes() const;
+
+    // Records an error for obscura_get_last_error and forwards it to the log callback; returns its status.
+    obscura_status report(const Error& error);
+    void clear_error() { last_error_[0] = '\0'; }
+    const char* last_error() const { return last_error_; }
+
+private:
+    explicit Context(const obscura_context_desc& desc);
+    ~Context();
+    Error initialize();
+    PassEnv env() const;
+    Error check_gl_context();
+    Error ensure_resources(int width, int height, const obscura_settings& settings);
+    Error record_frame(const FrameInput& input, const obscura_settings& settings, const OutputTarget& target);
+
+    AllocatorCallbacks alloc_;
+    obscura_log_fn log_;
+    void* log_user_data_;
+    uint32_t flags_;
+    obscura_get_proc_address_fn get_proc_address_;
+    gl::Table gl_ = {};
+    GLint uniform_alignment_ = 256;
+
+    gl::Object sampler_;
+    gl::Buffer uniform_buffer_;
+    UniformArena uniforms_;
+    DepthPreparePass depth_prepare_;
+    HbaoPass hbao_;
+    BilateralBlurPass blur_;
+    CompositePass composite_;
+    FrameResources resources_;
+    GpuTimer timer_;
+    char last_error_[1024] = {};
+};
+
+}  // namespace obscura
+
+#endif  // OBSCURA_CONTEXT_H

@@ -1,0 +1,70 @@
+#include "gl/state_guard.h"
+
+namespace obscura::gl {
+
+StateGuard::StateGuard(const Table& gl) : gl_(gl) {
+    gl.GetIntegerv(GL_CURRENT_PROGRAM, &program_);
+    gl.GetIntegerv(GL_ACTIVE_TEXTURE, &active_texture_);
+    for (int unit = 0; unit < OBSCURA_TEXTURE_UNIT_COUNT; ++unit) {
+        gl.ActiveTexture(GLenum(GL_TEXTURE0 + unit));
+        gl.GetIntegerv(GL_TEXTURE_BINDING_2D, &texture_2d_[unit]);
+        gl.GetIntegerv(GL_TEXTURE_BINDING_2D_MULTISAMPLE, &texture_2d_ms_[unit]);
+        gl.GetIntegerv(GL_SAMPLER_BINDING, &sampler_[unit]);
+    }
+    gl.ActiveTexture(GLenum(active_texture_));
+    for (int unit = 0; unit < OBSCURA_IMAGE_UNIT_COUNT; ++unit) {
+        ImageUnit& image = image_[unit];
+        gl.GetIntegeri_v(GL_IMAGE_BINDING_NAME, GLuint(unit), &image.name);
+        gl.GetIntegeri_v(GL_IMAGE_BINDING_LEVEL, GLuint(unit), &image.level);
+        gl.GetIntegeri_v(GL_IMAGE_BINDING_LAYERED, GLuint(unit), &image.layered);
+        gl.GetIntegeri_v(GL_IMAGE_BINDING_LAYER, GLuint(unit), &image.layer);
+        gl.GetIntegeri_v(GL_IMAGE_BINDING_ACCESS, GLuint(unit), &image.access);
+        gl.GetIntegeri_v(GL_IMAGE_BINDING_FORMAT, GLuint(unit), &image.format);
+    }
+    gl.GetIntegerv(GL_UNIFORM_BUFFER_BINDING, &uniform_buffer_);
+    for (int index = 0; index < OBSCURA_UBO_COUNT; ++index) {
+        IndexedBuffer& binding = uniform_indexed_[index];
+        gl.GetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, GLuint(index), &binding.name);
+        gl.GetInteger64i_v(GL_UNIFORM_BUFFER_START, GLuint(index), &binding.start);
+        gl.GetInteger64i_v(GL_UNIFORM_BUFFER_SIZE, GLuint(index), &binding.size);
+    }
+    gl.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_framebuffer_);
+    gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw_framebuffer_);
+    scissor_test_ = gl.IsEnabled(GL_SCISSOR_TEST);
+}
+
+StateGuard::~StateGuard() {
+    const Table& gl = gl_;
+    gl.UseProgram(GLuint(program_));
+    for (int unit = 0; unit < OBSCURA_TEXTURE_UNIT_COUNT; ++unit) {
+        gl.ActiveTexture(GLenum(GL_TEXTURE0 + unit));
+        gl.BindTexture(GL_TEXTURE_2D, GLuint(texture_2d_[unit]));
+        gl.BindTexture(GL_TEXTURE_2D_MULTISAMPLE, GLuint(texture_2d_ms_[unit]));
+        gl.BindSampler(GLuint(unit), GLuint(sampler_[unit]));
+    }
+    gl.ActiveTexture(GLenum(active_texture_));
+    for (int unit = 0; unit < OBSCURA_IMAGE_UNIT_COUNT; ++unit) {
+        const ImageUnit& image = image_[unit];
+        // An unbound unit reports format 0 on some drivers; GL_R8 is the spec's initial value.
+        GLenum format = image.format != 0 ? GLenum(image.format) : GL_R8;
+        GLenum access = image.access != 0 ? GLenum(image.access) : GL_READ_ONLY;
+        gl.BindImageTexture(GLuint(unit), GLuint(image.name), image.level, GLboolean(image.layered), image.layer,
+                            access, format);
+    }
+    // Indexed binds also change the generic binding, so the generic one is restored last.
+    for (int index = 0; index < OBSCURA_UBO_COUNT; ++index) {
+        const IndexedBuffer& binding = uniform_indexed_[index];
+        if (binding.name != 0 && binding.size > 0) {
+            gl.BindBufferRange(GL_UNIFORM_BUFFER, GLuint(index), GLuint(binding.name), GLintptr(binding.start),
+                               GLsizeiptr(binding.size));
+        } else {
+            gl.BindBufferBase(GL_UNIFORM_BUFFER, GLuint(index), GLuint(binding.name));
+        }
+    }
+    gl.BindBuffer(GL_UNIFORM_BUFFER, GLuint(uniform_buffer_));
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(read_framebuffer_));
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(draw_framebuffer_));
+    if (scissor_test_) gl.Enable(GL_SCISSOR_TEST); else gl.Disable(GL_SCISSOR_TEST);
+}
+
+}  // namespace obscura::gl

@@ -1,0 +1,101 @@
+#include "gpu_timer.h"
+
+namespace obscura {
+
+void GpuTimer::create(const gl::Table& gl, bool sync_timing) {
+    gl_ = &gl;
+    sync_ = sync_timing;
+    if (sync_) return;
+    for (FrameSlot& slot : slots_)
+        for (gl::Object& query : slot.queries) query = gl::create_query(gl);
+}
+
+void GpuTimer::destroy() {
+    for (FrameSlot& slot : slots_)
+        for (gl::Object& query : slot.queries) query.reset();
+}
+
+void GpuTimer::begin_frame() {
+    if (sync_) {
+        gl_->Finish();
+        sync_last_ = std::chrono::steady_clock::now();
+        sync_count_ = 0;
+        return;
+    }
+    collect();
+    current_ = -1;
+    FrameSlot& slot = slots_[next_];
+    if (slot.pending) return;  // all slots still in flight: skip timing this frame rather than wait
+    current_ = next_;
+    next_ = (next_ + 1) % kFramesInFlight;
+    slot.marks = 0;
+    gl_->QueryCounter(slot.queries[0].name(), GL_TIMESTAMP);
+}
+
+void GpuTimer::mark(const char* label) {
+    if (sync_) {
+        gl_->Finish();
+        auto now = std::chrono::steady_clock::now();
+        if (sync_count_ < kMaxPasses) {
+            sync_labels_[sync_count_] = label;
+            sync_ms_[sync_count_] = std::chrono::duration<double, std::milli>(now - sync_last_).count();
+            ++sync_count_;
+        }
+        sync_last_ = now;
+        return;
+    }
+    if (current_ < 0) return;
+    FrameSlot& slot = slots_[current_];
+    if (slot.marks >= kMaxPasses) return;
+    slot.labels[slot.marks] = label;
+    ++slot.marks;
+    gl_->QueryCounter(slot.queries[slot.marks].name(), GL_TIMESTAMP);
+}
+
+void GpuTimer::end_frame() {
+    if (sync_) {
+        latest_count_ = sync_count_;
+        for (int i = 0; i < sync_count_; ++i) {
+            latest_labels_[i] = sync_labels_[i];
+            latest_ms_[i] = sync_ms_[i];
+        }
+        return;
+    }
+    if (current_ >= 0) slots_[current_].pending = slots_[current_].marks > 0;
+    current_ = -1;
+}
+
+void GpuTimer::collect() {
+    // Oldest first, so the newest complete frame ends up in latest_*.
+    for (int i = 0; i < kFramesInFlight; ++i) {
+        FrameSlot& slot = slots_[(next_ + i) % kFramesInFlight];
+        if (!slot.pending) continue;
+        GLuint available = 0;
+        gl_->GetQueryObjectuiv(slot.queries[slot.marks].name(), GL_QUERY_RESULT_AVAILABLE, &available);
+        if (!available) continue;
+        GLuint64 previous = 0;
+        gl_->GetQueryObjectui64v(slot.queries[0].name(), GL_QUERY_RESULT, &previous);
+        for (int m = 0; m < slot.marks; ++m) {
+            GLuint64 stamp = 0;
+            gl_->GetQueryObjectui64v(slot.queries[m + 1].name(), GL_QUERY_RESULT, &stamp);
+            latest_labels_[m] = slot.labels[m];
+            latest_ms_[m] = stamp >= previous ? double(stamp - previous) * 1e-6 : 0.0;
+            previous = stamp;
+        }
+        latest_count_ = slot.marks;
+        slot.pending = false;
+    }
+}
+
+uint32_t GpuTimer::latest(obscura_timing* out, uint32_t capacity) {
+    if (!sync_ && gl_) collect();
+    if (latest_count_ == 0) return 0;
+    uint32_t available = uint32_t(latest_count_) + 1;
+    double total = 0.0;
+    for (int i = 0; i < latest_count_; ++i) total += latest_ms_[i];
+    if (out && capacity > 0) out[0] = {"total", total};
+    for (uint32_t i = 1; out && i < capacity && i < available; ++i) out[i] = {latest_labels_[i - 1], latest_ms_[i - 1]};
+    return available;
+}
+
+}  // namespace obscura

@@ -1,0 +1,56 @@
+// Per-pass GPU timings without stalls: a ring of timestamp queries, one set per frame in flight.
+// A frame's results are read only once its last query is available, so reading never waits; until
+// then the previous complete frame's timings are reported. With sync timing (benchmarks on drivers
+// whose timer queries read 0) every mark calls glFinish and reads the CPU clock instead.
+#ifndef OBSCURA_GPU_TIMER_H
+#define OBSCURA_GPU_TIMER_H
+
+#include <chrono>
+
+#include "gl/gl_objects.h"
+#include "obscura/obscura.h"
+
+namespace obscura {
+
+class GpuTimer {
+public:
+    static constexpr int kFramesInFlight = 4;
+    static constexpr int kMaxPasses = 12;
+
+    void create(const gl::Table& gl, bool sync_timing);
+    void destroy();
+
+    // Frame bracketing; `label`s must be string literals (they are returned as is).
+    void begin_frame();
+    void mark(const char* label);
+    void end_frame();
+
+    // Latest complete frame: "total" first, then each pass. Returns the number available.
+    uint32_t latest(obscura_timing* out, uint32_t capacity);
+
+private:
+    struct FrameSlot {
+        gl::Object queries[kMaxPasses + 1];
+        const char* labels[kMaxPasses] = {};
+        int marks = 0;
+        bool pending = false;
+    };
+    void collect();
+
+    const gl::Table* gl_ = nullptr;
+    bool sync_ = false;
+    FrameSlot slots_[kFramesInFlight];
+    int current_ = -1;  // slot being recorded, -1 when this frame is not timed
+    int next_ = 0;
+    std::chrono::steady_clock::time_point sync_last_;
+    const char* latest_labels_[kMaxPasses] = {};
+    double latest_ms_[kMaxPasses] = {};
+    int latest_count_ = 0;
+    int sync_count_ = 0;
+    const char* sync_labels_[kMaxPasses] = {};
+    double sync_ms_[kMaxPasses] = {};
+};
+
+}  // namespace obscura
+
+#endif  // OBSCURA_GPU_TIMER_H

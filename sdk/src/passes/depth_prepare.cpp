@@ -1,0 +1,28 @@
+#include "passes/depth_prepare.h"
+
+namespace obscura {
+
+Error DepthPreparePass::prepare(const PassEnv& env, const FrameInput& input) {
+    gl::Object& program = program_for(input);
+    if (program) return Error();
+    char defines[96];
+    std::snprintf(defines, sizeof defines, "DEPTH_LINEAR %d\nDEPTH_MULTISAMPLE %d\n", input.depth_linear ? 1 : 0,
+                  input.depth_multisample ? 1 : 0);
+    return env.build("depth_prepare.comp", defines, &program);
+}
+
+void DepthPreparePass::run(const PassEnv& env, const FrameInput& input, const UniformRange& frame,
+                           FrameResources& resources) {
+    const gl::Table& gl = env.gl;
+    gl.UseProgram(program_for(input).name());
+    env.bind_texture(OBSCURA_UNIT_DEPTH, input.depth_multisample ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D,
+                     input.depth_texture);
+    env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, input.normal_texture);
+    gl.BindImageTexture(OBSCURA_IMAGE_OUT0, resources.linear_depth.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    gl.BindImageTexture(OBSCURA_IMAGE_OUT1, resources.normals.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG16_SNORM);
+    env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
+    env.dispatch(input.width, input.height, OBSCURA_DEPTH_PREPARE_GROUP_X, OBSCURA_DEPTH_PREPARE_GROUP_Y);
+    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+}  // namespace obscura

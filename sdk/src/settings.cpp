@@ -1,0 +1,218 @@
+#include "settings.h"
+
+#include <cmath>
+#include <cstddef>
+#include <cstring>
+
+namespace obscura {
+namespace {
+
+#define OBSCURA_HBAO_FIELD(field) offsetof(obscura_settings, hbao) + offsetof(obscura_hbao_settings, field)
+
+// HBAO (LSAO paper sec. 3 and 6; the falloff rho0 is its eq. 3). Defaults follow the paper (C = 0.3)
+// and common HBAO practice (8 directions, 12 steps, 4-tap bilateral blur).
+const obscura_setting_info kHbaoSettings[] = {
+    {"radius", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 1e4, "m",
+     "distance where the falloff reaches zero; the steps cover it", OBSCURA_HBAO_FIELD(radius)},
+    {"falloff_c", OBSCURA_SETTING_FLOAT, 0.3, 1e-3, 0.999, "",
+     "C of rho0(d) = max(0, r(1+C)/(r+d^2) - C): how far the falloff is sunk", OBSCURA_HBAO_FIELD(falloff_c)},
+    {"decay_rate", OBSCURA_SETTING_FLOAT, 0.0, 1e-8, 1e8, "m^2",
+     "r of rho0; 0 derives C*radius^2 so rho0 reaches zero at the radius", OBSCURA_HBAO_FIELD(decay_rate)},
+    {"directions", OBSCURA_SETTING_INT, 8, 1, 32, "", "K azimuthal directions per pixel",
+     OBSCURA_HBAO_FIELD(directions)},
+    {"steps", OBSCURA_SETTING_INT, 12, 1, 128, "", "N ray-march steps per direction", OBSCURA_HBAO_FIELD(steps)},
+    {"estimator", OBSCURA_SETTING_INT, 1, 1, 2, "",
+     "1: horizon-split integration (Bavoil 2008); 2: largest falloff-weighted occluder (LSAO eq. 1)",
+     OBSCURA_HBAO_FIELD(estimator)},
+    {"bias", OBSCURA_SETTING_FLOAT, 0.0, 0.0, 0.5, "",
+     "subtracted from sin(h) - sin(t) to hide tessellation; the default is zero", OBSCURA_HBAO_FIELD(bias)},
+    {"intensity", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "obscurance multiplier", OBSCURA_HBAO_FIELD(intensity)},
+    {"power", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "exponent applied to the visibility",
+     OBSCURA_HBAO_FIELD(power)},
+    {"max_radius_pixels", OBSCURA_SETTING_FLOAT, 256.0, 1.0, 4096.0, "px",
+     "cap of the radius on screen, bounding the cost of close-ups", OBSCURA_HBAO_FIELD(max_radius_pixels)},
+    {"blur", OBSCURA_SETTING_TOGGLE, 1, 0, 1, "", "depth-aware bilateral blur of the AO", OBSCURA_HBAO_FIELD(blur)},
+    {"blur_radius", OBSCURA_SETTING_INT, 4, 1, 16, "px", "blur taps on each side", OBSCURA_HBAO_FIELD(blur_radius)},
+    {"blur_sharpness", OBSCURA_SETTING_FLOAT, 16.0, 1e-3, 1000.0, "",
+     "how strongly the blur stops at depth edges (relative depth difference scale)",
+     OBSCURA_HBAO_FIELD(blur_sharpness)},
+};
+
+#undef OBSCURA_HBAO_FIELD
+
+template <class T>
+T* field_at(obscura_settings* settings, size_t offset) {
+    return reinterpret_cast<T*>(reinterpret_cast<unsigned char*>(settings) + offset);
+}
+template <class T>
+const T* field_at(const obscura_settings* settings, size_t offset) {
+    return reinterpret_cast<const T*>(reinterpret_cast<const unsigned char*>(settings) + offset);
+}
+
+const obscura_setting_info* find_info(obscura_method method, const char* name) {
+    uint32_t count = 0;
+    const obscura_setting_info* infos = setting_infos(method, &count);
+    for (uint32_t i = 0; i < count; ++i) {
+        if (std::strcmp(infos[i].name, name) == 0) return &infos[i];
+    }
+    return nullptr;
+}
+
+// Stored value of a field as a double, with 0 meaning "default" (toggles: 0 default, 1 on, 2 off).
+double stored_value(const obscura_settings& settings, const obscura_setting_info& info) {
+    switch (info.type) {
+        case OBSCURA_SETTING_FLOAT: return *field_at<float>(&settings, info.offset);
+        case OBSCURA_SETTING_INT: return *field_at<int32_t>(&settings, info.offset);
+        case OBSCURA_SETTING_TOGGLE: {
+            int32_t toggle = *field_at<int32_t>(&settings, info.offset);
+            return toggle == OBSCURA_TOGGLE_DEFAULT ? 0.0 : toggle == OBSCURA_TOGGLE_ON ? 1.0 : -1.0;
+        }
+    }
+    return 0.0;
+}
+
+Error check_value(const obscura_setting_info& info, obscura_method method, double value) {
+    if (!std::isfinite(value)) {
+        return Error::make(OBSCURA_STATUS_INVALID_SETTING, "%s.%s is %g; it must be finite", obscura_method_name(method),
+                           info.name, value);
+    }
+    if (value < info.min_value || value > info.max_value) {
+        return Error::make(OBSCURA_STATUS_INVALID_SETTING, "%s.%s = %g is outside [%g, %g]%s%s",
+                           obscura_method_name(method), info.name, value, info.min_value, info.max_value,
+                           info.unit[0] ? " " : "", info.unit);
+    }
+    if (info.type != OBSCURA_SETTING_FLOAT && value != std::floor(value)) {
+        return Error::make(OBSCURA_STATUS_INVALID_SETTING, "%s.%s = %g must be a whole number",
+                           obscura_method_name(method), info.name, value);
+    }
+    return Error();
+}
+
+void store_value(obscura_settings* settings, const obscura_setting_info& info, double value) {
+    switch (info.type) {
+        case OBSCURA_SETTING_FLOAT: *field_at<float>(settings, info.offset) = float(value); break;
+        case OBSCURA_SETTING_INT: *field_at<int32_t>(settings, info.offset) = int32_t(std::lround(value)); break;
+        case OBSCURA_SETTING_TOGGLE:
+            *field_at<int32_t>(settings, info.offset) = value != 0.0 ? OBSCURA_TOGGLE_ON : OBSCURA_TOGGLE_OFF;
+            break;
+    }
+}
+
+}  // namespace
+
+obscura_method resolve_method(obscura_method method) {
+    if (method == OBSCURA_METHOD_DEFAULT) return OBSCURA_METHOD_HBAO;
+    if (int(method) < 0 || int(method) >= int(OBSCURA_METHOD_COUNT_)) return OBSCURA_METHOD_COUNT_;
+    return method;
+}
+
+const obscura_setting_info* setting_infos(obscura_method method, uint32_t* count) {
+    switch (resolve_method(method)) {
+        case OBSCURA_METHOD_HBAO:
+            *count = uint32_t(sizeof kHbaoSettings / sizeof kHbaoSettings[0]);
+            return kHbaoSettings;
+        default:
+            *count = 0;
+            return nullptr;
+    }
+}
+
+bool is_known_settings_size(uint32_t struct_size) { return struct_size == sizeof(obscura_settings); }
+
+Error resolve_settings(const obscura_settings& in, obscura_settings* out) {
+    if (!is_known_settings_size(in.struct_size)) {
+        return Error::make(OBSCURA_STATUS_INVALID_STRUCT_SIZE, "obscura_settings.struct_size is %u; expected %u",
+                           in.struct_size, unsigned(sizeof(obscura_settings)));
+    }
+    obscura_method method = resolve_method(in.method);
+    if (method == OBSCURA_METHOD_COUNT_) {
+        return Error::make(OBSCURA_STATUS_INVALID_ENUM, "obscura_settings.method = %d is not an obscura_method",
+                           int(in.method));
+    }
+    obscura_settings resolved = in;
+    resolved.method = method;
+    // Every method's table is defaulted and validated, so a later method switch cannot surprise.
+    for (int m = OBSCURA_METHOD_HBAO; m < OBSCURA_METHOD_COUNT_; ++m) {
+        uint32_t count = 0;
+        const obscura_setting_info* infos = setting_infos(obscura_method(m), &count);
+        for (uint32_t i = 0; i < count; ++i) {
+            const obscura_setting_info& info = infos[i];
+            if (info.type == OBSCURA_SETTING_TOGGLE) {
+                int32_t toggle = *field_at<int32_t>(&resolved, info.offset);
+                if (toggle < OBSCURA_TOGGLE_DEFAULT || toggle > OBSCURA_TOGGLE_OFF) {
+                    return Error::make(OBSCURA_STATUS_INVALID_ENUM, "%s.%s = %d is not an obscura_toggle",
+                                       obscura_method_name(obscura_method(m)), info.name, toggle);
+                }
+                if (toggle == OBSCURA_TOGGLE_DEFAULT) {
+                    *field_at<int32_t>(&resolved, info.offset) =
+                        info.default_value != 0.0 ? OBSCURA_TOGGLE_ON : OBSCURA_TOGGLE_OFF;
+                }
+                continue;
+            }
+            double value = stored_value(resolved, info);
+            if (value == 0.0) {
+                store_value(&resolved, info, info.default_value);
+                continue;
+            }
+            Error error = check_value(info, obscura_method(m), value);
+            if (error) return error;
+        }
+    }
+    // HBAO: the decay rate defaults to C * radius^2, where rho0 reaches zero exactly at the radius.
+    obscura_hbao_settings& hbao = resolved.hbao;
+    if (hbao.decay_rate == 0.0f) hbao.decay_rate = hbao.falloff_c * hbao.radius * hbao.radius;
+    *out = resolved;
+    return Error();
+}
+
+Error get_setting(const obscura_settings& settings, const char* name, double* value) {
+    obscura_method method = resolve_method(settings.method);
+    if (method == OBSCURA_METHOD_COUNT_) {
+        return Error::make(OBSCURA_STATUS_INVALID_ENUM, "settings.method = %d is not an obscura_method",
+                           int(settings.method));
+    }
+    const obscura_setting_info* info = find_info(method, name);
+    if (!info) {
+        return Error::make(OBSCURA_STATUS_UNKNOWN_SETTING, "%s has no setting named '%s'", obscura_method_name(method),
+                           name);
+    }
+    double stored = stored_value(settings, *info);
+    if (info->type == OBSCURA_SETTING_TOGGLE) {
+        *value = stored == 0.0 ? info->default_value : (stored > 0.0 ? 1.0 : 0.0);
+    } else if (stored == 0.0) {
+        // Derived defaults are reported as the value that would be used.
+        obscura_settings resolved;
+        if (resolve_settings(settings, &resolved).ok()) stored = stored_value(resolved, *info);
+        *value = stored != 0.0 ? stored : info->default_value;
+    } else {
+        *value = stored;
+    }
+    return Error();
+}
+
+Error set_setting(obscura_settings* settings, const char* name, double value) {
+    obscura_method method = resolve_method(settings->method);
+    if (method == OBSCURA_METHOD_COUNT_) {
+        return Error::make(OBSCURA_STATUS_INVALID_ENUM, "settings.method = %d is not an obscura_method",
+                           int(settings->method));
+    }
+    const obscura_setting_info* info = find_info(method, name);
+    if (!info) {
+        return Error::make(OBSCURA_STATUS_UNKNOWN_SETTING, "%s has no setting named '%s'", obscura_method_name(method),
+                           name);
+    }
+    if (info->type == OBSCURA_SETTING_TOGGLE) {
+        if (value != 0.0 && value != 1.0) {
+            return Error::make(OBSCURA_STATUS_INVALID_SETTING, "%s.%s is a toggle: 0 (off) or 1 (on), not %g",
+                               obscura_method_name(method), info->name, value);
+        }
+    } else if (!(value == 0.0 && info->min_value > 0.0)) {
+        // 0 always means "default" for fields whose range excludes it.
+        Error error = check_value(*info, method, value);
+        if (error) return error;
+    }
+    store_value(settings, *info, value);
+    return Error();
+}
+
+}  // namespace obscura
