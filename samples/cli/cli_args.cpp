@@ -1,0 +1,96 @@
+#include "cli_args.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <utility>
+
+#include "cli_errors.h"
+
+namespace obscura::cli {
+
+bool ArgumentList::take_flag(const std::string& name) {
+    bool found = false;
+    for (auto it = arguments_.begin(); it != arguments_.end();) {
+        if (*it == name) {
+            found = true;
+            it = arguments_.erase(it);
+        } else {
+            ++it;
+        }
+    }
+    return found;
+}
+
+std::vector<std::string> ArgumentList::take_values(const std::string& name) {
+    std::vector<std::string> values;
+    const std::string with_equals = name + "=";
+    for (size_t i = 0; i < arguments_.size();) {
+        if (arguments_[i] == name) {
+            if (i + 1 >= arguments_.size()) throw UsageError(name + " needs a value");
+            values.push_back(arguments_[i + 1]);
+            arguments_.erase(arguments_.begin() + long(i), arguments_.begin() + long(i) + 2);
+        } else if (arguments_[i].compare(0, with_equals.size(), with_equals) == 0) {
+            values.push_back(arguments_[i].substr(with_equals.size()));
+            arguments_.erase(arguments_.begin() + long(i));
+        } else {
+            ++i;
+        }
+    }
+    return values;
+}
+
+std::optional<std::string> ArgumentList::take_value(const std::string& name) {
+    std::vector<std::string> values = take_values(name);
+    if (values.size() > 1) throw UsageError(name + " given more than once");
+    if (values.empty()) return std::nullopt;
+    return values.front();
+}
+
+std::vector<std::string> ArgumentList::take_positionals() {
+    std::vector<std::string> positionals;
+    for (auto it = arguments_.begin(); it != arguments_.end();) {
+        if (it->compare(0, 2, "--") != 0) {
+            positionals.push_back(*it);
+            it = arguments_.erase(it);
+        } else {
+            ++it;
+        }
+    }
+    return positionals;
+}
+
+void ArgumentList::require_all_taken() const {
+    if (!arguments_.empty()) throw UsageError("unknown argument '" + arguments_.front() + "'");
+}
+
+ImageSize parse_size(const std::string& text) {
+    const size_t separator = text.find('x');
+    if (separator == std::string::npos) throw UsageError("size '" + text + "' is not WIDTHxHEIGHT");
+    ImageSize size;
+    size.width = parse_int("--size", text.substr(0, separator), 1, 16384);
+    size.height = parse_int("--size", text.substr(separator + 1), 1, 16384);
+    return size;
+}
+
+int parse_int(const std::string& option, const std::string& text, int min_value, int max_value) {
+    char* end = nullptr;
+    errno = 0;
+    const long value = std::strtol(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || errno != 0 || value < min_value || value > max_value) {
+        throw UsageError(option + ": '" + text + "' is not an integer in [" + std::to_string(min_value) + ", " +
+                         std::to_string(max_value) + "]");
+    }
+    return int(value);
+}
+
+double parse_double(const std::string& option, const std::string& text) {
+    char* end = nullptr;
+    const double value = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || !std::isfinite(value)) {
+        throw UsageError(option + ": '" + text + "' is not a number");
+    }
+    return value;
+}
+
+}  // namespace obscura::cli

@@ -1,0 +1,43 @@
+// ArgumentList: the arguments of one subcommand, consumed option by option so that whatever is left
+// at the end is reported as unknown.
+#ifndef OBSCURA_CLI_ARGS_H
+#define OBSCURA_CLI_ARGS_H
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace obscura::cli {
+
+struct ImageSize {
+    int width = 0;
+    int height = 0;
+};
+
+class ArgumentList {
+public:
+    explicit ArgumentList(std::vector<std::string> arguments) : arguments_(std::move(arguments)) {}
+
+    // Removes every "--name" and reports whether there was one.
+    bool take_flag(const std::string& name);
+    // Removes every "--name VALUE" / "--name=VALUE" and returns the values in order.
+    std::vector<std::string> take_values(const std::string& name);
+    // The single value of "--name"; UsageError if given more than once.
+    std::optional<std::string> take_value(const std::string& name);
+    // Removes and returns the arguments that do not start with "--".
+    std::vector<std::string> take_positionals();
+    // UsageError naming the first argument nobody took.
+    void require_all_taken() const;
+
+private:
+    std::vector<std::string> arguments_;
+};
+
+// "640x360" -> {640, 360}; UsageError otherwise.
+ImageSize parse_size(const std::string& text);
+int parse_int(const std::string& option, const std::string& text, int min_value, int max_value);
+double parse_double(const std::string& option, const std::string& text);
+
+}  // namespace obscura::cli
+
+#endif  // OBSCURA_CLI_ARGS_H

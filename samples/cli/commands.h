@@ -1,0 +1,17 @@
+// The subcommands of `obscura`. Each takes the arguments after its name, returns the exit code, and
+// throws UsageError / ApiError (see cli_errors.h) on failure.
+#ifndef OBSCURA_CLI_COMMANDS_H
+#define OBSCURA_CLI_COMMANDS_H
+
+#include "cli_args.h"
+
+namespace obscura::cli {
+
+int run_list_settings(ArgumentList& arguments);
+int run_render(ArgumentList& arguments);
+int run_bench(ArgumentList& arguments);
+int run_demo(ArgumentList& arguments);
+
+}  // namespace obscura::cli
+
+#endif  // OBSCURA_CLI_COMMANDS_H

@@ -1,0 +1,39 @@
+// ObscuraSession: one obscura_context for the GL context current on this thread, with the CLI's log
+// callback, destroyed with it. check() turns a failed status into an ApiError.
+#ifndef OBSCURA_CLI_OBSCURA_SESSION_H
+#define OBSCURA_CLI_OBSCURA_SESSION_H
+
+#include <cstdint>
+#include <string>
+
+#include "obscura/obscura.h"
+
+namespace obscura::cli {
+
+class ObscuraSession {
+public:
+    // flags: OBSCURA_CONTEXT_FLAG_*. Throws ApiError when obscura_create_context fails.
+    explicit ObscuraSession(uint32_t flags);
+    ~ObscuraSession();
+    ObscuraSession(const ObscuraSession&) = delete;
+    ObscuraSession& operator=(const ObscuraSession&) = delete;
+
+    obscura_context* get() const { return context_; }
+    uint32_t flags() const { return flags_; }
+    // Throws ApiError("<call>: <obscura_status_string>: <last error>") unless status is OK.
+    void check(obscura_status status, const std::string& call) const;
+
+private:
+    obscura_context* context_ = nullptr;
+    uint32_t flags_ = 0;
+};
+
+// Builds the ApiError message for a failed call; `context` may be NULL.
+std::string api_error_message(obscura_status status, const std::string& call, const obscura_context* context);
+
+// The obscura_log_fn the CLI installs: every SDK message goes to stderr.
+void log_to_stderr(obscura_log_level level, obscura_status status, const char* message, void* user_data);
+
+}  // namespace obscura::cli
+
+#endif  // OBSCURA_CLI_OBSCURA_SESSION_H
