@@ -23,7 +23,10 @@ void main() {
     }
     ivec2 axis = blur.config.yz;
     float sharpness = blur.params.x / depth;
-    float sum = center_ao, weight_sum = 1.0;
+    // The weighted mean is taken as the centre plus the weighted mean of the differences, so a uniform
+    // neighbourhood returns its value exactly: sum / weight_sum lands a rounding step below it, which a
+    // truncating conversion to r16f keeps (NVIDIA: unoccluded 1.0 came out 0.99902 after x and y).
+    float delta_sum = 0.0, weight_sum = 1.0;
     for (int i = -blur.config.x; i <= blur.config.x; ++i) {
         if (i == 0) continue;
         ivec2 q = p + axis * i;
@@ -32,8 +35,8 @@ void main() {
         if (obscura_is_sky(q_depth)) continue;
         float dz = (q_depth - depth) * sharpness;
         float w = exp(-float(i * i) * blur.params.y - dz * dz);
-        sum += w * texelFetch(u_source, q, 0).r;
+        delta_sum += w * (texelFetch(u_source, q, 0).r - center_ao);
         weight_sum += w;
     }
-    imageStore(u_destination, p, vec4(sum / weight_sum));
+    imageStore(u_destination, p, vec4(center_ao + delta_sum / weight_sum));
 }

@@ -1,5 +1,6 @@
 #include "context.h"
 
+#include <atomic>
 #include <cmath>
 #include <new>
 
@@ -145,6 +146,12 @@ Error Context::initialize() {
     gl::StateGuard guard(gl_);
     gl_.GetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &uniform_alignment_);
     sampler_ = gl::create_sampler_nearest_clamp(gl_);
+    // Sampler names repeat across GL contexts (each counts from 1), so the name alone cannot tell whether
+    // our GL context is current. A process-unique MAX_LOD (never used: every pass reads with texelFetch)
+    // does. Integers stay exact in float up to 2^24.
+    static std::atomic<uint32_t> next_sampler_tag{0};
+    sampler_tag_ = 1000.0f + float(next_sampler_tag.fetch_add(1) % (1u << 20) + 1);
+    gl_.SamplerParameterf(sampler_.name(), GL_TEXTURE_MAX_LOD, sampler_tag_);
     uniform_buffer_ = gl::Buffer::create(gl_, GL_UNIFORM_BUFFER, UniformArena::kCapacity);
     timer_.create(gl_, (flags_ & OBSCURA_CONTEXT_FLAG_SYNC_TIMING) != 0);
     PassEnv pass_env = env();
@@ -173,8 +180,11 @@ uint64_t Context::memory_bytes() const { return resources_.bytes() + uniform_buf
 Error Context::check_gl_context() {
     const GLubyte* version = gl_.GetString(GL_VERSION);
     if (!version) return Error::make(OBSCURA_STATUS_WRONG_GL_CONTEXT, "no OpenGL context is current on this thread");
-    // Samplers are per-context objects (unless shared): if ours is unknown here, another context is current.
-    if (!gl_.IsSampler(sampler_.name())) {
+    // Samplers are per-context objects (unless shared): if ours is unknown here, or carries another
+    // context's tag (names repeat across GL contexts), another GL context is current.
+    GLfloat tag = 0.0f;
+    if (gl_.IsSampler(sampler_.name())) gl_.GetSamplerParameterfv(sampler_.name(), GL_TEXTURE_MAX_LOD, &tag);
+    if (tag != sampler_tag_) {
         return Error::make(OBSCURA_STATUS_WRONG_GL_CONTEXT,
                            "the current OpenGL context is not the one this obscura context was created on");
     }
@@ -185,6 +195,9 @@ Error Context::ensure_resources(int width, int height, const obscura_settings& s
     (void)settings;
     if (resources_.width == width && resources_.height == height && resources_.linear_depth) return Error();
     release_resources();
+    // Texture2D::create binds on the active unit: make it one the StateGuard restores (obscura_prepare
+    // reaches here with the host's active unit, e.g. GL_TEXTURE5).
+    gl_.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_SOURCE));
     FrameResources r;
     r.width = width;
     r.height = height;
@@ -289,6 +302,7 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
         composite_target.x = 0;
         composite_target.y = 0;
         if (!resources_.staging || resources_.staging.width() != rect.width || resources_.staging.height() != rect.height) {
+            gl_.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_SOURCE));  // a unit the StateGuard restores
             resources_.staging = gl::Texture2D::create(gl_, GL_RGBA8, rect.width, rect.height);
             resources_.staging_framebuffer = gl::create_framebuffer(gl_);
             if (!resources_.staging) return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating the staging texture failed");
@@ -342,6 +356,7 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
             gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, target.framebuffer);
             gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, resources_.staging_framebuffer.name());
             gl_.Disable(GL_SCISSOR_TEST);
+            gl_.Disable(GL_RASTERIZER_DISCARD);  // NVIDIA drops blits while it is on
             if (target.blend == OBSCURA_BLEND_MULTIPLY) {
                 gl_.BlitFramebuffer(target.x, target.y, target.x + rect.width, target.y + rect.height, 0, 0, rect.width,
                                     rect.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);

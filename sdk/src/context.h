@@ -52,6 +52,7 @@ private:
     obscura_get_proc_address_fn get_proc_address_;
     gl::Table gl_ = {};
     GLint uniform_alignment_ = 256;
+    GLfloat sampler_tag_ = 0.0f;  // process-unique GL_TEXTURE_MAX_LOD of sampler_: identifies our GL context
 
     gl::Object sampler_;
     gl::Buffer uniform_buffer_;

@@ -1,11 +1,22 @@
 #include "frame_input.h"
 
 #include <cmath>
+#include <cstring>
 
 #include "common/shader_interface.h"
 
 namespace obscura {
 namespace {
+
+// An enum field of a host struct as the int the host stored. A C host may store any value; loading one
+// outside the enumerators through the enum type is undefined in C++ (and -fsanitize=enum reports it).
+template <class Enum>
+int32_t stored_enum(const Enum& field) {
+    static_assert(sizeof(Enum) == sizeof(int32_t), "the API's C enums are int-sized");
+    int32_t value;
+    std::memcpy(&value, &field, sizeof value);
+    return value;
+}
 
 // Binds `texture` to `target` on the current unit and reports whether GL accepted it: the only way in
 // GL 4.3 to learn a texture's target (binding a name to the wrong target raises INVALID_OPERATION).
@@ -83,11 +94,11 @@ Error validate_input(const gl::Table& gl, const obscura_input& input, FrameInput
     }
     frame.output_rect = rect;
 
-    if (input.depth_kind != OBSCURA_DEPTH_HARDWARE && input.depth_kind != OBSCURA_DEPTH_LINEAR_VIEW) {
-        return Error::make(OBSCURA_STATUS_INVALID_ENUM, "depth_kind = %d is not an obscura_depth_kind",
-                           int(input.depth_kind));
+    const int32_t depth_kind = stored_enum(input.depth_kind);
+    if (depth_kind != OBSCURA_DEPTH_HARDWARE && depth_kind != OBSCURA_DEPTH_LINEAR_VIEW) {
+        return Error::make(OBSCURA_STATUS_INVALID_ENUM, "depth_kind = %d is not an obscura_depth_kind", int(depth_kind));
     }
-    frame.depth_linear = input.depth_kind == OBSCURA_DEPTH_LINEAR_VIEW;
+    frame.depth_linear = depth_kind == OBSCURA_DEPTH_LINEAR_VIEW;
 
     float m2v = input.meters_to_view_units == 0.0f ? 1.0f : input.meters_to_view_units;
     if (!std::isfinite(m2v) || m2v <= 0.0f || m2v > 1e6f) {
@@ -96,7 +107,17 @@ Error validate_input(const gl::Table& gl, const obscura_input& input, FrameInput
     }
     frame.meters_to_view_units = m2v;
 
-    Error error = decode_projection(input.projection, input.projection_layout, input.clip_depth, &frame.projection);
+    const int32_t layout = stored_enum(input.projection_layout);
+    const int32_t clip_depth = stored_enum(input.clip_depth);
+    if (layout != OBSCURA_MATRIX_COLUMN_MAJOR && layout != OBSCURA_MATRIX_ROW_MAJOR) {
+        return Error::make(OBSCURA_STATUS_INVALID_ENUM, "projection_layout = %d is not an obscura_matrix_layout",
+                           int(layout));
+    }
+    if (clip_depth != OBSCURA_CLIP_DEPTH_NEGATIVE_ONE_TO_ONE && clip_depth != OBSCURA_CLIP_DEPTH_ZERO_TO_ONE) {
+        return Error::make(OBSCURA_STATUS_INVALID_ENUM, "clip_depth = %d is not an obscura_clip_depth", int(clip_depth));
+    }
+    Error error = decode_projection(input.projection, obscura_matrix_layout(layout), obscura_clip_depth(clip_depth),
+                                    &frame.projection);
     if (error) return error;
 
     // Depth texture: a 2D or 2D multisample texture of the stated size and a readable format.
@@ -190,13 +211,14 @@ void restore_input_state(const gl::Table& gl, const FrameInput& input) {
 
 Error validate_output(const gl::Table& gl, const obscura_output& output, const obscura_rect& rect, OutputTarget* out) {
     OutputTarget target;
-    if (output.blend != OBSCURA_BLEND_OVERWRITE && output.blend != OBSCURA_BLEND_MULTIPLY) {
-        return Error::make(OBSCURA_STATUS_INVALID_ENUM, "output.blend = %d is not an obscura_blend_mode",
-                           int(output.blend));
+    const int32_t blend = stored_enum(output.blend);
+    const int32_t debug_view = stored_enum(output.debug_view);
+    if (blend != OBSCURA_BLEND_OVERWRITE && blend != OBSCURA_BLEND_MULTIPLY) {
+        return Error::make(OBSCURA_STATUS_INVALID_ENUM, "output.blend = %d is not an obscura_blend_mode", int(blend));
     }
-    if (int(output.debug_view) < OBSCURA_DEBUG_NONE || int(output.debug_view) > OBSCURA_DEBUG_AO_BEFORE_BLUR) {
+    if (debug_view < OBSCURA_DEBUG_NONE || debug_view > OBSCURA_DEBUG_AO_BEFORE_BLUR) {
         return Error::make(OBSCURA_STATUS_INVALID_ENUM, "output.debug_view = %d is not an obscura_debug_view",
-                           int(output.debug_view));
+                           int(debug_view));
     }
     if (output.x < 0 || output.y < 0) {
         return Error::make(OBSCURA_STATUS_INVALID_RECT, "output position (%d, %d) must not be negative", output.x,
@@ -242,13 +264,53 @@ Error validate_output(const gl::Table& gl, const obscura_output& output, const o
             if (image_format_qualifier(GLenum(format), nullptr)) texture = GLuint(name);
         }
         if (texture == 0) {
+            // Blit path: the attachment must accept a blit from the RGBA8 staging texture, and the result
+            // must fit it (checked where the attachment size can be queried: renderbuffers, 2D textures).
+            GLint component_type = GL_NONE;
+            gl.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
+                                                   GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE, &component_type);
+            if (component_type == GL_INT || component_type == GL_UNSIGNED_INT) {
+                return Error::make(OBSCURA_STATUS_UNSUPPORTED_FORMAT,
+                                   "output.framebuffer %u has an integer colour attachment 0, which a blit of "
+                                   "normalised visibility cannot write",
+                                   output.framebuffer);
+            }
+            GLint width = -1, height = -1;
+            if (type == GL_RENDERBUFFER) {
+                GLint renderbuffer = 0, previous = 0;
+                gl.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
+                                                       GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &renderbuffer);
+                gl.GetIntegerv(GL_RENDERBUFFER_BINDING, &previous);
+                gl.BindRenderbuffer(GL_RENDERBUFFER, GLuint(renderbuffer));
+                gl.GetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_WIDTH, &width);
+                gl.GetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_HEIGHT, &height);
+                gl.BindRenderbuffer(GL_RENDERBUFFER, GLuint(previous));
+            } else if (type == GL_TEXTURE && !layered && texture_has_target(gl, GLuint(name), GL_TEXTURE_2D)) {
+                gl.GetTexLevelParameteriv(GL_TEXTURE_2D, level, GL_TEXTURE_WIDTH, &width);
+                gl.GetTexLevelParameteriv(GL_TEXTURE_2D, level, GL_TEXTURE_HEIGHT, &height);
+                gl.BindTexture(GL_TEXTURE_2D, 0);
+            }
+            if (width >= 0 && (rect.width > width - target.x || rect.height > height - target.y)) {
+                return Error::make(OBSCURA_STATUS_INVALID_RECT,
+                                   "a %dx%d result at (%d, %d) does not fit the %dx%d colour attachment of "
+                                   "output.framebuffer %u",
+                                   rect.width, rect.height, target.x, target.y, width, height, output.framebuffer);
+            }
             target.kind = TargetKind::Blit;
             target.framebuffer = output.framebuffer;
             *out = target;
             return Error();
         }
     } else if (texture == 0) {
-        // The default framebuffer can only be reached by a blit.
+        // The default framebuffer can only be reached by a blit, and a surfaceless context has none.
+        gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+        GLenum status = gl.CheckFramebufferStatus(GL_DRAW_FRAMEBUFFER);
+        if (status != GL_FRAMEBUFFER_COMPLETE) {
+            return Error::make(OBSCURA_STATUS_INVALID_FRAMEBUFFER,
+                               "the default framebuffer is not complete (status 0x%04X); a context without a "
+                               "surface has none: name an output texture or framebuffer object",
+                               unsigned(status));
+        }
         target.kind = TargetKind::Blit;
         target.framebuffer = 0;
         *out = target;

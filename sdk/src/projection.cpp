@@ -67,6 +67,15 @@ Error decode_projection(const float matrix[16], obscura_matrix_layout layout, ob
                            "the projection matrix is neither a GL perspective (m[11] < 0, m[15] = 0) nor an "
                            "orthographic (m[11] = 0, m[15] != 0) matrix, or it rotates x/y");
     }
+    // A transposed standard perspective (m14 < 0) keeps the perspective shape: m11 and m14 swap and both
+    // stay negative. GL perspective matrices have w = -z exactly (m11 = -1), so one whose m14 is -1 while
+    // m11 is not is taken for that matrix transposed.
+    if (is_perspective_shape(info.m) && info.m[14] == -1.0f && info.m[11] != -1.0f) {
+        return Error::make(OBSCURA_STATUS_PROJECTION_TRANSPOSED,
+                           "the projection matrix looks transposed: m[14] is -1 (the w = -z term) and m[11] is %g; "
+                           "pass it column-major or set projection_layout = OBSCURA_MATRIX_ROW_MAJOR",
+                           double(info.m[11]));
+    }
     // Normalise the homogeneous scale so w = -z (perspective) or w = 1 (orthographic).
     info.perspective = is_perspective_shape(info.m);
     float scale = info.perspective ? -info.m[11] : info.m[15];

@@ -49,6 +49,21 @@ const T* field_at(const obscura_settings* settings, size_t offset) {
     return reinterpret_cast<const T*>(reinterpret_cast<const unsigned char*>(settings) + offset);
 }
 
+// The method field as the int the host stored: a C host may store any value, and loading one outside
+// the enumerators through the enum type is undefined in C++ (and -fsanitize=enum reports it).
+int32_t stored_method(const obscura_settings& settings) {
+    static_assert(sizeof(obscura_method) == sizeof(int32_t), "the API's C enums are int-sized");
+    int32_t value;
+    std::memcpy(&value, &settings.method, sizeof value);
+    return value;
+}
+
+obscura_method resolve_method_value(int32_t value) {
+    if (value == OBSCURA_METHOD_DEFAULT) return OBSCURA_METHOD_HBAO;
+    if (value < 0 || value >= int32_t(OBSCURA_METHOD_COUNT_)) return OBSCURA_METHOD_COUNT_;
+    return obscura_method(value);
+}
+
 const obscura_setting_info* find_info(obscura_method method, const char* name) {
     uint32_t count = 0;
     const obscura_setting_info* infos = setting_infos(method, &count);
@@ -100,11 +115,7 @@ void store_value(obscura_settings* settings, const obscura_setting_info& info, d
 
 }  // namespace
 
-obscura_method resolve_method(obscura_method method) {
-    if (method == OBSCURA_METHOD_DEFAULT) return OBSCURA_METHOD_HBAO;
-    if (int(method) < 0 || int(method) >= int(OBSCURA_METHOD_COUNT_)) return OBSCURA_METHOD_COUNT_;
-    return method;
-}
+obscura_method resolve_method(obscura_method method) { return resolve_method_value(int32_t(method)); }
 
 const obscura_setting_info* setting_infos(obscura_method method, uint32_t* count) {
     switch (resolve_method(method)) {
@@ -124,10 +135,10 @@ Error resolve_settings(const obscura_settings& in, obscura_settings* out) {
         return Error::make(OBSCURA_STATUS_INVALID_STRUCT_SIZE, "obscura_settings.struct_size is %u; expected %u",
                            in.struct_size, unsigned(sizeof(obscura_settings)));
     }
-    obscura_method method = resolve_method(in.method);
+    obscura_method method = resolve_method_value(stored_method(in));
     if (method == OBSCURA_METHOD_COUNT_) {
         return Error::make(OBSCURA_STATUS_INVALID_ENUM, "obscura_settings.method = %d is not an obscura_method",
-                           int(in.method));
+                           int(stored_method(in)));
     }
     obscura_settings resolved = in;
     resolved.method = method;
@@ -166,10 +177,10 @@ Error resolve_settings(const obscura_settings& in, obscura_settings* out) {
 }
 
 Error get_setting(const obscura_settings& settings, const char* name, double* value) {
-    obscura_method method = resolve_method(settings.method);
+    obscura_method method = resolve_method_value(stored_method(settings));
     if (method == OBSCURA_METHOD_COUNT_) {
         return Error::make(OBSCURA_STATUS_INVALID_ENUM, "settings.method = %d is not an obscura_method",
-                           int(settings.method));
+                           int(stored_method(settings)));
     }
     const obscura_setting_info* info = find_info(method, name);
     if (!info) {
@@ -191,10 +202,10 @@ Error get_setting(const obscura_settings& settings, const char* name, double* va
 }
 
 Error set_setting(obscura_settings* settings, const char* name, double value) {
-    obscura_method method = resolve_method(settings->method);
+    obscura_method method = resolve_method_value(stored_method(*settings));
     if (method == OBSCURA_METHOD_COUNT_) {
         return Error::make(OBSCURA_STATUS_INVALID_ENUM, "settings.method = %d is not an obscura_method",
-                           int(settings->method));
+                           int(stored_method(*settings)));
     }
     const obscura_setting_info* info = find_info(method, name);
     if (!info) {

@@ -4,21 +4,27 @@
 
 bool obscura_is_sky(float view_depth) { return !(view_depth < OBSCURA_SKY_THRESHOLD); }
 
+// Finite test on the bits: drivers may compile float comparisons as if NaN did not exist (NVIDIA folds
+// isnan() and !(x > 0.0) into x <= 0.0), so only the exponent field reliably tells NaN and inf apart.
+bool obscura_is_finite(float x) { return (floatBitsToUint(x) & 0x7f800000u) != 0x7f800000u; }
+
 // Window depth written through the host projection -> positive view distance, or OBSCURA_SKY_DEPTH.
 float obscura_linearize_window_depth(float window_depth) {
-    if (window_depth == depth_params.x || isnan(window_depth) || isinf(window_depth)) return OBSCURA_SKY_DEPTH;
+    if (!obscura_is_finite(window_depth) || window_depth == depth_params.x) return OBSCURA_SKY_DEPTH;
     float z_ndc = window_depth * proj_offset.z + proj_offset.w;
     // Solve z_ndc = (m10 z + m14) / (m11 z + m15): covers perspective and orthographic, standard and
     // reversed-Z, finite and infinite far planes.
     float z = (proj_depth.y - z_ndc * proj_depth.w) / (z_ndc * proj_depth.z - proj_depth.x);
     float distance = -z;
-    if (!(distance > 0.0) || isinf(distance) || !(distance < OBSCURA_SKY_THRESHOLD)) return OBSCURA_SKY_DEPTH;
+    if (!obscura_is_finite(distance) || !(distance > 0.0) || !(distance < OBSCURA_SKY_THRESHOLD)) return OBSCURA_SKY_DEPTH;
     return distance;
 }
 
 // Linear depth given by the host: anything non-positive or non-finite is sky.
 float obscura_sanitize_linear_depth(float view_depth) {
-    if (!(view_depth > 0.0) || isinf(view_depth) || !(view_depth < OBSCURA_SKY_THRESHOLD)) return OBSCURA_SKY_DEPTH;
+    if (!obscura_is_finite(view_depth) || !(view_depth > 0.0) || !(view_depth < OBSCURA_SKY_THRESHOLD)) {
+        return OBSCURA_SKY_DEPTH;
+    }
     return view_depth;
 }
 

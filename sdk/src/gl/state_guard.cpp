@@ -31,6 +31,7 @@ StateGuard::StateGuard(const Table& gl) : gl_(gl) {
     gl.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_framebuffer_);
     gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw_framebuffer_);
     scissor_test_ = gl.IsEnabled(GL_SCISSOR_TEST);
+    rasterizer_discard_ = gl.IsEnabled(GL_RASTERIZER_DISCARD);
 }
 
 StateGuard::~StateGuard() {
@@ -65,6 +66,7 @@ StateGuard::~StateGuard() {
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(read_framebuffer_));
     gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(draw_framebuffer_));
     if (scissor_test_) gl.Enable(GL_SCISSOR_TEST); else gl.Disable(GL_SCISSOR_TEST);
+    if (rasterizer_discard_) gl.Enable(GL_RASTERIZER_DISCARD); else gl.Disable(GL_RASTERIZER_DISCARD);
 }
 
 }  // namespace obscura::gl

@@ -1,7 +1,7 @@
 // StateGuard saves, on construction, every piece of GL state an SDK call may touch and restores it
 // on destruction: program, active texture, texture and sampler bindings on the SDK's units, image
-// units, uniform-buffer bindings (generic and indexed), read/draw framebuffers and the scissor test
-// (blits obey it). The set mirrors shader_interface.h's unit counts; a pass that uses more must grow it.
+// units, uniform-buffer bindings (generic and indexed), read/draw framebuffers, and the scissor test
+// and rasterizer discard (blits obey them). The set mirrors shader_interface.h's unit counts; a pass that uses more must grow it.
 #ifndef OBSCURA_STATE_GUARD_H
 #define OBSCURA_STATE_GUARD_H
 
@@ -37,6 +37,7 @@ private:
     GLint read_framebuffer_ = 0;
     GLint draw_framebuffer_ = 0;
     GLboolean scissor_test_ = GL_FALSE;
+    GLboolean rasterizer_discard_ = GL_FALSE;
 };
 
 }  // namespace obscura::gl

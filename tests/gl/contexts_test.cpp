@@ -1,0 +1,385 @@
+// Context lifetime: several contexts at once (on two GL contexts and on one), resizing, memory
+// reporting, GL object and CPU memory leaks, and the timing queries.
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <string>
+
+#include "analytic_scene.h"
+#include "gl_test_support.h"
+
+namespace obscura_test {
+namespace {
+
+// A box on a floor at any size, uploaded as D32F depth on the current GL context.
+struct Frame {
+    HostTexture depth;
+    obscura_input input;
+};
+
+Frame box_frame(int width, int height) {
+    Camera camera(Projection::Perspective, width, height, Lens(),
+                  look_at(glm::dvec3(0.9, 2.4, 3.2), glm::dvec3(0.0, 0.3, 0.0)));
+    std::vector<Hit> hits = trace(camera, {plane(1, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0)),
+                                           box(2, glm::dvec3(-0.5, 0.0, -0.5), glm::dvec3(0.5, 0.7, 0.5))});
+    Frame frame;
+    frame.depth = make_depth_texture(GL_DEPTH_COMPONENT32F, width, height, depth_values(camera, hits));
+    frame.input = make_input(frame.depth.get(), width, height, camera.matrix(), camera.clip_depth());
+    return frame;
+}
+
+std::vector<float> render(obscura_context* context, const Frame& frame) {
+    return render_to_new_texture(context, frame.input, make_settings(1.0f), GL_R32F, 1);
+}
+
+bool identical(const std::vector<float>& a, const std::vector<float>& b) {
+    return !a.empty() && a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+bool has_occlusion(const std::vector<float>& v) {
+    return !v.empty() && *std::min_element(v.begin(), v.end()) < 0.8f;
+}
+
+class Contexts : public GLTest {};
+
+// ---- Several contexts -----------------------------------------------------------------------------------
+
+TEST_F(Contexts, TwoGlContextsRenderAlternately) {
+    HeadlessGL& gl_a = shared_gl();
+    Frame frame_a = box_frame(96, 64);
+    std::vector<float> reference = render(ctx(), frame_a);
+    ASSERT_TRUE(has_occlusion(reference));
+
+    HeadlessGL gl_b;  // current now
+    ContextPtr ctx_b = create_context();
+    ASSERT_NE(ctx_b, nullptr);
+    {
+        Frame frame_b = box_frame(96, 64);  // a texture of GL context B
+        for (int round = 0; round < 3; ++round) {
+            gl_a.make_current();
+            EXPECT_TRUE(identical(render(ctx(), frame_a), reference)) << "context A, round " << round;
+            EXPECT_EQ(take_gl_error(), GLenum(GL_NO_ERROR));
+            gl_b.make_current();
+            EXPECT_TRUE(identical(render(ctx_b.get(), frame_b), reference)) << "context B, round " << round;
+            EXPECT_EQ(take_gl_error(), GLenum(GL_NO_ERROR));
+        }
+        gl_b.make_current();  // frame_b's texture and ctx_b belong to B
+    }
+    ctx_b.reset();
+    gl_a.make_current();
+}
+
+TEST_F(Contexts, ContextOfAnotherGlContextIsRefused) {
+    // Both GL contexts hold an obscura context (so both have the same object names): rendering
+    // context A while B is current must still be refused, not run with B's objects.
+    HeadlessGL& gl_a = shared_gl();
+    Frame frame_a = box_frame(96, 64);
+    HeadlessGL gl_b;
+    ContextPtr ctx_b = create_context();
+    ASSERT_NE(ctx_b, nullptr);
+    obscura_status status;
+    {
+        Frame frame_b = box_frame(96, 64);
+        std::vector<float> warm = render(ctx_b.get(), frame_b);  // B allocates its resources too
+        ASSERT_FALSE(warm.empty());
+        HostTexture target = make_texture(GL_R32F, 96, 64);
+        obscura_input input = frame_b.input;  // names valid in B
+        obscura_output output = make_output(target.get());
+        obscura_settings settings = make_settings(1.0f);
+        status = obscura_render(ctx(), &input, &settings, &output);
+        EXPECT_EQ(take_gl_error(), GLenum(GL_NO_ERROR));
+    }
+    ctx_b.reset();
+    gl_a.make_current();
+    EXPECT_EQ(status, OBSCURA_STATUS_WRONG_GL_CONTEXT) << obscura_get_last_error(ctx());
+}
+
+TEST_F(Contexts, TwoContextsOnOneGlContext) {
+    Frame frame = box_frame(96, 64);
+    std::vector<float> reference = render(ctx(), frame);
+    ASSERT_TRUE(has_occlusion(reference));
+    ContextPtr second = create_context();
+    ASSERT_NE(second, nullptr);
+    Frame other_size = box_frame(64, 48);
+    std::vector<float> other_reference = render(second.get(), other_size);
+    for (int round = 0; round < 3; ++round) {
+        EXPECT_TRUE(identical(render(ctx(), frame), reference)) << round;
+        EXPECT_TRUE(identical(render(second.get(), other_size), other_reference)) << round;
+    }
+    second.reset();  // destroying one leaves the other working
+    EXPECT_TRUE(identical(render(ctx(), frame), reference));
+}
+
+// ---- Resizing and memory -------------------------------------------------------------------------------
+
+TEST_F(Contexts, ResizeRoundTrip) {
+    Frame small = box_frame(96, 64);
+    Frame large = box_frame(160, 90);
+    uint64_t idle = 0, m_small = 0, m_large = 0, m_small_again = 0;
+    ASSERT_EQ(obscura_get_memory_usage(ctx(), &idle), OBSCURA_OK);
+    std::vector<float> first = render(ctx(), small);
+    ASSERT_EQ(obscura_get_memory_usage(ctx(), &m_small), OBSCURA_OK);
+    std::vector<float> big = render(ctx(), large);
+    ASSERT_EQ(obscura_get_memory_usage(ctx(), &m_large), OBSCURA_OK);
+    std::vector<float> again = render(ctx(), small);
+    ASSERT_EQ(obscura_get_memory_usage(ctx(), &m_small_again), OBSCURA_OK);
+    EXPECT_TRUE(has_occlusion(big));
+    EXPECT_TRUE(identical(first, again)) << "the same frame after a resize round trip";
+    EXPECT_EQ(m_small, m_small_again);
+    EXPECT_GT(m_small, idle);
+    EXPECT_GT(m_large, m_small);
+    // Per-size resources scale with the texel count.
+    double per_texel_small = double(m_small - idle) / (96 * 64);
+    double per_texel_large = double(m_large - idle) / (160 * 90);
+    EXPECT_DOUBLE_EQ(per_texel_small, per_texel_large);
+    EXPECT_GE(per_texel_small, 8.0) << "at least linear depth (R32F) and normals";
+}
+
+TEST_F(Contexts, ReleaseResourcesReturnsToIdle) {
+    uint64_t idle = 0, used = 0, released = 0;
+    ASSERT_EQ(obscura_get_memory_usage(ctx(), &idle), OBSCURA_OK);
+    Frame frame = box_frame(96, 64);
+    std::vector<float> before = render(ctx(), frame);
+    ASSERT_EQ(obscura_get_memory_usage(ctx(), &used), OBSCURA_OK);
+    obscura_release_resources(ctx());
+    ASSERT_EQ(obscura_get_memory_usage(ctx(), &released), OBSCURA_OK);
+    EXPECT_GT(used, idle);
+    EXPECT_EQ(released, idle);
+    EXPECT_TRUE(identical(render(ctx(), frame), before)) << "resources are recreated on the next render";
+}
+
+TEST_F(Contexts, PrepareAllocatesWhatRenderUses) {
+    uint64_t prepared = 0, rendered = 0;
+    obscura_settings settings = make_settings(1.0f);
+    ASSERT_EQ(obscura_prepare(ctx(), 96, 64, &settings), OBSCURA_OK);
+    ASSERT_EQ(obscura_get_memory_usage(ctx(), &prepared), OBSCURA_OK);
+    Frame frame = box_frame(96, 64);
+    ASSERT_FALSE(render(ctx(), frame).empty());
+    ASSERT_EQ(obscura_get_memory_usage(ctx(), &rendered), OBSCURA_OK);
+    EXPECT_EQ(prepared, rendered);
+}
+
+// ---- Leaks ---------------------------------------------------------------------------------------------
+
+// Counts live GL objects of each type by asking glIs* for every name in [1, kNameRange]. GL names are
+// small integers chosen by the implementation (Mesa reuses the lowest free ones), and glIs* is true
+// exactly for names that denote an existing object of that type (textures, buffers, framebuffers,
+// renderbuffers, vertex arrays and queries once first bound or used; samplers, programs, shaders once
+// generated). Counting per type before and after create/render/destroy cycles shows whether the SDK
+// leaves any object behind; a second check below confirms the scan does see the SDK's objects while a
+// context is alive, so the comparison is not vacuous. (Queries generated but never used are invisible
+// to glIsQuery; the SDK's timer queries are used by every render.)
+constexpr GLuint kNameRange = 4096;
+
+std::map<std::string, int> count_gl_objects() {
+    std::map<std::string, int> counts;
+    const std::pair<const char*, GLboolean (*)(GLuint)> kinds[] = {
+        {"texture", [](GLuint n) { return glIsTexture(n); }},
+        {"buffer", [](GLuint n) { return glIsBuffer(n); }},
+        {"program", [](GLuint n) { return glIsProgram(n); }},
+        {"shader", [](GLuint n) { return glIsShader(n); }},
+        {"sampler", [](GLuint n) { return glIsSampler(n); }},
+        {"query", [](GLuint n) { return glIsQuery(n); }},
+        {"framebuffer", [](GLuint n) { return glIsFramebuffer(n); }},
+        {"renderbuffer", [](GLuint n) { return glIsRenderbuffer(n); }},
+        {"vertex array", [](GLuint n) { return glIsVertexArray(n); }},
+    };
+    for (const auto& [name, is] : kinds) {
+        int count = 0;
+        for (GLuint n = 1; n <= kNameRange; ++n) count += is(n) ? 1 : 0;
+        counts[name] = count;
+    }
+    return counts;
+}
+
+std::string describe(const std::map<std::string, int>& counts) {
+    std::string text;
+    for (const auto& [name, count] : counts) text += name + "=" + std::to_string(count) + " ";
+    return text;
+}
+
+// One full use of a context: resize, every output kind, then destroy.
+void exercise_context(uint32_t flags) {
+    ContextPtr context = create_context(flags);
+    ASSERT_NE(context, nullptr);
+    Frame small = box_frame(96, 64);
+    Frame large = box_frame(160, 90);
+    ASSERT_FALSE(render(context.get(), small).empty());
+    ASSERT_FALSE(render(context.get(), large).empty());
+    HostRenderbuffer renderbuffer = HostRenderbuffer::create();
+    glBindRenderbuffer(GL_RENDERBUFFER, renderbuffer.get());
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 96, 64);
+    glBindRenderbuffer(GL_RENDERBUFFER, 0);
+    HostFramebuffer framebuffer = HostFramebuffer::create();
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.get());
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, renderbuffer.get());
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    obscura_output output = make_output(0);
+    output.framebuffer = framebuffer.get();
+    output.blend = OBSCURA_BLEND_MULTIPLY;
+    obscura_settings settings = make_settings(1.0f);
+    ASSERT_EQ(obscura_render(context.get(), &small.input, &settings, &output), OBSCURA_OK);
+    for (GLenum format : {GL_RGBA8, GL_R16F, GL_RG32F}) {
+        HostTexture target = make_texture(format, 96, 64);
+        obscura_output to_texture = make_output(target.get(), OBSCURA_DEBUG_NORMALS);
+        ASSERT_EQ(obscura_render(context.get(), &small.input, &settings, &to_texture), OBSCURA_OK);
+    }
+    ASSERT_EQ(obscura_prepare(context.get(), 200, 100, &settings), OBSCURA_OK);
+    context.reset();
+}
+
+TEST_F(Contexts, NoGlObjectsLeak) {
+    glFinish();
+    std::map<std::string, int> before = count_gl_objects();
+    for (int cycle = 0; cycle < 3; ++cycle) {
+        exercise_context(0);
+        exercise_context(OBSCURA_CONTEXT_FLAG_SYNC_TIMING);
+        if (HasFatalFailure()) return;
+    }
+    std::map<std::string, int> after = count_gl_objects();
+    EXPECT_EQ(before, after) << "before: " << describe(before) << "\nafter:  " << describe(after);
+}
+
+TEST_F(Contexts, ObjectScanSeesLiveContexts) {
+    std::map<std::string, int> before = count_gl_objects();
+    ContextPtr context = create_context();
+    Frame frame = box_frame(96, 64);
+    ASSERT_FALSE(render(context.get(), frame).empty());
+    std::map<std::string, int> alive = count_gl_objects();
+    EXPECT_GE(alive["texture"], before["texture"] + 1 + 5) << "the host depth/target plus >= 5 working textures";
+    EXPECT_GT(alive["program"], before["program"]);
+    EXPECT_GT(alive["sampler"], before["sampler"]);
+    EXPECT_GT(alive["buffer"], before["buffer"]);
+    EXPECT_GT(alive["query"], before["query"]);
+}
+
+// Counts the CPU allocations a context makes through the host allocator.
+struct CountingAllocator {
+    long long live_blocks = 0;
+    long long total_blocks = 0;
+    static void* alloc(size_t size, void* user) {
+        auto* self = static_cast<CountingAllocator*>(user);
+        void* p = std::malloc(size);
+        if (p) {
+            ++self->live_blocks;
+            ++self->total_blocks;
+        }
+        return p;
+    }
+    static void release(void* ptr, void* user) {
+        if (!ptr) return;
+        --static_cast<CountingAllocator*>(user)->live_blocks;
+        std::free(ptr);
+    }
+};
+
+TEST_F(Contexts, HostAllocatorBalanced) {
+    CountingAllocator counter;
+    obscura_context_desc desc = make_desc();
+    desc.allocator.alloc = &CountingAllocator::alloc;
+    desc.allocator.free = &CountingAllocator::release;
+    desc.allocator.user_data = &counter;
+    obscura_context* context = nullptr;
+    ASSERT_EQ(obscura_create_context(&desc, &context), OBSCURA_OK);
+    EXPECT_GE(counter.live_blocks, 1) << "the context itself lives in host-allocated memory";
+    Frame frame = box_frame(96, 64);
+    EXPECT_FALSE(render(context, frame).empty());
+    obscura_destroy_context(context);
+    EXPECT_EQ(counter.live_blocks, 0) << "of " << counter.total_blocks << " allocations";
+    EXPECT_GT(counter.total_blocks, 1) << "shader assembly goes through the allocator too";
+}
+
+// ---- Timings ---------------------------------------------------------------------------------------------
+
+class SyncTimings : public GLTest {
+protected:
+    SyncTimings() { context_flags_ = OBSCURA_CONTEXT_FLAG_SYNC_TIMING; }
+};
+
+TEST_F(SyncTimings, TotalFirstThenPassesSummingToTotal) {
+    Frame frame = box_frame(96, 64);
+    ASSERT_FALSE(render(ctx(), frame).empty());
+    obscura_timing timings[8] = {};
+    uint32_t count = 0;
+    ASSERT_EQ(obscura_get_timings(ctx(), timings, 8, &count), OBSCURA_OK);
+    ASSERT_EQ(count, 5u);
+    const char* expected[] = {"total", "depth_prepare", "hbao", "blur", "composite"};
+    double sum = 0.0;
+    for (uint32_t i = 0; i < count; ++i) {
+        ASSERT_NE(timings[i].label, nullptr);
+        EXPECT_STREQ(timings[i].label, expected[i]);
+        EXPECT_GE(timings[i].milliseconds, 0.0) << expected[i];
+        if (i > 0) sum += timings[i].milliseconds;
+    }
+    EXPECT_GT(timings[0].milliseconds, 0.0) << "glFinish-timed work cannot take zero time";
+    EXPECT_NEAR(timings[0].milliseconds, sum, 1e-9 * std::max(1.0, sum));
+}
+
+TEST_F(SyncTimings, NoBlurPassWithoutBlur) {
+    Frame frame = box_frame(96, 64);
+    obscura_settings settings = make_settings(1.0f);
+    settings.hbao.blur = OBSCURA_TOGGLE_OFF;
+    ASSERT_FALSE(render_to_new_texture(ctx(), frame.input, settings, GL_R32F, 1).empty());
+    obscura_timing timings[8] = {};
+    uint32_t count = 0;
+    ASSERT_EQ(obscura_get_timings(ctx(), timings, 8, &count), OBSCURA_OK);
+    ASSERT_EQ(count, 4u);
+    EXPECT_STREQ(timings[0].label, "total");
+    EXPECT_STREQ(timings[1].label, "depth_prepare");
+    EXPECT_STREQ(timings[2].label, "hbao");
+    EXPECT_STREQ(timings[3].label, "composite");
+}
+
+TEST_F(SyncTimings, SmallCapacityReportsAvailableCount) {
+    Frame frame = box_frame(96, 64);
+    ASSERT_FALSE(render(ctx(), frame).empty());
+    obscura_timing timings[3];
+    timings[2].label = "untouched";
+    timings[2].milliseconds = -7.0;
+    uint32_t count = 0;
+    ASSERT_EQ(obscura_get_timings(ctx(), timings, 2, &count), OBSCURA_OK);
+    EXPECT_EQ(count, 5u);
+    EXPECT_STREQ(timings[0].label, "total");
+    EXPECT_STREQ(timings[1].label, "depth_prepare");
+    EXPECT_STREQ(timings[2].label, "untouched");
+    EXPECT_EQ(timings[2].milliseconds, -7.0);
+    ASSERT_EQ(obscura_get_timings(ctx(), nullptr, 0, &count), OBSCURA_OK);
+    EXPECT_EQ(count, 5u);
+}
+
+TEST_F(SyncTimings, NothingBeforeTheFirstFrame) {
+    obscura_timing timings[8];
+    uint32_t count = 99;
+    ASSERT_EQ(obscura_get_timings(ctx(), timings, 8, &count), OBSCURA_OK);
+    EXPECT_EQ(count, 0u);
+}
+
+TEST_F(Contexts, GpuTimingsNeverBlockAndAreConsistent) {
+    // Without SYNC_TIMING the timer-query results of a frame are read only once available: every call
+    // returns at once with 0 entries (no frame complete yet) or total + passes.
+    Frame frame = box_frame(96, 64);
+    for (int i = 0; i < 8; ++i) {
+        ASSERT_FALSE(render(ctx(), frame).empty());
+        obscura_timing timings[8] = {};
+        uint32_t count = 99;
+        auto start = std::chrono::steady_clock::now();
+        ASSERT_EQ(obscura_get_timings(ctx(), timings, 8, &count), OBSCURA_OK);
+        double call_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        EXPECT_LT(call_ms, 50.0) << "obscura_get_timings must not wait for the GPU";
+        ASSERT_TRUE(count == 0 || count == 5) << count;
+        if (count == 0) continue;
+        EXPECT_STREQ(timings[0].label, "total");
+        double sum = 0.0;
+        for (uint32_t k = 1; k < count; ++k) {
+            EXPECT_GE(timings[k].milliseconds, 0.0);
+            sum += timings[k].milliseconds;
+        }
+        EXPECT_NEAR(timings[0].milliseconds, sum, 1e-9 * std::max(1.0, sum));
+    }
+    EXPECT_EQ(take_gl_error(), GLenum(GL_NO_ERROR));
+}
+
+}  // namespace
+}  // namespace obscura_test

@@ -1,0 +1,398 @@
+// Output targets: every writable texture format, blend multiply, framebuffer objects with texture and
+// renderbuffer attachments (the blit path), placement inside a larger target.
+// The reference is always an R32F overwrite render of the same frame in the same context.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "analytic_scene.h"
+#include "gl_test_support.h"
+
+namespace obscura_test {
+namespace {
+
+constexpr int kWidth = 160;
+constexpr int kHeight = 96;
+
+// A concave corner (floor + wall): visibility spans roughly 0.55 .. 1.
+struct Frame {
+    HostTexture depth;
+    obscura_input input;
+};
+
+Frame corner_frame() {
+    Camera camera(Projection::Perspective, kWidth, kHeight, Lens(),
+                  look_at(glm::dvec3(0.3, 1.3, 2.8), glm::dvec3(0.0, 0.45, 0.0)));
+    std::vector<Hit> hits = trace(camera, {plane(1, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0)),
+                                           plane(2, glm::dvec3(0.0), glm::dvec3(0.0, 0.0, 1.0))});
+    Frame frame;
+    frame.depth = make_depth_texture(GL_DEPTH_COMPONENT32F, kWidth, kHeight, depth_values(camera, hits));
+    frame.input = make_input(frame.depth.get(), kWidth, kHeight, camera.matrix(), camera.clip_depth());
+    return frame;
+}
+
+Frame facing_plane_frame() {
+    Camera camera(Projection::Perspective, kWidth, kHeight, Lens(), glm::dmat4(1.0));
+    std::vector<Hit> hits = trace(camera, {plane(1, glm::dvec3(0.0, 0.0, -5.0), glm::dvec3(0.0, 0.0, 1.0))});
+    Frame frame;
+    frame.depth = make_depth_texture(GL_DEPTH_COMPONENT32F, kWidth, kHeight, depth_values(camera, hits));
+    frame.input = make_input(frame.depth.get(), kWidth, kHeight, camera.matrix(), camera.clip_depth());
+    return frame;
+}
+
+// 8-bit unorm value GL stores for v (round to nearest).
+int unorm8(double v) { return int(std::lround(std::clamp(v, 0.0, 1.0) * 255.0)); }
+
+class OutputTargets : public GLTest {
+protected:
+    std::vector<float> reference(const obscura_input& input, const obscura_settings& settings) {
+        return render_to_new_texture(ctx(), input, settings, GL_R32F, 1);
+    }
+};
+
+// ---- Texture formats ------------------------------------------------------------------------------------
+
+struct FormatCase {
+    GLenum format;
+    const char* name;
+    double tolerance;  // storage precision of the red channel near [0.5, 1]
+};
+
+class OutputFormats : public OutputTargets, public ::testing::WithParamInterface<FormatCase> {};
+
+TEST_P(OutputFormats, RedChannelHoldsVisibility) {
+    Frame frame = corner_frame();
+    obscura_settings settings = make_settings(1.0f);
+    std::vector<float> expected = reference(frame.input, settings);
+    ASSERT_FALSE(expected.empty());
+    std::vector<float> got = render_to_new_texture(ctx(), frame.input, settings, GetParam().format, 4);
+    ASSERT_EQ(got.size(), expected.size() * 4);
+    double worst = 0.0;
+    for (size_t i = 0; i < expected.size(); ++i) worst = std::max(worst, std::fabs(double(got[4 * i]) - expected[i]));
+    EXPECT_LE(worst, GetParam().tolerance) << GetParam().name;
+    // The reference itself spans occluded and open texels (the comparison is not vacuous).
+    auto [lo, hi] = std::minmax_element(expected.begin(), expected.end());
+    EXPECT_LT(*lo, 0.8f);
+    EXPECT_GT(*hi, 0.99f);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Formats, OutputFormats,
+    ::testing::Values(FormatCase{GL_R8, "R8", 0.5 / 255 + 1e-6}, FormatCase{GL_R16, "R16", 0.5 / 65535 + 1e-6},
+                      FormatCase{GL_R16F, "R16F", 0.0}, FormatCase{GL_R32F, "R32F", 0.0},
+                      FormatCase{GL_RG8, "RG8", 0.5 / 255 + 1e-6}, FormatCase{GL_RG16, "RG16", 0.5 / 65535 + 1e-6},
+                      FormatCase{GL_RG16F, "RG16F", 0.0}, FormatCase{GL_RG32F, "RG32F", 0.0},
+                      FormatCase{GL_RGBA8, "RGBA8", 0.5 / 255 + 1e-6},
+                      FormatCase{GL_RGBA16, "RGBA16", 0.5 / 65535 + 1e-6}, FormatCase{GL_RGBA16F, "RGBA16F", 0.0},
+                      FormatCase{GL_RGBA32F, "RGBA32F", 0.0}, FormatCase{GL_RGB10_A2, "RGB10_A2", 0.5 / 1023 + 1e-6},
+                      // 6-bit mantissa: half an ulp below 1 is 2^-8.
+                      FormatCase{GL_R11F_G11F_B10F, "R11F_G11F_B10F", std::ldexp(1.0, -7)}),
+    [](const ::testing::TestParamInfo<FormatCase>& param_info) { return std::string(param_info.param.name); });
+
+TEST_F(OutputTargets, OverwriteRgba8WritesGreyAndOpaqueAlpha) {
+    Frame frame = corner_frame();
+    obscura_settings settings = make_settings(1.0f);
+    std::vector<float> expected = reference(frame.input, settings);
+    HostTexture target = make_texture(GL_RGBA8, kWidth, kHeight);
+    fill_texture(target.get(), kWidth, kHeight, 0.1f, 0.2f, 0.3f, 0.4f);
+    obscura_output output = make_output(target.get());
+    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    std::vector<uint8_t> bytes = read_texture_rgba8(target.get(), kWidth, kHeight);
+    int bad = 0;
+    for (size_t i = 0; i < expected.size(); ++i) {
+        int v = unorm8(expected[i]);
+        if (std::abs(bytes[4 * i] - v) > 1 || bytes[4 * i + 1] != bytes[4 * i] || bytes[4 * i + 2] != bytes[4 * i] ||
+            bytes[4 * i + 3] != 255)
+            ++bad;
+    }
+    EXPECT_EQ(bad, 0);
+}
+
+// ---- Blend multiply -------------------------------------------------------------------------------------
+
+TEST_F(OutputTargets, MultiplyKeepsHalfFilledTargetWhereUnoccluded) {
+    Frame frame = facing_plane_frame();  // visibility ~1 everywhere (> 0.995)
+    obscura_settings settings = make_settings(1.0f);
+    HostTexture target = make_texture(GL_RGBA8, kWidth, kHeight);
+    fill_texture(target.get(), kWidth, kHeight, 0.5f, 0.5f, 0.5f, 0.8f);
+    obscura_output output = make_output(target.get());
+    output.blend = OBSCURA_BLEND_MULTIPLY;
+    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    std::vector<uint8_t> bytes = read_texture_rgba8(target.get(), kWidth, kHeight);
+    // 0.5 is stored as 128; times visibility in [0.995, 1] is 127.4 .. 128: 127 or 128. Alpha (204) kept.
+    int bad = 0;
+    for (size_t i = 0; i < bytes.size(); i += 4) {
+        for (int c = 0; c < 3; ++c) bad += bytes[i + c] < 127 || bytes[i + c] > 128;
+        bad += bytes[i + 3] != 204;
+    }
+    EXPECT_EQ(bad, 0);
+}
+
+TEST_F(OutputTargets, MultiplyIsTargetTimesVisibility) {
+    Frame frame = corner_frame();
+    obscura_settings settings = make_settings(1.0f);
+    std::vector<float> v = reference(frame.input, settings);
+    ASSERT_FALSE(v.empty());
+    HostTexture target = make_texture(GL_RGBA32F, kWidth, kHeight);
+    const float fill[4] = {0.5f, 0.25f, 1.0f, 0.7f};
+    fill_texture(target.get(), kWidth, kHeight, fill[0], fill[1], fill[2], fill[3]);
+    obscura_output output = make_output(target.get());
+    output.blend = OBSCURA_BLEND_MULTIPLY;
+    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    std::vector<float> got = read_texture(target.get(), kWidth, kHeight, 4);
+    double worst = 0.0;
+    for (size_t i = 0; i < v.size(); ++i) {
+        for (int c = 0; c < 3; ++c) worst = std::max(worst, std::fabs(double(got[4 * i + c]) - double(fill[c]) * v[i]));
+        EXPECT_EQ(got[4 * i + 3], fill[3]) << "alpha changed at " << i;
+        if (HasFailure()) break;
+    }
+    EXPECT_LT(worst, 1e-6);
+}
+
+TEST_F(OutputTargets, MultiplyTwiceSquares) {
+    Frame frame = corner_frame();
+    obscura_settings settings = make_settings(1.0f);
+    std::vector<float> v = reference(frame.input, settings);
+    HostTexture target = make_texture(GL_R32F, kWidth, kHeight);
+    fill_texture(target.get(), kWidth, kHeight, 1.0f, 0, 0, 1);
+    obscura_output output = make_output(target.get());
+    output.blend = OBSCURA_BLEND_MULTIPLY;
+    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &output), OBSCURA_OK);
+    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &output), OBSCURA_OK);
+    std::vector<float> got = read_texture(target.get(), kWidth, kHeight, 1);
+    double worst = 0.0;
+    for (size_t i = 0; i < v.size(); ++i) worst = std::max(worst, std::fabs(double(got[i]) - double(v[i]) * v[i]));
+    EXPECT_LT(worst, 1e-6);
+}
+
+// ---- Framebuffer objects -------------------------------------------------------------------------------
+
+TEST_F(OutputTargets, FramebufferTextureAttachment) {
+    Frame frame = corner_frame();
+    obscura_settings settings = make_settings(1.0f);
+    std::vector<float> expected = reference(frame.input, settings);
+    HostTexture texture = make_texture(GL_R32F, kWidth, kHeight);
+    HostFramebuffer framebuffer = HostFramebuffer::create();
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.get());
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture.get(), 0);
+    ASSERT_EQ(glCheckFramebufferStatus(GL_FRAMEBUFFER), GLenum(GL_FRAMEBUFFER_COMPLETE));
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    obscura_output output = make_output(0);
+    output.framebuffer = framebuffer.get();
+    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    std::vector<float> got = read_texture(texture.get(), kWidth, kHeight, 1);
+    ASSERT_EQ(got.size(), expected.size());
+    EXPECT_EQ(std::memcmp(got.data(), expected.data(), got.size() * sizeof(float)), 0)
+        << "a 2D level-0 attachment is written directly: bit-identical to the texture target";
+}
+
+// Reads an RGBA8 colour attachment 0 of `framebuffer` with glReadPixels.
+std::vector<uint8_t> read_framebuffer_rgba8(GLuint framebuffer, int width, int height) {
+    std::vector<uint8_t> bytes(size_t(width) * height * 4);
+    GLint previous = 0;
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &previous);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(previous));
+    return bytes;
+}
+
+struct RenderbufferTarget {
+    HostRenderbuffer renderbuffer;
+    HostFramebuffer framebuffer;
+};
+
+RenderbufferTarget make_renderbuffer_target(GLenum format, int width, int height, int samples = 0) {
+    RenderbufferTarget t;
+    t.renderbuffer = HostRenderbuffer::create();
+    glBindRenderbuffer(GL_RENDERBUFFER, t.renderbuffer.get());
+    if (samples > 0) glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, format, width, height);
+    else glRenderbufferStorage(GL_RENDERBUFFER, format, width, height);
+    glBindRenderbuffer(GL_RENDERBUFFER, 0);
+    t.framebuffer = HostFramebuffer::create();
+    glBindFramebuffer(GL_FRAMEBUFFER, t.framebuffer.get());
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t.renderbuffer.get());
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    return t;
+}
+
+void clear_framebuffer(GLuint framebuffer, float r, float g, float b, float a) {
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
+    const GLfloat colour[4] = {r, g, b, a};
+    glClearBufferfv(GL_COLOR, 0, colour);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+}
+
+TEST_F(OutputTargets, FramebufferRenderbufferBlit) {
+    Frame frame = corner_frame();
+    obscura_settings settings = make_settings(1.0f);
+    // The same result composed into an RGBA8 texture directly.
+    HostTexture direct = make_texture(GL_RGBA8, kWidth, kHeight);
+    obscura_output direct_output = make_output(direct.get());
+    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &direct_output), OBSCURA_OK);
+    std::vector<uint8_t> expected = read_texture_rgba8(direct.get(), kWidth, kHeight);
+
+    RenderbufferTarget target = make_renderbuffer_target(GL_RGBA8, kWidth, kHeight);
+    clear_framebuffer(target.framebuffer.get(), 0.2f, 0.4f, 0.6f, 0.8f);
+    obscura_output output = make_output(0);
+    output.framebuffer = target.framebuffer.get();
+    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    std::vector<uint8_t> got = read_framebuffer_rgba8(target.framebuffer.get(), kWidth, kHeight);
+    EXPECT_EQ(got, expected) << "the blit path must give the RGBA8 result of the direct path";
+}
+
+TEST_F(OutputTargets, FramebufferRenderbufferOffsetWritesOnlyTheRect) {
+    Frame frame = corner_frame();
+    frame.input.output_rect = obscura_rect{10, 6, 100, 60};
+    obscura_settings settings = make_settings(1.0f);
+    std::vector<float> expected = reference(frame.input, settings);
+    const int fw = 200, fh = 120, ox = 37, oy = 21;
+    RenderbufferTarget target = make_renderbuffer_target(GL_RGBA8, fw, fh);
+    clear_framebuffer(target.framebuffer.get(), 0.2f, 0.4f, 0.6f, 0.8f);
+    obscura_output output = make_output(0);
+    output.framebuffer = target.framebuffer.get();
+    output.x = ox;
+    output.y = oy;
+    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    std::vector<uint8_t> got = read_framebuffer_rgba8(target.framebuffer.get(), fw, fh);
+    int outside_changed = 0, inside_wrong = 0;
+    for (int y = 0; y < fh; ++y)
+        for (int x = 0; x < fw; ++x) {
+            const uint8_t* p = &got[(size_t(y) * fw + x) * 4];
+            bool inside = x >= ox && x < ox + 100 && y >= oy && y < oy + 60;
+            if (!inside) {
+                outside_changed += p[0] != 51 || p[1] != 102 || p[2] != 153 || p[3] != 204;
+            } else {
+                int v = unorm8(expected[size_t(y - oy) * 100 + (x - ox)]);
+                inside_wrong += std::abs(p[0] - v) > 1 || p[3] != 255;
+            }
+        }
+    EXPECT_EQ(outside_changed, 0);
+    EXPECT_EQ(inside_wrong, 0);
+}
+
+TEST_F(OutputTargets, FramebufferRenderbufferMultiply) {
+    Frame frame = corner_frame();
+    obscura_settings settings = make_settings(1.0f);
+    std::vector<float> v = reference(frame.input, settings);
+    RenderbufferTarget target = make_renderbuffer_target(GL_RGBA8, kWidth, kHeight);
+    clear_framebuffer(target.framebuffer.get(), 0.5f, 1.0f, 0.25f, 0.8f);
+    obscura_output output = make_output(0);
+    output.framebuffer = target.framebuffer.get();
+    output.blend = OBSCURA_BLEND_MULTIPLY;
+    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    std::vector<uint8_t> got = read_framebuffer_rgba8(target.framebuffer.get(), kWidth, kHeight);
+    const double fill[3] = {128.0 / 255, 1.0, 64.0 / 255};  // the cleared colour as stored
+    int bad = 0;
+    for (size_t i = 0; i < v.size(); ++i) {
+        for (int c = 0; c < 3; ++c) bad += std::abs(got[4 * i + c] - unorm8(fill[c] * v[i])) > 1;
+        bad += got[4 * i + 3] != 204;
+    }
+    EXPECT_EQ(bad, 0);
+}
+
+TEST_F(OutputTargets, FramebufferMipLevelAttachmentUsesBlit) {
+    // Level 1 of a mipmapped RGBA8 texture: not a level-0 image, so the SDK must blit into it.
+    Frame frame = corner_frame();
+    obscura_settings settings = make_settings(1.0f);
+    HostTexture direct = make_texture(GL_RGBA8, kWidth, kHeight);
+    obscura_output direct_output = make_output(direct.get());
+    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &direct_output), OBSCURA_OK);
+    std::vector<uint8_t> expected = read_texture_rgba8(direct.get(), kWidth, kHeight);
+
+    HostTexture mipmapped = HostTexture::create();
+    glBindTexture(GL_TEXTURE_2D, mipmapped.get());
+    glTexStorage2D(GL_TEXTURE_2D, 2, GL_RGBA8, kWidth * 2, kHeight * 2);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    fill_texture(mipmapped.get(), kWidth * 2, kHeight * 2, 0.0f, 0.0f, 0.0f, 0.0f);  // level 0 (storage is undefined)
+    HostFramebuffer framebuffer = HostFramebuffer::create();
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.get());
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, mipmapped.get(), 1);
+    ASSERT_EQ(glCheckFramebufferStatus(GL_FRAMEBUFFER), GLenum(GL_FRAMEBUFFER_COMPLETE));
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    obscura_output output = make_output(0);
+    output.framebuffer = framebuffer.get();
+    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    std::vector<uint8_t> got = read_framebuffer_rgba8(framebuffer.get(), kWidth, kHeight);
+    EXPECT_EQ(got, expected);
+    // Level 0 was not touched by a blit that went to the wrong level: it still holds the zeros written above.
+    std::vector<uint8_t> level0(size_t(kWidth) * 2 * kHeight * 2 * 4, 1);
+    glBindTexture(GL_TEXTURE_2D, mipmapped.get());
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_UNSIGNED_BYTE, level0.data());
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    EXPECT_TRUE(std::all_of(level0.begin(), level0.end(), [](uint8_t b) { return b == 0; }));
+}
+
+TEST_F(OutputTargets, DefaultFramebufferWithoutSurface) {
+    // Surfaceless EGL has no default framebuffer. When it is complete (a windowed or pbuffer context)
+    // the blit path is exercised by the renderbuffer tests above; here only its absence is checked.
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    GLenum status = glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER);
+    if (status == GL_FRAMEBUFFER_COMPLETE) GTEST_SKIP() << "this context has a default framebuffer";
+    Frame frame = corner_frame();
+    obscura_settings settings = make_settings(1.0f);
+    obscura_output output = make_output(0);
+    obscura_status result = obscura_render(ctx(), &frame.input, &settings, &output);
+    EXPECT_EQ(result, OBSCURA_STATUS_INVALID_FRAMEBUFFER) << obscura_get_last_error(ctx());
+    EXPECT_STRNE(obscura_get_last_error(ctx()), "");
+    EXPECT_EQ(take_gl_error(), GLenum(GL_NO_ERROR));
+}
+
+TEST_F(OutputTargets, MultisampleRenderbufferLeavesNoError) {
+    // GL 4.3 forbids blitting into a multisample framebuffer; Mesa allows it. Either the SDK renders
+    // (OK) or it reports the target as unusable; it must never leave a GL error or claim success
+    // without writing.
+    Frame frame = corner_frame();
+    obscura_settings settings = make_settings(1.0f);
+    RenderbufferTarget target = make_renderbuffer_target(GL_RGBA8, kWidth, kHeight, 4);
+    clear_framebuffer(target.framebuffer.get(), 0.0f, 0.0f, 0.0f, 0.0f);
+    obscura_output output = make_output(0);
+    output.framebuffer = target.framebuffer.get();
+    obscura_status result = obscura_render(ctx(), &frame.input, &settings, &output);
+    EXPECT_TRUE(result == OBSCURA_OK || result == OBSCURA_STATUS_INVALID_FRAMEBUFFER ||
+                result == OBSCURA_STATUS_GL_ERROR)
+        << obscura_status_string(result) << ": " << obscura_get_last_error(ctx());
+    EXPECT_EQ(take_gl_error(), GLenum(GL_NO_ERROR));
+    if (result != OBSCURA_OK) return;
+    // Resolve and check that the AO arrived.
+    RenderbufferTarget resolved = make_renderbuffer_target(GL_RGBA8, kWidth, kHeight);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, target.framebuffer.get());
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolved.framebuffer.get());
+    glBlitFramebuffer(0, 0, kWidth, kHeight, 0, 0, kWidth, kHeight, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    std::vector<uint8_t> got = read_framebuffer_rgba8(resolved.framebuffer.get(), kWidth, kHeight);
+    std::vector<float> expected = reference(frame.input, settings);
+    int bad = 0;
+    for (size_t i = 0; i < expected.size(); ++i) bad += std::abs(got[4 * i] - unorm8(expected[i])) > 1;
+    EXPECT_EQ(bad, 0);
+}
+
+TEST_F(OutputTargets, IntegerRenderbufferIsRejected) {
+    Frame frame = corner_frame();
+    obscura_settings settings = make_settings(1.0f);
+    RenderbufferTarget target = make_renderbuffer_target(GL_RGBA8UI, kWidth, kHeight);
+    obscura_output output = make_output(0);
+    output.framebuffer = target.framebuffer.get();
+    obscura_status result = obscura_render(ctx(), &frame.input, &settings, &output);
+    EXPECT_EQ(result, OBSCURA_STATUS_UNSUPPORTED_FORMAT) << obscura_get_last_error(ctx());
+    EXPECT_EQ(take_gl_error(), GLenum(GL_NO_ERROR));
+}
+
+TEST_F(OutputTargets, RenderbufferTooSmallIsRejected) {
+    Frame frame = corner_frame();
+    obscura_settings settings = make_settings(1.0f);
+    RenderbufferTarget target = make_renderbuffer_target(GL_RGBA8, kWidth / 2, kHeight);
+    obscura_output output = make_output(0);
+    output.framebuffer = target.framebuffer.get();
+    obscura_status result = obscura_render(ctx(), &frame.input, &settings, &output);
+    EXPECT_EQ(result, OBSCURA_STATUS_INVALID_RECT) << obscura_get_last_error(ctx());
+    EXPECT_EQ(take_gl_error(), GLenum(GL_NO_ERROR));
+}
+
+}  // namespace
+}  // namespace obscura_test

@@ -1,0 +1,503 @@
+// GL state contract: obscura_render (and create/prepare/destroy) leave every binding and setting the
+// host made as they found it, and no GL error. The host sets distinctive sentinel values for all the
+// state listed below, the SDK runs, and everything is queried back and compared field by field.
+#include <cstring>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "analytic_scene.h"
+#include "gl_test_support.h"
+
+namespace obscura_test {
+namespace {
+
+constexpr int kWidth = 96;
+constexpr int kHeight = 64;
+constexpr int kTextureUnits = 8;
+constexpr int kSamplerUnits = 4;
+constexpr int kImageUnits = 3;
+constexpr int kBufferIndices = 3;
+
+// Every piece of state the sentinel setup touches, as plain integers, with names for the diff.
+struct Snapshot {
+    std::vector<std::pair<std::string, long long>> values;
+    void add(const std::string& name, long long value) { values.emplace_back(name, value); }
+};
+
+long long get_integer(GLenum pname) {
+    GLint value = 0;
+    glGetIntegerv(pname, &value);
+    return value;
+}
+
+Snapshot capture() {
+    Snapshot s;
+    s.add("CURRENT_PROGRAM", get_integer(GL_CURRENT_PROGRAM));
+    s.add("ACTIVE_TEXTURE", get_integer(GL_ACTIVE_TEXTURE));
+    GLint active = 0;
+    glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
+    const std::pair<GLenum, const char*> targets[] = {
+        {GL_TEXTURE_BINDING_2D, "2D"},
+        {GL_TEXTURE_BINDING_2D_MULTISAMPLE, "2D_MS"},
+        {GL_TEXTURE_BINDING_3D, "3D"},
+        {GL_TEXTURE_BINDING_CUBE_MAP, "CUBE"},
+        {GL_TEXTURE_BINDING_2D_ARRAY, "2D_ARRAY"},
+    };
+    for (int unit = 0; unit < kTextureUnits; ++unit) {
+        glActiveTexture(GLenum(GL_TEXTURE0 + unit));
+        for (const auto& [pname, name] : targets)
+            s.add("unit " + std::to_string(unit) + " TEXTURE_BINDING_" + name, get_integer(pname));
+        s.add("unit " + std::to_string(unit) + " SAMPLER_BINDING", get_integer(GL_SAMPLER_BINDING));
+    }
+    glActiveTexture(GLenum(active));
+    for (int unit = 0; unit < kImageUnits; ++unit) {
+        const std::pair<GLenum, const char*> image_params[] = {
+            {GL_IMAGE_BINDING_NAME, "NAME"},     {GL_IMAGE_BINDING_LEVEL, "LEVEL"},
+            {GL_IMAGE_BINDING_LAYERED, "LAYERED"}, {GL_IMAGE_BINDING_LAYER, "LAYER"},
+            {GL_IMAGE_BINDING_ACCESS, "ACCESS"}, {GL_IMAGE_BINDING_FORMAT, "FORMAT"},
+        };
+        for (const auto& [pname, name] : image_params) {
+            GLint value = 0;
+            glGetIntegeri_v(pname, GLuint(unit), &value);
+            s.add("image " + std::to_string(unit) + " " + name, value);
+        }
+    }
+    const std::pair<GLenum, const char*> buffer_kinds[][4] = {
+        {{GL_UNIFORM_BUFFER_BINDING, "UBO"}, {GL_UNIFORM_BUFFER_START, "UBO start"}, {GL_UNIFORM_BUFFER_SIZE, "UBO size"}},
+        {{GL_SHADER_STORAGE_BUFFER_BINDING, "SSBO"}, {GL_SHADER_STORAGE_BUFFER_START, "SSBO start"},
+         {GL_SHADER_STORAGE_BUFFER_SIZE, "SSBO size"}},
+    };
+    for (const auto& kind : buffer_kinds) {
+        s.add(std::string("generic ") + kind[0].second, get_integer(kind[0].first));
+        for (int index = 0; index < kBufferIndices; ++index) {
+            for (int k = 0; k < 3; ++k) {
+                GLint64 value = 0;
+                glGetInteger64i_v(kind[k].first, GLuint(index), &value);
+                s.add(std::string(kind[k].second) + " [" + std::to_string(index) + "]", value);
+            }
+        }
+    }
+    s.add("ARRAY_BUFFER_BINDING", get_integer(GL_ARRAY_BUFFER_BINDING));
+    s.add("PIXEL_PACK_BUFFER_BINDING", get_integer(GL_PIXEL_PACK_BUFFER_BINDING));
+    s.add("PIXEL_UNPACK_BUFFER_BINDING", get_integer(GL_PIXEL_UNPACK_BUFFER_BINDING));
+    s.add("DISPATCH_INDIRECT_BUFFER_BINDING", get_integer(GL_DISPATCH_INDIRECT_BUFFER_BINDING));
+    s.add("COPY_READ_BUFFER_BINDING", get_integer(GL_COPY_READ_BUFFER_BINDING));
+    s.add("VERTEX_ARRAY_BINDING", get_integer(GL_VERTEX_ARRAY_BINDING));
+    s.add("RENDERBUFFER_BINDING", get_integer(GL_RENDERBUFFER_BINDING));
+    s.add("READ_FRAMEBUFFER_BINDING", get_integer(GL_READ_FRAMEBUFFER_BINDING));
+    s.add("DRAW_FRAMEBUFFER_BINDING", get_integer(GL_DRAW_FRAMEBUFFER_BINDING));
+    s.add("READ_BUFFER", get_integer(GL_READ_BUFFER));
+    GLint box[4];
+    glGetIntegerv(GL_VIEWPORT, box);
+    for (int i = 0; i < 4; ++i) s.add("VIEWPORT[" + std::to_string(i) + "]", box[i]);
+    glGetIntegerv(GL_SCISSOR_BOX, box);
+    for (int i = 0; i < 4; ++i) s.add("SCISSOR_BOX[" + std::to_string(i) + "]", box[i]);
+    s.add("SCISSOR_TEST", glIsEnabled(GL_SCISSOR_TEST));
+    s.add("BLEND", glIsEnabled(GL_BLEND));
+    s.add("DEPTH_TEST", glIsEnabled(GL_DEPTH_TEST));
+    s.add("RASTERIZER_DISCARD", glIsEnabled(GL_RASTERIZER_DISCARD));
+    GLboolean mask[4];
+    glGetBooleanv(GL_COLOR_WRITEMASK, mask);
+    for (int i = 0; i < 4; ++i) s.add("COLOR_WRITEMASK[" + std::to_string(i) + "]", mask[i]);
+    s.add("PACK_ALIGNMENT", get_integer(GL_PACK_ALIGNMENT));
+    s.add("PACK_ROW_LENGTH", get_integer(GL_PACK_ROW_LENGTH));
+    s.add("PACK_SKIP_ROWS", get_integer(GL_PACK_SKIP_ROWS));
+    s.add("UNPACK_ALIGNMENT", get_integer(GL_UNPACK_ALIGNMENT));
+    s.add("UNPACK_ROW_LENGTH", get_integer(GL_UNPACK_ROW_LENGTH));
+    s.add("UNPACK_SKIP_PIXELS", get_integer(GL_UNPACK_SKIP_PIXELS));
+    return s;
+}
+
+// Names of the entries that differ, with both values.
+std::string diff(const Snapshot& before, const Snapshot& after) {
+    std::ostringstream out;
+    for (size_t i = 0; i < before.values.size() && i < after.values.size(); ++i) {
+        if (before.values[i].second != after.values[i].second)
+            out << "  " << before.values[i].first << ": " << before.values[i].second << " -> " << after.values[i].second
+                << "\n";
+    }
+    return out.str();
+}
+
+// The host's objects and the sentinel state made from them.
+class StatePreservation : public GLTest {
+protected:
+    void SetUp() override {
+        GLTest::SetUp();
+        if (HasFatalFailure()) return;
+        build_frame();
+        build_host_objects();
+    }
+
+    void TearDown() override {
+        // Back to a neutral state before the host objects are deleted.
+        glUseProgram(0);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glDisable(GL_SCISSOR_TEST);
+        glDisable(GL_BLEND);
+        glDisable(GL_DEPTH_TEST);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        glPixelStorei(GL_PACK_ALIGNMENT, 4);
+        glPixelStorei(GL_PACK_ROW_LENGTH, 0);
+        glPixelStorei(GL_PACK_SKIP_ROWS, 0);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+        glPixelStorei(GL_UNPACK_SKIP_PIXELS, 0);
+        for (GLenum target : {GL_ARRAY_BUFFER, GL_PIXEL_PACK_BUFFER, GL_PIXEL_UNPACK_BUFFER,
+                              GL_DISPATCH_INDIRECT_BUFFER, GL_COPY_READ_BUFFER, GL_UNIFORM_BUFFER,
+                              GL_SHADER_STORAGE_BUFFER})
+            glBindBuffer(target, 0);
+        glBindVertexArray(0);
+        glBindRenderbuffer(GL_RENDERBUFFER, 0);
+        for (int unit = 0; unit < kTextureUnits; ++unit) glBindSampler(GLuint(unit), 0);
+        glActiveTexture(GL_TEXTURE0);
+        GLTest::TearDown();
+    }
+
+    void build_frame() {
+        // A box on a floor, D24S8 depth with the stencil mode selected by the host.
+        Camera camera(Projection::Perspective, kWidth, kHeight, Lens(),
+                      look_at(glm::dvec3(0.9, 2.4, 3.2), glm::dvec3(0.0, 0.3, 0.0)));
+        std::vector<Hit> hits = trace(camera, {plane(1, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0)),
+                                               box(2, glm::dvec3(-0.5, 0.0, -0.5), glm::dvec3(0.5, 0.7, 0.5))});
+        depth_ = make_depth_texture(GL_DEPTH24_STENCIL8, kWidth, kHeight, depth_values(camera, hits));
+        glBindTexture(GL_TEXTURE_2D, depth_.get());
+        glTexParameteri(GL_TEXTURE_2D, GL_DEPTH_STENCIL_TEXTURE_MODE, GL_STENCIL_INDEX);
+        glBindTexture(GL_TEXTURE_2D, 0);
+        input_ = make_input(depth_.get(), kWidth, kHeight, camera.matrix(), camera.clip_depth());
+        settings_ = make_settings(1.0f);
+        output_texture_ = make_texture(GL_RGBA8, kWidth, kHeight);
+        fill_texture(output_texture_.get(), kWidth, kHeight, 0.5f, 0.5f, 0.5f, 1.0f);
+        renderbuffer_ = HostRenderbuffer::create();
+        glBindRenderbuffer(GL_RENDERBUFFER, renderbuffer_.get());
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, kWidth, kHeight);
+        glBindRenderbuffer(GL_RENDERBUFFER, 0);
+        output_framebuffer_ = HostFramebuffer::create();
+        glBindFramebuffer(GL_FRAMEBUFFER, output_framebuffer_.get());
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, renderbuffer_.get());
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    }
+
+    void build_host_objects() {
+        const char* source = "#version 430 core\nlayout(local_size_x = 1) in;\nvoid main() {}\n";
+        program_ = HostProgram::create();
+        GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
+        glShaderSource(shader, 1, &source, nullptr);
+        glCompileShader(shader);
+        glAttachShader(program_.get(), shader);
+        glLinkProgram(program_.get());
+        glDeleteShader(shader);
+        for (int i = 0; i < 8; ++i) textures_2d_.push_back(make_texture(GL_RGBA8, 4, 4));
+        for (int i = 0; i < 3; ++i) {
+            HostTexture t = HostTexture::create();
+            glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, t.get());
+            glTexImage2DMultisample(GL_TEXTURE_2D_MULTISAMPLE, 2, GL_RGBA8, 4, 4, GL_TRUE);
+            glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, 0);
+            textures_ms_.push_back(std::move(t));
+        }
+        texture_3d_ = HostTexture::create();
+        glBindTexture(GL_TEXTURE_3D, texture_3d_.get());
+        glTexStorage3D(GL_TEXTURE_3D, 1, GL_RGBA16F, 4, 4, 4);
+        glBindTexture(GL_TEXTURE_3D, 0);
+        texture_array_ = HostTexture::create();
+        glBindTexture(GL_TEXTURE_2D_ARRAY, texture_array_.get());
+        glTexStorage3D(GL_TEXTURE_2D_ARRAY, 2, GL_RGBA8, 8, 8, 4);
+        glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+        texture_cube_ = HostTexture::create();
+        glBindTexture(GL_TEXTURE_CUBE_MAP, texture_cube_.get());
+        glTexStorage2D(GL_TEXTURE_CUBE_MAP, 1, GL_RGBA8, 4, 4);
+        glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
+        image_r32f_ = make_texture(GL_R32F, 4, 4);
+        for (int i = 0; i < 5; ++i) {
+            GLuint sampler = 0;
+            glGenSamplers(1, &sampler);
+            samplers_.push_back(sampler);
+        }
+        for (int i = 0; i < 5; ++i) {
+            HostBuffer b = HostBuffer::create();
+            glBindBuffer(GL_COPY_WRITE_BUFFER, b.get());
+            glBufferData(GL_COPY_WRITE_BUFFER, 4096, nullptr, GL_STATIC_DRAW);
+            buffers_.push_back(std::move(b));
+        }
+        glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+        vao_ = HostVertexArray::create();
+        for (int i = 0; i < 2; ++i) {
+            HostFramebuffer f = HostFramebuffer::create();
+            glBindFramebuffer(GL_FRAMEBUFFER, f.get());
+            glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, textures_2d_[size_t(6 + i)].get(), 0);
+            glBindFramebuffer(GL_FRAMEBUFFER, 0);
+            host_framebuffers_.push_back(std::move(f));
+        }
+        host_renderbuffer_ = HostRenderbuffer::create();
+        glBindRenderbuffer(GL_RENDERBUFFER, host_renderbuffer_.get());
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 4, 4);
+        glBindRenderbuffer(GL_RENDERBUFFER, 0);
+        ASSERT_EQ(take_gl_error(), GLenum(GL_NO_ERROR)) << "building the host objects";
+    }
+
+    void set_sentinel_state() {
+        glUseProgram(program_.get());
+        for (int unit = 0; unit < kTextureUnits; ++unit) {
+            glActiveTexture(GLenum(GL_TEXTURE0 + unit));
+            glBindTexture(GL_TEXTURE_2D, textures_2d_[size_t(unit)].get());
+        }
+        // Multisample textures on units the SDK uses (0, 2) and one it does not (5); other targets too.
+        glActiveTexture(GL_TEXTURE0);
+        glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, textures_ms_[0].get());
+        glBindTexture(GL_TEXTURE_CUBE_MAP, texture_cube_.get());
+        glActiveTexture(GL_TEXTURE2);
+        glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, textures_ms_[1].get());
+        glActiveTexture(GL_TEXTURE3);
+        glBindTexture(GL_TEXTURE_3D, texture_3d_.get());
+        glActiveTexture(GL_TEXTURE1);
+        glBindTexture(GL_TEXTURE_2D_ARRAY, texture_array_.get());
+        glActiveTexture(GL_TEXTURE5);
+        glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, textures_ms_[2].get());
+        for (int unit = 0; unit < kSamplerUnits; ++unit) glBindSampler(GLuint(unit), samplers_[size_t(unit)]);
+        glBindSampler(6, samplers_[4]);
+        // Image units: level / layer / access / format all distinctive.
+        glBindImageTexture(0, texture_array_.get(), 1, GL_FALSE, 2, GL_READ_ONLY, GL_RGBA8);
+        glBindImageTexture(1, image_r32f_.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+        glBindImageTexture(2, texture_3d_.get(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA16F);
+        // Uniform and storage buffers: indexed ranges and bases, then the generic bindings.
+        GLint ubo_align = 256, ssbo_align = 256;
+        glGetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &ubo_align);
+        glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &ssbo_align);
+        glBindBufferRange(GL_UNIFORM_BUFFER, 0, buffers_[1].get(), ubo_align, 256);
+        glBindBufferRange(GL_UNIFORM_BUFFER, 1, buffers_[2].get(), 2 * ubo_align, 512);
+        glBindBufferBase(GL_UNIFORM_BUFFER, 2, buffers_[1].get());
+        glBindBuffer(GL_UNIFORM_BUFFER, buffers_[0].get());
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 0, buffers_[3].get(), ssbo_align, 128);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, buffers_[4].get());
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers_[3].get());
+        glBindBuffer(GL_ARRAY_BUFFER, buffers_[4].get());
+        glBindBuffer(GL_PIXEL_PACK_BUFFER, buffers_[2].get());
+        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, buffers_[1].get());
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, buffers_[0].get());
+        glBindBuffer(GL_COPY_READ_BUFFER, buffers_[3].get());
+        glBindVertexArray(vao_.get());
+        glBindRenderbuffer(GL_RENDERBUFFER, host_renderbuffer_.get());
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, host_framebuffers_[0].get());
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, host_framebuffers_[1].get());
+        glViewport(3, 5, 77, 41);
+        glScissor(1, 2, 30, 40);
+        glEnable(GL_SCISSOR_TEST);
+        glEnable(GL_BLEND);
+        glEnable(GL_DEPTH_TEST);
+        glColorMask(GL_TRUE, GL_FALSE, GL_TRUE, GL_FALSE);
+        glPixelStorei(GL_PACK_ALIGNMENT, 1);
+        glPixelStorei(GL_PACK_ROW_LENGTH, 13);
+        glPixelStorei(GL_PACK_SKIP_ROWS, 3);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
+        glPixelStorei(GL_UNPACK_ROW_LENGTH, 17);
+        glPixelStorei(GL_UNPACK_SKIP_PIXELS, 5);
+        glActiveTexture(GL_TEXTURE5);
+        ASSERT_EQ(take_gl_error(), GLenum(GL_NO_ERROR)) << "setting the sentinel state";
+    }
+
+    GLint depth_stencil_mode() {
+        // Queried through a unit the sentinel state does not care about, restored afterwards.
+        GLint active = 0, previous = 0, mode = 0;
+        glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
+        glActiveTexture(GL_TEXTURE7);
+        glGetIntegerv(GL_TEXTURE_BINDING_2D, &previous);
+        glBindTexture(GL_TEXTURE_2D, depth_.get());
+        glGetTexParameteriv(GL_TEXTURE_2D, GL_DEPTH_STENCIL_TEXTURE_MODE, &mode);
+        glBindTexture(GL_TEXTURE_2D, GLuint(previous));
+        glActiveTexture(GLenum(active));
+        return mode;
+    }
+
+    void expect_unchanged(const Snapshot& before, const char* what) {
+        Snapshot after = capture();
+        ASSERT_EQ(before.values.size(), after.values.size());
+        std::string differences = diff(before, after);
+        EXPECT_TRUE(differences.empty()) << what << " changed GL state:\n" << differences;
+        EXPECT_EQ(depth_stencil_mode(), GL_STENCIL_INDEX) << what;
+        GLenum error = take_gl_error();
+        EXPECT_EQ(error, GLenum(GL_NO_ERROR)) << what << " left " << gl_error_name(error);
+    }
+
+    void clear_output_framebuffer() {
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, output_framebuffer_.get());
+        const GLfloat zero[4] = {0, 0, 0, 0};
+        glClearBufferfv(GL_COLOR, 0, zero);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    }
+
+    // Texels of the output renderbuffer whose alpha is not 1 (the AO writes alpha 1 everywhere).
+    int count_unwritten_output_texels() {
+        glPixelStorei(GL_PACK_ALIGNMENT, 4);
+        glPixelStorei(GL_PACK_ROW_LENGTH, 0);
+        glPixelStorei(GL_PACK_SKIP_ROWS, 0);
+        glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, output_framebuffer_.get());
+        std::vector<uint8_t> bytes(size_t(kWidth) * kHeight * 4);
+        glReadPixels(0, 0, kWidth, kHeight, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+        int unwritten = 0;
+        for (size_t i = 0; i < bytes.size(); i += 4) unwritten += bytes[i + 3] != 255;
+        return unwritten;
+    }
+
+    obscura_output texture_output() {
+        obscura_output output = make_output(output_texture_.get());
+        output.blend = OBSCURA_BLEND_MULTIPLY;
+        return output;
+    }
+    obscura_output framebuffer_output() {
+        obscura_output output = make_output(0);
+        output.framebuffer = output_framebuffer_.get();
+        output.blend = OBSCURA_BLEND_MULTIPLY;
+        return output;
+    }
+
+    HostTexture depth_;
+    obscura_input input_{};
+    obscura_settings settings_{};
+    HostTexture output_texture_;
+    HostRenderbuffer renderbuffer_;
+    HostFramebuffer output_framebuffer_;
+
+    HostProgram program_;
+    std::vector<HostTexture> textures_2d_, textures_ms_;
+    HostTexture texture_3d_, texture_array_, texture_cube_, image_r32f_;
+    std::vector<GLuint> samplers_;
+    std::vector<HostBuffer> buffers_;
+    HostVertexArray vao_;
+    std::vector<HostFramebuffer> host_framebuffers_;
+    HostRenderbuffer host_renderbuffer_;
+
+public:
+    ~StatePreservation() override {
+        if (!samplers_.empty()) glDeleteSamplers(GLsizei(samplers_.size()), samplers_.data());
+    }
+};
+
+TEST_F(StatePreservation, SentinelStateIsDistinctive) {
+    // Guards the test itself: the sentinel state differs from the default in the fields that matter.
+    Snapshot defaults = capture();
+    set_sentinel_state();
+    Snapshot sentinel = capture();
+    std::string differences = diff(defaults, sentinel);
+    for (const char* field : {"CURRENT_PROGRAM", "ACTIVE_TEXTURE", "unit 0 TEXTURE_BINDING_2D_MS", "unit 3 SAMPLER_BINDING",
+                              "image 0 LEVEL", "image 0 LAYER", "image 1 FORMAT", "image 2 LAYERED", "UBO start [0]",
+                              "UBO size [1]", "SSBO start [0]", "READ_FRAMEBUFFER_BINDING", "DRAW_FRAMEBUFFER_BINDING",
+                              "VIEWPORT[2]", "SCISSOR_TEST", "PACK_ROW_LENGTH", "UNPACK_ALIGNMENT"})
+        EXPECT_NE(differences.find(std::string("  ") + field + ":"), std::string::npos) << field;
+}
+
+TEST_F(StatePreservation, RenderIntoTexture) {
+    set_sentinel_state();
+    Snapshot before = capture();
+    obscura_output output = texture_output();
+    ASSERT_EQ(obscura_render(ctx(), &input_, &settings_, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    expect_unchanged(before, "render into a texture (multiply)");
+}
+
+TEST_F(StatePreservation, RenderIntoRenderbufferFramebuffer) {
+    set_sentinel_state();
+    Snapshot before = capture();
+    obscura_output output = framebuffer_output();
+    ASSERT_EQ(obscura_render(ctx(), &input_, &settings_, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    expect_unchanged(before, "render into a renderbuffer FBO (blit, multiply)");
+}
+
+TEST_F(StatePreservation, RenderDebugViews) {
+    set_sentinel_state();
+    Snapshot before = capture();
+    for (obscura_debug_view view : {OBSCURA_DEBUG_LINEAR_DEPTH, OBSCURA_DEBUG_NORMALS, OBSCURA_DEBUG_AO_BEFORE_BLUR}) {
+        obscura_output output = texture_output();
+        output.debug_view = view;
+        ASSERT_EQ(obscura_render(ctx(), &input_, &settings_, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    }
+    expect_unchanged(before, "debug-view renders");
+}
+
+TEST_F(StatePreservation, FailedRender) {
+    set_sentinel_state();
+    Snapshot before = capture();
+    obscura_output output = texture_output();
+    output.x = 5;  // does not fit: INVALID_RECT after the input was validated (stencil mode switched)
+    ASSERT_EQ(obscura_render(ctx(), &input_, &settings_, &output), OBSCURA_STATUS_INVALID_RECT);
+    expect_unchanged(before, "a render failing in output validation");
+}
+
+TEST_F(StatePreservation, FailedRenderOnWrongTextureTarget) {
+    set_sentinel_state();
+    Snapshot before = capture();
+    obscura_input input = input_;
+    input.depth_texture = texture_3d_.get();
+    input.depth_width = input.depth_height = 4;
+    obscura_output output = texture_output();
+    ASSERT_EQ(obscura_render(ctx(), &input, &settings_, &output), OBSCURA_STATUS_INVALID_TEXTURE);
+    expect_unchanged(before, "a render failing on a 3D depth texture");
+}
+
+TEST_F(StatePreservation, PrepareAndRelease) {
+    set_sentinel_state();
+    Snapshot before = capture();
+    ASSERT_EQ(obscura_prepare(ctx(), 128, 72, &settings_), OBSCURA_OK) << obscura_get_last_error(ctx());
+    obscura_release_resources(ctx());
+    expect_unchanged(before, "obscura_prepare + obscura_release_resources");
+}
+
+TEST_F(StatePreservation, CreateAndDestroy) {
+    set_sentinel_state();
+    Snapshot before = capture();
+    ContextPtr other = create_context();
+    ASSERT_NE(other, nullptr);
+    obscura_output output = texture_output();
+    ASSERT_EQ(obscura_render(other.get(), &input_, &settings_, &output), OBSCURA_OK);
+    other.reset();
+    expect_unchanged(before, "obscura_create_context + render + obscura_destroy_context");
+}
+
+TEST_F(StatePreservation, ResultStillCorrectUnderSentinelState) {
+    // The host's bound objects and pixel-store state must not leak into the SDK's work: the result
+    // under sentinel state equals the result under default state.
+    obscura_output output = make_output(output_texture_.get());
+    ASSERT_EQ(obscura_render(ctx(), &input_, &settings_, &output), OBSCURA_OK);
+    std::vector<uint8_t> clean = read_texture_rgba8(output_texture_.get(), kWidth, kHeight);
+    fill_texture(output_texture_.get(), kWidth, kHeight, 0, 0, 0, 0);
+    set_sentinel_state();
+    ASSERT_EQ(obscura_render(ctx(), &input_, &settings_, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    // Read back under neutral pack state, then restore nothing: TearDown resets.
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glPixelStorei(GL_PACK_ROW_LENGTH, 0);
+    glPixelStorei(GL_PACK_SKIP_ROWS, 0);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    std::vector<uint8_t> dirty = read_texture_rgba8(output_texture_.get(), kWidth, kHeight);
+    EXPECT_EQ(clean, dirty);
+}
+
+TEST_F(StatePreservation, BlitTargetWrittenDespiteHostScissorAndMask) {
+    // The host's scissor box (1, 2, 30x40) and colour mask (r, b only) must not clip the blit into the
+    // output framebuffer.
+    obscura_output output = make_output(0);
+    output.framebuffer = output_framebuffer_.get();
+    clear_output_framebuffer();
+    set_sentinel_state();
+    ASSERT_EQ(obscura_render(ctx(), &input_, &settings_, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    glDisable(GL_SCISSOR_TEST);
+    EXPECT_EQ(count_unwritten_output_texels(), 0);
+}
+
+TEST_F(StatePreservation, BlitTargetWrittenDespiteRasterizerDiscard) {
+    // GL_RASTERIZER_DISCARD left enabled by the host (transform-feedback passes) must not swallow the
+    // blit into the output framebuffer, and must still be enabled afterwards.
+    obscura_output output = make_output(0);
+    output.framebuffer = output_framebuffer_.get();
+    clear_output_framebuffer();
+    glEnable(GL_RASTERIZER_DISCARD);
+    obscura_status status = obscura_render(ctx(), &input_, &settings_, &output);
+    GLboolean still_enabled = glIsEnabled(GL_RASTERIZER_DISCARD);
+    glDisable(GL_RASTERIZER_DISCARD);
+    ASSERT_EQ(status, OBSCURA_OK) << obscura_get_last_error(ctx());
+    EXPECT_TRUE(still_enabled);
+    EXPECT_EQ(count_unwritten_output_texels(), 0);
+}
+
+}  // namespace
+}  // namespace obscura_test

@@ -1,0 +1,526 @@
+// Settings: defaulting of zero fields, validation, the set/get API and the metadata table.
+// No GL: everything here goes through the public C API (libobscura.a), which needs no context.
+#include <cctype>
+#include <cmath>
+#include <cstddef>
+#include <cstring>
+#include <limits>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "obscura/obscura.h"
+
+namespace {
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// Stores any int into an enum field, as a C host may (no out-of-range C++ enum value is formed).
+template <class Enum>
+void store_raw(Enum* field, int32_t value) {
+    static_assert(sizeof(Enum) == sizeof(int32_t), "int-sized C enum");
+    std::memcpy(field, &value, sizeof value);
+}
+
+obscura_settings zero_settings() {
+    obscura_settings s;
+    std::memset(&s, 0, sizeof s);
+    s.struct_size = sizeof s;
+    return s;
+}
+
+obscura_settings resolved(const obscura_settings& in) {
+    obscura_settings out;
+    std::memset(&out, 0xCD, sizeof out);
+    EXPECT_EQ(obscura_resolve_settings(nullptr, &in, &out), OBSCURA_OK);
+    return out;
+}
+
+obscura_status resolve_status(const obscura_settings& in) {
+    obscura_settings out;
+    return obscura_resolve_settings(nullptr, &in, &out);
+}
+
+const obscura_setting_info* find_info(const char* name) {
+    const obscura_setting_info* infos = nullptr;
+    uint32_t count = 0;
+    if (obscura_get_setting_infos(OBSCURA_METHOD_HBAO, &infos, &count) != OBSCURA_OK) return nullptr;
+    for (uint32_t i = 0; i < count; ++i)
+        if (std::strcmp(infos[i].name, name) == 0) return &infos[i];
+    return nullptr;
+}
+
+// ---- Defaulting ----------------------------------------------------------------------------------
+
+TEST(SettingsDefaults, ZeroFieldsResolveToTableDefaults) {
+    obscura_settings r = resolved(zero_settings());
+    EXPECT_EQ(r.method, OBSCURA_METHOD_HBAO);  // DEFAULT resolves to HBAO
+    const obscura_setting_info* infos = nullptr;
+    uint32_t count = 0;
+    ASSERT_EQ(obscura_get_setting_infos(OBSCURA_METHOD_HBAO, &infos, &count), OBSCURA_OK);
+    ASSERT_GT(count, 0u);
+    for (uint32_t i = 0; i < count; ++i) {
+        const obscura_setting_info& info = infos[i];
+        const unsigned char* field = reinterpret_cast<const unsigned char*>(&r) + info.offset;
+        double value = 0;
+        if (info.type == OBSCURA_SETTING_FLOAT) {
+            float f;
+            std::memcpy(&f, field, sizeof f);
+            value = f;
+        } else {
+            int32_t v;
+            std::memcpy(&v, field, sizeof v);
+            value = info.type == OBSCURA_SETTING_TOGGLE ? (v == OBSCURA_TOGGLE_ON ? 1.0 : v == OBSCURA_TOGGLE_OFF ? 0.0 : -1.0)
+                                                        : double(v);
+        }
+        if (std::strcmp(info.name, "decay_rate") == 0) continue;  // derived, checked below
+        EXPECT_EQ(value, double(float(info.default_value))) << info.name;
+    }
+}
+
+TEST(SettingsDefaults, HeaderDocumentedDefaults) {
+    obscura_settings r = resolved(zero_settings());
+    EXPECT_FLOAT_EQ(r.hbao.radius, 1.0f);
+    EXPECT_FLOAT_EQ(r.hbao.falloff_c, 0.3f);
+    EXPECT_EQ(r.hbao.directions, 8);
+    EXPECT_EQ(r.hbao.steps, 12);
+    EXPECT_EQ(r.hbao.estimator, 1);
+    EXPECT_FLOAT_EQ(r.hbao.bias, 0.0f);
+    EXPECT_FLOAT_EQ(r.hbao.intensity, 1.0f);
+    EXPECT_FLOAT_EQ(r.hbao.power, 1.0f);
+    EXPECT_FLOAT_EQ(r.hbao.max_radius_pixels, 256.0f);
+    EXPECT_EQ(r.hbao.blur, OBSCURA_TOGGLE_ON);
+    EXPECT_EQ(r.hbao.blur_radius, 4);
+    EXPECT_FLOAT_EQ(r.hbao.blur_sharpness, 16.0f);
+}
+
+TEST(SettingsDefaults, DecayRateDerivedFromDefaults) {
+    obscura_settings r = resolved(zero_settings());
+    EXPECT_FLOAT_EQ(r.hbao.decay_rate, 0.3f * 1.0f * 1.0f);
+}
+
+TEST(SettingsDefaults, DecayRateDerivedAsCTimesRadiusSquared) {
+    obscura_settings s = zero_settings();
+    s.hbao.radius = 2.5f;
+    s.hbao.falloff_c = 0.5f;
+    EXPECT_FLOAT_EQ(resolved(s).hbao.decay_rate, 0.5f * 2.5f * 2.5f);
+}
+
+TEST(SettingsDefaults, ExplicitDecayRateIsKept) {
+    obscura_settings s = zero_settings();
+    s.hbao.radius = 2.0f;
+    s.hbao.decay_rate = 7.0f;
+    EXPECT_FLOAT_EQ(resolved(s).hbao.decay_rate, 7.0f);
+}
+
+TEST(SettingsDefaults, NonZeroFieldsAreKept) {
+    obscura_settings s = zero_settings();
+    s.hbao.radius = 0.25f;
+    s.hbao.directions = 3;
+    s.hbao.steps = 100;
+    s.hbao.blur = OBSCURA_TOGGLE_OFF;
+    obscura_settings r = resolved(s);
+    EXPECT_FLOAT_EQ(r.hbao.radius, 0.25f);
+    EXPECT_EQ(r.hbao.directions, 3);
+    EXPECT_EQ(r.hbao.steps, 100);
+    EXPECT_EQ(r.hbao.blur, OBSCURA_TOGGLE_OFF);
+}
+
+TEST(SettingsDefaults, DefaultSettingsEqualsResolvedZero) {
+    obscura_settings d;
+    std::memset(&d, 0, sizeof d);
+    ASSERT_EQ(obscura_default_settings(OBSCURA_METHOD_HBAO, &d), OBSCURA_OK);
+    EXPECT_EQ(d.struct_size, sizeof(obscura_settings));
+    obscura_settings r = resolved(zero_settings());
+    EXPECT_EQ(std::memcmp(&d, &r, sizeof d), 0);
+}
+
+TEST(SettingsDefaults, DefaultSettingsForDefaultMethodIsHbao) {
+    obscura_settings d;
+    ASSERT_EQ(obscura_default_settings(OBSCURA_METHOD_DEFAULT, &d), OBSCURA_OK);
+    EXPECT_EQ(d.method, OBSCURA_METHOD_HBAO);
+}
+
+TEST(SettingsDefaults, DefaultSettingsRejectsBadArguments) {
+    obscura_settings d;
+    EXPECT_EQ(obscura_default_settings(OBSCURA_METHOD_HBAO, nullptr), OBSCURA_STATUS_NULL_ARGUMENT);
+    EXPECT_EQ(obscura_default_settings(obscura_method(99), &d), OBSCURA_STATUS_INVALID_ENUM);
+    EXPECT_EQ(obscura_default_settings(obscura_method(-1), &d), OBSCURA_STATUS_INVALID_ENUM);
+}
+
+TEST(SettingsDefaults, ResolveMayAliasInput) {
+    obscura_settings s = zero_settings();
+    s.hbao.radius = 2.0f;
+    ASSERT_EQ(obscura_resolve_settings(nullptr, &s, &s), OBSCURA_OK);
+    EXPECT_FLOAT_EQ(s.hbao.radius, 2.0f);
+    EXPECT_EQ(s.hbao.directions, 8);
+    EXPECT_FLOAT_EQ(s.hbao.decay_rate, 0.3f * 4.0f);
+}
+
+// ---- Validation ----------------------------------------------------------------------------------
+
+struct BadRadius {
+    float value;
+    const char* what;
+};
+
+class SettingsInvalidRadius : public ::testing::TestWithParam<BadRadius> {};
+
+TEST_P(SettingsInvalidRadius, IsInvalidSetting) {
+    obscura_settings s = zero_settings();
+    s.hbao.radius = GetParam().value;
+    EXPECT_EQ(resolve_status(s), OBSCURA_STATUS_INVALID_SETTING) << GetParam().what;
+}
+
+INSTANTIATE_TEST_SUITE_P(Values, SettingsInvalidRadius,
+                         ::testing::Values(BadRadius{kNaN, "NaN"}, BadRadius{kInf, "PlusInf"}, BadRadius{-kInf, "MinusInf"},
+                                           BadRadius{-1.0f, "Negative"}, BadRadius{1e-4f, "BelowMin"},
+                                           BadRadius{1.5e4f, "AboveMax"}),
+                         [](const ::testing::TestParamInfo<BadRadius>& param_info) {
+                             std::string name = param_info.param.what;
+                             for (char& c : name)
+                                 if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                             return name;
+                         });
+
+TEST(SettingsValidation, RadiusRangeLimitsAreInclusive) {
+    obscura_settings s = zero_settings();
+    s.hbao.radius = 1e4f;
+    EXPECT_EQ(resolve_status(s), OBSCURA_OK);
+    s.hbao.radius = 1e-3f;
+    EXPECT_EQ(resolve_status(s), OBSCURA_OK);
+}
+
+TEST(SettingsValidation, DirectionsOutOfRange) {
+    obscura_settings s = zero_settings();
+    for (int32_t k : {-1, 33, 1000}) {
+        s.hbao.directions = k;
+        EXPECT_EQ(resolve_status(s), OBSCURA_STATUS_INVALID_SETTING) << "K = " << k;
+    }
+    for (int32_t k : {1, 32}) {
+        s.hbao.directions = k;
+        EXPECT_EQ(resolve_status(s), OBSCURA_OK) << "K = " << k;
+    }
+}
+
+TEST(SettingsValidation, StepsOutOfRange) {
+    obscura_settings s = zero_settings();
+    for (int32_t n : {-5, 129}) {
+        s.hbao.steps = n;
+        EXPECT_EQ(resolve_status(s), OBSCURA_STATUS_INVALID_SETTING) << "N = " << n;
+    }
+    for (int32_t n : {1, 128}) {
+        s.hbao.steps = n;
+        EXPECT_EQ(resolve_status(s), OBSCURA_OK) << "N = " << n;
+    }
+}
+
+TEST(SettingsValidation, NonFiniteFloatFieldsAreInvalid) {
+    for (float obscura_hbao_settings::*field :
+         {&obscura_hbao_settings::falloff_c, &obscura_hbao_settings::decay_rate, &obscura_hbao_settings::bias,
+          &obscura_hbao_settings::intensity, &obscura_hbao_settings::power, &obscura_hbao_settings::max_radius_pixels,
+          &obscura_hbao_settings::blur_sharpness}) {
+        obscura_settings s = zero_settings();
+        s.hbao.*field = kNaN;
+        EXPECT_EQ(resolve_status(s), OBSCURA_STATUS_INVALID_SETTING);
+        s.hbao.*field = kInf;
+        EXPECT_EQ(resolve_status(s), OBSCURA_STATUS_INVALID_SETTING);
+    }
+}
+
+TEST(SettingsValidation, OtherRangesAreChecked) {
+    obscura_settings s = zero_settings();
+    s.hbao.falloff_c = 1.0f;  // (0, 1)
+    EXPECT_EQ(resolve_status(s), OBSCURA_STATUS_INVALID_SETTING);
+    s = zero_settings();
+    s.hbao.bias = 0.6f;
+    EXPECT_EQ(resolve_status(s), OBSCURA_STATUS_INVALID_SETTING);
+    s = zero_settings();
+    s.hbao.bias = -0.1f;
+    EXPECT_EQ(resolve_status(s), OBSCURA_STATUS_INVALID_SETTING);
+    s = zero_settings();
+    s.hbao.estimator = 3;
+    EXPECT_EQ(resolve_status(s), OBSCURA_STATUS_INVALID_SETTING);
+    s = zero_settings();
+    s.hbao.blur_radius = 17;
+    EXPECT_EQ(resolve_status(s), OBSCURA_STATUS_INVALID_SETTING);
+    s = zero_settings();
+    s.hbao.max_radius_pixels = 0.5f;
+    EXPECT_EQ(resolve_status(s), OBSCURA_STATUS_INVALID_SETTING);
+}
+
+TEST(SettingsValidation, BadMethodIsInvalidEnum) {
+    obscura_settings s = zero_settings();
+    store_raw(&s.method, OBSCURA_METHOD_COUNT_);
+    EXPECT_EQ(resolve_status(s), OBSCURA_STATUS_INVALID_ENUM);
+    store_raw(&s.method, -3);
+    EXPECT_EQ(resolve_status(s), OBSCURA_STATUS_INVALID_ENUM);
+}
+
+TEST(SettingsValidation, BadToggleIsInvalidEnum) {
+    obscura_settings s = zero_settings();
+    store_raw(&s.hbao.blur, 3);
+    EXPECT_EQ(resolve_status(s), OBSCURA_STATUS_INVALID_ENUM);
+    store_raw(&s.hbao.blur, -1);
+    EXPECT_EQ(resolve_status(s), OBSCURA_STATUS_INVALID_ENUM);
+}
+
+TEST(SettingsValidation, WrongStructSize) {
+    obscura_settings s = zero_settings();
+    for (uint32_t size : {0u, uint32_t(sizeof(obscura_settings) - 4), uint32_t(sizeof(obscura_settings) + 4)}) {
+        s.struct_size = size;
+        EXPECT_EQ(resolve_status(s), OBSCURA_STATUS_INVALID_STRUCT_SIZE) << size;
+    }
+}
+
+TEST(SettingsValidation, NullArguments) {
+    obscura_settings s = zero_settings();
+    EXPECT_EQ(obscura_resolve_settings(nullptr, nullptr, &s), OBSCURA_STATUS_NULL_ARGUMENT);
+    EXPECT_EQ(obscura_resolve_settings(nullptr, &s, nullptr), OBSCURA_STATUS_NULL_ARGUMENT);
+}
+
+TEST(SettingsValidation, FailedResolveLeavesOutputUntouched) {
+    obscura_settings s = zero_settings();
+    s.hbao.radius = kNaN;
+    obscura_settings out;
+    std::memset(&out, 0x5A, sizeof out);
+    obscura_settings before = out;
+    EXPECT_EQ(obscura_resolve_settings(nullptr, &s, &out), OBSCURA_STATUS_INVALID_SETTING);
+    EXPECT_EQ(std::memcmp(&out, &before, sizeof out), 0);
+}
+
+// ---- set / get -----------------------------------------------------------------------------------
+
+TEST(SettingsSetGet, RoundTripEveryTableEntry) {
+    const obscura_setting_info* infos = nullptr;
+    uint32_t count = 0;
+    ASSERT_EQ(obscura_get_setting_infos(OBSCURA_METHOD_HBAO, &infos, &count), OBSCURA_OK);
+    for (uint32_t i = 0; i < count; ++i) {
+        const obscura_setting_info& info = infos[i];
+        double value;
+        if (info.type == OBSCURA_SETTING_TOGGLE) {
+            value = 0.0;  // off: the non-default state
+        } else if (info.type == OBSCURA_SETTING_INT) {
+            value = std::floor((info.min_value + info.max_value) / 2);
+        } else {
+            value = double(float(info.min_value + (info.max_value - info.min_value) * 0.375));
+        }
+        obscura_settings s = zero_settings();
+        ASSERT_EQ(obscura_set_setting(&s, info.name, value), OBSCURA_OK) << info.name;
+        double read = -12345.0;
+        ASSERT_EQ(obscura_get_setting(&s, info.name, &read), OBSCURA_OK) << info.name;
+        EXPECT_EQ(read, value) << info.name;
+        // The value set is also what resolving uses.
+        EXPECT_EQ(resolve_status(s), OBSCURA_OK) << info.name;
+    }
+}
+
+TEST(SettingsSetGet, SetWritesTheStructField) {
+    obscura_settings s = zero_settings();
+    ASSERT_EQ(obscura_set_setting(&s, "radius", 2.5), OBSCURA_OK);
+    ASSERT_EQ(obscura_set_setting(&s, "directions", 6), OBSCURA_OK);
+    ASSERT_EQ(obscura_set_setting(&s, "blur", 1), OBSCURA_OK);
+    EXPECT_FLOAT_EQ(s.hbao.radius, 2.5f);
+    EXPECT_EQ(s.hbao.directions, 6);
+    EXPECT_EQ(s.hbao.blur, OBSCURA_TOGGLE_ON);
+    ASSERT_EQ(obscura_set_setting(&s, "blur", 0), OBSCURA_OK);
+    EXPECT_EQ(s.hbao.blur, OBSCURA_TOGGLE_OFF);
+}
+
+TEST(SettingsSetGet, GetOfZeroFieldReportsDefault) {
+    obscura_settings s = zero_settings();
+    double v = 0;
+    ASSERT_EQ(obscura_get_setting(&s, "radius", &v), OBSCURA_OK);
+    EXPECT_EQ(v, 1.0);
+    ASSERT_EQ(obscura_get_setting(&s, "steps", &v), OBSCURA_OK);
+    EXPECT_EQ(v, 12.0);
+    ASSERT_EQ(obscura_get_setting(&s, "blur", &v), OBSCURA_OK);
+    EXPECT_EQ(v, 1.0);
+}
+
+TEST(SettingsSetGet, GetOfDerivedDecayRate) {
+    obscura_settings s = zero_settings();
+    s.hbao.radius = 2.0f;
+    double v = 0;
+    ASSERT_EQ(obscura_get_setting(&s, "decay_rate", &v), OBSCURA_OK);
+    EXPECT_NEAR(v, 0.3 * 4.0, 1e-6);
+}
+
+TEST(SettingsSetGet, SettingZeroMeansDefault) {
+    obscura_settings s = zero_settings();
+    ASSERT_EQ(obscura_set_setting(&s, "radius", 3.0), OBSCURA_OK);
+    ASSERT_EQ(obscura_set_setting(&s, "radius", 0.0), OBSCURA_OK);
+    double v = 0;
+    ASSERT_EQ(obscura_get_setting(&s, "radius", &v), OBSCURA_OK);
+    EXPECT_EQ(v, 1.0);
+}
+
+TEST(SettingsSetGet, OutOfRangeIsRejectedAndFieldUnchanged) {
+    obscura_settings s = zero_settings();
+    s.hbao.radius = 2.0f;
+    EXPECT_EQ(obscura_set_setting(&s, "radius", 2e4), OBSCURA_STATUS_INVALID_SETTING);
+    EXPECT_EQ(obscura_set_setting(&s, "radius", -1.0), OBSCURA_STATUS_INVALID_SETTING);
+    EXPECT_EQ(obscura_set_setting(&s, "radius", std::nan("")), OBSCURA_STATUS_INVALID_SETTING);
+    EXPECT_EQ(obscura_set_setting(&s, "radius", HUGE_VAL), OBSCURA_STATUS_INVALID_SETTING);
+    EXPECT_FLOAT_EQ(s.hbao.radius, 2.0f);
+    EXPECT_EQ(obscura_set_setting(&s, "directions", 33), OBSCURA_STATUS_INVALID_SETTING);
+    EXPECT_EQ(obscura_set_setting(&s, "steps", 129), OBSCURA_STATUS_INVALID_SETTING);
+    EXPECT_EQ(s.hbao.directions, 0);
+    EXPECT_EQ(s.hbao.steps, 0);
+}
+
+TEST(SettingsSetGet, IntegerSettingsRejectFractions) {
+    obscura_settings s = zero_settings();
+    EXPECT_EQ(obscura_set_setting(&s, "directions", 2.5), OBSCURA_STATUS_INVALID_SETTING);
+    EXPECT_EQ(s.hbao.directions, 0);
+}
+
+TEST(SettingsSetGet, ToggleAcceptsOnlyZeroOrOne) {
+    obscura_settings s = zero_settings();
+    EXPECT_EQ(obscura_set_setting(&s, "blur", 2.0), OBSCURA_STATUS_INVALID_SETTING);
+    EXPECT_EQ(obscura_set_setting(&s, "blur", 0.5), OBSCURA_STATUS_INVALID_SETTING);
+    EXPECT_EQ(s.hbao.blur, OBSCURA_TOGGLE_DEFAULT);
+}
+
+TEST(SettingsSetGet, UnknownNames) {
+    obscura_settings s = zero_settings();
+    double v = 0;
+    for (const char* name : {"", "Radius", "radius ", "hbao.radius", "no_such_setting"}) {
+        EXPECT_EQ(obscura_set_setting(&s, name, 1.0), OBSCURA_STATUS_UNKNOWN_SETTING) << "'" << name << "'";
+        EXPECT_EQ(obscura_get_setting(&s, name, &v), OBSCURA_STATUS_UNKNOWN_SETTING) << "'" << name << "'";
+    }
+}
+
+TEST(SettingsSetGet, MethodWithoutTableHasNoSettings) {
+    obscura_settings s = zero_settings();
+    s.method = OBSCURA_METHOD_SAO;
+    double v = 0;
+    EXPECT_EQ(obscura_set_setting(&s, "radius", 1.0), OBSCURA_STATUS_UNKNOWN_SETTING);
+    EXPECT_EQ(obscura_get_setting(&s, "radius", &v), OBSCURA_STATUS_UNKNOWN_SETTING);
+}
+
+TEST(SettingsSetGet, BadMethodAndNullArguments) {
+    obscura_settings s = zero_settings();
+    double v = 0;
+    EXPECT_EQ(obscura_set_setting(nullptr, "radius", 1.0), OBSCURA_STATUS_NULL_ARGUMENT);
+    EXPECT_EQ(obscura_set_setting(&s, nullptr, 1.0), OBSCURA_STATUS_NULL_ARGUMENT);
+    EXPECT_EQ(obscura_get_setting(nullptr, "radius", &v), OBSCURA_STATUS_NULL_ARGUMENT);
+    EXPECT_EQ(obscura_get_setting(&s, nullptr, &v), OBSCURA_STATUS_NULL_ARGUMENT);
+    EXPECT_EQ(obscura_get_setting(&s, "radius", nullptr), OBSCURA_STATUS_NULL_ARGUMENT);
+    store_raw(&s.method, 42);
+    EXPECT_EQ(obscura_set_setting(&s, "radius", 1.0), OBSCURA_STATUS_INVALID_ENUM);
+    EXPECT_EQ(obscura_get_setting(&s, "radius", &v), OBSCURA_STATUS_INVALID_ENUM);
+}
+
+// ---- Metadata table -------------------------------------------------------------------------------
+
+TEST(SettingsTable, DefaultsWithinRange) {
+    const obscura_setting_info* infos = nullptr;
+    uint32_t count = 0;
+    ASSERT_EQ(obscura_get_setting_infos(OBSCURA_METHOD_HBAO, &infos, &count), OBSCURA_OK);
+    for (uint32_t i = 0; i < count; ++i) {
+        const obscura_setting_info& info = infos[i];
+        EXPECT_LE(info.min_value, info.max_value) << info.name;
+        double default_value = info.default_value;
+        if (std::strcmp(info.name, "decay_rate") == 0) {
+            // The table stores 0 = "derived (C * radius^2)"; the value actually used must be in range.
+            EXPECT_EQ(info.default_value, 0.0);
+            obscura_settings s = zero_settings();
+            ASSERT_EQ(obscura_get_setting(&s, "decay_rate", &default_value), OBSCURA_OK);
+        }
+        EXPECT_GE(default_value, info.min_value) << info.name;
+        EXPECT_LE(default_value, info.max_value) << info.name;
+        if (info.type != OBSCURA_SETTING_FLOAT) {
+            EXPECT_EQ(default_value, std::floor(default_value)) << info.name;
+        }
+        if (info.type == OBSCURA_SETTING_TOGGLE) {
+            EXPECT_EQ(info.min_value, 0.0) << info.name;
+            EXPECT_EQ(info.max_value, 1.0) << info.name;
+        }
+    }
+}
+
+TEST(SettingsTable, NamesAndOffsetsUniqueAndInside) {
+    const obscura_setting_info* infos = nullptr;
+    uint32_t count = 0;
+    ASSERT_EQ(obscura_get_setting_infos(OBSCURA_METHOD_HBAO, &infos, &count), OBSCURA_OK);
+    std::set<std::string> names;
+    std::set<size_t> offsets;
+    for (uint32_t i = 0; i < count; ++i) {
+        const obscura_setting_info& info = infos[i];
+        ASSERT_NE(info.name, nullptr);
+        EXPECT_GT(std::strlen(info.name), 0u);
+        ASSERT_NE(info.unit, nullptr) << info.name;
+        ASSERT_NE(info.description, nullptr) << info.name;
+        EXPECT_GT(std::strlen(info.description), 0u) << info.name;
+        EXPECT_TRUE(names.insert(info.name).second) << "duplicate name " << info.name;
+        EXPECT_TRUE(offsets.insert(info.offset).second) << "duplicate offset of " << info.name;
+        // Every field is 4 bytes (float, int32_t or an enum) and lies inside the hbao member.
+        EXPECT_GE(info.offset, offsetof(obscura_settings, hbao)) << info.name;
+        EXPECT_LE(info.offset + 4, offsetof(obscura_settings, hbao) + sizeof(obscura_hbao_settings)) << info.name;
+        EXPECT_EQ(info.offset % 4, 0u) << info.name;
+    }
+}
+
+TEST(SettingsTable, EveryHbaoFieldAppearsWithItsType) {
+    struct Field {
+        size_t offset;
+        obscura_setting_type type;
+        const char* name;
+    };
+#define HBAO_FIELD(f, t) Field{offsetof(obscura_settings, hbao) + offsetof(obscura_hbao_settings, f), t, #f}
+    const std::vector<Field> fields = {
+        HBAO_FIELD(radius, OBSCURA_SETTING_FLOAT),        HBAO_FIELD(falloff_c, OBSCURA_SETTING_FLOAT),
+        HBAO_FIELD(decay_rate, OBSCURA_SETTING_FLOAT),    HBAO_FIELD(directions, OBSCURA_SETTING_INT),
+        HBAO_FIELD(steps, OBSCURA_SETTING_INT),           HBAO_FIELD(estimator, OBSCURA_SETTING_INT),
+        HBAO_FIELD(bias, OBSCURA_SETTING_FLOAT),          HBAO_FIELD(intensity, OBSCURA_SETTING_FLOAT),
+        HBAO_FIELD(power, OBSCURA_SETTING_FLOAT),         HBAO_FIELD(max_radius_pixels, OBSCURA_SETTING_FLOAT),
+        HBAO_FIELD(blur, OBSCURA_SETTING_TOGGLE),         HBAO_FIELD(blur_radius, OBSCURA_SETTING_INT),
+        HBAO_FIELD(blur_sharpness, OBSCURA_SETTING_FLOAT),
+    };
+#undef HBAO_FIELD
+    // A field added to obscura_hbao_settings without a table entry (or this list) changes the size.
+    ASSERT_EQ(sizeof(obscura_hbao_settings), fields.size() * 4);
+    const obscura_setting_info* infos = nullptr;
+    uint32_t count = 0;
+    ASSERT_EQ(obscura_get_setting_infos(OBSCURA_METHOD_HBAO, &infos, &count), OBSCURA_OK);
+    EXPECT_EQ(count, fields.size());
+    for (const Field& field : fields) {
+        const obscura_setting_info* info = find_info(field.name);
+        ASSERT_NE(info, nullptr) << field.name << " has no table entry with its field name";
+        EXPECT_EQ(info->offset, field.offset) << field.name;
+        EXPECT_EQ(info->type, field.type) << field.name;
+    }
+}
+
+TEST(SettingsTable, DefaultMethodSharesHbaoTable) {
+    const obscura_setting_info* a = nullptr;
+    const obscura_setting_info* b = nullptr;
+    uint32_t na = 0, nb = 0;
+    ASSERT_EQ(obscura_get_setting_infos(OBSCURA_METHOD_HBAO, &a, &na), OBSCURA_OK);
+    ASSERT_EQ(obscura_get_setting_infos(OBSCURA_METHOD_DEFAULT, &b, &nb), OBSCURA_OK);
+    EXPECT_EQ(a, b);
+    EXPECT_EQ(na, nb);
+}
+
+TEST(SettingsTable, UnavailableMethodsHaveEmptyTables) {
+    for (obscura_method m : {OBSCURA_METHOD_SAO, OBSCURA_METHOD_LSAO, OBSCURA_METHOD_FFAO, OBSCURA_METHOD_REFERENCE}) {
+        const obscura_setting_info* infos = reinterpret_cast<const obscura_setting_info*>(1);
+        uint32_t count = 99;
+        ASSERT_EQ(obscura_get_setting_infos(m, &infos, &count), OBSCURA_OK);
+        EXPECT_EQ(count, 0u);
+    }
+}
+
+TEST(SettingsTable, BadArguments) {
+    const obscura_setting_info* infos = nullptr;
+    uint32_t count = 0;
+    EXPECT_EQ(obscura_get_setting_infos(OBSCURA_METHOD_HBAO, nullptr, &count), OBSCURA_STATUS_NULL_ARGUMENT);
+    EXPECT_EQ(obscura_get_setting_infos(OBSCURA_METHOD_HBAO, &infos, nullptr), OBSCURA_STATUS_NULL_ARGUMENT);
+    EXPECT_EQ(obscura_get_setting_infos(obscura_method(77), &infos, &count), OBSCURA_STATUS_INVALID_ENUM);
+}
+
+}  // namespace
