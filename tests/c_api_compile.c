@@ -23,7 +23,7 @@ static void test_free(void* ptr, void* user_data) { (void)ptr; (void)user_data; 
 static void test_log(obscura_log_level level, obscura_status status, const char* message, void* user_data) {
     (void)level; (void)status; (void)message; (void)user_data;
 }
-static void* test_proc(const char* name) { (void)name; return NULL; }
+static obscura_gl_function test_proc(const char* name) { (void)name; return NULL; }
 
 static size_t table_offset(const char* name) {
     const obscura_setting_info* infos = NULL;

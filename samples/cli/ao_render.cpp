@@ -69,7 +69,7 @@ public:
     void collect(obscura_context* context) {
         obscura_timing timings[64];
         uint32_t count = 0;
-        if (obscura_get_timings(context, timings, 64, &count) != OBSCURA_OK) return;
+        if (obscura_get_timings(context, timings, 64, &count, nullptr) != OBSCURA_OK) return;
         for (uint32_t i = 0; i < std::min<uint32_t>(count, 64); ++i) {
             const std::string label = timings[i].label ? timings[i].label : "?";
             auto found = values_.find(label);

@@ -165,7 +165,7 @@ void HeadlessGL::load_host_functions() {
     vendor_ = gl_string(GL_VENDOR);
 }
 
-void* HeadlessGL::get_proc_address(const char* name) {
+HeadlessGL::GLFunction HeadlessGL::get_proc_address(const char* name) {
     if (!name) return nullptr;
     ActiveLoader loader = t_active_loader;
     if (!loader.lookup) {
@@ -177,7 +177,7 @@ void* HeadlessGL::get_proc_address(const char* name) {
     if (!function && loader.library_fallback) {
         if (void* library = gl_library()) function = dlsym(library, name);
     }
-    return function;
+    return reinterpret_cast<GLFunction>(function);
 }
 
 bool HeadlessGL::is_software() const {

@@ -60,9 +60,10 @@ public:
     bool is_current() const;
 
     // Forwards to the lookup of the backend whose context this thread made current last (EGL or
-    // OSMesa), so it can be given to obscura_context_desc.get_proc_address, which has no user data.
+    // OSMesa), so it can be given to obscura_context_desc.get_proc_address directly.
     // If the backend returns NULL for an EGL context, libOpenGL.so.0 / libGL.so.1 are asked with dlsym.
-    static void* get_proc_address(const char* name);
+    using GLFunction = void (*)();  // the shape of obscura_gl_function
+    static GLFunction get_proc_address(const char* name);
 
     Backend backend() const { return backend_; }
     int gl_major() const { return gl_major_; }

@@ -79,8 +79,10 @@ OBSCURA_API obscura_status obscura_create_context(const obscura_context_desc* de
                                 "header version %u is not compatible with library version %u", desc->header_version,
                                 unsigned(OBSCURA_VERSION)));
     }
-    if (!desc->get_proc_address) {
-        return fail(Error::make(OBSCURA_STATUS_NULL_ARGUMENT, "obscura_context_desc.get_proc_address is required"));
+    if ((desc->get_proc_address == nullptr) == (desc->get_proc_address_with_user_data == nullptr)) {
+        return fail(Error::make(OBSCURA_STATUS_NULL_ARGUMENT,
+                                "obscura_context_desc needs exactly one of get_proc_address and "
+                                "get_proc_address_with_user_data"));
     }
     if ((desc->allocator.alloc == nullptr) != (desc->allocator.free == nullptr)) {
         return fail(Error::make(OBSCURA_STATUS_NULL_ARGUMENT, "obscura_allocator needs both alloc and free, or neither"));
@@ -175,9 +177,11 @@ OBSCURA_API void obscura_release_resources(obscura_context* context) {
 }
 
 OBSCURA_API obscura_status obscura_get_timings(obscura_context* context, obscura_timing* out, uint32_t capacity,
-                                               uint32_t* out_count) {
+                                               uint32_t* out_count, uint64_t* out_frame_index) {
     if (!context || !out_count || (!out && capacity > 0)) return OBSCURA_STATUS_NULL_ARGUMENT;
-    *out_count = as_context(context)->timings(out, capacity);
+    uint64_t frame_index = 0;
+    *out_count = as_context(context)->timings(out, capacity, &frame_index);
+    if (out_frame_index) *out_frame_index = frame_index;
     return OBSCURA_OK;
 }
 

@@ -65,8 +65,11 @@ Context::Context(const obscura_context_desc& desc)
     : alloc_(AllocatorCallbacks::from(desc.allocator)),
       log_(desc.log),
       log_user_data_(desc.log_user_data),
-      flags_(desc.flags),
-      get_proc_address_(desc.get_proc_address) {}
+      flags_(desc.flags) {
+    loader_.plain = desc.get_proc_address;
+    loader_.with_user_data = desc.get_proc_address_with_user_data;
+    loader_.user_data = desc.get_proc_address_user_data;
+}
 
 Context::~Context() {
     // Members release their GL objects through gl_ (declared first, destroyed last).
@@ -101,12 +104,12 @@ PassEnv Context::env() const {
 Error Context::initialize() {
     // Probe for a current context before loading: glad would otherwise read a NULL version string.
     using GetStringFn = const GLubyte* (*)(GLenum);
-    auto get_string = reinterpret_cast<GetStringFn>(get_proc_address_("glGetString"));
+    auto get_string = reinterpret_cast<GetStringFn>(obscura_gl_lookup(&loader_, "glGetString"));
     if (!get_string || !get_string(GL_VERSION)) {
         return Error::make(OBSCURA_STATUS_NO_GL_CONTEXT,
                            "no OpenGL context is current on this thread (glGetString(GL_VERSION) returned NULL)");
     }
-    int version = obscura_gl_load_table(&gl_, get_proc_address_);
+    int version = obscura_gl_load_table(&gl_, &loader_);
     if (version == 0) {
         return Error::make(OBSCURA_STATUS_NO_GL_CONTEXT, "loading OpenGL through get_proc_address failed");
     }

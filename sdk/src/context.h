@@ -28,7 +28,9 @@ public:
     Error render(const obscura_input& input, const obscura_settings& settings, const obscura_output& output);
     Error prepare(int width, int height, const obscura_settings& settings);
     void release_resources();
-    uint32_t timings(obscura_timing* out, uint32_t capacity) { return timer_.latest(out, capacity); }
+    uint32_t timings(obscura_timing* out, uint32_t capacity, uint64_t* frame_index) {
+        return timer_.latest(out, capacity, frame_index);
+    }
     uint64_t memory_bytes() const;
 
     // Records an error for obscura_get_last_error and forwards it to the log callback; returns its status.
@@ -49,7 +51,7 @@ private:
     obscura_log_fn log_;
     void* log_user_data_;
     uint32_t flags_;
-    obscura_get_proc_address_fn get_proc_address_;
+    ObscuraGlLoader loader_ = {};
     gl::Table gl_ = {};
     GLint uniform_alignment_ = 256;
     GLfloat sampler_tag_ = 0.0f;  // process-unique GL_TEXTURE_MAX_LOD of sampler_: identifies our GL context

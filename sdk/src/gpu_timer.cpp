@@ -16,6 +16,7 @@ void GpuTimer::destroy() {
 }
 
 void GpuTimer::begin_frame() {
+    ++frames_begun_;
     if (sync_) {
         gl_->Finish();
         sync_last_ = std::chrono::steady_clock::now();
@@ -29,6 +30,7 @@ void GpuTimer::begin_frame() {
     current_ = next_;
     next_ = (next_ + 1) % kFramesInFlight;
     slot.marks = 0;
+    slot.frame_index = frames_begun_;
     gl_->QueryCounter(slot.queries[0].name(), GL_TIMESTAMP);
 }
 
@@ -55,6 +57,7 @@ void GpuTimer::mark(const char* label) {
 void GpuTimer::end_frame() {
     if (sync_) {
         latest_count_ = sync_count_;
+        latest_frame_ = frames_begun_;
         for (int i = 0; i < sync_count_; ++i) {
             latest_labels_[i] = sync_labels_[i];
             latest_ms_[i] = sync_ms_[i];
@@ -83,12 +86,14 @@ void GpuTimer::collect() {
             previous = stamp;
         }
         latest_count_ = slot.marks;
+        latest_frame_ = slot.frame_index;
         slot.pending = false;
     }
 }
 
-uint32_t GpuTimer::latest(obscura_timing* out, uint32_t capacity) {
+uint32_t GpuTimer::latest(obscura_timing* out, uint32_t capacity, uint64_t* frame_index) {
     if (!sync_ && gl_) collect();
+    *frame_index = latest_count_ > 0 ? latest_frame_ : 0;
     if (latest_count_ == 0) return 0;
     uint32_t available = uint32_t(latest_count_) + 1;
     double total = 0.0;

@@ -25,8 +25,9 @@ public:
     void mark(const char* label);
     void end_frame();
 
-    // Latest complete frame: "total" first, then each pass. Returns the number available.
-    uint32_t latest(obscura_timing* out, uint32_t capacity);
+    // Latest complete frame: "total" first, then each pass. Returns the number available and sets
+    // *frame_index to that frame's 1-based index among the frames begun (0 when none completed yet).
+    uint32_t latest(obscura_timing* out, uint32_t capacity, uint64_t* frame_index);
 
 private:
     struct FrameSlot {
@@ -34,6 +35,7 @@ private:
         const char* labels[kMaxPasses] = {};
         int marks = 0;
         bool pending = false;
+        uint64_t frame_index = 0;
     };
     void collect();
 
@@ -46,6 +48,8 @@ private:
     const char* latest_labels_[kMaxPasses] = {};
     double latest_ms_[kMaxPasses] = {};
     int latest_count_ = 0;
+    uint64_t latest_frame_ = 0;
+    uint64_t frames_begun_ = 0;
     int sync_count_ = 0;
     const char* sync_labels_[kMaxPasses] = {};
     double sync_ms_[kMaxPasses] = {};

@@ -108,11 +108,11 @@ TEST_F(ApiErrors, NullOutput) {
 
 TEST_F(ApiErrors, NullQueryOutputs) {
     EXPECT_EQ(obscura_get_memory_usage(ctx(), nullptr), OBSCURA_STATUS_NULL_ARGUMENT);
-    EXPECT_EQ(obscura_get_timings(ctx(), nullptr, 4, nullptr), OBSCURA_STATUS_NULL_ARGUMENT);
+    EXPECT_EQ(obscura_get_timings(ctx(), nullptr, 4, nullptr, nullptr), OBSCURA_STATUS_NULL_ARGUMENT);
     uint32_t count = 99;
-    EXPECT_EQ(obscura_get_timings(ctx(), nullptr, 4, &count), OBSCURA_STATUS_NULL_ARGUMENT);
+    EXPECT_EQ(obscura_get_timings(ctx(), nullptr, 4, &count, nullptr), OBSCURA_STATUS_NULL_ARGUMENT);
     // Asking only for the count is allowed.
-    EXPECT_EQ(obscura_get_timings(ctx(), nullptr, 0, &count), OBSCURA_OK);
+    EXPECT_EQ(obscura_get_timings(ctx(), nullptr, 0, &count, nullptr), OBSCURA_OK);
     EXPECT_EQ(obscura_prepare(ctx(), kWidth, kHeight, nullptr), OBSCURA_STATUS_NULL_ARGUMENT);
     EXPECT_STRNE(obscura_get_last_error(ctx()), "");
     EXPECT_EQ(obscura_resolve_settings(ctx(), nullptr, &settings_), OBSCURA_STATUS_NULL_ARGUMENT);
@@ -593,20 +593,20 @@ const GLubyte* get_string(GLenum name) {
     return real_get_string(name);
 }
 
-void* old_version_loader(const char* name) {
+obscura_gl_function old_version_loader(const char* name) {
     if (std::strcmp(name, "glGetString") == 0) {
         real_get_string = reinterpret_cast<GetStringFn>(HeadlessGL::get_proc_address(name));
-        return reinterpret_cast<void*>(&get_string);
+        return reinterpret_cast<obscura_gl_function>(&get_string);
     }
     return HeadlessGL::get_proc_address(name);
 }
 
-void* missing_function_loader(const char* name) {
+obscura_gl_function missing_function_loader(const char* name) {
     if (std::strcmp(name, missing_function) == 0) return nullptr;
     return HeadlessGL::get_proc_address(name);
 }
 
-void* null_loader(const char*) { return nullptr; }
+obscura_gl_function null_loader(const char*) { return nullptr; }
 }  // namespace shim
 
 TEST_F(ApiErrors, GlVersionReportedAs33) {

@@ -303,7 +303,7 @@ TEST_F(SyncTimings, TotalFirstThenPassesSummingToTotal) {
     ASSERT_FALSE(render(ctx(), frame).empty());
     obscura_timing timings[8] = {};
     uint32_t count = 0;
-    ASSERT_EQ(obscura_get_timings(ctx(), timings, 8, &count), OBSCURA_OK);
+    ASSERT_EQ(obscura_get_timings(ctx(), timings, 8, &count, nullptr), OBSCURA_OK);
     ASSERT_EQ(count, 5u);
     const char* expected[] = {"total", "depth_prepare", "hbao", "blur", "composite"};
     double sum = 0.0;
@@ -324,7 +324,7 @@ TEST_F(SyncTimings, NoBlurPassWithoutBlur) {
     ASSERT_FALSE(render_to_new_texture(ctx(), frame.input, settings, GL_R32F, 1).empty());
     obscura_timing timings[8] = {};
     uint32_t count = 0;
-    ASSERT_EQ(obscura_get_timings(ctx(), timings, 8, &count), OBSCURA_OK);
+    ASSERT_EQ(obscura_get_timings(ctx(), timings, 8, &count, nullptr), OBSCURA_OK);
     ASSERT_EQ(count, 4u);
     EXPECT_STREQ(timings[0].label, "total");
     EXPECT_STREQ(timings[1].label, "depth_prepare");
@@ -339,20 +339,20 @@ TEST_F(SyncTimings, SmallCapacityReportsAvailableCount) {
     timings[2].label = "untouched";
     timings[2].milliseconds = -7.0;
     uint32_t count = 0;
-    ASSERT_EQ(obscura_get_timings(ctx(), timings, 2, &count), OBSCURA_OK);
+    ASSERT_EQ(obscura_get_timings(ctx(), timings, 2, &count, nullptr), OBSCURA_OK);
     EXPECT_EQ(count, 5u);
     EXPECT_STREQ(timings[0].label, "total");
     EXPECT_STREQ(timings[1].label, "depth_prepare");
     EXPECT_STREQ(timings[2].label, "untouched");
     EXPECT_EQ(timings[2].milliseconds, -7.0);
-    ASSERT_EQ(obscura_get_timings(ctx(), nullptr, 0, &count), OBSCURA_OK);
+    ASSERT_EQ(obscura_get_timings(ctx(), nullptr, 0, &count, nullptr), OBSCURA_OK);
     EXPECT_EQ(count, 5u);
 }
 
 TEST_F(SyncTimings, NothingBeforeTheFirstFrame) {
     obscura_timing timings[8];
     uint32_t count = 99;
-    ASSERT_EQ(obscura_get_timings(ctx(), timings, 8, &count), OBSCURA_OK);
+    ASSERT_EQ(obscura_get_timings(ctx(), timings, 8, &count, nullptr), OBSCURA_OK);
     EXPECT_EQ(count, 0u);
 }
 
@@ -365,7 +365,7 @@ TEST_F(Contexts, GpuTimingsNeverBlockAndAreConsistent) {
         obscura_timing timings[8] = {};
         uint32_t count = 99;
         auto start = std::chrono::steady_clock::now();
-        ASSERT_EQ(obscura_get_timings(ctx(), timings, 8, &count), OBSCURA_OK);
+        ASSERT_EQ(obscura_get_timings(ctx(), timings, 8, &count, nullptr), OBSCURA_OK);
         double call_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         EXPECT_LT(call_ms, 50.0) << "obscura_get_timings must not wait for the GPU";
         ASSERT_TRUE(count == 0 || count == 5) << count;
@@ -379,6 +379,59 @@ TEST_F(Contexts, GpuTimingsNeverBlockAndAreConsistent) {
         EXPECT_NEAR(timings[0].milliseconds, sum, 1e-9 * std::max(1.0, sum));
     }
     EXPECT_EQ(take_gl_error(), GLenum(GL_NO_ERROR));
+}
+
+
+TEST_F(SyncTimings, FrameIndexCountsRendersAndZeroBeforeAny) {
+    obscura_timing timings[8] = {};
+    uint32_t count = 0;
+    uint64_t frame_index = 99;
+    ASSERT_EQ(obscura_get_timings(ctx(), timings, 8, &count, &frame_index), OBSCURA_OK);
+    EXPECT_EQ(count, 0u);
+    EXPECT_EQ(frame_index, 0u) << "no frame has completed yet";
+    Frame frame = box_frame(96, 64);
+    ASSERT_FALSE(render(ctx(), frame).empty());
+    ASSERT_EQ(obscura_get_timings(ctx(), timings, 8, &count, &frame_index), OBSCURA_OK);
+    EXPECT_EQ(frame_index, 1u);
+    ASSERT_FALSE(render(ctx(), frame).empty());
+    ASSERT_EQ(obscura_get_timings(ctx(), timings, 8, &count, &frame_index), OBSCURA_OK);
+    EXPECT_EQ(frame_index, 2u) << "sync timing reports the frame just rendered";
+}
+
+// A stateful loader: counts its lookups through the user pointer.
+obscura_gl_function counting_loader(void* user_data, const char* name) {
+    ++*static_cast<int*>(user_data);
+    return HeadlessGL::get_proc_address(name);
+}
+
+TEST(LoaderCallbacks, UserDataLoaderIsUsedAndRenders) {
+    shared_gl().make_current();
+    int lookups = 0;
+    obscura_context_desc desc = make_desc();
+    desc.get_proc_address = nullptr;
+    desc.get_proc_address_with_user_data = &counting_loader;
+    desc.get_proc_address_user_data = &lookups;
+    obscura_context* raw = nullptr;
+    ASSERT_EQ(obscura_create_context(&desc, &raw), OBSCURA_OK);
+    ContextPtr context(raw);
+    EXPECT_GT(lookups, 100) << "the whole GL 4.3 table is loaded through the user-data loader";
+    Frame frame = box_frame(96, 64);
+    EXPECT_FALSE(render(context.get(), frame).empty());
+}
+
+TEST(LoaderCallbacks, BothOrNeitherLoaderIsRejected) {
+    shared_gl().make_current();
+    int lookups = 0;
+    obscura_context_desc desc = make_desc();
+    desc.get_proc_address_with_user_data = &counting_loader;
+    desc.get_proc_address_user_data = &lookups;
+    obscura_context* raw = nullptr;
+    EXPECT_EQ(obscura_create_context(&desc, &raw), OBSCURA_STATUS_NULL_ARGUMENT);
+    EXPECT_EQ(raw, nullptr);
+    desc.get_proc_address = nullptr;
+    desc.get_proc_address_with_user_data = nullptr;
+    EXPECT_EQ(obscura_create_context(&desc, &raw), OBSCURA_STATUS_NULL_ARGUMENT);
+    EXPECT_EQ(lookups, 0) << "a rejected desc must not touch GL";
 }
 
 }  // namespace

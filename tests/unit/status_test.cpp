@@ -100,7 +100,7 @@ TEST(NullContext, QueriesRejectNull) {
     uint32_t count = 0;
     obscura_timing timing[2];
     EXPECT_EQ(obscura_get_memory_usage(nullptr, &bytes), OBSCURA_STATUS_NULL_ARGUMENT);
-    EXPECT_EQ(obscura_get_timings(nullptr, timing, 2, &count), OBSCURA_STATUS_NULL_ARGUMENT);
+    EXPECT_EQ(obscura_get_timings(nullptr, timing, 2, &count, nullptr), OBSCURA_STATUS_NULL_ARGUMENT);
     EXPECT_EQ(obscura_render(nullptr, nullptr, nullptr, nullptr), OBSCURA_STATUS_NULL_ARGUMENT);
     EXPECT_EQ(obscura_prepare(nullptr, 16, 16, nullptr), OBSCURA_STATUS_NULL_ARGUMENT);
     const char* message = obscura_get_last_error(nullptr);

@@ -24,7 +24,7 @@
  * INTEGRATION
  *   1. obscura_context_desc desc = {0};
  *      desc.struct_size = sizeof desc; desc.header_version = OBSCURA_VERSION;
- *      desc.get_proc_address = my_get_proc_address;          // e.g. eglGetProcAddress, glfwGetProcAddress
+ *      desc.get_proc_address = eglGetProcAddress;             // or glfwGetProcAddress, SDL_GL_GetProcAddress
  *   2. obscura_context* ctx; if (obscura_create_context(&desc, &ctx) != OBSCURA_OK) ... ;
  *   3. obscura_settings settings; obscura_default_settings(OBSCURA_METHOD_HBAO, &settings);
  *      settings.hbao.radius = 1.5f;                           // metres
@@ -140,7 +140,12 @@ typedef enum obscura_status {
 OBSCURA_API const char* obscura_status_string(obscura_status status);
 
 /* ---- Host callbacks -------------------------------------------------------------------------- */
-typedef void* (*obscura_get_proc_address_fn)(const char* name);
+/* A GL function pointer as loaders return it; eglGetProcAddress, glfwGetProcAddress, SDL3's
+   SDL_GL_GetProcAddress and glad's GLADloadfunc all have the shape of obscura_get_proc_address_fn. */
+typedef void (*obscura_gl_function)(void);
+typedef obscura_gl_function (*obscura_get_proc_address_fn)(const char* name);
+/* The same with the host's pointer passed back, for loaders that need state (several GL contexts). */
+typedef obscura_gl_function (*obscura_get_proc_address_with_user_data_fn)(void* user_data, const char* name);
 
 typedef enum obscura_log_level {
     OBSCURA_LOG_ERROR = 0,
@@ -173,7 +178,9 @@ enum {
 typedef struct obscura_context_desc {
     uint32_t struct_size;                       /* sizeof(obscura_context_desc); required */
     uint32_t header_version;                    /* OBSCURA_VERSION; required */
-    obscura_get_proc_address_fn get_proc_address; /* the host's GL loader; required */
+    obscura_get_proc_address_fn get_proc_address; /* the host's GL loader: this ... */
+    obscura_get_proc_address_with_user_data_fn get_proc_address_with_user_data; /* ... or this, not both */
+    void* get_proc_address_user_data;           /* passed to get_proc_address_with_user_data */
     obscura_allocator allocator;                /* zero: malloc/free */
     obscura_log_fn log;                         /* zero: no logging */
     void* log_user_data;
@@ -341,9 +348,12 @@ typedef struct obscura_output {
 
 /* Renders AO for input->output_rect with `settings` into `output`. Allocates per-size resources on the
    first call and when the size or the settings' resource needs change (see obscura_prepare).
+   Sizes: a depth texture whose size differs from depth_width/height is INVALID_TEXTURE; an output
+   rectangle outside the depth, or a result that does not fit the output target, is INVALID_RECT.
    Returns OK or NULL_ARGUMENT, INVALID_STRUCT_SIZE, WRONG_GL_CONTEXT, HOST_GL_ERROR, INVALID_SIZE,
    INVALID_RECT, INVALID_TEXTURE, UNSUPPORTED_FORMAT, INVALID_PROJECTION, PROJECTION_TRANSPOSED,
-   INVALID_SETTING, INVALID_ENUM, METHOD_NOT_AVAILABLE, INVALID_FRAMEBUFFER, OUT_OF_MEMORY, GL_ERROR. */
+   INVALID_SETTING, INVALID_ENUM, METHOD_NOT_AVAILABLE, INVALID_FRAMEBUFFER, SHADER_COMPILE_FAILED (a
+   variant built on first use), OUT_OF_MEMORY, GL_ERROR. */
 OBSCURA_API obscura_status obscura_render(obscura_context* context, const obscura_input* input,
                                           const obscura_settings* settings, const obscura_output* output);
 
@@ -362,10 +372,12 @@ typedef struct obscura_timing {
 } obscura_timing;
 
 /* Copies the latest complete per-pass GPU timings (a few frames old; never waits on the GPU) into
-   `out` (up to `capacity` entries) and sets *out_count to the number available. Returns OK with
-   *out_count = 0 until a frame's queries have completed. Returns OK, NULL_ARGUMENT. */
+   `out` (up to `capacity` entries) and sets *out_count to the number available. *out_frame_index (may be
+   NULL) receives the 1-based index of the successful obscura_render call they belong to, so a caller can
+   tell a new result from the same one read twice; 0 and *out_count = 0 until a frame's queries have
+   completed. Returns OK, NULL_ARGUMENT. */
 OBSCURA_API obscura_status obscura_get_timings(obscura_context* context, obscura_timing* out, uint32_t capacity,
-                                               uint32_t* out_count);
+                                               uint32_t* out_count, uint64_t* out_frame_index);
 
 /* Sets *out_bytes to the GPU memory the context has allocated (textures and buffers). Returns OK, NULL_ARGUMENT. */
 OBSCURA_API obscura_status obscura_get_memory_usage(const obscura_context* context, uint64_t* out_bytes);

@@ -14,10 +14,18 @@
 extern "C" {
 #endif
 
-typedef void* (*obscura_gl_proc_fn)(const char* name);
+// The host's loader as given in obscura_context_desc: `plain` if set, else `with_user_data(user_data, name)`.
+typedef struct ObscuraGlLoader {
+    void (*(*plain)(const char* name))(void);
+    void (*(*with_user_data)(void* user_data, const char* name))(void);
+    void* user_data;
+} ObscuraGlLoader;
 
-// Loads `table` through `get_proc_address`; returns the GL version as major*10000+minor, 0 on failure.
-int obscura_gl_load_table(ObscuraGladGLContext* table, obscura_gl_proc_fn get_proc_address);
+// Looks up one function through `loader`.
+GLADapiproc obscura_gl_lookup(const ObscuraGlLoader* loader, const char* name);
+
+// Loads `table` through `loader`; returns the GL version as major*10000+minor, 0 on failure.
+int obscura_gl_load_table(ObscuraGladGLContext* table, const ObscuraGlLoader* loader);
 
 #ifdef __cplusplus
 }
