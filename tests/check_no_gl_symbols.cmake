@@ -4,8 +4,8 @@
 # glad, GLEW or epoxy beside it. Fails when the archive
 #   - defines an external (global or weak) symbol whose name starts with gl, glad or GLAD, or
 #   - references an undefined gl* symbol (it would need libGL / libOpenGL at link time).
-# Local (static) symbols are listed separately for information only: they cannot clash at link time
-# (GCC emits e.g. "glad_gl_load_GL_VERSION_3_0.constprop.0" for the static glad loader functions).
+#   - holds even a local (static) symbol named gl* or glad*: gl_loader.c renames glad's static helpers,
+#     which GCC may emit as clones such as "..._load_GL_VERSION_4_1.constprop.0".
 if(NOT NM OR NOT LIBRARY)
   message(FATAL_ERROR "usage: cmake -DNM=<nm> -DLIBRARY=<archive> -P check_no_gl_symbols.cmake")
 endif()
@@ -89,13 +89,18 @@ if(NOT found_api)
   message(FATAL_ERROR "obscura_render is not defined in ${LIBRARY}")
 endif()
 
+# Local (static) symbols cannot clash, but the SDK renames glad's internal helpers too (gl_loader.c), so a
+# host reading `nm` sees no glad code at all: any local gl*/glad* symbol is a regression of that renaming.
 run_nm(defined_all --defined-only)
 set(local_gl "")
 foreach(line IN LISTS defined_all)
-  if(line MATCHES "^[0-9a-fA-F]+ ([a-z]) ((gl|glad).*)$")
+  if(line MATCHES "^[0-9a-fA-F]+ ([a-z]) ((gl|glad|GLAD).*)$")
     list(APPEND local_gl "${CMAKE_MATCH_2}")
   endif()
 endforeach()
-list(LENGTH local_gl local_count)
+if(local_gl)
+  string(REPLACE ";" "\n  " text "${local_gl}")
+  message(FATAL_ERROR "libobscura has local gl*/glad* symbols (add them to gl_loader.c's renames):\n  ${text}")
+endif()
 
-message(STATUS "OK: ${external_count} external symbols, none gl*/glad*; ${local_count} local gl*/glad* symbols (static, cannot clash)")
+message(STATUS "OK: ${external_count} external symbols and no local symbol named gl*/glad*")

@@ -3,6 +3,31 @@
 #define GLAD_API_CALL static
 #include "gl/gl_api.h"
 
+// glad's internal helpers are static already; renaming them keeps even the local symbols that `nm`
+// lists (compilers emit some as out-of-line clones) free of the glad_ prefix a host's loader uses.
+#define glad_gl_find_core_gl obscura_loader_find_core_gl
+#define glad_gl_find_extensions_gl obscura_loader_find_extensions_gl
+#define glad_gl_free_extensions obscura_loader_free_extensions
+#define glad_gl_get_extensions obscura_loader_get_extensions
+#define glad_gl_get_proc_from_userptr obscura_loader_get_proc_from_userptr
+#define glad_gl_has_extension obscura_loader_has_extension
+#define glad_gl_load_GL_VERSION_1_0 obscura_loader_load_GL_VERSION_1_0
+#define glad_gl_load_GL_VERSION_1_1 obscura_loader_load_GL_VERSION_1_1
+#define glad_gl_load_GL_VERSION_1_2 obscura_loader_load_GL_VERSION_1_2
+#define glad_gl_load_GL_VERSION_1_3 obscura_loader_load_GL_VERSION_1_3
+#define glad_gl_load_GL_VERSION_1_4 obscura_loader_load_GL_VERSION_1_4
+#define glad_gl_load_GL_VERSION_1_5 obscura_loader_load_GL_VERSION_1_5
+#define glad_gl_load_GL_VERSION_2_0 obscura_loader_load_GL_VERSION_2_0
+#define glad_gl_load_GL_VERSION_2_1 obscura_loader_load_GL_VERSION_2_1
+#define glad_gl_load_GL_VERSION_3_0 obscura_loader_load_GL_VERSION_3_0
+#define glad_gl_load_GL_VERSION_3_1 obscura_loader_load_GL_VERSION_3_1
+#define glad_gl_load_GL_VERSION_3_2 obscura_loader_load_GL_VERSION_3_2
+#define glad_gl_load_GL_VERSION_3_3 obscura_loader_load_GL_VERSION_3_3
+#define glad_gl_load_GL_VERSION_4_0 obscura_loader_load_GL_VERSION_4_0
+#define glad_gl_load_GL_VERSION_4_1 obscura_loader_load_GL_VERSION_4_1
+#define glad_gl_load_GL_VERSION_4_2 obscura_loader_load_GL_VERSION_4_2
+#define glad_gl_load_GL_VERSION_4_3 obscura_loader_load_GL_VERSION_4_3
+
 #include "../../../third_party/glad/src/gl.c"
 
 GLADapiproc obscura_gl_lookup(const ObscuraGlLoader* loader, const char* name) {
