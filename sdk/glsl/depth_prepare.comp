@@ -60,14 +60,17 @@ void main() {
             vec3 dy = one_sided_derivative(p, center, depth, ivec2(0, 1));
             vec3 c = cross(dx, dy);
             if (dot(c, c) > 0.0) {
+                // The cross product's sign depends on the projection's handedness (flipped x or y):
+                // a visible surface faces the eye.
                 n = normalize(c);
-                if (dot(n, -center) < 0.0 && obscura_is_perspective()) n = -n;
+                if (dot(n, obscura_towards_eye(center)) < 0.0) n = -n;
             }
         }
     } else {
         vec3 host = texelFetch(u_host_normals, p, 0).xyz;
         if (depth_size.w == OBSCURA_NORMALS_UNSIGNED) host = host * 2.0 - 1.0;
-        if (dot(host, host) > 1e-12 && !any(isnan(host)) && !any(isinf(host))) n = normalize(host);
+        bool finite = obscura_is_finite(host.x) && obscura_is_finite(host.y) && obscura_is_finite(host.z);
+        if (finite && dot(host, host) > 1e-12) n = normalize(host);
     }
     imageStore(u_normals, p, vec4(obscura_encode_normal(n), 0.0, 0.0));
 }

@@ -53,7 +53,7 @@ void main() {
     // Screen directions map to view-space azimuths through the projection's x/y scales.
     vec2 view_per_pixel = vec2(1.0) / (proj_scale.xy * vec2(depth_size.xy));
     // Zenith: towards the eye (perspective) or along +z (orthographic).
-    vec3 zenith = obscura_is_perspective() ? normalize(-position) : vec3(0.0, 0.0, 1.0);
+    vec3 zenith = obscura_towards_eye(position);
     float bias = hbao.shaping.x;
 
     float obscurance = 0.0;

@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <new>
 
 #include "gl/state_guard.h"
@@ -81,7 +82,13 @@ Error Context::create(const obscura_context_desc& desc, Context** out) {
     void* memory = alloc.allocate(sizeof(Context));
     if (!memory) return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating the context failed");
     Context* context = new (memory) Context(desc);
-    Error error = context->initialize();
+    Error error;
+    try {
+        error = context->initialize();
+    } catch (...) {
+        destroy(context);  // a failed allocation while compiling: free the GL objects made so far
+        throw;
+    }
     if (error) {
         destroy(context);
         return error;
@@ -92,6 +99,16 @@ Error Context::create(const obscura_context_desc& desc, Context** out) {
 
 void Context::destroy(Context* context) {
     if (!context) return;
+    // Deleting GL names with another context current would delete that context's objects: leak instead.
+    if (context->gl_.GetString && context->identity_framebuffer_ && context->check_gl_context()) {
+        if (context->log_) {
+            context->log_(OBSCURA_LOG_WARNING, OBSCURA_STATUS_WRONG_GL_CONTEXT,
+                          "obscura_destroy_context: the context's GL context is not current; its GL objects are "
+                          "leaked rather than deleted in another context",
+                          context->log_user_data_);
+        }
+        context->disarm_gl_deletes();
+    }
     AllocatorCallbacks alloc = context->alloc_;
     context->~Context();
     alloc.release(context);
@@ -135,6 +152,12 @@ Error Context::initialize() {
         {reinterpret_cast<const void*>(gl_.CreateShader), "glCreateShader"},
         {reinterpret_cast<const void*>(gl_.GetTexLevelParameteriv), "glGetTexLevelParameteriv"},
         {reinterpret_cast<const void*>(gl_.FramebufferTexture2D), "glFramebufferTexture2D"},
+        {reinterpret_cast<const void*>(gl_.FramebufferTexture), "glFramebufferTexture"},
+        {reinterpret_cast<const void*>(gl_.FramebufferRenderbuffer), "glFramebufferRenderbuffer"},
+        {reinterpret_cast<const void*>(gl_.ObjectLabel), "glObjectLabel"},
+        {reinterpret_cast<const void*>(gl_.GetObjectLabel), "glGetObjectLabel"},
+        {reinterpret_cast<const void*>(gl_.IsEnabledi), "glIsEnabledi"},
+        {reinterpret_cast<const void*>(gl_.Enablei), "glEnablei"},
     };
     for (const Required& r : required) {
         if (!r.fn) return Error::make(OBSCURA_STATUS_MISSING_GL_FUNCTION, "get_proc_address returned NULL for %s", r.name);
@@ -149,12 +172,14 @@ Error Context::initialize() {
     gl::StateGuard guard(gl_);
     gl_.GetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &uniform_alignment_);
     sampler_ = gl::create_sampler_nearest_clamp(gl_);
-    // Sampler names repeat across GL contexts (each counts from 1), so the name alone cannot tell whether
-    // our GL context is current. A process-unique MAX_LOD (never used: every pass reads with texelFetch)
-    // does. Integers stay exact in float up to 2^24.
-    static std::atomic<uint32_t> next_sampler_tag{0};
-    sampler_tag_ = 1000.0f + float(next_sampler_tag.fetch_add(1) % (1u << 20) + 1);
-    gl_.SamplerParameterf(sampler_.name(), GL_TEXTURE_MAX_LOD, sampler_tag_);
+    gl_.GetIntegerv(GL_MAX_TEXTURE_SIZE, &max_texture_size_);
+    // Identity of our GL context: a framebuffer object (never shared between contexts, unlike samplers or
+    // textures) labelled with a process-unique string (names repeat across contexts, each counts from 1).
+    static std::atomic<uint32_t> next_identity{0};
+    std::snprintf(identity_label_, sizeof identity_label_, "obscura context %u", next_identity.fetch_add(1) + 1);
+    identity_framebuffer_ = gl::create_framebuffer(gl_);
+    gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, identity_framebuffer_.name());  // a name becomes an object when bound
+    gl_.ObjectLabel(GL_FRAMEBUFFER, identity_framebuffer_.name(), -1, identity_label_);
     uniform_buffer_ = gl::Buffer::create(gl_, GL_UNIFORM_BUFFER, UniformArena::kCapacity);
     timer_.create(gl_, (flags_ & OBSCURA_CONTEXT_FLAG_SYNC_TIMING) != 0);
     PassEnv pass_env = env();
@@ -183,11 +208,13 @@ uint64_t Context::memory_bytes() const { return resources_.bytes() + uniform_buf
 Error Context::check_gl_context() {
     const GLubyte* version = gl_.GetString(GL_VERSION);
     if (!version) return Error::make(OBSCURA_STATUS_WRONG_GL_CONTEXT, "no OpenGL context is current on this thread");
-    // Samplers are per-context objects (unless shared): if ours is unknown here, or carries another
-    // context's tag (names repeat across GL contexts), another GL context is current.
-    GLfloat tag = 0.0f;
-    if (gl_.IsSampler(sampler_.name())) gl_.GetSamplerParameterfv(sampler_.name(), GL_TEXTURE_MAX_LOD, &tag);
-    if (tag != sampler_tag_) {
+    // Our framebuffer exists only in our GL context (framebuffers are never shared); its label tells it
+    // from another context's framebuffer of the same name.
+    char label[sizeof identity_label_] = {};
+    if (gl_.IsFramebuffer(identity_framebuffer_.name())) {
+        gl_.GetObjectLabel(GL_FRAMEBUFFER, identity_framebuffer_.name(), GLsizei(sizeof label), nullptr, label);
+    }
+    if (std::strcmp(label, identity_label_) != 0) {
         return Error::make(OBSCURA_STATUS_WRONG_GL_CONTEXT,
                            "the current OpenGL context is not the one this obscura context was created on");
     }
@@ -226,27 +253,31 @@ Error Context::prepare(int width, int height, const obscura_settings& settings) 
         return Error::make(OBSCURA_STATUS_METHOD_NOT_AVAILABLE, "method %s is not available in this version",
                            obscura_method_name(resolved.method));
     }
-    GLint max_size = 0;
-    gl_.GetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
-    if (width <= 0 || height <= 0 || width > max_size || height > max_size) {
-        return Error::make(OBSCURA_STATUS_INVALID_SIZE, "size %dx%d must be within 1..%d", width, height, max_size);
+    if (width <= 0 || height <= 0 || width > max_texture_size_ || height > max_texture_size_) {
+        return Error::make(OBSCURA_STATUS_INVALID_SIZE, "size %dx%d must be within 1..%d", width, height,
+                           max_texture_size_);
     }
-    Error context_error = check_gl_context();
-    if (context_error) return context_error;
+    error = check_host_state("obscura_prepare");
+    if (error) return error;
     gl::StateGuard guard(gl_);
     return ensure_resources(width, height, resolved);
 }
 
-Error Context::render(const obscura_input& input, const obscura_settings& settings, const obscura_output& output) {
+Error Context::check_host_state(const char* call) {
     Error error = check_gl_context();
     if (error) return error;
     GLenum pending = take_gl_error(gl_);
     if (pending != GL_NO_ERROR) {
         return Error::make(OBSCURA_STATUS_HOST_GL_ERROR,
-                           "the host left %s (0x%04X) pending before obscura_render; it was consumed and nothing "
-                           "was rendered",
-                           gl_error_name(pending), unsigned(pending));
+                           "the host left %s (0x%04X) pending before %s; it was consumed and nothing was done",
+                           gl_error_name(pending), unsigned(pending), call);
     }
+    return Error();
+}
+
+Error Context::render(const obscura_input& input, const obscura_settings& settings, const obscura_output& output) {
+    Error error = check_host_state("obscura_render");
+    if (error) return error;
     obscura_settings resolved;
     error = resolve_settings(settings, &resolved);
     if (error) return error;
@@ -259,13 +290,18 @@ Error Context::render(const obscura_input& input, const obscura_settings& settin
     {
         gl::StateGuard guard(gl_);
         FrameInput frame;
-        error = validate_input(gl_, input, &frame);
+        error = validate_input(gl_, input, max_texture_size_, &frame);
         if (!error) {
+            // Undoes validate_input's texture-parameter change even if a pass throws (allocation failure).
+            struct InputStateRestorer {
+                const gl::Table& gl;
+                const FrameInput& frame;
+                ~InputStateRestorer() { restore_input_state(gl, frame); }
+            } restorer{gl_, frame};
             OutputTarget target;
             error = validate_output(gl_, output, frame.output_rect, &target);
             if (!error) error = ensure_resources(frame.width, frame.height, resolved);
             if (!error) error = record_frame(frame, resolved, target);
-            restore_input_state(gl_, frame);
         }
         // A failed validation may leave a probing error (wrong texture target) behind: drain it.
         GLenum gl_error = take_gl_error(gl_);
@@ -282,11 +318,43 @@ Error Context::render(const obscura_input& input, const obscura_settings& settin
     return error;
 }
 
+GLuint Context::blit_framebuffer(const OutputTarget& target) {
+    if (target.framebuffer == 0) return 0;  // the default framebuffer: its own draw/read buffer
+    if (!target_framebuffer_) target_framebuffer_ = gl::create_framebuffer(gl_);
+    gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, target_framebuffer_.name());
+    if (target.attachment_type == GL_RENDERBUFFER) {
+        gl_.FramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
+        gl_.FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, target.attachment_name);
+    } else {
+        gl_.FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, 0);
+        gl_.FramebufferTexture(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, target.attachment_name,
+                               target.attachment_level);
+    }
+    return target_framebuffer_.name();
+}
+
+namespace {
+// Stand-ins for glDelete* when the obscura context is destroyed with another GL context current.
+void GLAD_API_PTR keep_names(GLsizei, const GLuint*) {}
+void GLAD_API_PTR keep_name(GLuint) {}
+}  // namespace
+
+void Context::disarm_gl_deletes() {
+    gl_.DeleteTextures = &keep_names;
+    gl_.DeleteBuffers = &keep_names;
+    gl_.DeleteSamplers = &keep_names;
+    gl_.DeleteQueries = &keep_names;
+    gl_.DeleteFramebuffers = &keep_names;
+    gl_.DeleteProgram = &keep_name;
+}
+
 Error Context::record_frame(const FrameInput& input, const obscura_settings& settings, const OutputTarget& target) {
     PassEnv pass_env = env();
     Error error = depth_prepare_.prepare(pass_env, input);
     if (error) return error;
-    GLenum composite_format = target.kind == TargetKind::Image ? target.format : GL_RGBA8;
+    // Blit targets compose into a staging texture: RGBA16F for float attachments (MULTIPLY keeps HDR).
+    GLenum staging_format = target.attachment_float ? GL_RGBA16F : GL_RGBA8;
+    GLenum composite_format = target.kind == TargetKind::Image ? target.format : staging_format;
     error = composite_.prepare(pass_env, composite_format);
     if (error) return error;
 
@@ -304,10 +372,11 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
     if (target.kind == TargetKind::Blit) {
         composite_target.x = 0;
         composite_target.y = 0;
-        if (!resources_.staging || resources_.staging.width() != rect.width || resources_.staging.height() != rect.height) {
+        if (!resources_.staging || resources_.staging.width() != rect.width ||
+            resources_.staging.height() != rect.height || resources_.staging.internal_format() != staging_format) {
             gl_.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_SOURCE));  // a unit the StateGuard restores
-            resources_.staging = gl::Texture2D::create(gl_, GL_RGBA8, rect.width, rect.height);
-            resources_.staging_framebuffer = gl::create_framebuffer(gl_);
+            resources_.staging = gl::Texture2D::create(gl_, staging_format, rect.width, rect.height);
+            if (!resources_.staging_framebuffer) resources_.staging_framebuffer = gl::create_framebuffer(gl_);
             if (!resources_.staging) return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating the staging texture failed");
             gl_.BindFramebuffer(GL_FRAMEBUFFER, resources_.staging_framebuffer.name());
             gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, resources_.staging.name(), 0);
@@ -355,20 +424,20 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
         if (target.kind == TargetKind::Image) {
             composite_.run(pass_env, frame_blur_y, input.output_rect, source, resources_, target.texture, target.format);
         } else {
+            gl::BlitStateGuard blit_state(gl_);
+            GLuint host = blit_framebuffer(target);
             // Multiply needs the framebuffer's colour first: blit it into the staging texture.
-            gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, target.framebuffer);
-            gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, resources_.staging_framebuffer.name());
-            gl_.Disable(GL_SCISSOR_TEST);
-            gl_.Disable(GL_RASTERIZER_DISCARD);  // NVIDIA drops blits while it is on
             if (target.blend == OBSCURA_BLEND_MULTIPLY) {
+                gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, host);
+                gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, resources_.staging_framebuffer.name());
                 gl_.BlitFramebuffer(target.x, target.y, target.x + rect.width, target.y + rect.height, 0, 0, rect.width,
                                     rect.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
             }
             composite_.run(pass_env, frame_blur_y, input.output_rect, source, resources_, resources_.staging.name(),
-                           GL_RGBA8);
+                           resources_.staging.internal_format());
             gl_.MemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT);
             gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, resources_.staging_framebuffer.name());
-            gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, target.framebuffer);
+            gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, host);
             gl_.BlitFramebuffer(0, 0, rect.width, rect.height, target.x, target.y, target.x + rect.width,
                                 target.y + rect.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
         }

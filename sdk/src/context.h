@@ -44,6 +44,13 @@ private:
     Error initialize();
     PassEnv env() const;
     Error check_gl_context();
+    // check_gl_context, then HOST_GL_ERROR if the host left an error pending (consumed and reported).
+    Error check_host_state(const char* call);
+    // The framebuffer a blit reaches the host's target through: 0 (default) or ours with the host's
+    // colour attachment 0 attached, so only that attachment is read and written.
+    GLuint blit_framebuffer(const OutputTarget& target);
+    // Turns the glDelete* entries of the table into no-ops (destroy with another GL context current).
+    void disarm_gl_deletes();
     Error ensure_resources(int width, int height, const obscura_settings& settings);
     Error record_frame(const FrameInput& input, const obscura_settings& settings, const OutputTarget& target);
 
@@ -54,7 +61,10 @@ private:
     ObscuraGlLoader loader_ = {};
     gl::Table gl_ = {};
     GLint uniform_alignment_ = 256;
-    GLfloat sampler_tag_ = 0.0f;  // process-unique GL_TEXTURE_MAX_LOD of sampler_: identifies our GL context
+    GLint max_texture_size_ = 0;
+    char identity_label_[32] = {};  // process-unique label of identity_framebuffer_
+    gl::Object identity_framebuffer_;
+    gl::Object target_framebuffer_;  // see blit_framebuffer()
 
     gl::Object sampler_;
     gl::Buffer uniform_buffer_;

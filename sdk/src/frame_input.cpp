@@ -45,9 +45,10 @@ bool is_depth_stencil_format(GLenum format) {
 int normal_mode_for_format(GLenum format) {
     switch (format) {
         case GL_RGB16F: case GL_RGBA16F: case GL_RGB32F: case GL_RGBA32F: case GL_RGB8_SNORM:
-        case GL_RGBA8_SNORM: case GL_RGB16_SNORM: case GL_RGBA16_SNORM: case GL_R11F_G11F_B10F:
+        case GL_RGBA8_SNORM: case GL_RGB16_SNORM: case GL_RGBA16_SNORM:
             return OBSCURA_NORMALS_SIGNED;
-        case GL_RGB8: case GL_RGBA8: case GL_RGB10_A2: case GL_RGB16: case GL_RGBA16:
+        // R11F_G11F_B10F has no sign bit: it can only hold normals encoded as n * 0.5 + 0.5.
+        case GL_RGB8: case GL_RGBA8: case GL_RGB10_A2: case GL_RGB16: case GL_RGBA16: case GL_R11F_G11F_B10F:
             return OBSCURA_NORMALS_UNSIGNED;
         default: return -1;
     }
@@ -72,10 +73,9 @@ const char* image_format_qualifier(GLenum internal_format, int* channels) {
     return nullptr;
 }
 
-Error validate_input(const gl::Table& gl, const obscura_input& input, FrameInput* out) {
+Error validate_input(const gl::Table& gl, const obscura_input& input, GLint max_texture_size, FrameInput* out) {
     FrameInput frame;
-    GLint max_size = 0;
-    gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+    const GLint max_size = max_texture_size;
     if (input.depth_width <= 0 || input.depth_height <= 0 || input.depth_width > max_size ||
         input.depth_height > max_size) {
         return Error::make(OBSCURA_STATUS_INVALID_SIZE, "depth size %dx%d must be within 1..%d", input.depth_width,
@@ -290,6 +290,11 @@ Error validate_output(const gl::Table& gl, const obscura_output& output, const o
                 gl.GetTexLevelParameteriv(GL_TEXTURE_2D, level, GL_TEXTURE_HEIGHT, &height);
                 gl.BindTexture(GL_TEXTURE_2D, 0);
             }
+            if (layered) {
+                return Error::make(OBSCURA_STATUS_INVALID_FRAMEBUFFER,
+                                   "output.framebuffer %u has a layered colour attachment 0; attach one layer",
+                                   output.framebuffer);
+            }
             if (width >= 0 && (rect.width > width - target.x || rect.height > height - target.y)) {
                 return Error::make(OBSCURA_STATUS_INVALID_RECT,
                                    "a %dx%d result at (%d, %d) does not fit the %dx%d colour attachment of "
@@ -298,6 +303,16 @@ Error validate_output(const gl::Table& gl, const obscura_output& output, const o
             }
             target.kind = TargetKind::Blit;
             target.framebuffer = output.framebuffer;
+            target.attachment_type = GLenum(type);
+            target.attachment_name = GLuint(name != 0 ? name : 0);
+            if (type == GL_RENDERBUFFER) {
+                GLint renderbuffer = 0;
+                gl.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
+                                                       GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &renderbuffer);
+                target.attachment_name = GLuint(renderbuffer);
+            }
+            target.attachment_level = level;
+            target.attachment_float = component_type == GL_FLOAT;
             *out = target;
             return Error();
         }
@@ -310,6 +325,11 @@ Error validate_output(const gl::Table& gl, const obscura_output& output, const o
                                "the default framebuffer is not complete (status 0x%04X); a context without a "
                                "surface has none: name an output texture or framebuffer object",
                                unsigned(status));
+        }
+        // GL cannot report the window's size; at least keep the blit's end coordinates representable.
+        if (target.x > INT32_MAX - rect.width || target.y > INT32_MAX - rect.height) {
+            return Error::make(OBSCURA_STATUS_INVALID_RECT, "output position (%d, %d) overflows with a %dx%d result",
+                               target.x, target.y, rect.width, rect.height);
         }
         target.kind = TargetKind::Blit;
         target.framebuffer = 0;

@@ -35,6 +35,12 @@ struct OutputTarget {
     GLuint texture = 0;        // Image: the host texture
     GLenum format = 0;         // Image: its internal format
     GLuint framebuffer = 0;    // Blit: the host framebuffer (0 = default)
+    // Blit into a host framebuffer object: its colour attachment 0, which the SDK attaches to a framebuffer
+    // of its own so the blit reaches that attachment alone (not every draw buffer of the host's FBO).
+    GLenum attachment_type = GL_NONE;  // GL_RENDERBUFFER or GL_TEXTURE (0 for the default framebuffer)
+    GLuint attachment_name = 0;
+    GLint attachment_level = 0;
+    bool attachment_float = false;     // float attachment: stage in RGBA16F so MULTIPLY keeps HDR values
     int x = 0, y = 0;
     obscura_blend_mode blend = OBSCURA_BLEND_OVERWRITE;
     obscura_debug_view debug_view = OBSCURA_DEBUG_NONE;
@@ -42,7 +48,7 @@ struct OutputTarget {
 
 // Checks every field of `input` and the textures it names. Errors: INVALID_SIZE, INVALID_RECT,
 // INVALID_TEXTURE, UNSUPPORTED_FORMAT, INVALID_PROJECTION, PROJECTION_TRANSPOSED, INVALID_ENUM, INVALID_SETTING.
-Error validate_input(const gl::Table& gl, const obscura_input& input, FrameInput* out);
+Error validate_input(const gl::Table& gl, const obscura_input& input, GLint max_texture_size, FrameInput* out);
 
 // Undoes the temporary texture-parameter changes validate_input made (depth-stencil texture mode).
 void restore_input_state(const gl::Table& gl, const FrameInput& input);

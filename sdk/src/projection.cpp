@@ -112,6 +112,18 @@ Error decode_projection(const float matrix[16], obscura_matrix_layout layout, ob
     }
     info.reversed_z = d_far < d_near;
     info.sky_window_depth = info.reversed_z ? 0.0f : 1.0f;
+    if (!info.perspective) {
+        // When the near plane (window depth 0, or 1 when reversed) is at or behind the eye, move it to z = -1:
+        // z' = z - shift, so every visible point has a positive distance.
+        double z_near = view_z_from_window_depth(info, info.reversed_z ? 1.0 : 0.0);
+        if (z_near > -1e-6) {
+            float shift = float(z_near + 1.0);
+            info.m[12] += info.m[8] * shift;
+            info.m[13] += info.m[9] * shift;
+            info.m[14] += info.m[10] * shift;
+            info.view_z_shift = shift;
+        }
+    }
     *out = info;
     return Error();
 }

@@ -16,6 +16,10 @@ struct ProjectionInfo {
     float clip_scale = 2.0f;   // z_ndc = window_depth * clip_scale + clip_bias
     float clip_bias = -1.0f;
     float sky_window_depth = 1.0f; // the far-plane clear value: 1, or 0 with reversed-Z
+    // Orthographic cameras may put the near plane at or behind the eye (glOrtho(..., -8, 12)); the SDK
+    // needs positive distances, so view space is translated along z by this much (folded into m12..m14).
+    // AO of an orthographic view does not change under such a translation. 0 for perspective.
+    float view_z_shift = 0.0f;
 };
 
 // Validates and decodes `matrix` (given in `layout`). Errors: INVALID_PROJECTION (not a projection GL can

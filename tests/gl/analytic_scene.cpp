@@ -75,7 +75,16 @@ void Camera::ray(int x, int y, glm::dvec3* origin, glm::dvec3* direction) const 
         double w = m[11] * z + m[15];
         return glm::dvec3((ndc_x * w - m[8] * z - m[12]) / m[0], (ndc_y * w - m[9] * z - m[13]) / m[5], z);
     };
-    glm::dvec3 p0 = point_at(0.0), p1 = point_at(-1.0);
+    // Perspective rays start at the eye. Orthographic ones start on the near plane, which may lie behind
+    // the eye (glOrtho with a negative near): GL rasterises that geometry, so the tracer must see it too.
+    double z0 = 0.0;
+    if (m[11] == 0.0) {
+        const bool reversed = projection_ == Projection::ReversedZ || projection_ == Projection::ReversedInfinite;
+        const double near_window = reversed ? 1.0 : 0.0;
+        const double near_ndc = clip_depth_ == OBSCURA_CLIP_DEPTH_ZERO_TO_ONE ? near_window : near_window * 2.0 - 1.0;
+        z0 = std::max(0.0, (near_ndc * m[15] - m[14]) / m[10]);  // only ever behind the eye: z0 >= 0
+    }
+    glm::dvec3 p0 = point_at(z0), p1 = point_at(z0 - 1.0);
     *origin = p0;
     *direction = glm::normalize(p1 - p0);
 }

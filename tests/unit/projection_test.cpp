@@ -168,6 +168,22 @@ TEST(ProjectionDecode, Orthographic) {
     expect_inverse(info, window_ortho, 1e-6);
 }
 
+TEST(ProjectionDecode, OrthographicNearBehindEyeIsShiftedInFront) {
+    // glOrtho(..., -8, 12): the near plane lies 8 units behind the eye, where "distance" would be negative.
+    ProjectionInfo info = decode_ok(from_glm(glm::orthoRH_NO(-1.0f, 1.0f, -1.0f, 1.0f, -8.0f, 12.0f)),
+                                    OBSCURA_CLIP_DEPTH_NEGATIVE_ONE_TO_ONE);
+    EXPECT_FALSE(info.perspective);
+    EXPECT_NEAR(info.view_z_shift, 9.0, 1e-5) << "near plane z = +8 moves to z = -1";
+    EXPECT_NEAR(view_z_from_window_depth(info, 0.0), -1.0, 1e-5);   // near plane
+    EXPECT_NEAR(view_z_from_window_depth(info, 1.0), -21.0, 1e-4);  // far plane: 20 units further
+    EXPECT_NEAR(view_z_from_window_depth(info, 0.5), -11.0, 1e-4);  // linear in between
+}
+
+TEST(ProjectionDecode, OrthographicNearInFrontIsNotShifted) {
+    ProjectionInfo info = decode_ok(orthographic(), OBSCURA_CLIP_DEPTH_NEGATIVE_ONE_TO_ONE);
+    EXPECT_EQ(info.view_z_shift, 0.0f);
+}
+
 TEST(ProjectionDecode, OrthographicReversed) {
     // Near and far swapped: window depth decreases with distance.
     ProjectionInfo info = decode_ok(from_glm(glm::orthoRH_ZO(-1.0f, 1.0f, -1.0f, 1.0f, float(kFar), float(kNear))),

@@ -28,6 +28,8 @@ float obscura_sanitize_linear_depth(float view_depth) {
     return view_depth;
 }
 
+bool obscura_is_perspective() { return proj_depth.z != 0.0; }
+
 // Clip w of a view point at distance `view_depth`: the distance itself (perspective) or 1 (orthographic).
 float obscura_clip_w(float view_depth) { return -view_depth * proj_depth.z + proj_depth.w; }
 
@@ -42,8 +44,13 @@ vec3 obscura_view_position(ivec2 pixel, float view_depth) {
 }
 
 // Pixels covered by one view unit at distance `view_depth`, along y (square pixels assumed for x).
+// abs(): a y-flipped projection (render-to-texture conventions) has m5 < 0.
 float obscura_pixels_per_view_unit(float view_depth) {
-    return 0.5 * proj_scale.y * float(depth_size.y) / obscura_clip_w(view_depth);
+    return 0.5 * abs(proj_scale.y) * float(depth_size.y) / obscura_clip_w(view_depth);
 }
 
-bool obscura_is_perspective() { return proj_depth.z != 0.0; }
+// Unit vector from a view-space point towards the eye: the eye itself (perspective) or +z (orthographic).
+vec3 obscura_towards_eye(vec3 position) {
+    return obscura_is_perspective() ? normalize(-position) : vec3(0.0, 0.0, 1.0);
+}
+

@@ -30,8 +30,6 @@ StateGuard::StateGuard(const Table& gl) : gl_(gl) {
     }
     gl.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_framebuffer_);
     gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw_framebuffer_);
-    scissor_test_ = gl.IsEnabled(GL_SCISSOR_TEST);
-    rasterizer_discard_ = gl.IsEnabled(GL_RASTERIZER_DISCARD);
 }
 
 StateGuard::~StateGuard() {
@@ -65,8 +63,24 @@ StateGuard::~StateGuard() {
     gl.BindBuffer(GL_UNIFORM_BUFFER, GLuint(uniform_buffer_));
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(read_framebuffer_));
     gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(draw_framebuffer_));
-    if (scissor_test_) gl.Enable(GL_SCISSOR_TEST); else gl.Disable(GL_SCISSOR_TEST);
-    if (rasterizer_discard_) gl.Enable(GL_RASTERIZER_DISCARD); else gl.Disable(GL_RASTERIZER_DISCARD);
+}
+
+BlitStateGuard::BlitStateGuard(const Table& gl) : gl_(gl) {
+    GLint viewports = 1;
+    gl.GetIntegerv(GL_MAX_VIEWPORTS, &viewports);
+    viewports_ = viewports < 1 ? 1 : (viewports > kMaxViewports ? kMaxViewports : viewports);
+    // glDisable(GL_SCISSOR_TEST) clears every index, so each index is saved on its own.
+    for (int i = 0; i < viewports_; ++i) scissor_[i] = gl.IsEnabledi(GL_SCISSOR_TEST, GLuint(i));
+    rasterizer_discard_ = gl.IsEnabled(GL_RASTERIZER_DISCARD);
+    gl.Disable(GL_SCISSOR_TEST);
+    gl.Disable(GL_RASTERIZER_DISCARD);  // NVIDIA drops blits while it is on
+}
+
+BlitStateGuard::~BlitStateGuard() {
+    for (int i = 0; i < viewports_; ++i) {
+        if (scissor_[i]) gl_.Enablei(GL_SCISSOR_TEST, GLuint(i));
+    }
+    if (rasterizer_discard_) gl_.Enable(GL_RASTERIZER_DISCARD);
 }
 
 }  // namespace obscura::gl

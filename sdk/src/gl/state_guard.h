@@ -1,7 +1,8 @@
-// StateGuard saves, on construction, every piece of GL state an SDK call may touch and restores it
-// on destruction: program, active texture, texture and sampler bindings on the SDK's units, image
-// units, uniform-buffer bindings (generic and indexed), read/draw framebuffers, and the scissor test
-// and rasterizer discard (blits obey them). The set mirrors shader_interface.h's unit counts; a pass that uses more must grow it.
+// StateGuard saves, on construction, every binding an SDK call may touch and restores it on
+// destruction: program, active texture, texture and sampler bindings on the SDK's units, image units,
+// uniform-buffer bindings (generic and indexed), and read/draw framebuffers. The set mirrors
+// shader_interface.h's unit counts; a pass that uses more must grow it. Capabilities that only blits
+// care about (scissor, rasterizer discard) are saved by BlitStateGuard, only when a blit happens.
 #ifndef OBSCURA_STATE_GUARD_H
 #define OBSCURA_STATE_GUARD_H
 
@@ -36,7 +37,22 @@ private:
     IndexedBuffer uniform_indexed_[OBSCURA_UBO_COUNT] = {};
     GLint read_framebuffer_ = 0;
     GLint draw_framebuffer_ = 0;
-    GLboolean scissor_test_ = GL_FALSE;
+};
+
+// Saves and disables what would alter or drop a glBlitFramebuffer (the scissor test of every viewport
+// index, rasterizer discard) and restores it. sRGB conversion is left to the host's GL_FRAMEBUFFER_SRGB.
+class BlitStateGuard {
+public:
+    explicit BlitStateGuard(const Table& gl);
+    ~BlitStateGuard();
+    BlitStateGuard(const BlitStateGuard&) = delete;
+    BlitStateGuard& operator=(const BlitStateGuard&) = delete;
+
+private:
+    static constexpr int kMaxViewports = 32;
+    const Table& gl_;
+    int viewports_ = 1;
+    GLboolean scissor_[kMaxViewports] = {};
     GLboolean rasterizer_discard_ = GL_FALSE;
 };
 

@@ -1,0 +1,180 @@
+// Regressions for defects found in review, each reproduced before its fix:
+//   - a y-flipped projection (m5 < 0, render-to-texture conventions) gave no AO at all;
+//   - an orthographic projection with its near plane behind the eye (glOrtho(..., -8, 12)) gave no AO;
+//   - the blit path wrote every draw buffer of a multi-render-target host framebuffer;
+//   - MULTIPLY into a float renderbuffer clamped HDR colour to 1 (RGBA8 staging);
+//   - obscura_prepare mistook a host GL error for its own allocation failure and swallowed it.
+#include <algorithm>
+#include <cmath>
+
+#include "analytic_scene.h"
+#include "gl_test_support.h"
+
+namespace obscura_test {
+namespace {
+
+constexpr int kWidth = 160;
+constexpr int kHeight = 96;
+
+class ReviewRegressions : public GLTest {};
+
+// The floor/wall corner of hbao_test.cpp, traced with `camera`.
+struct CornerDepth {
+    std::vector<float> depth;
+    std::vector<Hit> hits;
+};
+CornerDepth corner_depth(const Camera& camera) {
+    CornerDepth c;
+    c.hits = trace(camera, {plane(1, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0)),
+                            plane(2, glm::dvec3(0.0), glm::dvec3(0.0, 0.0, 1.0))});
+    c.depth = depth_values(camera, c.hits);
+    return c;
+}
+glm::dmat4 corner_view() { return look_at(glm::dvec3(0.3, 1.3, 2.8), glm::dvec3(0.0, 0.45, 0.0)); }
+
+double mean(const std::vector<float>& v) {
+    double sum = 0.0;
+    for (float x : v) sum += x;
+    return v.empty() ? 0.0 : sum / double(v.size());
+}
+
+TEST_F(ReviewRegressions, YFlippedProjectionGivesTheMirroredAo) {
+    Camera camera(Projection::Perspective, kWidth, kHeight, Lens(), corner_view());
+    CornerDepth corner = corner_depth(camera);
+    HostTexture depth = make_depth_texture(GL_DEPTH_COMPONENT32F, kWidth, kHeight, corner.depth);
+    obscura_input input = make_input(depth.get(), kWidth, kHeight, camera.matrix());
+    std::vector<float> upright = render_to_new_texture(ctx(), input, make_settings(1.0f), GL_R32F, 1);
+    ASSERT_FALSE(upright.empty());
+
+    // The same image stored upside down, with the projection that renders it so (y row and column negated).
+    std::vector<float> flipped_depth(corner.depth.size());
+    for (int y = 0; y < kHeight; ++y)
+        std::copy_n(&corner.depth[size_t(kHeight - 1 - y) * kWidth], kWidth, &flipped_depth[size_t(y) * kWidth]);
+    HostTexture flipped = make_depth_texture(GL_DEPTH_COMPONENT32F, kWidth, kHeight, flipped_depth);
+    float matrix[16];
+    std::copy_n(camera.matrix(), 16, matrix);
+    matrix[5] = -matrix[5];
+    matrix[9] = -matrix[9];
+    matrix[13] = -matrix[13];
+    obscura_input flipped_input = make_input(flipped.get(), kWidth, kHeight, matrix);
+    std::vector<float> mirrored = render_to_new_texture(ctx(), flipped_input, make_settings(1.0f), GL_R32F, 1);
+    ASSERT_FALSE(mirrored.empty());
+
+    // Per-pixel noise differs between mirrored pixels, so compare the images' statistics and rows.
+    EXPECT_LT(mean(upright), 0.99) << "the corner must be occluded";
+    EXPECT_NEAR(mean(mirrored), mean(upright), 0.005);
+    double row_error = 0.0;
+    for (int y = 0; y < kHeight; ++y) {
+        double a = 0.0, b = 0.0;
+        for (int x = 0; x < kWidth; ++x) {
+            a += upright[size_t(y) * kWidth + x];
+            b += mirrored[size_t(kHeight - 1 - y) * kWidth + x];
+        }
+        row_error = std::max(row_error, std::fabs(a - b) / kWidth);
+    }
+    EXPECT_LT(row_error, 0.02) << "row means of the mirrored result must match the upright one";
+}
+
+TEST_F(ReviewRegressions, OrthographicNearPlaneBehindEyeKeepsAo) {
+    // The same parallel view twice: from the usual eye with near 0.1, and from an eye moved 4 units forward,
+    // past the corner, with the near plane 8 units behind it, so the whole corner lies behind the eye plane.
+    const glm::dvec3 eye(0.3, 1.3, 2.8), target(0.0, 0.45, 0.0);
+    const glm::dvec3 forward = glm::normalize(target - eye);
+    Lens in_front;  // near 0.1, far 100
+    Lens behind;
+    behind.near_plane = -8.0;
+    behind.far_plane = 12.0;
+    const glm::dvec3 moved_eye = eye + 4.0 * forward;
+    std::vector<std::vector<float>> results;
+    for (int i = 0; i < 2; ++i) {
+        Camera camera(Projection::Orthographic, kWidth, kHeight, i == 0 ? in_front : behind,
+                      i == 0 ? look_at(eye, target) : look_at(moved_eye, moved_eye + forward));
+        CornerDepth corner = corner_depth(camera);
+        HostTexture depth = make_depth_texture(GL_DEPTH_COMPONENT32F, kWidth, kHeight, corner.depth);
+        obscura_input input = make_input(depth.get(), kWidth, kHeight, camera.matrix());
+        results.push_back(render_to_new_texture(ctx(), input, make_settings(1.0f), GL_R32F, 1));
+        ASSERT_FALSE(results.back().empty());
+    }
+    EXPECT_LT(mean(results[0]), 0.99);
+    EXPECT_NEAR(mean(results[1]), mean(results[0]), 0.002) << "moving an orthographic eye must not change AO";
+}
+
+// A framebuffer with two colour renderbuffers, both drawn to.
+struct TwoTargetFramebuffer {
+    HostRenderbuffer colour0, colour1;
+    HostFramebuffer framebuffer;
+};
+TwoTargetFramebuffer make_two_target_framebuffer(GLenum format) {
+    TwoTargetFramebuffer t;
+    t.colour0 = HostRenderbuffer::create();
+    t.colour1 = HostRenderbuffer::create();
+    for (GLuint rb : {t.colour0.get(), t.colour1.get()}) {
+        glBindRenderbuffer(GL_RENDERBUFFER, rb);
+        glRenderbufferStorage(GL_RENDERBUFFER, format, kWidth, kHeight);
+    }
+    glBindRenderbuffer(GL_RENDERBUFFER, 0);
+    t.framebuffer = HostFramebuffer::create();
+    glBindFramebuffer(GL_FRAMEBUFFER, t.framebuffer.get());
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t.colour0.get());
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_RENDERBUFFER, t.colour1.get());
+    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glDrawBuffers(2, buffers);
+    const float c0[] = {4.0f, 2.0f, 0.5f, 1.0f};
+    const float c1[] = {1.0f, 0.0f, 0.0f, 1.0f};
+    glClearBufferfv(GL_COLOR, 0, c0);
+    glClearBufferfv(GL_COLOR, 1, c1);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    return t;
+}
+
+std::vector<float> read_attachment(GLuint framebuffer, GLenum attachment) {
+    std::vector<float> pixels(size_t(kWidth) * kHeight * 4);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
+    glReadBuffer(attachment);
+    glReadPixels(0, 0, kWidth, kHeight, GL_RGBA, GL_FLOAT, pixels.data());
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    return pixels;
+}
+
+obscura_input corner_input(HostTexture* depth_out) {
+    Camera camera(Projection::Perspective, kWidth, kHeight, Lens(), corner_view());
+    CornerDepth corner = corner_depth(camera);
+    *depth_out = make_depth_texture(GL_DEPTH_COMPONENT32F, kWidth, kHeight, corner.depth);
+    return make_input(depth_out->get(), kWidth, kHeight, camera.matrix());
+}
+
+TEST_F(ReviewRegressions, BlitWritesOnlyColourAttachmentZeroAndKeepsHdrWhenMultiplying) {
+    HostTexture depth;
+    obscura_input input = corner_input(&depth);
+    TwoTargetFramebuffer target = make_two_target_framebuffer(GL_RGBA16F);
+    obscura_output output = make_output(0);
+    output.framebuffer = target.framebuffer.get();
+    output.blend = OBSCURA_BLEND_MULTIPLY;
+    obscura_settings settings = make_settings(1.0f);
+    ASSERT_EQ(obscura_render(ctx(), &input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+
+    std::vector<float> visibility = render_to_new_texture(ctx(), input, settings, GL_R32F, 1);
+    std::vector<float> c0 = read_attachment(target.framebuffer.get(), GL_COLOR_ATTACHMENT0);
+    std::vector<float> c1 = read_attachment(target.framebuffer.get(), GL_COLOR_ATTACHMENT1);
+    double worst_hdr = 0.0, worst_other = 0.0;
+    for (size_t i = 0; i < visibility.size(); ++i) {
+        // RGBA16F staging: the product keeps values above 1 (half precision: 2^-10 relative).
+        worst_hdr = std::max(worst_hdr, std::fabs(c0[4 * i] - 4.0 * visibility[i]) / 4.0);
+        worst_other = std::max({worst_other, std::fabs(c1[4 * i] - 1.0), std::fabs(double(c1[4 * i + 1])),
+                                std::fabs(double(c1[4 * i + 2]))});
+    }
+    EXPECT_LT(worst_hdr, 4e-3) << "attachment 0 must hold 4 * visibility, not a clamped 1";
+    EXPECT_EQ(worst_other, 0.0) << "attachment 1 must be untouched";
+}
+
+TEST_F(ReviewRegressions, PrepareReportsPendingHostErrorInsteadOfSwallowingIt) {
+    glEnable(0xDEAD);  // GL_INVALID_ENUM, left pending by the "host"
+    obscura_settings settings = make_settings(1.0f);
+    EXPECT_EQ(obscura_prepare(ctx(), 64, 64, &settings), OBSCURA_STATUS_HOST_GL_ERROR);
+    EXPECT_NE(std::string(obscura_get_last_error(ctx())).find("GL_INVALID_ENUM"), std::string::npos)
+        << obscura_get_last_error(ctx());
+    EXPECT_EQ(obscura_prepare(ctx(), 64, 64, &settings), OBSCURA_OK) << obscura_get_last_error(ctx());
+}
+
+}  // namespace
+}  // namespace obscura_test
