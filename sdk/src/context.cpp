@@ -221,8 +221,7 @@ Error Context::check_gl_context() {
     return Error();
 }
 
-Error Context::ensure_resources(int width, int height, const obscura_settings& settings) {
-    (void)settings;
+Error Context::ensure_resources(int width, int height) {
     if (resources_.width == width && resources_.height == height && resources_.linear_depth) return Error();
     release_resources();
     // Texture2D::create binds on the active unit: make it one the StateGuard restores (obscura_prepare
@@ -260,7 +259,7 @@ Error Context::prepare(int width, int height, const obscura_settings& settings) 
     error = check_host_state("obscura_prepare");
     if (error) return error;
     gl::StateGuard guard(gl_);
-    return ensure_resources(width, height, resolved);
+    return ensure_resources(width, height);
 }
 
 Error Context::check_host_state(const char* call) {
@@ -300,7 +299,7 @@ Error Context::render(const obscura_input& input, const obscura_settings& settin
             } restorer{gl_, frame};
             OutputTarget target;
             error = validate_output(gl_, output, frame.output_rect, &target);
-            if (!error) error = ensure_resources(frame.width, frame.height, resolved);
+            if (!error) error = ensure_resources(frame.width, frame.height);
             if (!error) error = record_frame(frame, resolved, target);
         }
         // A failed validation may leave a probing error (wrong texture target) behind: drain it.

@@ -35,7 +35,6 @@ public:
 
     // Records an error for obscura_get_last_error and forwards it to the log callback; returns its status.
     obscura_status report(const Error& error);
-    void clear_error() { last_error_[0] = '\0'; }
     const char* last_error() const { return last_error_; }
 
 private:
@@ -51,7 +50,7 @@ private:
     GLuint blit_framebuffer(const OutputTarget& target);
     // Turns the glDelete* entries of the table into no-ops (destroy with another GL context current).
     void disarm_gl_deletes();
-    Error ensure_resources(int width, int height, const obscura_settings& settings);
+    Error ensure_resources(int width, int height);
     Error record_frame(const FrameInput& input, const obscura_settings& settings, const OutputTarget& target);
 
     AllocatorCallbacks alloc_;

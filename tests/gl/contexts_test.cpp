@@ -71,6 +71,33 @@ TEST_F(Contexts, TwoGlContextsRenderAlternately) {
     gl_a.make_current();
 }
 
+TEST_F(Contexts, DestroyWithAnotherGlContextCurrentLeavesThatContextsObjectsAlone) {
+    HeadlessGL& gl_a = shared_gl();
+    // An obscura context on GL context B, then destroyed while A is current: its names (small integers)
+    // also name objects of A, which must survive.
+    HeadlessGL gl_b;
+    LogCapture log;
+    obscura_context_desc desc = make_desc();
+    log.attach(&desc);
+    obscura_context* on_b = nullptr;
+    ASSERT_EQ(obscura_create_context(&desc, &on_b), OBSCURA_OK);
+    gl_a.make_current();
+    std::vector<GLuint> textures(32), framebuffers(8);
+    glGenTextures(GLsizei(textures.size()), textures.data());
+    glGenFramebuffers(GLsizei(framebuffers.size()), framebuffers.data());
+    for (GLuint t : textures) glBindTexture(GL_TEXTURE_2D, t);
+    for (GLuint f : framebuffers) glBindFramebuffer(GL_FRAMEBUFFER, f);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    obscura_destroy_context(on_b);
+    for (GLuint t : textures) EXPECT_TRUE(glIsTexture(t)) << "texture " << t << " of context A was deleted";
+    for (GLuint f : framebuffers) EXPECT_TRUE(glIsFramebuffer(f)) << "framebuffer " << f << " of A was deleted";
+    EXPECT_FALSE(log.entries.empty()) << "the leak must be reported";
+    glDeleteTextures(GLsizei(textures.size()), textures.data());
+    glDeleteFramebuffers(GLsizei(framebuffers.size()), framebuffers.data());
+    EXPECT_EQ(take_gl_error(), GLenum(GL_NO_ERROR));
+}
+
 TEST_F(Contexts, ContextOfAnotherGlContextIsRefused) {
     // Both GL contexts hold an obscura context (so both have the same object names): rendering
     // context A while B is current must still be refused, not run with B's objects.

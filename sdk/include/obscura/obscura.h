@@ -189,10 +189,12 @@ typedef struct obscura_context_desc {
 
 /* Creates a context for the GL context current on this thread and compiles the shaders.
    Returns OK, NULL_ARGUMENT, INVALID_STRUCT_SIZE, VERSION_MISMATCH, NO_GL_CONTEXT,
-   GL_VERSION_UNSUPPORTED, MISSING_GL_FUNCTION, SHADER_COMPILE_FAILED, OUT_OF_MEMORY. */
+   GL_VERSION_UNSUPPORTED, MISSING_GL_FUNCTION, HOST_GL_ERROR, SHADER_COMPILE_FAILED, OUT_OF_MEMORY,
+   GL_ERROR, INTERNAL_ERROR. On failure the message goes to desc->log (there is no context to ask). */
 OBSCURA_API obscura_status obscura_create_context(const obscura_context_desc* desc, obscura_context** out_context);
 
-/* Destroys the context and every GL object it owns. The same GL context must be current. NULL is a no-op. */
+/* Destroys the context and every GL object it owns. The same GL context must be current: with another one
+   current the GL objects are leaked (a warning is logged) rather than deleted there. NULL is a no-op. */
 OBSCURA_API void obscura_destroy_context(obscura_context* context);
 
 /* Returns the message of the last error on this context ("" if none). Valid until the next call. */
@@ -223,20 +225,20 @@ typedef enum obscura_toggle {
 
 /* HBAO: LSAO paper sec. 3 and 6. Every field: 0 selects the default given after it. */
 typedef struct obscura_hbao_settings {
-    float radius;         /* metres, (0, 1e4]: distance where the falloff rho0 reaches 0; steps cover it. Default 1 */
-    float falloff_c;      /* C of rho0(d) = max(0, r(1+C)/(r+d^2) - C), (0, 1). Default 0.3 */
-    float decay_rate;     /* r of rho0 in m^2, (0, 1e8]. Default C*radius^2, so rho0 reaches 0 at radius */
+    float radius;         /* metres, [1e-3, 1e4]: distance where the falloff rho0 reaches 0; steps cover it. Default 1 */
+    float falloff_c;      /* C of rho0(d) = max(0, r(1+C)/(r+d^2) - C), [1e-3, 0.999]. Default 0.3 */
+    float decay_rate;     /* r of rho0 in m^2, [1e-8, 1e8]. Default C*radius^2, so rho0 reaches 0 at radius */
     int32_t directions;   /* K azimuthal directions, [1, 32]. Default 8 */
     int32_t steps;        /* N steps per direction, [1, 128]. Default 12 */
     int32_t estimator;    /* 1: horizon-split integration (Bavoil 2008); 2: largest falloff-weighted occluder
                              only (LSAO paper eq. 1, what LSAO computes). Default 1 */
     float bias;           /* subtracted from sin(h) - sin(t), [0, 0.5]. Default 0 (zero is the default) */
-    float intensity;      /* obscurance multiplier, (0, 16]. Default 1 */
-    float power;          /* visibility exponent, (0, 16]. Default 1 */
+    float intensity;      /* obscurance multiplier, [1e-3, 16]. Default 1 */
+    float power;          /* visibility exponent, [1e-3, 16]. Default 1 */
     float max_radius_pixels; /* screen-space cap of the marched radius, [1, 4096]. Default 256 */
     obscura_toggle blur;  /* depth-aware bilateral blur. Default on */
     int32_t blur_radius;  /* taps each side, [1, 16]. Default 4 */
-    float blur_sharpness; /* depth edge sharpness, (0, 1000]. Default 16 */
+    float blur_sharpness; /* depth edge sharpness, [1e-3, 1000]. Default 16 */
 } obscura_hbao_settings;
 
 typedef struct obscura_settings {
@@ -357,8 +359,11 @@ typedef struct obscura_output {
 OBSCURA_API obscura_status obscura_render(obscura_context* context, const obscura_input* input,
                                           const obscura_settings* settings, const obscura_output* output);
 
-/* Allocates the resources a render of this size and these settings needs, so the first frame does not.
-   Optional. Returns the statuses of obscura_render that concern sizes and settings. */
+/* Allocates the textures a render of this size and these settings needs, so the first frame does not.
+   Shader variants that depend on the input and output (MSAA or linear depth, the target's format) are
+   still compiled on the first render that needs them. Optional. Returns OK, NULL_ARGUMENT,
+   INVALID_STRUCT_SIZE, INVALID_SETTING, INVALID_ENUM, METHOD_NOT_AVAILABLE, INVALID_SIZE,
+   WRONG_GL_CONTEXT, HOST_GL_ERROR, OUT_OF_MEMORY. */
 OBSCURA_API obscura_status obscura_prepare(obscura_context* context, int32_t depth_width, int32_t depth_height,
                                            const obscura_settings* settings);
 
@@ -373,7 +378,8 @@ typedef struct obscura_timing {
 
 /* Copies the latest complete per-pass GPU timings (a few frames old; never waits on the GPU) into
    `out` (up to `capacity` entries) and sets *out_count to the number available. *out_frame_index (may be
-   NULL) receives the 1-based index of the successful obscura_render call they belong to, so a caller can
+   NULL) receives the 1-based index of the frame they belong to, counting the obscura_render calls that
+   passed validation and reached the GPU, so a caller can
    tell a new result from the same one read twice; 0 and *out_count = 0 until a frame's queries have
    completed. Returns OK, NULL_ARGUMENT. */
 OBSCURA_API obscura_status obscura_get_timings(obscura_context* context, obscura_timing* out, uint32_t capacity,
