@@ -1,10 +1,11 @@
 // Compiles the glad2-generated loader (third_party/glad, --mx) into this translation unit only.
 // GLAD_API_CALL makes every glad entry point static, so nothing but the obscura_gl_* functions leaves it.
 #define GLAD_API_CALL static
-#include "gl/gl_api.h"
-
-// glad's internal helpers are static already; renaming them keeps even the local symbols that `nm`
-// lists (compilers emit some as out-of-line clones) free of the glad_ prefix a host's loader uses.
+// glad's functions are all static here; renaming them as well keeps even the local symbols that `nm` lists
+// (unoptimised builds keep the entry points, optimised ones emit clones such as "...constprop.0") free of
+// the glad prefix a host's loader uses. The two entry points are renamed before glad's header declares them.
+#define gladLoadGLContext obscura_loader_load_context
+#define gladLoadGLContextUserPtr obscura_loader_load_context_user_ptr
 #define glad_gl_find_core_gl obscura_loader_find_core_gl
 #define glad_gl_find_extensions_gl obscura_loader_find_extensions_gl
 #define glad_gl_free_extensions obscura_loader_free_extensions
@@ -27,6 +28,7 @@
 #define glad_gl_load_GL_VERSION_4_1 obscura_loader_load_GL_VERSION_4_1
 #define glad_gl_load_GL_VERSION_4_2 obscura_loader_load_GL_VERSION_4_2
 #define glad_gl_load_GL_VERSION_4_3 obscura_loader_load_GL_VERSION_4_3
+#include "gl/gl_api.h"
 
 #include "../../../third_party/glad/src/gl.c"
 
