@@ -59,7 +59,8 @@ OBSCURA_API const char* obscura_method_name(obscura_method method) {
 }
 
 OBSCURA_API int obscura_method_available(obscura_method method) {
-    return obscura::resolve_method(method) == OBSCURA_METHOD_HBAO ? 1 : 0;
+    obscura_method resolved = obscura::resolve_method(method);
+    return resolved == OBSCURA_METHOD_HBAO || resolved == OBSCURA_METHOD_REFERENCE ? 1 : 0;
 }
 
 OBSCURA_API obscura_status obscura_create_context(const obscura_context_desc* desc, obscura_context** out_context) {
@@ -126,6 +127,15 @@ OBSCURA_API obscura_status obscura_resolve_settings(obscura_context* context, co
         if (!error) *out = resolved;
         return error;
     });
+}
+
+OBSCURA_API obscura_status obscura_reference_settings_for(const obscura_settings* method_settings,
+                                                          obscura_settings* out) {
+    if (!method_settings || !out) return OBSCURA_STATUS_NULL_ARGUMENT;
+    obscura_settings reference;
+    Error error = obscura::reference_settings_for(*method_settings, &reference);
+    if (!error) *out = reference;
+    return error.status();
 }
 
 OBSCURA_API obscura_status obscura_get_setting_infos(obscura_method method, const obscura_setting_info** out_infos,

@@ -158,6 +158,8 @@ Error Context::initialize() {
         {reinterpret_cast<const void*>(gl_.GetObjectLabel), "glGetObjectLabel"},
         {reinterpret_cast<const void*>(gl_.IsEnabledi), "glIsEnabledi"},
         {reinterpret_cast<const void*>(gl_.Enablei), "glEnablei"},
+        {reinterpret_cast<const void*>(gl_.Uniform4i), "glUniform4i"},
+        {reinterpret_cast<const void*>(gl_.Flush), "glFlush"},
     };
     for (const Required& r : required) {
         if (!r.fn) return Error::make(OBSCURA_STATUS_MISSING_GL_FUNCTION, "get_proc_address returned NULL for %s", r.name);
@@ -244,6 +246,17 @@ Error Context::ensure_resources(int width, int height) {
 
 void Context::release_resources() { resources_ = FrameResources(); }
 
+Error Context::ensure_reference_accumulator() {
+    if (resources_.reference) return Error();
+    gl_.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_SOURCE));  // a unit the StateGuard restores
+    resources_.reference = gl::Texture2D::create(gl_, GL_R32F, resources_.width, resources_.height);
+    if (!resources_.reference) {
+        return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating the %dx%d reference accumulator failed",
+                           resources_.width, resources_.height);
+    }
+    return Error();
+}
+
 Error Context::prepare(int width, int height, const obscura_settings& settings) {
     obscura_settings resolved;
     Error error = resolve_settings(settings, &resolved);
@@ -259,7 +272,9 @@ Error Context::prepare(int width, int height, const obscura_settings& settings) 
     error = check_host_state("obscura_prepare");
     if (error) return error;
     gl::StateGuard guard(gl_);
-    return ensure_resources(width, height);
+    error = ensure_resources(width, height);
+    if (!error && resolved.method == OBSCURA_METHOD_REFERENCE) error = ensure_reference_accumulator();
+    return error;
 }
 
 Error Context::check_host_state(const char* call) {
@@ -357,8 +372,15 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
     error = composite_.prepare(pass_env, composite_format);
     if (error) return error;
 
+    const bool reference = settings.method == OBSCURA_METHOD_REFERENCE;
+    if (reference) {
+        error = reference_.prepare(pass_env);
+        if (error) return error;
+        error = ensure_reference_accumulator();
+        if (error) return error;
+    }
     const obscura_hbao_settings& hbao = settings.hbao;
-    bool blur = hbao.blur == OBSCURA_TOGGLE_ON;
+    bool blur = !reference && hbao.blur == OBSCURA_TOGGLE_ON;
     int blur_radius = blur ? hbao.blur_radius : 0;
     Region rect{input.output_rect.x, input.output_rect.y, input.output_rect.width, input.output_rect.height};
     Region whole{0, 0, input.width, input.height};
@@ -381,14 +403,16 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
             gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, resources_.staging.name(), 0);
         }
     }
-    float debug_depth_scale = 1.0f / (4.0f * hbao.radius * input.meters_to_view_units);
+    float radius = reference ? settings.reference.radius : hbao.radius;
+    float debug_depth_scale = 1.0f / (4.0f * radius * input.meters_to_view_units);
 
     uniforms_.reset(uniform_alignment_);
     UniformRange frame_whole = uniforms_.push(frame_constants(input, composite_target, whole, debug_depth_scale));
     UniformRange frame_ao = uniforms_.push(frame_constants(input, composite_target, ao_region, debug_depth_scale));
     UniformRange frame_blur_x = uniforms_.push(frame_constants(input, composite_target, blur_x_region, debug_depth_scale));
     UniformRange frame_blur_y = uniforms_.push(frame_constants(input, composite_target, rect, debug_depth_scale));
-    UniformRange hbao_pass = uniforms_.push(HbaoPass::constants(hbao, input));
+    UniformRange method_pass = reference ? uniforms_.push(ReferencePass::constants(settings.reference, input))
+                                         : uniforms_.push(HbaoPass::constants(hbao, input));
     UniformRange blur_x_pass = uniforms_.push(BilateralBlurPass::constants(blur_radius, hbao.blur_sharpness, 1, 0));
     UniformRange blur_y_pass = uniforms_.push(BilateralBlurPass::constants(blur_radius, hbao.blur_sharpness, 0, 1));
     uniforms_.upload(gl_, uniform_buffer_.name());
@@ -405,11 +429,18 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
     timer_.begin_frame();
     depth_prepare_.run(pass_env, input, frame_whole, resources_);
     error = after_pass("depth_prepare");
-    if (!error) {
-        hbao_.run(pass_env, frame_ao, hbao_pass, ao_region, resources_);
+    const gl::Texture2D* result = &resources_.ao;
+    if (!error && reference) {
+        // Each batch is flushed so the GPU starts on it while the next is recorded, and no single
+        // submission runs long (watchdogs, a responsive desktop).
+        reference_.run(pass_env, frame_ao, method_pass, ao_region, settings.reference, resources_,
+                       resources_.reference, [&] { gl_.Flush(); });
+        result = &resources_.reference;
+        error = after_pass("reference");
+    } else if (!error) {
+        hbao_.run(pass_env, frame_ao, method_pass, ao_region, resources_);
         error = after_pass("hbao");
     }
-    const gl::Texture2D* result = &resources_.ao;
     if (!error && blur) {
         blur_.run(pass_env, frame_blur_x, blur_x_pass, blur_x_region, resources_.linear_depth, resources_.ao,
                   resources_.blur_temp);
@@ -419,7 +450,8 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
         error = after_pass("blur");
     }
     if (!error) {
-        const gl::Texture2D& source = target.debug_view == OBSCURA_DEBUG_AO_BEFORE_BLUR ? resources_.ao : *result;
+        const gl::Texture2D& source =
+            target.debug_view == OBSCURA_DEBUG_AO_BEFORE_BLUR && !reference ? resources_.ao : *result;
         if (target.kind == TargetKind::Image) {
             composite_.run(pass_env, frame_blur_y, input.output_rect, source, resources_, target.texture, target.format);
         } else {

@@ -14,6 +14,7 @@
 #include "passes/depth_prepare.h"
 #include "passes/hbao.h"
 #include "passes/pass_common.h"
+#include "passes/reference.h"
 
 struct obscura_context {};  // the opaque handle type; Context derives from it
 
@@ -51,6 +52,8 @@ private:
     // Turns the glDelete* entries of the table into no-ops (destroy with another GL context current).
     void disarm_gl_deletes();
     Error ensure_resources(int width, int height);
+    // The REFERENCE method's R32F accumulator, allocated the first time the method renders at this size.
+    Error ensure_reference_accumulator();
     Error record_frame(const FrameInput& input, const obscura_settings& settings, const OutputTarget& target);
 
     AllocatorCallbacks alloc_;
@@ -70,6 +73,7 @@ private:
     UniformArena uniforms_;
     DepthPreparePass depth_prepare_;
     HbaoPass hbao_;
+    ReferencePass reference_;
     BilateralBlurPass blur_;
     CompositePass composite_;
     FrameResources resources_;

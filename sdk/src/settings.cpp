@@ -40,6 +40,35 @@ const obscura_setting_info kHbaoSettings[] = {
 
 #undef OBSCURA_HBAO_FIELD
 
+#define OBSCURA_REFERENCE_FIELD(field) \
+    offsetof(obscura_settings, reference) + offsetof(obscura_reference_settings, field)
+
+// REFERENCE: FFAO paper eq. 1 by ray casting (its sec. 8). The falloff defaults match HBAO's, so the
+// default reference is the ground truth of the default HBAO.
+const obscura_setting_info kReferenceSettings[] = {
+    {"radius", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 1e4, "m",
+     "where rho0 (with the default decay rate) and the falloff table reach zero", OBSCURA_REFERENCE_FIELD(radius)},
+    {"falloff", OBSCURA_SETTING_INT, 1, 1, 4, "",
+     "1: rho0 (LSAO eq. 3); 2: inverse quadratic r/(r+d^2) (LSAO eq. 2); 3: exponential exp(-d/sqrt(r)); 4: table",
+     OBSCURA_REFERENCE_FIELD(falloff)},
+    {"falloff_c", OBSCURA_SETTING_FLOAT, 0.3, 1e-3, 0.999, "", "C of rho0(d) = max(0, r(1+C)/(r+d^2) - C)",
+     OBSCURA_REFERENCE_FIELD(falloff_c)},
+    {"decay_rate", OBSCURA_SETTING_FLOAT, 0.0, 1e-8, 1e8, "m^2",
+     "r of the falloff; 0 derives C*radius^2 (rho0 then reaches zero at the radius)",
+     OBSCURA_REFERENCE_FIELD(decay_rate)},
+    {"thickness", OBSCURA_SETTING_FLOAT, 0.0, 0.0, 1e4, "m",
+     "solid behind every depth texel; 0: infinitely thick (a continuous depth field)", OBSCURA_REFERENCE_FIELD(thickness)},
+    {"rays", OBSCURA_SETTING_INT, 256, 1, 65536, "", "cosine-weighted rays per pixel", OBSCURA_REFERENCE_FIELD(rays)},
+    {"rays_per_dispatch", OBSCURA_SETTING_INT, 16, 1, 1024, "",
+     "rays per pixel in one compute dispatch (progressive accumulation keeps each dispatch short)",
+     OBSCURA_REFERENCE_FIELD(rays_per_dispatch)},
+    {"first_ray", OBSCURA_SETTING_INT, 0, 0, 16777216, "",
+     "index of the first ray in the per-pixel sequence; average frames with 0, rays, 2*rays ... to accumulate",
+     OBSCURA_REFERENCE_FIELD(first_ray)},
+};
+
+#undef OBSCURA_REFERENCE_FIELD
+
 template <class T>
 T* field_at(obscura_settings* settings, size_t offset) {
     return reinterpret_cast<T*>(reinterpret_cast<unsigned char*>(settings) + offset);
@@ -113,6 +142,27 @@ void store_value(obscura_settings* settings, const obscura_setting_info& info, d
     }
 }
 
+// The falloff table is read only with OBSCURA_FALLOFF_TABLE, where it must describe a falloff.
+Error check_falloff_table(const obscura_reference_settings& reference) {
+    if (reference.falloff != OBSCURA_FALLOFF_TABLE) return Error();
+    bool any_positive = false;
+    for (int i = 0; i < OBSCURA_FALLOFF_TABLE_SIZE; ++i) {
+        float value = reference.falloff_table[i];
+        if (!(value >= 0.0f && value <= 1.0f)) {
+            return Error::make(OBSCURA_STATUS_INVALID_SETTING, "reference.falloff_table[%d] = %g is outside [0, 1]", i,
+                               double(value));
+        }
+        any_positive = any_positive || value > 0.0f;
+    }
+    if (!any_positive) {
+        return Error::make(OBSCURA_STATUS_INVALID_SETTING,
+                           "reference.falloff is TABLE but reference.falloff_table is all zero: fill it with rho(d) "
+                           "at d = i/%d * radius",
+                           OBSCURA_FALLOFF_TABLE_SIZE - 1);
+    }
+    return Error();
+}
+
 }  // namespace
 
 obscura_method resolve_method(obscura_method method) { return resolve_method_value(int32_t(method)); }
@@ -122,6 +172,9 @@ const obscura_setting_info* setting_infos(obscura_method method, uint32_t* count
         case OBSCURA_METHOD_HBAO:
             *count = uint32_t(sizeof kHbaoSettings / sizeof kHbaoSettings[0]);
             return kHbaoSettings;
+        case OBSCURA_METHOD_REFERENCE:
+            *count = uint32_t(sizeof kReferenceSettings / sizeof kReferenceSettings[0]);
+            return kReferenceSettings;
         default:
             *count = 0;
             return nullptr;
@@ -172,8 +225,38 @@ Error resolve_settings(const obscura_settings& in, obscura_settings* out) {
     // HBAO: the decay rate defaults to C * radius^2, where rho0 reaches zero exactly at the radius.
     obscura_hbao_settings& hbao = resolved.hbao;
     if (hbao.decay_rate == 0.0f) hbao.decay_rate = hbao.falloff_c * hbao.radius * hbao.radius;
+    obscura_reference_settings& reference = resolved.reference;
+    if (reference.decay_rate == 0.0f) reference.decay_rate = reference.falloff_c * reference.radius * reference.radius;
+    Error error = check_falloff_table(reference);
+    if (error) return error;
     *out = resolved;
     return Error();
+}
+
+Error reference_settings_for(const obscura_settings& method_settings, obscura_settings* out) {
+    obscura_settings resolved;
+    Error error = resolve_settings(method_settings, &resolved);
+    if (error) return error;
+    if (resolved.method == OBSCURA_METHOD_REFERENCE) {
+        *out = resolved;
+        return Error();
+    }
+    obscura_settings reference;
+    std::memset(&reference, 0, sizeof reference);
+    reference.struct_size = sizeof reference;
+    reference.method = OBSCURA_METHOD_REFERENCE;
+    switch (resolved.method) {
+        case OBSCURA_METHOD_HBAO:
+            reference.reference.falloff = OBSCURA_FALLOFF_RHO0;
+            reference.reference.radius = resolved.hbao.radius;
+            reference.reference.falloff_c = resolved.hbao.falloff_c;
+            reference.reference.decay_rate = resolved.hbao.decay_rate;
+            break;
+        default:
+            // Methods without a falloff of their own yet are compared with the default reference.
+            break;
+    }
+    return resolve_settings(reference, out);
 }
 
 Error get_setting(const obscura_settings& settings, const char* name, double* value) {

@@ -19,6 +19,9 @@ bool is_known_settings_size(uint32_t struct_size);
 // Defaults every zero field, validates every field, and derives dependent values (HBAO decay rate).
 Error resolve_settings(const obscura_settings& in, obscura_settings* out);
 
+// REFERENCE settings with the falloff of `method_settings`'s method (obscura_reference_settings_for).
+Error reference_settings_for(const obscura_settings& method_settings, obscura_settings* out);
+
 // Reads / writes one field through the table (the value a UI shows: defaults for zero fields).
 Error get_setting(const obscura_settings& settings, const char* name, double* value);
 Error set_setting(obscura_settings* settings, const char* name, double value);

@@ -14,57 +14,13 @@
 #include <cstring>
 #include <sstream>
 
-#include "analytic_scene.h"
-#include "gl_test_support.h"
+#include "ao_test_scene.h"
 
 namespace obscura_test {
 namespace {
 
 constexpr int kWidth = 320;
 constexpr int kHeight = 180;
-
-struct AoScene {
-    Camera camera;
-    std::vector<Hit> hits;
-    HostTexture depth;
-    obscura_input input;
-};
-
-AoScene make_ao_scene(Projection projection, const glm::dmat4& view, const std::vector<Primitive>& primitives,
-                      const Lens& lens = Lens(), int width = kWidth, int height = kHeight) {
-    Camera camera(projection, width, height, lens, view);
-    std::vector<Hit> hits = trace(camera, primitives);
-    std::vector<float> depth = depth_values(camera, hits);
-    HostTexture texture = projection == Projection::LinearView ? make_red_texture(GL_R32F, width, height, depth)
-                                                               : make_depth_texture(GL_DEPTH_COMPONENT32F, width, height, depth);
-    obscura_input input = make_input(texture.get(), width, height, camera.matrix(), camera.clip_depth());
-    if (projection == Projection::LinearView) input.depth_kind = OBSCURA_DEPTH_LINEAR_VIEW;
-    return AoScene{camera, std::move(hits), std::move(texture), input};
-}
-
-std::vector<float> render_visibility(obscura_context* context, const obscura_input& input,
-                                     const obscura_settings& settings,
-                                     obscura_debug_view view = OBSCURA_DEBUG_NONE) {
-    return render_to_new_texture(context, input, settings, GL_R32F, 1, view);
-}
-
-// Mask of texels whose hit satisfies `predicate`, at least `border` texels from the image edge.
-template <class Predicate>
-std::vector<bool> select(const std::vector<Hit>& hits, int width, int height, int border, Predicate predicate) {
-    std::vector<bool> mask(hits.size(), false);
-    for (int y = border; y < height - border; ++y)
-        for (int x = border; x < width - border; ++x) {
-            const Hit& h = hits[size_t(y) * width + x];
-            mask[size_t(y) * width + x] = h.hit && predicate(h);
-        }
-    return mask;
-}
-
-std::string describe(const Stats& s) {
-    std::ostringstream out;
-    out << s.count << " texels, min " << s.min << " mean " << s.mean << " max " << s.max;
-    return out.str();
-}
 
 class Hbao : public GLTest {};
 

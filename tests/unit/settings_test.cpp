@@ -507,7 +507,7 @@ TEST(SettingsTable, DefaultMethodSharesHbaoTable) {
 }
 
 TEST(SettingsTable, UnavailableMethodsHaveEmptyTables) {
-    for (obscura_method m : {OBSCURA_METHOD_SAO, OBSCURA_METHOD_LSAO, OBSCURA_METHOD_FFAO, OBSCURA_METHOD_REFERENCE}) {
+    for (obscura_method m : {OBSCURA_METHOD_SAO, OBSCURA_METHOD_LSAO, OBSCURA_METHOD_FFAO}) {
         const obscura_setting_info* infos = reinterpret_cast<const obscura_setting_info*>(1);
         uint32_t count = 99;
         ASSERT_EQ(obscura_get_setting_infos(m, &infos, &count), OBSCURA_OK);
@@ -524,3 +524,104 @@ TEST(SettingsTable, BadArguments) {
 }
 
 }  // namespace
+
+namespace {
+
+obscura_settings settings_of(obscura_method method) {
+    obscura_settings s;
+    std::memset(&s, 0, sizeof s);
+    s.struct_size = sizeof s;
+    s.method = method;
+    return s;
+}
+
+}  // namespace
+
+// ---- REFERENCE ---------------------------------------------------------------------------------------
+
+TEST(ReferenceSettings, DefaultsMatchTheDefaultHbaoFalloff) {
+    obscura_settings reference;
+    ASSERT_EQ(obscura_default_settings(OBSCURA_METHOD_REFERENCE, &reference), OBSCURA_OK);
+    obscura_settings hbao;
+    ASSERT_EQ(obscura_default_settings(OBSCURA_METHOD_HBAO, &hbao), OBSCURA_OK);
+    EXPECT_EQ(reference.reference.falloff, OBSCURA_FALLOFF_RHO0);
+    EXPECT_EQ(reference.reference.radius, hbao.hbao.radius);
+    EXPECT_EQ(reference.reference.falloff_c, hbao.hbao.falloff_c);
+    EXPECT_EQ(reference.reference.decay_rate, hbao.hbao.decay_rate);
+    EXPECT_EQ(reference.reference.thickness, 0.0f);  // infinitely thick
+    EXPECT_EQ(reference.reference.rays, 256);
+    EXPECT_EQ(reference.reference.rays_per_dispatch, 16);
+    EXPECT_EQ(reference.reference.first_ray, 0);
+}
+
+TEST(ReferenceSettings, ForHbaoCopiesItsFalloff) {
+    obscura_settings hbao = settings_of(OBSCURA_METHOD_HBAO);
+    hbao.hbao.radius = 2.0f;
+    hbao.hbao.falloff_c = 0.2f;
+    hbao.hbao.directions = 16;  // not a falloff property: must not matter
+    obscura_settings reference;
+    ASSERT_EQ(obscura_reference_settings_for(&hbao, &reference), OBSCURA_OK);
+    EXPECT_EQ(reference.method, OBSCURA_METHOD_REFERENCE);
+    EXPECT_EQ(reference.reference.falloff, OBSCURA_FALLOFF_RHO0);
+    EXPECT_FLOAT_EQ(reference.reference.radius, 2.0f);
+    EXPECT_FLOAT_EQ(reference.reference.falloff_c, 0.2f);
+    EXPECT_FLOAT_EQ(reference.reference.decay_rate, 0.2f * 2.0f * 2.0f);  // HBAO's derived r
+    EXPECT_EQ(reference.reference.rays, 256);
+
+    hbao.hbao.decay_rate = 0.5f;  // an explicit r is carried over as is
+    ASSERT_EQ(obscura_reference_settings_for(&hbao, &reference), OBSCURA_OK);
+    EXPECT_FLOAT_EQ(reference.reference.decay_rate, 0.5f);
+}
+
+TEST(ReferenceSettings, ForReferenceIsTheResolvedInput) {
+    obscura_settings in = settings_of(OBSCURA_METHOD_REFERENCE);
+    in.reference.rays = 1024;
+    in.reference.falloff = OBSCURA_FALLOFF_EXPONENTIAL;
+    obscura_settings out;
+    ASSERT_EQ(obscura_reference_settings_for(&in, &out), OBSCURA_OK);
+    EXPECT_EQ(out.reference.rays, 1024);
+    EXPECT_EQ(out.reference.falloff, OBSCURA_FALLOFF_EXPONENTIAL);
+    EXPECT_EQ(out.reference.radius, 1.0f);
+}
+
+TEST(ReferenceSettings, ForRejectsBadInput) {
+    obscura_settings out;
+    EXPECT_EQ(obscura_reference_settings_for(nullptr, &out), OBSCURA_STATUS_NULL_ARGUMENT);
+    obscura_settings in = settings_of(OBSCURA_METHOD_HBAO);
+    EXPECT_EQ(obscura_reference_settings_for(&in, nullptr), OBSCURA_STATUS_NULL_ARGUMENT);
+    in.hbao.radius = -1.0f;
+    EXPECT_EQ(obscura_reference_settings_for(&in, &out), OBSCURA_STATUS_INVALID_SETTING);
+    in = settings_of(OBSCURA_METHOD_HBAO);
+    in.struct_size = 4;
+    EXPECT_EQ(obscura_reference_settings_for(&in, &out), OBSCURA_STATUS_INVALID_STRUCT_SIZE);
+}
+
+TEST(ReferenceSettings, TableFalloffNeedsATable) {
+    obscura_settings s = settings_of(OBSCURA_METHOD_REFERENCE);
+    s.reference.falloff = OBSCURA_FALLOFF_TABLE;
+    obscura_settings out;
+    EXPECT_EQ(obscura_resolve_settings(nullptr, &s, &out), OBSCURA_STATUS_INVALID_SETTING);  // all zero
+    for (int i = 0; i < OBSCURA_FALLOFF_TABLE_SIZE; ++i) s.reference.falloff_table[i] = 1.0f - float(i) / 15.0f;
+    EXPECT_EQ(obscura_resolve_settings(nullptr, &s, &out), OBSCURA_OK);
+    s.reference.falloff_table[3] = 1.5f;
+    EXPECT_EQ(obscura_resolve_settings(nullptr, &s, &out), OBSCURA_STATUS_INVALID_SETTING);
+    s.reference.falloff_table[3] = std::nanf("");
+    EXPECT_EQ(obscura_resolve_settings(nullptr, &s, &out), OBSCURA_STATUS_INVALID_SETTING);
+    // Other falloffs ignore the table, whatever it holds.
+    s.reference.falloff = OBSCURA_FALLOFF_RHO0;
+    EXPECT_EQ(obscura_resolve_settings(nullptr, &s, &out), OBSCURA_OK);
+}
+
+TEST(ReferenceSettings, RangesAreChecked) {
+    obscura_settings s = settings_of(OBSCURA_METHOD_REFERENCE);
+    EXPECT_EQ(obscura_set_setting(&s, "falloff", 5), OBSCURA_STATUS_INVALID_SETTING);
+    EXPECT_EQ(obscura_set_setting(&s, "rays", 65537), OBSCURA_STATUS_INVALID_SETTING);
+    EXPECT_EQ(obscura_set_setting(&s, "thickness", -1), OBSCURA_STATUS_INVALID_SETTING);
+    EXPECT_EQ(obscura_set_setting(&s, "thickness", 0.05), OBSCURA_OK);
+    EXPECT_EQ(obscura_set_setting(&s, "falloff", 2), OBSCURA_OK);
+    double value = 0;
+    EXPECT_EQ(obscura_get_setting(&s, "falloff", &value), OBSCURA_OK);
+    EXPECT_EQ(value, 2.0);
+    EXPECT_EQ(obscura_get_setting(&s, "decay_rate", &value), OBSCURA_OK);
+    EXPECT_NEAR(value, 0.3, 1e-7);  // derived: C * radius^2
+}

@@ -90,7 +90,7 @@ TEST(MethodAvailable, OnlyHbao) {
     EXPECT_EQ(obscura_method_available(OBSCURA_METHOD_SAO), 0);
     EXPECT_EQ(obscura_method_available(OBSCURA_METHOD_LSAO), 0);
     EXPECT_EQ(obscura_method_available(OBSCURA_METHOD_FFAO), 0);
-    EXPECT_EQ(obscura_method_available(OBSCURA_METHOD_REFERENCE), 0);
+    EXPECT_EQ(obscura_method_available(OBSCURA_METHOD_REFERENCE), 1);
     EXPECT_EQ(obscura_method_available(obscura_method(99)), 0);
 }
 

@@ -31,6 +31,8 @@
 #define OBSCURA_BLUR_GROUP_Y 8
 #define OBSCURA_COMPOSITE_GROUP_X 8
 #define OBSCURA_COMPOSITE_GROUP_Y 8
+#define OBSCURA_REFERENCE_GROUP_X 8
+#define OBSCURA_REFERENCE_GROUP_Y 8
 
 // ---- Conventions ---------------------------------------------------------------------------------
 // Linear view depth is a positive distance from the eye plane in view units; sky pixels (far-plane
@@ -100,6 +102,20 @@ OBSCURA_PASS_BLOCK_BEGIN(BlurConstants)
   OBSCURA_VEC4(params);    // sharpness, 1 / (2 sigma^2) of the spatial Gaussian, unused, unused
   OBSCURA_IVEC4(config);   // radius in taps, axis x, axis y, unused
 OBSCURA_PASS_BLOCK_END(BlurConstants, blur)
+#endif
+
+#if defined(__cplusplus) || defined(OBSCURA_REFERENCE_PASS)
+// Falloff kinds (ReferenceConstants.config.x): the values of obscura_falloff.
+#define OBSCURA_FALLOFF_KIND_RHO0 1
+#define OBSCURA_FALLOFF_KIND_INVERSE_QUADRATIC 2
+#define OBSCURA_FALLOFF_KIND_EXPONENTIAL 3
+#define OBSCURA_FALLOFF_KIND_TABLE 4
+OBSCURA_PASS_BLOCK_BEGIN(ReferenceConstants)
+  OBSCURA_VEC4(falloff);   // decay r (view units^2), C, radius (view units), longest ray (view units)
+  OBSCURA_VEC4(params);    // thickness (view units, 0: infinite), 1 / total rays, unused, unused
+  OBSCURA_IVEC4(config);   // falloff kind, total rays, unused, unused
+  OBSCURA_VEC4(table[4]);  // the 16 falloff-table values, 4 per vec4
+OBSCURA_PASS_BLOCK_END(ReferenceConstants, reference)
 #endif
 
 #endif  // OBSCURA_SHADER_INTERFACE_H

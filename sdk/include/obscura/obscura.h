@@ -18,7 +18,8 @@
  *   OBSCURA_METHOD_SAO        McGuire et al., "Scalable Ambient Obscurance" (HPG 2012).     [not yet available]
  *   OBSCURA_METHOD_LSAO       Timonen, "Line-Sweep Ambient Obscurance" (EGSR 2013).         [not yet available]
  *   OBSCURA_METHOD_FFAO       Timonen, "Screen-Space Far-Field Ambient Obscurance" (HPG 2013). [not yet available]
- *   OBSCURA_METHOD_REFERENCE  Screen-space ray-traced ground truth.                         [not yet available]
+ *   OBSCURA_METHOD_REFERENCE  Screen-space ray-traced ground truth: eq. 1 of the FFAO paper evaluated by
+ *                             cosine-weighted rays stepped through the whole depth buffer (its sec. 8).
  *   Methods not yet available return OBSCURA_STATUS_METHOD_NOT_AVAILABLE.
  *
  * INTEGRATION
@@ -92,7 +93,7 @@ extern "C" {
 
 /* ---- Version --------------------------------------------------------------------------------- */
 #define OBSCURA_VERSION_MAJOR 0
-#define OBSCURA_VERSION_MINOR 1
+#define OBSCURA_VERSION_MINOR 2
 #define OBSCURA_VERSION_PATCH 0
 /* Packed version: major * 10000 + minor * 100 + patch. */
 #define OBSCURA_VERSION (OBSCURA_VERSION_MAJOR * 10000 + OBSCURA_VERSION_MINOR * 100 + OBSCURA_VERSION_PATCH)
@@ -241,10 +242,41 @@ typedef struct obscura_hbao_settings {
     float blur_sharpness; /* depth edge sharpness, [1e-3, 1000]. Default 16 */
 } obscura_hbao_settings;
 
+/* Falloff rho(d) of the obscurance integral (FFAO paper eq. 1), d in metres, r = decay_rate in m^2. */
+typedef enum obscura_falloff {
+    OBSCURA_FALLOFF_DEFAULT = 0,           /* RHO0 */
+    OBSCURA_FALLOFF_RHO0 = 1,              /* max(0, r(1+C)/(r+d^2) - C): HBAO's (LSAO paper eq. 3); 0 from d = sqrt(r/C) */
+    OBSCURA_FALLOFF_INVERSE_QUADRATIC = 2, /* r/(r+d^2) (LSAO paper eq. 2); never reaches 0 */
+    OBSCURA_FALLOFF_EXPONENTIAL = 3,       /* exp(-d/sqrt(r)) ("light-emitting fog"); never reaches 0 */
+    OBSCURA_FALLOFF_TABLE = 4              /* falloff_table[i] = rho(i/(N-1) * radius), linear in between, 0 beyond */
+} obscura_falloff;
+
+#define OBSCURA_FALLOFF_TABLE_SIZE 16
+
+/* REFERENCE: for every receiver pixel, `rays` cosine-weighted rays over the hemisphere of its normal are
+   stepped texel by texel through the whole depth buffer (guard band included) until they pass behind the
+   depth field; visibility = 1 - mean(rho(hit distance)), misses count 0. Slow by design: the ground truth
+   other methods are measured against. The rays are cast in dispatches of rays_per_dispatch (progressive
+   accumulation: no single dispatch runs long); hosts may accumulate further across frames by averaging
+   renders with first_ray = 0, rays, 2 * rays, ... (each frame then traces new rays of one sequence).
+   obscura_reference_settings_for() makes these settings match another method's falloff. */
+typedef struct obscura_reference_settings {
+    float radius;         /* metres, [1e-3, 1e4]: where RHO0 (with the default decay rate) and TABLE reach 0. Default 1 */
+    int32_t falloff;      /* obscura_falloff, [1, 4]. Default 1 (RHO0) */
+    float falloff_c;      /* C of RHO0, [1e-3, 0.999]. Default 0.3 */
+    float decay_rate;     /* r in m^2, [1e-8, 1e8]. Default C*radius^2 (RHO0 then reaches 0 at the radius) */
+    float thickness;      /* metres of solid behind every depth texel, [0, 1e4]. Default 0: infinitely thick */
+    int32_t rays;         /* rays per pixel, [1, 65536]. Default 256 */
+    int32_t rays_per_dispatch; /* [1, 1024]. Default 16 */
+    int32_t first_ray;    /* index of the first ray in the per-pixel sequence, [0, 16777216]. Default 0 */
+    float falloff_table[OBSCURA_FALLOFF_TABLE_SIZE]; /* TABLE only: values in [0, 1], not all 0 */
+} obscura_reference_settings;
+
 typedef struct obscura_settings {
     uint32_t struct_size;   /* sizeof(obscura_settings); required */
     obscura_method method;  /* which method renders. Default HBAO */
     obscura_hbao_settings hbao;
+    obscura_reference_settings reference;
 } obscura_settings;
 
 /* Fills `out` with the defaults of `method` (struct_size set, every field explicit).
@@ -256,6 +288,13 @@ OBSCURA_API obscura_status obscura_default_settings(obscura_method method, obscu
    detail goes nowhere). Returns OK, NULL_ARGUMENT, INVALID_STRUCT_SIZE, INVALID_ENUM, INVALID_SETTING. */
 OBSCURA_API obscura_status obscura_resolve_settings(obscura_context* context, const obscura_settings* in,
                                                     obscura_settings* out);
+
+/* Writes to `out` the REFERENCE settings that evaluate the same falloff (kind, radius, C, decay rate) as
+   `method_settings` (resolved first; a REFERENCE input is copied), with the default ray counts, so an
+   error measured against that reference compares like with like. Returns OK, NULL_ARGUMENT,
+   INVALID_STRUCT_SIZE, INVALID_ENUM, INVALID_SETTING. */
+OBSCURA_API obscura_status obscura_reference_settings_for(const obscura_settings* method_settings,
+                                                          obscura_settings* out);
 
 /* ---- Settings metadata: declared once, read by the CLI, the viewer and the docs ----------------- */
 typedef enum obscura_setting_type {
@@ -372,7 +411,8 @@ OBSCURA_API void obscura_release_resources(obscura_context* context);
 
 /* ---- Queries --------------------------------------------------------------------------------- */
 typedef struct obscura_timing {
-    const char* label; /* "total" first, then one entry per pass: "depth_prepare", "hbao", "blur", "composite" */
+    const char* label; /* "total" first, then one entry per pass: "depth_prepare", "hbao" or "reference", "blur",
+                          "composite" */
     double milliseconds;
 } obscura_timing;
 

@@ -23,9 +23,10 @@ struct FrameResources {
     gl::Texture2D ao_blurred;   // R16F final visibility
     gl::Texture2D staging;      // RGBA8 output-rect sized, only for framebuffer targets reached by blits
     gl::Object staging_framebuffer;
+    gl::Texture2D reference;    // R32F ray-traced reference: falloff sums, then visibility (REFERENCE only)
     uint64_t bytes() const {
         return linear_depth.bytes() + normals.bytes() + ao.bytes() + blur_temp.bytes() + ao_blurred.bytes() +
-               staging.bytes();
+               staging.bytes() + reference.bytes();
     }
 };
 

@@ -1,0 +1,59 @@
+#include "passes/reference.h"
+
+#include <cmath>
+
+namespace obscura {
+namespace {
+// Location of `u_batch` in reference.comp (layout(location = 0)).
+constexpr GLint kBatchLocation = 0;
+// The longest ray of falloffs that never reach zero: rays end where they leave the depth buffer.
+constexpr float kUnboundedRay = 1e20f;
+}  // namespace
+
+Error ReferencePass::prepare(const PassEnv& env) {
+    if (program_) return Error();
+    return env.build("reference.comp", "", &program_);
+}
+
+ReferenceConstants ReferencePass::constants(const obscura_reference_settings& settings, const FrameInput& input) {
+    const float m2v = input.meters_to_view_units;
+    ReferenceConstants c = {};
+    const float r = settings.decay_rate * m2v * m2v;  // r is in m^2; the shader works in view units
+    const float radius = settings.radius * m2v;
+    c.falloff[0] = r;
+    c.falloff[1] = settings.falloff_c;
+    c.falloff[2] = radius;
+    switch (settings.falloff) {
+        case OBSCURA_FALLOFF_RHO0: c.falloff[3] = std::sqrt(r / settings.falloff_c); break;  // rho0 = 0 from there on
+        case OBSCURA_FALLOFF_TABLE: c.falloff[3] = radius; break;
+        default: c.falloff[3] = kUnboundedRay; break;
+    }
+    c.params[0] = settings.thickness * m2v;
+    c.params[1] = 1.0f / float(settings.rays);
+    c.config[0] = settings.falloff;
+    c.config[1] = settings.rays;
+    for (int i = 0; i < OBSCURA_FALLOFF_TABLE_SIZE; ++i) c.table[i / 4][i % 4] = settings.falloff_table[i];
+    return c;
+}
+
+void ReferencePass::bind(const PassEnv& env, const UniformRange& frame, const UniformRange& pass,
+                         const FrameResources& resources, const gl::Texture2D& accumulator) {
+    const gl::Table& gl = env.gl;
+    gl.UseProgram(program_.name());
+    env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
+    env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
+    gl.BindImageTexture(OBSCURA_IMAGE_OUT0, accumulator.name(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
+    env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
+    env.bind_uniforms(OBSCURA_UBO_PASS, pass);
+}
+
+void ReferencePass::dispatch(const PassEnv& env, const Region& region, int first_ray, int count, bool first,
+                             bool last) {
+    const gl::Table& gl = env.gl;
+    gl.Uniform4i(kBatchLocation, first_ray, count, first ? 1 : 0, last ? 1 : 0);
+    env.dispatch(region.width, region.height, OBSCURA_REFERENCE_GROUP_X, OBSCURA_REFERENCE_GROUP_Y);
+    // The next batch reads what this one accumulated; after the last, the composite samples it.
+    gl.MemoryBarrier(last ? GL_TEXTURE_FETCH_BARRIER_BIT : GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
+}  // namespace obscura

@@ -1,0 +1,43 @@
+// Reference: screen-space ray-traced ambient obscurance (sdk/glsl/reference.comp), the ground truth of
+// every quality measurement. Rays are traced in batches, one dispatch each, accumulating into an R32F
+// texture whose last batch leaves visibility in it.
+#ifndef OBSCURA_REFERENCE_H
+#define OBSCURA_REFERENCE_H
+
+#include "frame_input.h"
+#include "passes/pass_common.h"
+
+namespace obscura {
+
+class ReferencePass {
+public:
+    // Builds the program on first use: hosts that never render the reference never compile it.
+    Error prepare(const PassEnv& env);
+    // Converts resolved settings (metres) to the shader's constants (view units).
+    static ReferenceConstants constants(const obscura_reference_settings& settings, const FrameInput& input);
+    // Traces settings.rays rays per pixel of `region` into `accumulator` (R32F), which then holds visibility.
+    // `between_batches` runs after every dispatch but the last (the context flushes and marks timings there).
+    template <class Callback>
+    void run(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
+             const obscura_reference_settings& settings, FrameResources& resources, const gl::Texture2D& accumulator,
+             Callback&& between_batches) {
+        bind(env, frame, pass, resources, accumulator);
+        const int total = settings.rays, per_batch = settings.rays_per_dispatch;
+        for (int done = 0; done < total; done += per_batch) {
+            const int count = total - done < per_batch ? total - done : per_batch;
+            const bool last = done + count >= total;
+            dispatch(env, region, settings.first_ray + done, count, done == 0, last);
+            if (!last) between_batches();
+        }
+    }
+
+private:
+    void bind(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const FrameResources& resources,
+              const gl::Texture2D& accumulator);
+    void dispatch(const PassEnv& env, const Region& region, int first_ray, int count, bool first, bool last);
+    gl::Object program_;
+};
+
+}  // namespace obscura
+
+#endif  // OBSCURA_REFERENCE_H

@@ -1,0 +1,32 @@
+#include "ao_test_scene.h"
+
+#include <sstream>
+#include <utility>
+
+namespace obscura_test {
+
+AoScene make_ao_scene(Projection projection, const glm::dmat4& view, const std::vector<Primitive>& primitives,
+                      const Lens& lens, int width, int height) {
+    Camera camera(projection, width, height, lens, view);
+    std::vector<Hit> hits = trace(camera, primitives);
+    std::vector<float> depth = depth_values(camera, hits);
+    HostTexture texture = projection == Projection::LinearView
+                              ? make_red_texture(GL_R32F, width, height, depth)
+                              : make_depth_texture(GL_DEPTH_COMPONENT32F, width, height, depth);
+    obscura_input input = make_input(texture.get(), width, height, camera.matrix(), camera.clip_depth());
+    if (projection == Projection::LinearView) input.depth_kind = OBSCURA_DEPTH_LINEAR_VIEW;
+    return AoScene{camera, std::move(hits), std::move(texture), input};
+}
+
+std::vector<float> render_visibility(obscura_context* context, const obscura_input& input,
+                                     const obscura_settings& settings, obscura_debug_view view) {
+    return render_to_new_texture(context, input, settings, GL_R32F, 1, view);
+}
+
+std::string describe(const Stats& s) {
+    std::ostringstream out;
+    out << s.count << " texels, min " << s.min << " mean " << s.mean << " max " << s.max;
+    return out.str();
+}
+
+}  // namespace obscura_test
