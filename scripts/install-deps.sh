@@ -8,6 +8,8 @@ required=(
   libegl-dev libgles-dev libopengl-dev   # EGL headless contexts (glvnd)
   libosmesa6-dev libgl1-mesa-dri         # OSMesa backend, llvmpipe software rendering
   libglm-dev libstb-dev                  # demo scene matrices, PNG writing
+  libtinyobjloader-dev                   # OBJ scenes (samples/common/scene_library)
+  glmark2-data                           # the "bunny" scene's model (optional at run time)
   libgtest-dev                           # test suite
   libglew-dev libepoxy-dev               # tests that act as a host using GLEW / libepoxy
 )

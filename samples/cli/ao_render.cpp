@@ -43,11 +43,33 @@ double median(std::vector<double> values) {
     return result;
 }
 
-const TimingRow& TimingSummary::best_total() const {
+TimingRow TimingSummary::sdk_total() const {
     for (const TimingRow& row : passes) {
         if (row.label == "total") return row;
     }
-    return wall;
+    TimingRow none;
+    none.label = "total";
+    return none;
+}
+
+FramePlan quick_frame_plan(obscura_method method) {
+    FramePlan plan;
+    if (method == OBSCURA_METHOD_REFERENCE) {
+        plan.warmup = 0;
+        plan.frames = 1;
+    }
+    return plan;
+}
+
+void warm_up(const ObscuraSession& session, const AoRenderRequest& request) {
+    obscura_settings settings = *request.settings;
+    if (settings.method == OBSCURA_METHOD_REFERENCE) settings.reference.rays = 1;
+    AoRenderRequest warm = request;
+    warm.settings = &settings;
+    session.check(obscura_prepare(session.get(), request.scene->depth_width, request.scene->depth_height, &settings),
+                  "obscura_prepare");
+    render_ao(session, warm);
+    glFinish();
 }
 
 namespace {
@@ -63,13 +85,22 @@ TimingRow summarise(const std::string& label, const std::vector<double>& values)
     return row;
 }
 
-// Collects obscura_get_timings per frame, keeping the labels in the order the SDK reports them.
+// Collects obscura_get_timings once per new frame index, keeping the labels in the order the SDK
+// reports them. Frames rendered before start() (another method's, say) are never counted.
 class PassTimes {
 public:
+    void start(obscura_context* context) {
+        uint32_t count = 0;
+        obscura_get_timings(context, nullptr, 0, &count, &last_frame_);
+    }
     void collect(obscura_context* context) {
         obscura_timing timings[64];
         uint32_t count = 0;
-        if (obscura_get_timings(context, timings, 64, &count, nullptr) != OBSCURA_OK) return;
+        uint64_t frame = 0;
+        if (obscura_get_timings(context, timings, 64, &count, &frame) != OBSCURA_OK) return;
+        if (count == 0 || frame <= last_frame_) return;
+        last_frame_ = frame;
+        ++frames_;
         for (uint32_t i = 0; i < std::min<uint32_t>(count, 64); ++i) {
             const std::string label = timings[i].label ? timings[i].label : "?";
             auto found = values_.find(label);
@@ -80,6 +111,7 @@ public:
             found->second.push_back(timings[i].milliseconds);
         }
     }
+    int frames() const { return frames_; }
     std::vector<TimingRow> rows() const {
         std::vector<TimingRow> result;
         for (const std::string& label : order_) result.push_back(summarise(label, values_.at(label)));
@@ -87,6 +119,8 @@ public:
     }
 
 private:
+    uint64_t last_frame_ = 0;
+    int frames_ = 0;
     std::vector<std::string> order_;
     std::map<std::string, std::vector<double>> values_;
 };
@@ -101,6 +135,7 @@ TimingSummary time_frames(const ObscuraSession& session, const AoRenderRequest& 
     glFinish();
 
     PassTimes pass_times;
+    pass_times.start(session.get());
     std::vector<double> wall;
     for (int i = 0; i < frames; ++i) {
         const auto start = std::chrono::steady_clock::now();
@@ -108,13 +143,13 @@ TimingSummary time_frames(const ObscuraSession& session, const AoRenderRequest& 
         glFinish();
         const auto end = std::chrono::steady_clock::now();
         wall.push_back(std::chrono::duration<double, std::milli>(end - start).count());
-        // Timings lag a few frames behind (they never wait on the GPU); every frame is the same work.
+        // After glFinish this frame's timer queries are complete (sync timing reports at once).
         pass_times.collect(session.get());
     }
 
     TimingSummary summary;
     summary.passes = pass_times.rows();
-    summary.wall = summarise("wall (render + glFinish)", wall);
+    summary.wall = summarise("wall", wall);
     session.check(obscura_get_memory_usage(session.get(), &summary.memory_bytes), "obscura_get_memory_usage");
     return summary;
 }

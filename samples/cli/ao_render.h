@@ -1,5 +1,5 @@
-// What render, bench and demo share: the AO target texture, one AO render of a scene, and timing a
-// series of frames into per-pass statistics.
+// What render, compare and bench share: the AO target texture, one AO render of a scene, and timing a
+// series of warm frames into per-pass statistics.
 #ifndef OBSCURA_CLI_AO_RENDER_H
 #define OBSCURA_CLI_AO_RENDER_H
 
@@ -47,7 +47,7 @@ void render_ao(const ObscuraSession& session, const AoRenderRequest& request);
 
 // Median and minimum of one timed quantity over the frames.
 struct TimingRow {
-    std::string label;  // "total", "hbao.ao" ..., or "wall (render + glFinish)"
+    std::string label;  // "total", a pass ("hbao", "blur" ...), or "wall"
     double median_ms = 0.0;
     double min_ms = 0.0;
     size_t samples = 0;
@@ -57,11 +57,24 @@ struct TimingSummary {
     std::vector<TimingRow> passes;  // from obscura_get_timings, "total" first; empty if none arrived
     TimingRow wall;                 // CPU clock around obscura_render + glFinish
     uint64_t memory_bytes = 0;      // obscura_get_memory_usage after the frames
-    // The "total" row if the SDK reported one, else the wall-clock row.
-    const TimingRow& best_total() const;
+    // The SDK's "total" row, or an empty row (0 ms, 0 samples) when the SDK reported none.
+    TimingRow sdk_total() const;
 };
 
-// Renders `warmup` untimed frames, then `frames` timed ones (each followed by glFinish).
+// How many frames a quick measurement renders: the reference is slow by design, so it is timed once.
+struct FramePlan {
+    int warmup = 2;
+    int frames = 5;
+};
+FramePlan quick_frame_plan(obscura_method method);
+
+// Compiles and allocates what a render of `request` needs with one untimed frame (for the REFERENCE a
+// single ray, so the warm-up costs nothing next to the real frames).
+void warm_up(const ObscuraSession& session, const AoRenderRequest& request);
+
+// Renders `warmup` untimed frames, then `frames` timed ones (each followed by glFinish). Pass times are
+// those the SDK reports for exactly these frames (told apart by their frame index); the target holds
+// the last frame's result afterwards.
 TimingSummary time_frames(const ObscuraSession& session, const AoRenderRequest& request, int warmup, int frames);
 
 double median(std::vector<double> values);

@@ -1,125 +1,204 @@
-// obscura bench: times obscura_render on the demo scene for every --method x --size, per pass
-// (obscura_get_timings) and as wall-clock time around render + glFinish.
+// obscura bench: times warm frames of every --methods spec at every --sizes size, in total and per pass.
+//
+// The clock: on a GPU the SDK's GL timer queries (obscura_get_timings; "gpu-timer"). On software
+// renderers (llvmpipe, softpipe), whose timer queries read 0, the CPU clock around obscura_render +
+// glFinish ("wall"), with per-pass times from the SDK's sync timing (glFinish + CPU clock per pass).
 #include <cstdio>
 #include <fstream>
 #include <memory>
+#include <stdexcept>
 
 #include "ao_render.h"
 #include "cli_errors.h"
 #include "commands.h"
+#include "headless_gl.h"
+#include "json_writer.h"
 #include "method_spec.h"
 #include "obscura_session.h"
-#include "scene_options.h"
+#include "report.h"
+#include "scene_source.h"
 
 namespace obscura::cli {
 namespace {
 
+enum class Clock { Auto, GpuTimer, Wall };
+
+const char* clock_name(Clock clock) {
+    return clock == Clock::GpuTimer ? "gpu-timer" : clock == Clock::Wall ? "wall" : "auto";
+}
+
+Clock parse_clock(const std::string& text) {
+    for (Clock clock : {Clock::Auto, Clock::GpuTimer, Clock::Wall}) {
+        if (text == clock_name(clock)) return clock;
+    }
+    throw UsageError("--clock: '" + text + "' is not auto, gpu-timer or wall");
+}
+
 struct BenchConfig {
     std::vector<MethodSpec> methods;
     std::vector<ImageSize> sizes;
-    samples::SceneRenderOptions scene;
+    SceneSourceOptions scene;
     int frames = 50;
     int warmup = 5;
-    bool use_normals = false;
-    bool sync_timing = false;
+    Clock clock = Clock::Auto;
+    std::optional<std::string> json_path;
     std::optional<std::string> csv_path;
 };
 
 BenchConfig take_bench_config(ArgumentList& arguments) {
+    if (arguments.contains("--method")) throw UsageError("bench takes --methods SPEC,SPEC,... (not --method)");
+    if (arguments.contains("--size")) throw UsageError("bench takes --sizes WxH,WxH,... (not --size)");
     BenchConfig config;
-    for (const std::string& text : arguments.take_values("--method")) config.methods.push_back(parse_method_spec(text));
-    if (config.methods.empty()) config.methods.push_back(parse_method_spec("hbao"));
-    for (const std::string& text : arguments.take_values("--size")) config.sizes.push_back(parse_size(text));
-    if (config.sizes.empty()) config.sizes.push_back(ImageSize{1280, 720});
-    config.scene = take_scene_options(arguments);
+    const std::vector<std::string> sets = arguments.take_values("--set");
+    config.methods = parse_method_specs("--methods", arguments.take_value("--methods").value_or("hbao"), sets);
+    const std::optional<std::string> sizes = arguments.take_value("--sizes");
+    config.scene = take_scene_source_options(arguments, /*takes_size=*/false);
+    if (sizes && config.scene.depth_file) throw UsageError("--sizes does not apply to --depth (the size is the file's)");
+    for (const std::string& text : split_list("--sizes", sizes.value_or("1280x720"))) {
+        config.sizes.push_back(parse_size("--sizes", text));
+    }
+    if (config.scene.depth_file) config.sizes.resize(1);  // the file's size; this entry is ignored
     if (auto frames = arguments.take_value("--frames")) config.frames = parse_int("--frames", *frames, 1, 100000);
     if (auto warmup = arguments.take_value("--warmup")) config.warmup = parse_int("--warmup", *warmup, 0, 100000);
-    config.use_normals = arguments.take_flag("--normals");
-    config.sync_timing = arguments.take_flag("--sync-timing");
+    if (auto clock = arguments.take_value("--clock")) config.clock = parse_clock(*clock);
+    config.json_path = arguments.take_value("--json");
     config.csv_path = arguments.take_value("--csv");
     arguments.require_all_taken();
     return config;
 }
 
-// One CSV line per timed quantity; the header names the columns.
-class CsvWriter {
-public:
-    explicit CsvWriter(const std::string& path) : file_(path) {
-        if (!file_) throw std::runtime_error("cannot open '" + path + "' for writing");
-        file_ << "method,spec,width,height,depth_width,depth_height,pass,median_ms,min_ms,samples,timing,"
-                 "memory_bytes,renderer\n";
-    }
-    void row(const MethodSpec& method, const samples::SceneFrame& frame, const TimingRow& timing,
-             const std::string& timing_kind, uint64_t memory, const std::string& renderer) {
-        file_ << method.name() << ',' << quote(method.text) << ',' << frame.output_rect.width << ','
-              << frame.output_rect.height << ',' << frame.depth_width << ',' << frame.depth_height << ','
-              << quote(timing.label) << ',' << timing.median_ms << ',' << timing.min_ms << ',' << timing.samples << ','
-              << timing_kind << ',' << memory << ',' << quote(renderer) << '\n';
-    }
-
-private:
-    static std::string quote(const std::string& text) {
-        std::string quoted = "\"";
-        for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-        return quoted + "\"";
-    }
-    std::ofstream file_;
+struct BenchResult {
+    std::string scene;
+    int width = 0;
+    int height = 0;
+    const MethodSpec* method = nullptr;
+    TimingRow total;
+    std::vector<TimingRow> passes;  // "total" excluded
+    uint64_t memory_bytes = 0;
 };
 
-void print_summary(const TimingSummary& summary) {
-    std::printf("  %-28s %10s %10s\n", "pass", "median ms", "min ms");
-    if (summary.passes.empty()) std::printf("  (the SDK reported no pass timings)\n");
+BenchResult make_result(const SceneSource& source, const samples::SceneFrame& frame, const MethodSpec& method,
+                        const TimingSummary& summary, Clock clock) {
+    BenchResult result;
+    result.scene = source.name();
+    result.width = frame.output_rect.width;
+    result.height = frame.output_rect.height;
+    result.method = &method;
+    result.total = clock == Clock::Wall ? summary.wall : summary.sdk_total();
+    result.total.label = "total";
     for (const TimingRow& row : summary.passes) {
-        std::printf("  %-28s %10.3f %10.3f\n", row.label.c_str(), row.median_ms, row.min_ms);
+        if (row.label != "total") result.passes.push_back(row);
     }
-    std::printf("  %-28s %10.3f %10.3f\n", summary.wall.label.c_str(), summary.wall.median_ms, summary.wall.min_ms);
-    std::printf("  GPU memory: %.2f MiB (%llu bytes)\n", double(summary.memory_bytes) / (1024.0 * 1024.0),
-                static_cast<unsigned long long>(summary.memory_bytes));
+    result.memory_bytes = summary.memory_bytes;
+    return result;
+}
+
+void print_result(const BenchResult& result) {
+    TextTable table({"  pass", "median ms", "min ms"});
+    table.add_row({"  total", format_fixed(result.total.median_ms, 3), format_fixed(result.total.min_ms, 3)});
+    for (const TimingRow& row : result.passes) {
+        table.add_row({"  " + row.label, format_fixed(row.median_ms, 3), format_fixed(row.min_ms, 3)});
+    }
+    table.print(stdout);
+    std::printf("  GPU memory: %.2f MiB\n", double(result.memory_bytes) / (1024.0 * 1024.0));
+}
+
+void write_json(const std::string& path, const std::string& device, Clock clock, const BenchConfig& config,
+                const std::vector<BenchResult>& results) {
+    samples::JsonWriter json;
+    json.begin_object();
+    json.field("device", device).field("clock", clock_name(clock));
+    json.field("frames", config.frames).field("warmup", config.warmup);
+    json.key("results").begin_array();
+    for (const BenchResult& result : results) {
+        json.begin_object();
+        json.field("scene", result.scene).field("width", result.width).field("height", result.height);
+        json.field("method", result.method->text);
+        write_settings_json(json, result.method->settings);
+        json.key("total_ms").begin_object();
+        json.field("median", result.total.median_ms).field("min", result.total.min_ms).end_object();
+        json.key("passes").begin_object();
+        for (const TimingRow& row : result.passes) {
+            json.key(row.label).begin_object();
+            json.field("median", row.median_ms).field("min", row.min_ms).end_object();
+        }
+        json.end_object();
+        json.field("memory_bytes", result.memory_bytes);
+        json.end_object();
+    }
+    json.end_array();
+    json.end_object().write_file(path);
+}
+
+std::string csv_quote(const std::string& text) {
+    std::string quoted = "\"";
+    for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return quoted + "\"";
+}
+
+void write_csv(const std::string& path, const std::string& device, Clock clock, const std::vector<BenchResult>& results) {
+    std::ofstream file(path);
+    if (!file) throw std::runtime_error("cannot open '" + path + "' for writing");
+    file << "scene,method,width,height,clock,pass,median_ms,min_ms,samples,memory_bytes,device\n";
+    for (const BenchResult& result : results) {
+        std::vector<const TimingRow*> rows = {&result.total};
+        for (const TimingRow& row : result.passes) rows.push_back(&row);
+        for (const TimingRow* row : rows) {
+            file << csv_quote(result.scene) << ',' << csv_quote(result.method->text) << ',' << result.width << ','
+                 << result.height << ',' << clock_name(clock) << ',' << csv_quote(row->label) << ',' << row->median_ms
+                 << ',' << row->min_ms << ',' << row->samples << ',' << result.memory_bytes << ',' << csv_quote(device)
+                 << '\n';
+        }
+    }
+    if (!file) throw std::runtime_error("cannot write '" + path + "'");
 }
 
 }  // namespace
 
 int run_bench(ArgumentList& arguments) {
     const BenchConfig config = take_bench_config(arguments);
+    const SceneSource source(config.scene);
+
     samples::HeadlessGL gl;
     std::printf("GL: %s\n", gl.describe().c_str());
-    ObscuraSession session(timing_flags(gl, config.sync_timing));
-    const bool sync = session.flags() & OBSCURA_CONTEXT_FLAG_SYNC_TIMING;
-    const std::string timing_kind = sync ? "sync" : "gpu-queries";
-    std::printf("timing: %s\n", sync ? "glFinish + CPU clock per pass (OBSCURA_CONTEXT_FLAG_SYNC_TIMING)"
-                                     : "GL timer queries");
-    std::unique_ptr<CsvWriter> csv;
-    if (config.csv_path) csv = std::make_unique<CsvWriter>(*config.csv_path);
+    const Clock clock = config.clock != Clock::Auto ? config.clock : gl.is_software() ? Clock::Wall : Clock::GpuTimer;
+    if (clock == Clock::GpuTimer && gl.is_software()) {
+        std::fprintf(stderr, "obscura bench: warning: the timer queries of %s read 0; --clock wall measures it\n",
+                     gl.renderer().c_str());
+    }
+    ObscuraSession session(clock == Clock::Wall ? uint32_t(OBSCURA_CONTEXT_FLAG_SYNC_TIMING) : 0u);
+    std::printf("clock: %s (%s); median and min of %d frames after %d warm-up\n", clock_name(clock),
+                clock == Clock::Wall ? "CPU clock around obscura_render + glFinish; passes by glFinish + CPU clock"
+                                     : "GL timer queries of the SDK (obscura_get_timings)",
+                config.frames, config.warmup);
 
+    std::vector<BenchResult> results;
     for (const ImageSize& size : config.sizes) {
-        samples::SceneRenderOptions scene_options = config.scene;
-        scene_options.width = size.width;
-        scene_options.height = size.height;
-        const samples::RenderedScene scene = samples::render_demo_scene(scene_options);
-        const AoTarget target(size.width, size.height, GL_R8);
+        const samples::RenderedScene scene = source.render(source.camera(), size);
+        std::printf("\nscene: %s\n", source.describe(scene.frame()).c_str());
+        const AoTarget target(scene->output_rect.width, scene->output_rect.height, GL_R8);
         for (const MethodSpec& method : config.methods) {
-            std::printf("\n%s @ %dx%d (%s), %d frames after %d warm-up\n", method.text.c_str(), size.width,
-                        size.height, describe_scene(scene_options, scene.frame()).c_str(), config.frames, config.warmup);
-            if (!obscura_method_available(method.method())) {
-                std::printf("  not available yet\n");
-                continue;
-            }
             AoRenderRequest request;
             request.scene = &scene.frame();
             request.settings = &method.settings;
             request.target = &target;
-            request.use_normals = config.use_normals;
+            request.use_normals = source.use_normals();
+            warm_up(session, request);
             const TimingSummary summary = time_frames(session, request, config.warmup, config.frames);
-            print_summary(summary);
-            if (csv) {
-                for (const TimingRow& row : summary.passes) {
-                    csv->row(method, scene.frame(), row, timing_kind, summary.memory_bytes, gl.renderer());
-                }
-                csv->row(method, scene.frame(), summary.wall, "wall", summary.memory_bytes, gl.renderer());
-            }
+            results.push_back(make_result(source, scene.frame(), method, summary, clock));
+            std::printf("%s @ %dx%d, clock %s\n", method.text.c_str(), results.back().width, results.back().height,
+                        clock_name(clock));
+            print_result(results.back());
         }
     }
-    if (config.csv_path) std::printf("\nwrote %s\n", config.csv_path->c_str());
+    if (config.json_path) {
+        write_json(*config.json_path, gl.renderer(), clock, config, results);
+        std::printf("\nwrote %s\n", config.json_path->c_str());
+    }
+    if (config.csv_path) {
+        write_csv(*config.csv_path, gl.renderer(), clock, results);
+        std::printf("wrote %s\n", config.csv_path->c_str());
+    }
     return 0;
 }
 

@@ -8,6 +8,15 @@
 #include "cli_errors.h"
 
 namespace obscura::cli {
+namespace {
+
+std::string format_bound(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", value);
+    return text;
+}
+
+}  // namespace
 
 bool ArgumentList::take_flag(const std::string& name) {
     bool found = false;
@@ -60,16 +69,35 @@ std::vector<std::string> ArgumentList::take_positionals() {
     return positionals;
 }
 
+bool ArgumentList::contains(const std::string& name) const {
+    for (const std::string& argument : arguments_) {
+        if (argument == name || argument.compare(0, name.size() + 1, name + "=") == 0) return true;
+    }
+    return false;
+}
+
 void ArgumentList::require_all_taken() const {
     if (!arguments_.empty()) throw UsageError("unknown argument '" + arguments_.front() + "'");
 }
 
-ImageSize parse_size(const std::string& text) {
+std::vector<std::string> split_list(const std::string& option, const std::string& text) {
+    std::vector<std::string> items;
+    size_t start = 0;
+    while (true) {
+        const size_t end = text.find(',', start);
+        items.push_back(text.substr(start, end == std::string::npos ? std::string::npos : end - start));
+        if (items.back().empty()) throw UsageError(option + " '" + text + "' has an empty entry");
+        if (end == std::string::npos) return items;
+        start = end + 1;
+    }
+}
+
+ImageSize parse_size(const std::string& option, const std::string& text) {
     const size_t separator = text.find('x');
-    if (separator == std::string::npos) throw UsageError("size '" + text + "' is not WIDTHxHEIGHT");
+    if (separator == std::string::npos) throw UsageError(option + ": '" + text + "' is not WIDTHxHEIGHT");
     ImageSize size;
-    size.width = parse_int("--size", text.substr(0, separator), 1, 16384);
-    size.height = parse_int("--size", text.substr(separator + 1), 1, 16384);
+    size.width = parse_int(option + " (width)", text.substr(0, separator), 1, 16384);
+    size.height = parse_int(option + " (height)", text.substr(separator + 1), 1, 16384);
     return size;
 }
 
@@ -89,6 +117,15 @@ double parse_double(const std::string& option, const std::string& text) {
     const double value = std::strtod(text.c_str(), &end);
     if (text.empty() || *end != '\0' || !std::isfinite(value)) {
         throw UsageError(option + ": '" + text + "' is not a number");
+    }
+    return value;
+}
+
+double parse_double_in(const std::string& option, const std::string& text, double min_value, double max_value) {
+    const double value = parse_double(option, text);
+    if (value < min_value || value > max_value) {
+        throw UsageError(option + ": " + text + " is outside [" + format_bound(min_value) + ", " +
+                         format_bound(max_value) + "]");
     }
     return value;
 }

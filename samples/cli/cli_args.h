@@ -1,10 +1,12 @@
 // ArgumentList: the arguments of one subcommand, consumed option by option so that whatever is left
-// at the end is reported as unknown.
+// at the end is reported as unknown. Plus the parsers of option values; every one of them throws
+// UsageError (exit code 2) with a message that names the option.
 #ifndef OBSCURA_CLI_ARGS_H
 #define OBSCURA_CLI_ARGS_H
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace obscura::cli {
@@ -26,6 +28,10 @@ public:
     std::optional<std::string> take_value(const std::string& name);
     // Removes and returns the arguments that do not start with "--".
     std::vector<std::string> take_positionals();
+    // Whether "--name" or "--name=..." is still there (for hints about options of other commands).
+    bool contains(const std::string& name) const;
+    // Removes and returns every argument left, in order (to hand them to another command).
+    std::vector<std::string> take_rest() { return std::exchange(arguments_, {}); }
     // UsageError naming the first argument nobody took.
     void require_all_taken() const;
 
@@ -33,10 +39,15 @@ private:
     std::vector<std::string> arguments_;
 };
 
+// "a,b,c" -> {"a", "b", "c"}; an empty entry (",," or a leading/trailing ',') or an empty text is a
+// UsageError naming `option`.
+std::vector<std::string> split_list(const std::string& option, const std::string& text);
 // "640x360" -> {640, 360}; UsageError otherwise.
-ImageSize parse_size(const std::string& text);
+ImageSize parse_size(const std::string& option, const std::string& text);
 int parse_int(const std::string& option, const std::string& text, int min_value, int max_value);
 double parse_double(const std::string& option, const std::string& text);
+// A finite number in [min_value, max_value].
+double parse_double_in(const std::string& option, const std::string& text, double min_value, double max_value);
 
 }  // namespace obscura::cli
 

@@ -7,10 +7,14 @@
 
 namespace obscura::cli {
 
+int run_list_scenes(ArgumentList& arguments);
+int run_list_methods(ArgumentList& arguments);
 int run_list_settings(ArgumentList& arguments);
 int run_render(ArgumentList& arguments);
+int run_compare(ArgumentList& arguments);
 int run_bench(ArgumentList& arguments);
-int run_demo(ArgumentList& arguments);
+int run_demo(ArgumentList& arguments);  // compare with the demo's scene, size and methods
+int run_diff(ArgumentList& arguments);  // no GL; reports its own bad input (exit 2) on one line
 
 }  // namespace obscura::cli
 

@@ -1,4 +1,5 @@
-// obscura: command-line front end of the Obscura SDK on a built-in demo scene, without a window.
+// obscura: command-line front end of the Obscura SDK on the samples' scenes or a captured depth
+// buffer, without a window (HeadlessGL).
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -12,18 +13,54 @@
 namespace {
 
 const char* const kUsage = R"(usage:
-  obscura --list-settings [METHOD]
-  obscura render --method METHOD[:key=value,...] --out AO.png [--pfm AO.pfm] [--size 640x360]
-                 [--guard-band 0.1] [--projection perspective|reversed|infinite|reversed-infinite|ortho]
-                 [--depth-format d32f|d24|d24s8] [--msaa N] [--normals] [--no-clip-control]
-                 [--debug-view none|depth|normals|ao-before-blur] [--sync-timing]
-  obscura bench [--method METHOD[:...]]... [--size WxH]... [--frames 50] [--warmup 5] [--csv FILE]
-                [--sync-timing] [--normals] [scene options of render]
-  obscura demo [--out-dir demo-output] [--frames 10] [--sync-timing]
+  obscura render [--method SPEC] [--set KEY=VALUE]... --out AO.png [--pfm AO.pfm] [--json OUT.json]
+                 [--debug-view none|depth|normals|ao-before-blur] [--sync-timing] [SCENE]
+  obscura compare [--methods SPEC,SPEC,...] [--set KEY=VALUE]... [--reference-rays 256]
+                  [--out-dir compare-output] [--json REPORT.json] [--orbit DEG --frames N]
+                  [--sync-timing] [SCENE]
+  obscura bench [--methods SPEC,SPEC,...] [--set KEY=VALUE]... [--sizes 1280x720,1920x1080,...]
+                [--frames 50] [--warmup 5] [--clock auto|gpu-timer|wall] [--json BENCH.json]
+                [--csv BENCH.csv] [SCENE without --size]
+  obscura demo [--out-dir demo-output] [other compare options]
+  obscura diff IMAGE.png REFERENCE.png [--tolerance mean=0.005,pixels=0.005,threshold=4]
+               [--out DIFF.png] [--json REPORT.json]
+  obscura --list-scenes | --list-methods | --list-settings [METHOD] | --help
 
-Settings keys come from the SDK's metadata (see --list-settings); toggles take on/off.
---normals passes the scene's view-space normals (otherwise the SDK reconstructs them from depth).
+SCENE (render, compare, bench):
+  --scene NAME|FILE.obj   atrium (default), terrain, objects, clutter, analytic, room, bunny, or an OBJ file
+  --viewpoint NAME        one of the scene's cameras (--list-scenes; default: default)
+  --eye X,Y,Z --target X,Y,Z [--fovy DEG]   a camera of your own instead
+  --size WxH              the visible image (default 640x360); the depth texture adds the guard band
+  --guard-band F          fraction of the size added on each side (default 0.1)
+  --projection perspective|reversed|infinite|reversed-infinite|ortho    --depth-format d32f|d24|d24s8
+  --msaa N    --no-clip-control    --normals (pass the scene's normals; else the SDK reconstructs them)
+ or a captured depth buffer, a 1-channel PFM (rows bottom-up) whose size is the depth texture's:
+  --depth FILE.pfm [--depth-kind linear|hardware] [--near 0.1] [--far 1000|inf] [--reversed-z]
+                   [--fovy 60 (of the visible image)] [--guard-band 0 (fraction per side in the file)]
+
+METHOD SPECS: NAME[:KEY=VALUE[:KEY=VALUE...]], e.g. hbao, hbao:directions=16:steps=48, reference:rays=512;
+lists separate specs with ',' (--methods hbao,hbao:blur=off). Keys, defaults and ranges come from the
+SDK's metadata (--list-settings); toggles take on/off. --set KEY=VALUE applies to every method that has
+KEY (a key in a spec wins). A method the library does not implement is an error (exit 1).
+Defaults: render --method hbao; compare every available method but the reference; bench hbao.
+
+render writes the AO (visibility) of the visible image. --json: scene, size, method, effective settings,
+  gpu_ms (the SDK's total and per pass) and wall_ms, medians of warm frames.
+compare renders each method and the ray-traced reference with the same falloff as that method
+  (obscura_reference_settings_for; --reference-rays rays per pixel, traced 32 at a time with progress on
+  stderr) and prints per method: gpu and wall ms, mean_abs, within_5pct (fraction of pixels within 0.05),
+  PSNR. --out-dir gets <n>_<method>.png, <n>_<method>_error.png (white 0, black >= 0.2),
+  reference_<k>.png and contact_sheet.png. --orbit DEG --frames N: N frames along an orbit of DEG degrees
+  in total (images of the first); errors are averaged over them and flicker measures the temporal error.
+bench times warm frames, median and min, in total and per pass. Clock: GL timer queries on a GPU
+  ("gpu-timer"), wall time around render + glFinish on llvmpipe/softpipe, whose timer queries read 0
+  ("wall"; passes then by glFinish + CPU clock).
+demo runs compare on the atrium at 640x360 with every available method into demo-output/.
 --sync-timing times passes with glFinish (automatic on llvmpipe/softpipe, whose timer queries read 0).
+diff compares luminance in [0, 1] without GL: it passes when the mean absolute error is <= mean and
+at most a fraction `pixels` of the pixels is off by more than threshold/255; exit 0 pass, 1 fail, 2 bad
+input. --out writes an error heat map (white 0, black >= 0.2).
+Exit status: 0 success, 1 an API, GL or file failure, 2 bad arguments.
 Environment: OBSCURA_GL_BACKEND=auto|egl-device|egl-surfaceless|osmesa picks the headless GL backend.
 )";
 
@@ -39,13 +76,17 @@ int main(int argc, char** argv) {
     const std::string command = arguments[0];
     ArgumentList rest(std::vector<std::string>(arguments.begin() + 1, arguments.end()));
     try {
+        if (command == "--list-scenes" || command == "list-scenes") return run_list_scenes(rest);
+        if (command == "--list-methods" || command == "list-methods") return run_list_methods(rest);
         if (command == "--list-settings" || command == "list-settings") return run_list_settings(rest);
         if (command == "render") return run_render(rest);
+        if (command == "compare") return run_compare(rest);
         if (command == "bench") return run_bench(rest);
         if (command == "demo") return run_demo(rest);
+        if (command == "diff") return run_diff(rest);
         throw UsageError("unknown command '" + command + "'");
     } catch (const UsageError& error) {
-        std::fprintf(stderr, "obscura: %s\n(run 'obscura --help' for usage)\n", error.what());
+        std::fprintf(stderr, "obscura: %s (see 'obscura --help')\n", error.what());
         return 2;
     } catch (const ApiError& error) {
         std::fprintf(stderr, "obscura: error: %s\n", error.what());

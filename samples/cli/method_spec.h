@@ -1,5 +1,7 @@
-// Method specs on the command line: "hbao" or "hbao:radius=1.5,blur=off,steps=8". Every key is
-// applied through obscura_set_setting, so whatever the SDK's settings metadata declares works here.
+// Method specs on the command line: NAME[:KEY=VALUE[:KEY=VALUE...]], e.g. "hbao:directions=16:steps=48"
+// or "reference:rays=512"; lists of them separated by ',' ("--methods hbao,hbao:blur=off"). Every key
+// goes through obscura_set_setting, so whatever the SDK's settings metadata declares works here, with
+// the ranges it declares. `--set KEY=VALUE` applies a key to every method of the command that has it.
 #ifndef OBSCURA_CLI_METHOD_SPEC_H
 #define OBSCURA_CLI_METHOD_SPEC_H
 
@@ -11,25 +13,39 @@
 
 namespace obscura::cli {
 
-class ObscuraSession;
-
 struct MethodSpec {
-    std::string text;            // as given, for tables and CSV
-    obscura_settings settings{}; // the method's defaults with the spec's keys applied
+    std::string text;             // as given, for tables, JSON and CSV
+    obscura_settings settings{};  // zero (every default), then the --set keys it has, then the spec's keys
     obscura_method method() const { return settings.method; }
     const char* name() const { return obscura_method_name(settings.method); }
 };
 
 // Every method of the API, OBSCURA_METHOD_DEFAULT excluded.
 std::vector<obscura_method> all_methods();
+// The methods `compare` and `demo` measure by default: every available one except the REFERENCE.
+std::vector<obscura_method> comparable_methods();
 // "hbao" -> OBSCURA_METHOD_HBAO; UsageError listing the method names otherwise.
 obscura_method find_method(const std::string& name);
 // The settings metadata of `method` (an empty list when it has none).
 std::vector<obscura_setting_info> setting_infos(obscura_method method);
-// UsageError on unknown methods or keys (listing the valid ones) and on values out of range.
-MethodSpec parse_method_spec(const std::string& text);
-// Prints the values obscura_resolve_settings says will be used, one per line.
-void print_effective_settings(std::FILE* out, const ObscuraSession& session, const obscura_settings& settings);
+
+// One spec. UsageError for an unknown method or key, a value that is not a number (toggles: on/off) or
+// out of its range; ApiError (exit code 1) for a method this library does not implement.
+// `set_options` are the values of --set (KEY=VALUE), applied where the method has the key.
+MethodSpec parse_method_spec(const std::string& text, const std::vector<std::string>& set_options = {});
+// A ','-separated list of specs (an empty entry is a UsageError), and --set applied to each. A --set key
+// that none of the methods has is a UsageError.
+std::vector<MethodSpec> parse_method_specs(const std::string& option, const std::string& list,
+                                           const std::vector<std::string>& set_options);
+
+// The settings that obscura_resolve_settings says will be used, by metadata name, in table order.
+struct EffectiveSetting {
+    obscura_setting_info info;
+    double value = 0.0;  // toggles: 0 off, 1 on
+};
+std::vector<EffectiveSetting> effective_settings(const obscura_settings& settings);
+// Prints effective_settings(), one per line.
+void print_effective_settings(std::FILE* out, const obscura_settings& settings);
 // "1.5 m", "on", "12".
 std::string format_setting_value(const obscura_setting_info& info, double value);
 

@@ -46,4 +46,8 @@ void log_to_stderr(obscura_log_level level, obscura_status status, const char* m
     }
 }
 
+uint32_t timing_flags(const samples::HeadlessGL& gl, bool sync_timing_requested) {
+    return sync_timing_requested || gl.is_software() ? uint32_t(OBSCURA_CONTEXT_FLAG_SYNC_TIMING) : 0u;
+}
+
 }  // namespace obscura::cli

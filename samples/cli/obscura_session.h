@@ -8,6 +8,10 @@
 
 #include "obscura/obscura.h"
 
+namespace obscura::samples {
+class HeadlessGL;
+}
+
 namespace obscura::cli {
 
 class ObscuraSession {
@@ -33,6 +37,10 @@ std::string api_error_message(obscura_status status, const std::string& call, co
 
 // The obscura_log_fn the CLI installs: every SDK message goes to stderr.
 void log_to_stderr(obscura_log_level level, obscura_status status, const char* message, void* user_data);
+
+// OBSCURA_CONTEXT_FLAG_SYNC_TIMING when asked for, or when the renderer is a software one whose
+// timer queries read 0 (llvmpipe, softpipe): per-pass times then come from glFinish + the CPU clock.
+uint32_t timing_flags(const samples::HeadlessGL& gl, bool sync_timing_requested);
 
 }  // namespace obscura::cli
 

@@ -1,14 +1,16 @@
-// obscura render: renders the demo scene, computes AO for its visible rectangle and writes it as PNG
-// (and PFM for exact values).
-#include <chrono>
+// obscura render: one method on one scene (or depth file); writes the AO as PNG (and PFM for exact
+// values), and optionally a JSON report with the effective settings and the times.
 #include <cstdio>
 
 #include "ao_render.h"
 #include "cli_errors.h"
 #include "commands.h"
+#include "headless_gl.h"
+#include "json_writer.h"
 #include "method_spec.h"
 #include "obscura_session.h"
-#include "scene_options.h"
+#include "report.h"
+#include "scene_source.h"
 
 namespace obscura::cli {
 namespace {
@@ -21,64 +23,94 @@ obscura_debug_view parse_debug_view(const std::string& name) {
     throw UsageError("unknown --debug-view '" + name + "' (valid: none, depth, normals, ao-before-blur)");
 }
 
-// Frames timed after the first one, whose time includes allocating the per-size resources.
-constexpr int kTimedFrames = 5;
+struct RenderConfig {
+    MethodSpec method;
+    SceneSourceOptions scene;
+    obscura_debug_view debug_view = OBSCURA_DEBUG_NONE;
+    bool sync_timing = false;
+    std::optional<std::string> png_path, pfm_path, json_path;
+};
+
+RenderConfig take_render_config(ArgumentList& arguments) {
+    if (arguments.contains("--methods")) throw UsageError("render takes one --method SPEC (compare takes --methods)");
+    RenderConfig config;
+    const std::string method_text = arguments.take_value("--method").value_or("hbao");
+    const std::vector<std::string> sets = arguments.take_values("--set");
+    const std::vector<MethodSpec> methods = parse_method_specs("--method", method_text, sets);
+    if (methods.size() != 1) throw UsageError("render takes one method (compare takes a list)");
+    config.method = methods.front();
+    config.scene = take_scene_source_options(arguments, /*takes_size=*/true);
+    config.debug_view = parse_debug_view(arguments.take_value("--debug-view").value_or("none"));
+    config.sync_timing = arguments.take_flag("--sync-timing");
+    config.png_path = arguments.take_value("--out");
+    config.pfm_path = arguments.take_value("--pfm");
+    config.json_path = arguments.take_value("--json");
+    arguments.require_all_taken();
+    if (!config.png_path && !config.pfm_path && !config.json_path) {
+        throw UsageError("render needs --out FILE.png (and/or --pfm FILE.pfm, --json FILE.json)");
+    }
+    return config;
+}
+
+void write_json(const std::string& path, const SceneSource& source, const samples::SceneFrame& frame,
+                const MethodSpec& method, const TimingSummary& timing) {
+    samples::JsonWriter json;
+    json.begin_object();
+    json.field("scene", source.name());
+    json.field("width", frame.output_rect.width).field("height", frame.output_rect.height);
+    json.field("method", method.text);
+    write_settings_json(json, method.settings);
+    write_gpu_ms_json(json, timing);
+    json.field("wall_ms", timing.wall.median_ms);
+    json.end_object().write_file(path);
+}
 
 }  // namespace
 
 int run_render(ArgumentList& arguments) {
-    const MethodSpec method = parse_method_spec(arguments.take_value("--method").value_or("hbao"));
-    const ImageSize size = parse_size(arguments.take_value("--size").value_or("640x360"));
-    samples::SceneRenderOptions scene_options = take_scene_options(arguments);
-    scene_options.width = size.width;
-    scene_options.height = size.height;
-    const bool use_normals = arguments.take_flag("--normals");
-    const bool sync_timing = arguments.take_flag("--sync-timing");
-    const obscura_debug_view debug_view = parse_debug_view(arguments.take_value("--debug-view").value_or("none"));
-    const std::optional<std::string> png_path = arguments.take_value("--out");
-    const std::optional<std::string> pfm_path = arguments.take_value("--pfm");
-    arguments.require_all_taken();
-    if (!png_path && !pfm_path) throw UsageError("render needs --out FILE.png (and/or --pfm FILE.pfm)");
+    const RenderConfig config = take_render_config(arguments);
+    const SceneSource source(config.scene);
 
     samples::HeadlessGL gl;
     std::printf("GL: %s\n", gl.describe().c_str());
-    ObscuraSession session(timing_flags(gl, sync_timing));
-    samples::RenderedScene scene = samples::render_demo_scene(scene_options);
-    std::printf("scene: %dx%d visible, %s\n", size.width, size.height, describe_scene(scene_options, scene.frame()).c_str());
-    std::printf("method: %s\n", method.text.c_str());
-    print_effective_settings(stdout, session, method.settings);
+    ObscuraSession session(timing_flags(gl, config.sync_timing));
+    const samples::RenderedScene scene = source.render();
+    std::printf("scene: %s\n", source.describe(scene.frame()).c_str());
+    std::printf("method: %s\n", config.method.text.c_str());
+    print_effective_settings(stdout, config.method.settings);
 
     // Normals need colour channels; every other view is one value per pixel, kept exact in R32F.
-    const AoTarget target(size.width, size.height, debug_view == OBSCURA_DEBUG_NORMALS ? GL_RGBA16F : GL_R32F);
+    const obscura_rect& rect = scene->output_rect;
+    const AoTarget target(rect.width, rect.height, config.debug_view == OBSCURA_DEBUG_NORMALS ? GL_RGBA16F : GL_R32F);
     AoRenderRequest request;
     request.scene = &scene.frame();
-    request.settings = &method.settings;
+    request.settings = &config.method.settings;
     request.target = &target;
-    request.use_normals = use_normals;
-    request.debug_view = debug_view;
+    request.use_normals = source.use_normals();
+    request.debug_view = config.debug_view;
 
-    const auto start = std::chrono::steady_clock::now();
-    render_ao(session, request);
-    glFinish();
-    const double first_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    // The image is the last timed frame: every frame renders the same thing.
+    warm_up(session, request);
+    const FramePlan plan = quick_frame_plan(config.method.method());
+    const TimingSummary timing = time_frames(session, request, plan.warmup, plan.frames);
+    const samples::FloatImage image = target.read();
+    if (config.png_path) {
+        samples::write_png(*config.png_path, image);
+        std::printf("wrote %s (%dx%d)\n", config.png_path->c_str(), image.width, image.height);
+    }
+    if (config.pfm_path) {
+        samples::write_pfm(*config.pfm_path, image);
+        std::printf("wrote %s\n", config.pfm_path->c_str());
+    }
 
-    samples::FloatImage image = target.read();
-    if (png_path) {
-        samples::write_png(*png_path, image);
-        std::printf("wrote %s (%dx%d)\n", png_path->c_str(), image.width, image.height);
+    const bool sync = session.flags() & OBSCURA_CONTEXT_FLAG_SYNC_TIMING;
+    std::printf("time: median of %d warm frames: %.3f ms wall (render + glFinish), SDK total %.3f ms (%s)\n",
+                plan.frames, timing.wall.median_ms, timing.sdk_total().median_ms,
+                sync ? "glFinish + CPU clock per pass" : "GL timer queries");
+    if (config.json_path) {
+        write_json(*config.json_path, source, scene.frame(), config.method, timing);
+        std::printf("wrote %s\n", config.json_path->c_str());
     }
-    if (pfm_path) {
-        samples::write_pfm(*pfm_path, image);
-        std::printf("wrote %s\n", pfm_path->c_str());
-    }
-
-    const TimingSummary timing = time_frames(session, request, 0, kTimedFrames);
-    std::printf("time: first frame %.2f ms (allocation included); next %d frames median %.2f ms wall (render + glFinish)",
-                first_ms, kTimedFrames, timing.wall.median_ms);
-    for (const TimingRow& row : timing.passes) {
-        if (row.label == "total") std::printf(", SDK total %.2f ms", row.median_ms);
-    }
-    std::printf("%s\n", session.flags() & OBSCURA_CONTEXT_FLAG_SYNC_TIMING ? " [sync timing]" : "");
     return 0;
 }
 

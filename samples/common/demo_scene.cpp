@@ -1,5 +1,5 @@
-// Rasteriser of the demo scene: one draw of the whole mesh into a depth texture and a view-space
-// normal texture. This is host code (what an engine's G-buffer pass does), not part of the SDK.
+// Scene rasteriser: one draw of the whole mesh into a depth texture and a view-space normal
+// texture. This is host code (what an engine's G-buffer pass does), not part of the SDK.
 #include "demo_scene.h"
 
 #include <algorithm>
@@ -153,7 +153,7 @@ GLuint compile_shader(GLenum stage, const char* source) {
         char log[2048] = {};
         glGetShaderInfoLog(shader, sizeof log, nullptr, log);
         glDeleteShader(shader);
-        throw std::runtime_error(std::string("demo scene shader failed to compile: ") + log);
+        throw std::runtime_error(std::string("scene shader failed to compile: ") + log);
     }
     return shader;
 }
@@ -179,7 +179,7 @@ HostProgram link_scene_program() {
     if (!linked) {
         char log[2048] = {};
         glGetProgramInfoLog(program.get(), sizeof log, nullptr, log);
-        throw std::runtime_error(std::string("demo scene program failed to link: ") + log);
+        throw std::runtime_error(std::string("scene program failed to link: ") + log);
     }
     return program;
 }
@@ -288,7 +288,7 @@ obscura_input SceneFrame::make_input(bool use_normals) const {
     obscura_input input{};
     input.struct_size = sizeof input;
     input.depth_texture = depth_texture;
-    input.depth_kind = OBSCURA_DEPTH_HARDWARE;
+    input.depth_kind = depth_kind;
     input.depth_width = depth_width;
     input.depth_height = depth_height;
     input.output_rect = output_rect;
@@ -323,7 +323,10 @@ void RenderedScene::destroy() {
     frame_.normal_texture = 0;
 }
 
-RenderedScene render_demo_scene(const SceneRenderOptions& options) {
+RenderedScene render_scene(const SceneMesh& mesh, const SceneRenderOptions& options) {
+    if (mesh.vertex_count() < 3 || mesh.vertices.size() % 6 != 0) {
+        throw std::invalid_argument("render_scene: the mesh has no triangles");
+    }
     const GuardBandLayout layout = guard_band_layout(options.width, options.height, options.guard_band);
     check_sample_count(options);
     const bool reversed = options.projection == ProjectionKind::ReversedZ ||
@@ -364,7 +367,7 @@ RenderedScene render_demo_scene(const SceneRenderOptions& options) {
     const GLenum draw_buffer = options.normals ? GL_COLOR_ATTACHMENT0 : GL_NONE;
     glDrawBuffers(1, &draw_buffer);
     glReadBuffer(draw_buffer);
-    require_complete(GL_FRAMEBUFFER, "demo scene");
+    require_complete(GL_FRAMEBUFFER, "scene");
 
     if (clip_control) clip_control(GL_LOWER_LEFT, zero_to_one ? GL_ZERO_TO_ONE : GL_NEGATIVE_ONE_TO_ONE);
     glViewport(0, 0, layout.depth_width, layout.depth_height);
@@ -378,7 +381,7 @@ RenderedScene render_demo_scene(const SceneRenderOptions& options) {
     glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
     glClearStencil(0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | (has_stencil ? GL_STENCIL_BUFFER_BIT : 0));
-    draw_mesh(build_demo_scene_mesh(options.ceiling), view, widened);
+    draw_mesh(mesh, view, widened);
 
     if (multisampled_normals.get() != 0) {
         HostFramebuffer resolve = HostFramebuffer::create();
@@ -389,7 +392,7 @@ RenderedScene render_demo_scene(const SceneRenderOptions& options) {
                           layout.depth_height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    throw_gl_error_if_any("rasterising the demo scene");
+    throw_gl_error_if_any("rasterising the scene");
 
     SceneFrame frame;
     frame.depth_target = options.samples > 1 ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
@@ -410,6 +413,10 @@ RenderedScene render_demo_scene(const SceneRenderOptions& options) {
     frame.depth_texture = depth.release();
     frame.normal_texture = normals.release();
     return RenderedScene(frame);
+}
+
+RenderedScene render_demo_scene(const SceneRenderOptions& options) {
+    return render_scene(build_demo_scene_mesh(options.ceiling), options);
 }
 
 }  // namespace obscura::samples

@@ -1,9 +1,12 @@
-// The built-in procedural demo scene and its rasteriser.
+// The scene rasteriser and the built-in demo room.
 //
-// A room open towards the camera (floor, back wall, two side walls, optional ceiling) with boxes on
-// the floor (one against the back wall, one against the left wall) and a sphere resting on the floor.
-// render_demo_scene() rasterises it with host GL into a depth texture with a guard band and a
-// view-space normal texture, exactly what a host engine would hand to obscura_render().
+// render_scene() rasterises any triangle mesh with host GL into a depth texture with a guard band and
+// a view-space normal texture, exactly what a host engine would hand to obscura_render(). More scenes
+// (procedural ones, OBJ files) are in scene_library.h; captured depth buffers in depth_file.h.
+//
+// The demo room: open towards the camera (floor, back wall, two side walls, optional ceiling) with boxes
+// on the floor (one against the back wall, one against the left wall) and a sphere resting on the floor.
+// render_demo_scene() draws it.
 #ifndef OBSCURA_SAMPLES_DEMO_SCENE_H
 #define OBSCURA_SAMPLES_DEMO_SCENE_H
 
@@ -22,6 +25,7 @@ namespace obscura::samples {
 struct SceneMesh {
     std::vector<float> vertices;
     int vertex_count() const { return int(vertices.size() / 6); }
+    int triangle_count() const { return vertex_count() / 3; }
 };
 SceneMesh build_demo_scene_mesh(bool with_ceiling = false);
 
@@ -43,7 +47,7 @@ struct SceneRenderOptions {
     // Reversed variants: use glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE) when the context has it
     // (GL 4.5 or ARB_clip_control); otherwise reversed-Z is rendered with [-1, 1] clip depth.
     bool use_clip_control = true;
-    bool ceiling = false;
+    bool ceiling = false;    // render_demo_scene only
     Camera camera;
     // Looks up glClipControl; nullptr: HeadlessGL::get_proc_address.
     obscura_get_proc_address_fn get_proc_address = nullptr;
@@ -51,6 +55,9 @@ struct SceneRenderOptions {
 
 // Plain description of a rasterised frame.
 struct SceneFrame {
+    // HARDWARE: a depth texture written through `projection`; LINEAR_VIEW: a GL_R32F texture of
+    // positive view depth in metres (depth files, depth_file.h).
+    obscura_depth_kind depth_kind = OBSCURA_DEPTH_HARDWARE;
     GLuint depth_texture = 0;
     GLuint normal_texture = 0;  // GL_RGBA16F, view-space normal in rgb, alpha 1 on geometry, 0 on sky
     GLenum depth_target = GL_TEXTURE_2D;  // GL_TEXTURE_2D_MULTISAMPLE when samples > 1
@@ -66,10 +73,10 @@ struct SceneFrame {
     bool reversed_z = false;
     bool infinite_far = false;
     bool orthographic = false;
-    glm::mat4 view{1.0f};        // world -> view
+    glm::mat4 view{1.0f};        // world -> view (identity for depth files)
 
-    // The obscura_input for this frame (hardware depth, column-major projection, 1 view unit per
-    // metre); normal_texture is passed only when `use_normals` and normals were rendered.
+    // The obscura_input for this frame (depth_kind, column-major projection, 1 view unit per metre);
+    // normal_texture is passed only when `use_normals` and normals were rendered.
     obscura_input make_input(bool use_normals = false) const;
 };
 
@@ -91,9 +98,13 @@ private:
     SceneFrame frame_;
 };
 
-// Rasterises the scene with the current context (GL 4.3 core). GL state it changes is restored
-// (bindings, viewport, depth/blend/cull/scissor/stencil state, clear values, clip control), and it
-// leaves no GL error. Throws std::runtime_error or std::invalid_argument on failure.
+// Rasterises `mesh` seen by options.camera with the current context (GL 4.3 core). The mesh is uploaded
+// for this call only (one vertex buffer, one draw). GL state it changes is restored (bindings,
+// viewport, depth/blend/cull/scissor/stencil state, clear values, clip control), and it leaves no GL
+// error. Throws std::invalid_argument (empty mesh, bad options) or std::runtime_error on failure.
+RenderedScene render_scene(const SceneMesh& mesh, const SceneRenderOptions& options);
+
+// render_scene(build_demo_scene_mesh(options.ceiling), options).
 RenderedScene render_demo_scene(const SceneRenderOptions& options = {});
 
 }  // namespace obscura::samples

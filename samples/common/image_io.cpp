@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -9,6 +10,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
 
 #include "host_gl_objects.h"
@@ -137,6 +139,45 @@ void write_png(const std::string& path, const FloatImage& image) {
     if (!stbi_write_png(path.c_str(), image.width, image.height, channels, bytes.data(), int(row))) {
         throw std::runtime_error("cannot write PNG '" + path + "'");
     }
+}
+
+FloatImage read_png(const std::string& path) {
+    std::FILE* file = std::fopen(path.c_str(), "rb");
+    if (!file) throw std::runtime_error("cannot open '" + path + "': " + std::strerror(errno));
+    // 1 or 2 channels in the file -> gray; 3 or 4 -> RGB.
+    int width = 0, height = 0, file_channels_count = 0;
+    const bool info = stbi_info_from_file(file, &width, &height, &file_channels_count) != 0;
+    const bool sixteen_bit = info && stbi_is_16_bit_from_file(file) != 0;
+    const int channels = file_channels_count <= 2 ? 1 : 3;
+    void* data = nullptr;
+    if (info && sixteen_bit) {
+        data = stbi_load_from_file_16(file, &width, &height, &file_channels_count, channels);
+    } else if (info) {
+        data = stbi_load_from_file(file, &width, &height, &file_channels_count, channels);
+    }
+    std::fclose(file);
+    if (!data) {
+        const char* reason = stbi_failure_reason();
+        throw std::runtime_error("cannot read PNG '" + path + "': " + (reason ? reason : "unknown error"));
+    }
+    FloatImage image;
+    image.width = width;
+    image.height = height;
+    image.channels = channels;
+    image.pixels.resize(size_t(width) * size_t(height) * size_t(channels));
+    const size_t row = size_t(width) * size_t(channels);
+    for (int y = 0; y < height; ++y) {
+        // PNG rows go top-down.
+        const size_t source_row = size_t(height - 1 - y) * row;
+        float* target = image.pixels.data() + size_t(y) * row;
+        for (size_t i = 0; i < row; ++i) {
+            // k / 255.0f: the same float write_png's rounding of that level came from.
+            target[i] = sixteen_bit ? float(static_cast<const stbi_us*>(data)[source_row + i]) / 65535.0f
+                                    : float(static_cast<const stbi_uc*>(data)[source_row + i]) / 255.0f;
+        }
+    }
+    stbi_image_free(data);
+    return image;
 }
 
 void write_pfm(const std::string& path, const FloatImage& image) {

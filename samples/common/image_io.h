@@ -36,6 +36,10 @@ FloatImage read_texture_region(GLuint texture, int x, int y, int width, int heig
 // 8-bit PNG: 1 channel -> gray, 3 -> RGB, 4 -> RGB (alpha dropped). Values are clamped to [0, 1];
 // NaN becomes 0. Throws std::runtime_error when the file cannot be written.
 void write_png(const std::string& path, const FloatImage& image);
+// Reads an 8- or 16-bit PNG into [0, 1] values, rows bottom-up: gray (and gray + alpha) -> 1 channel,
+// RGB and RGBA -> 3 channels (alpha dropped). Throws std::runtime_error naming the path when the file
+// cannot be opened or is not a PNG it can decode.
+FloatImage read_png(const std::string& path);
 
 // PFM, float32, little-endian (negative scale): 1 channel -> "Pf", 3 -> "PF", 4 -> "PF" (alpha dropped).
 void write_pfm(const std::string& path, const FloatImage& image);

@@ -1,6 +1,6 @@
 // Depth preparation, shared by every method: linear view depth for the whole depth texture (every
 // texel can occlude) and view-space normals, from the host's normals or reconstructed from depth
-// (SAO paper eq. 4, taking the smaller one-sided difference at depth edges).
+// (SAO paper eq. 4, with the one-sided difference of the side that continues the centre's surface).
 // Variants: DEPTH_LINEAR (host gives linear view depth), DEPTH_MULTISAMPLE (sample 0 is used).
 #include "common/shader_interface.h"
 #include "common/depth.glsl"
@@ -29,20 +29,34 @@ float linear_depth_at(ivec2 p) {
 #endif
 }
 
-// The one-sided difference along `axis` whose depth step is smaller (flat side of an edge); zero if
-// both neighbours are sky or outside the texture.
+bool inside(ivec2 p) { return all(lessThan(p, depth_size.xy)) && all(greaterThanEqual(p, ivec2(0))); }
+
+float depth_or_sky(ivec2 p) { return inside(p) ? linear_depth_at(p) : OBSCURA_SKY_DEPTH; }
+
+// How far the surface on one side, continued linearly from its two texels (in 1/w, affine on planes),
+// misses the centre's depth; a large value when that side cannot say (sky, outside).
+float continuation_error(float center, float near, float far) {
+    if (obscura_is_sky(near)) return 3.0e38;
+    if (obscura_is_sky(far)) return 1.0e38 + abs(near - center) * 1.0e-8;  // only one texel: rank by the step
+    float k_center = 1.0 / obscura_clip_w(center);
+    float k_near = 1.0 / obscura_clip_w(near), k_far = 1.0 / obscura_clip_w(far);
+    return abs(2.0 * k_near - k_far - k_center) / k_center;
+}
+
+// The one-sided difference along `axis` on the side whose surface continues through the centre: the
+// side that is planar with it (SAO paper eq. 4 takes the side with the smaller depth step, which picks
+// the wrong one next to a concave crease, where the other surface's first texel is closer in depth).
+// Zero if both neighbours are sky or outside the texture.
 vec3 one_sided_derivative(ivec2 p, vec3 center, float depth, ivec2 axis) {
-    ivec2 size = depth_size.xy;
     ivec2 pa = p + axis, pb = p - axis;
-    bool a_ok = all(lessThan(pa, size)) && all(greaterThanEqual(pa, ivec2(0)));
-    bool b_ok = all(lessThan(pb, size)) && all(greaterThanEqual(pb, ivec2(0)));
-    float da = a_ok ? linear_depth_at(pa) : OBSCURA_SKY_DEPTH;
-    float db = b_ok ? linear_depth_at(pb) : OBSCURA_SKY_DEPTH;
+    float da = depth_or_sky(pa), db = depth_or_sky(pb);
     bool a_valid = !obscura_is_sky(da), b_valid = !obscura_is_sky(db);
     if (!a_valid && !b_valid) return vec3(0.0);
-    if (a_valid && (!b_valid || abs(da - depth) <= abs(depth - db))) {
-        return obscura_view_position(pa, da) - center;
-    }
+    float error_a = continuation_error(depth, da, depth_or_sky(p + 2 * axis));
+    float error_b = continuation_error(depth, db, depth_or_sky(p - 2 * axis));
+    bool use_a = a_valid && (!b_valid || error_a < error_b ||
+                             (error_a == error_b && abs(da - depth) <= abs(depth - db)));
+    if (use_a) return obscura_view_position(pa, da) - center;
     return center - obscura_view_position(pb, db);
 }
 

@@ -1,0 +1,88 @@
+# Tests of the obscura CLI's commands (render, compare, bench, demo, the lists) and of its bad-argument
+# handling, each a `cmake -P cli_commands_check.cmake` run: exit status, files written, and the JSON
+# reports read back with string(JSON). Included from tests/CMakeLists.txt (after OBSCURA_GL_TEST_ENV is
+# set). The GL ones render tiny images (analytic scene at 160x90, a 16-ray reference): about 0.5 s each
+# on llvmpipe. tests/cli/CMakeLists.txt holds the `obscura diff` tests.
+if(NOT TARGET obscura_cli)
+  message(STATUS "obscura tests: the CLI is not built (OBSCURA_BUILD_SAMPLES=OFF); no CLI command tests")
+  return()
+endif()
+
+set(OBSCURA_CLI_COMMANDS_DIR "${CMAKE_CURRENT_LIST_DIR}")
+set(OBSCURA_CLI_COMMANDS_GPU OFF)
+if(DEFINED ENV{OBSCURA_GPU})
+  set(OBSCURA_CLI_COMMANDS_GPU ON)
+endif()
+
+# obscura_cli_command_test(NAME EXPECT_EXIT ARGS [GL] [CHECK name] [EXPECT_STDOUT regex] [EXPECT_FILES f|g])
+# ARGS: the command line after `obscura`, items separated by '|'. GL: the command creates a GL context
+# (llvmpipe environment, label gl).
+function(obscura_cli_command_test name expect_exit arguments)
+  cmake_parse_arguments(PARSE_ARGV 3 TEST "GL" "CHECK;EXPECT_STDOUT;EXPECT_FILES" "")
+  set(options -DPROGRAM=$<TARGET_FILE:obscura_cli> "-DARGS=${arguments}" -DEXPECT_EXIT=${expect_exit}
+              "-DWORK_DIR=${CMAKE_CURRENT_BINARY_DIR}/cli_commands/${name}" -DGPU=${OBSCURA_CLI_COMMANDS_GPU})
+  foreach(option CHECK EXPECT_STDOUT EXPECT_FILES)
+    if(DEFINED TEST_${option})
+      list(APPEND options "-D${option}=${TEST_${option}}")
+    endif()
+  endforeach()
+  add_test(NAME obscura_cli.${name}
+           COMMAND ${CMAKE_COMMAND} ${options} -P "${OBSCURA_CLI_COMMANDS_DIR}/cli_commands_check.cmake")
+  if(TEST_GL)
+    set_tests_properties(obscura_cli.${name} PROPERTIES TIMEOUT 120 LABELS "gl;cli")
+    if(OBSCURA_GL_TEST_ENV)
+      set_tests_properties(obscura_cli.${name} PROPERTIES ENVIRONMENT "${OBSCURA_GL_TEST_ENV}")
+    endif()
+  else()
+    set_tests_properties(obscura_cli.${name} PROPERTIES TIMEOUT 60 LABELS "unit;cli")
+    if(OBSCURA_SANITIZER_TEST_ENV)
+      set_tests_properties(obscura_cli.${name} PROPERTIES ENVIRONMENT "${OBSCURA_SANITIZER_TEST_ENV}")
+    endif()
+  endif()
+endfunction()
+
+set(scene "--scene|analytic|--size|160x90")
+
+# ---- Commands (GL) ---------------------------------------------------------------------------------
+obscura_cli_command_test(render_json 0
+  "render|${scene}|--method|hbao:directions=4:steps=6|--out|ao.png|--pfm|ao.pfm|--json|render.json"
+  GL CHECK render EXPECT_FILES "ao.png|ao.pfm" EXPECT_STDOUT "GL: [^\n]*\nscene: analytic")
+obscura_cli_command_test(render_depth_file 0
+  "render|--depth|${OBSCURA_CLI_COMMANDS_DIR}/data/plane_64x36_linear.pfm|--depth-kind|linear|--fovy|60|--method|hbao:directions=4:steps=6|--out|ao.png|--json|render.json"
+  GL CHECK depth EXPECT_FILES "ao.png")
+obscura_cli_command_test(compare_analytic 0
+  "compare|${scene}|--methods|hbao,hbao:blur=off|--reference-rays|16|--out-dir|out|--json|report.json"
+  GL CHECK compare
+  EXPECT_FILES "out/1_hbao.png|out/1_hbao_error.png|out/2_hbao.png|out/2_hbao_error.png|out/reference_1.png|out/contact_sheet.png"
+  EXPECT_STDOUT "mean_abs +within_5pct +psnr")
+obscura_cli_command_test(compare_orbit_flicker 0
+  "compare|${scene}|--methods|hbao|--reference-rays|16|--orbit|4|--frames|2|--json|report.json"
+  GL CHECK orbit EXPECT_FILES "compare-output/1_hbao.png|compare-output/contact_sheet.png" EXPECT_STDOUT "flicker")
+obscura_cli_command_test(bench_two_sizes 0
+  "bench|--scene|analytic|--sizes|160x90,96x54|--methods|hbao|--frames|2|--warmup|1|--json|bench.json|--csv|bench.csv"
+  GL CHECK bench EXPECT_FILES "bench.csv" EXPECT_STDOUT "clock: ")
+obscura_cli_command_test(demo 0 "demo|--reference-rays|1|--out-dir|demo"
+  GL EXPECT_FILES "demo/1_hbao.png|demo/reference_1.png|demo/contact_sheet.png" EXPECT_STDOUT "scene: atrium[^\n]*640x360")
+
+# ---- Lists and help (no GL) --------------------------------------------------------------------------
+obscura_cli_command_test(list_scenes 0 "--list-scenes" EXPECT_STDOUT "atrium +available[^\n]*\n[^\n]*viewpoints: default")
+obscura_cli_command_test(list_methods 0 "--list-methods" EXPECT_STDOUT "hbao +available\n")
+obscura_cli_command_test(list_settings 0 "--list-settings" EXPECT_STDOUT "hbao\n[^\n]*default[^\n]*\n +radius +float +1 ")
+obscura_cli_command_test(list_settings_method 0 "--list-settings|reference" EXPECT_STDOUT "^reference\n[^\n]*\n +radius")
+obscura_cli_command_test(help 0 "--help" EXPECT_STDOUT "obscura compare[^\n]*--methods")
+
+# ---- Bad arguments: exit 2 and one line on stderr, before any GL -----------------------------------------
+obscura_cli_command_test(unknown_option 2 "render|--out|ao.png|--no-such-option")
+obscura_cli_command_test(unknown_command 2 "frobnicate")
+obscura_cli_command_test(unknown_method 2 "compare|--methods|hbao,nosuch")
+obscura_cli_command_test(unknown_key 2 "render|--method|hbao:directions=8:no_such_key=1|--out|ao.png")
+obscura_cli_command_test(out_of_range 2 "render|--method|hbao:directions=99|--out|ao.png")
+obscura_cli_command_test(not_whole_number 2 "render|--method|hbao:steps=2.5|--out|ao.png")
+obscura_cli_command_test(bad_toggle 2 "render|--method|hbao:blur=maybe|--out|ao.png")
+obscura_cli_command_test(empty_method_entry 2 "compare|--methods|hbao,,hbao:blur=off")
+obscura_cli_command_test(set_key_of_no_method 2 "compare|--methods|hbao|--set|no_such_key=1")
+obscura_cli_command_test(unknown_scene 2 "render|--scene|no_such_scene|--out|ao.png")
+obscura_cli_command_test(depth_with_size 2 "render|--depth|plane.pfm|--size|64x36|--out|ao.png")
+obscura_cli_command_test(orbit_without_frames 2 "compare|--orbit|4")
+# A method the library does not implement (found with --list-methods): exit 1, naming it.
+obscura_cli_command_test(unavailable_method 1 "" CHECK unavailable)

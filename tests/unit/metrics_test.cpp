@@ -1,0 +1,321 @@
+// Image error metrics and the JSON writer of samples/common (obscura_samples_metrics): no GL.
+// Every expected value is worked out by hand in the comment next to it.
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "json_writer.h"
+#include "metrics.h"
+
+namespace {
+
+using obscura::samples::compare_images;
+using obscura::samples::contact_sheet;
+using obscura::samples::error_heat_map;
+using obscura::samples::ErrorMetrics;
+using obscura::samples::flicker;
+using obscura::samples::FloatImage;
+using obscura::samples::JsonWriter;
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+FloatImage make_image(int width, int height, std::vector<float> pixels, int channels = 1) {
+    FloatImage image;
+    image.width = width;
+    image.height = height;
+    image.channels = channels;
+    image.pixels = std::move(pixels);
+    return image;
+}
+
+FloatImage constant_image(int width, int height, float value, int channels = 1) {
+    return make_image(width, height, std::vector<float>(size_t(width) * size_t(height) * size_t(channels), value),
+                      channels);
+}
+
+// RGB of pixel (x, y), y counted from the bottom row.
+std::vector<float> rgb_at(const FloatImage& image, int x, int y) {
+    return {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)};
+}
+
+// ---- compare_images ----------------------------------------------------------------------------------
+
+TEST(CompareImages, IdenticalImagesHaveNoErrorAndInfinitePsnr) {
+    const FloatImage image = make_image(2, 2, {0.1f, 0.2f, 0.9f, 1.0f});
+    const ErrorMetrics m = compare_images(image, image);
+    EXPECT_EQ(m.pixels, 4u);
+    EXPECT_EQ(m.mean_abs, 0.0);
+    EXPECT_EQ(m.max_abs, 0.0);
+    EXPECT_EQ(m.within_5pct, 1.0);
+    EXPECT_EQ(m.over_threshold, 0.0);
+    EXPECT_TRUE(std::isinf(m.psnr) && m.psnr > 0.0);
+}
+
+TEST(CompareImages, ConstantOffset) {
+    // Every pixel off by 0.125 (exact in float): e_A = max = 0.125, MSE = 1/64, PSNR = 10 log10(64).
+    const FloatImage reference = make_image(2, 2, {0.25f, 0.5f, 0.75f, 0.125f});
+    const FloatImage image = make_image(2, 2, {0.375f, 0.625f, 0.875f, 0.25f});
+    const ErrorMetrics m = compare_images(image, reference);
+    EXPECT_EQ(m.mean_abs, 0.125);
+    EXPECT_EQ(m.max_abs, 0.125);
+    EXPECT_NEAR(m.psnr, 18.061799739838872, 1e-12);
+    EXPECT_EQ(m.within_5pct, 0.0);
+    EXPECT_EQ(m.over_threshold, 1.0);
+    // Symmetric.
+    const ErrorMetrics swapped = compare_images(reference, image);
+    EXPECT_EQ(swapped.mean_abs, m.mean_abs);
+    EXPECT_EQ(swapped.psnr, m.psnr);
+}
+
+TEST(CompareImages, FivePercentBoundaryIsInclusive) {
+    // Errors 0.05, 0.05 (within), 0.0501, 0.0501 (outside): e_<5% = 1/2.
+    const FloatImage reference = constant_image(4, 1, 0.5f);
+    const FloatImage image = make_image(4, 1, {0.55f, 0.45f, 0.5501f, 0.4499f});
+    const ErrorMetrics m = compare_images(image, reference);
+    EXPECT_DOUBLE_EQ(m.within_5pct, 0.5);
+    EXPECT_NEAR(m.mean_abs, (0.05 + 0.05 + 0.0501 + 0.0501) / 4.0, 1e-7);
+}
+
+TEST(CompareImages, ThresholdCountsPixelsOffByMore) {
+    // 8-bit levels: 4 steps off is not "more than 4/255", 5 steps is. One of four pixels is over.
+    const FloatImage reference = make_image(4, 1, {100 / 255.0f, 100 / 255.0f, 100 / 255.0f, 100 / 255.0f});
+    const FloatImage image = make_image(4, 1, {104 / 255.0f, 96 / 255.0f, 105 / 255.0f, 100 / 255.0f});
+    EXPECT_DOUBLE_EQ(compare_images(image, reference).over_threshold, 0.25);
+    EXPECT_DOUBLE_EQ(compare_images(image, reference, nullptr, 0.0).over_threshold, 0.75);
+}
+
+TEST(CompareImages, MaskSelectsPixels) {
+    // Only pixels 0 and 2 compared: errors 0.1 and 0.3, e_A = 0.2; the 0.9 error of pixel 1 is ignored.
+    const FloatImage reference = constant_image(3, 1, 0.0f);
+    const FloatImage image = make_image(3, 1, {0.1f, 0.9f, 0.3f});
+    const std::vector<uint8_t> mask = {1, 0, 255};
+    const ErrorMetrics m = compare_images(image, reference, &mask);
+    EXPECT_EQ(m.pixels, 2u);
+    EXPECT_NEAR(m.mean_abs, 0.2, 1e-7);
+    EXPECT_NEAR(m.max_abs, 0.3, 1e-7);
+}
+
+TEST(CompareImages, EmptyMaskComparesNothing) {
+    const FloatImage reference = constant_image(2, 1, 0.0f);
+    const FloatImage image = constant_image(2, 1, 1.0f);
+    const std::vector<uint8_t> mask = {0, 0};
+    const ErrorMetrics m = compare_images(image, reference, &mask);
+    EXPECT_EQ(m.pixels, 0u);
+    EXPECT_EQ(m.mean_abs, 0.0);
+    EXPECT_EQ(m.within_5pct, 1.0);
+    EXPECT_TRUE(std::isinf(m.psnr));
+}
+
+TEST(CompareImages, MaskOfWrongSizeThrows) {
+    const FloatImage image = constant_image(2, 2, 0.5f);
+    const std::vector<uint8_t> mask = {1, 1, 1};
+    EXPECT_THROW(compare_images(image, image, &mask), std::invalid_argument);
+}
+
+TEST(CompareImages, NonFinitePixelsCountAsErrorOne) {
+    // One NaN pixel in the image, one infinite in the reference, two equal: e_A = 2/4, max 1, MSE 1/2.
+    const FloatImage reference = make_image(4, 1, {0.5f, kInf, 0.5f, 0.5f});
+    const FloatImage image = make_image(4, 1, {kNaN, 0.5f, 0.5f, 0.5f});
+    const ErrorMetrics m = compare_images(image, reference);
+    EXPECT_DOUBLE_EQ(m.mean_abs, 0.5);
+    EXPECT_EQ(m.max_abs, 1.0);
+    EXPECT_DOUBLE_EQ(m.within_5pct, 0.5);
+    EXPECT_NEAR(m.psnr, 10.0 * std::log10(2.0), 1e-12);
+    // Even NaN against NaN is an error: a broken pixel is never "equal".
+    const FloatImage nan = constant_image(1, 1, kNaN);
+    EXPECT_EQ(compare_images(nan, nan).mean_abs, 1.0);
+}
+
+TEST(CompareImages, SizeMismatchThrows) {
+    EXPECT_THROW(compare_images(constant_image(2, 2, 0.0f), constant_image(2, 3, 0.0f)), std::invalid_argument);
+    EXPECT_THROW(compare_images(constant_image(2, 2, 0.0f), constant_image(2, 2, 0.0f, 3)), std::invalid_argument);
+    FloatImage short_of_pixels = constant_image(2, 2, 0.0f);
+    short_of_pixels.pixels.pop_back();
+    EXPECT_THROW(compare_images(short_of_pixels, short_of_pixels), std::invalid_argument);
+}
+
+TEST(CompareImages, SeveralChannelsUseTheLargestChannelError) {
+    // Channel errors 0.1, 0.3, 0.2 -> pixel error 0.3.
+    const FloatImage reference = constant_image(1, 1, 0.5f, 3);
+    const FloatImage image = make_image(1, 1, {0.6f, 0.2f, 0.7f}, 3);
+    EXPECT_NEAR(compare_images(image, reference).mean_abs, 0.3, 1e-7);
+}
+
+// ---- luminance, quantize_8bit ----------------------------------------------------------------------
+
+TEST(Luminance, MeanOfRgbAlphaIgnored) {
+    const FloatImage rgba = make_image(2, 1, {0.3f, 0.6f, 0.9f, 0.0f, 1.0f, 1.0f, 1.0f, 0.5f}, 4);
+    const FloatImage gray = obscura::samples::luminance(rgba);
+    ASSERT_EQ(gray.channels, 1);
+    ASSERT_EQ(gray.pixels.size(), 2u);
+    EXPECT_NEAR(gray.pixels[0], 0.6f, 1e-6f);
+    EXPECT_EQ(gray.pixels[1], 1.0f);
+    const FloatImage one = constant_image(2, 2, 0.25f);
+    EXPECT_EQ(obscura::samples::luminance(one).pixels, one.pixels);
+    EXPECT_THROW(obscura::samples::luminance(constant_image(1, 1, 0.0f, 2)), std::invalid_argument);
+}
+
+TEST(Quantize8Bit, RoundsClampsAndKeepsNaN) {
+    const FloatImage q = obscura::samples::quantize_8bit(make_image(4, 1, {0.5f, -1.0f, 2.0f, kNaN}));
+    EXPECT_EQ(q.pixels[0], 128 / 255.0f);  // 127.5 rounds half away from zero
+    EXPECT_EQ(q.pixels[1], 0.0f);
+    EXPECT_EQ(q.pixels[2], 1.0f);
+    EXPECT_TRUE(std::isnan(q.pixels[3]));
+}
+
+// ---- error_heat_map ----------------------------------------------------------------------------------
+
+TEST(ErrorHeatMap, ColoursFromWhiteToBlack) {
+    // Errors 0, 0.2/3, 0.4/3, 0.2 (full scale), 0.5 (beyond), NaN with the default full scale 0.2.
+    const FloatImage reference = constant_image(6, 1, 0.0f);
+    const FloatImage image = make_image(6, 1, {0.0f, 0.2f / 3.0f, 0.4f / 3.0f, 0.2f, 0.5f, kNaN});
+    const FloatImage heat = error_heat_map(image, reference);
+    ASSERT_EQ(heat.channels, 3);
+    ASSERT_EQ(heat.width, 6);
+    ASSERT_EQ(heat.height, 1);
+    const auto near = [](const std::vector<float>& actual, const std::vector<float>& expected) {
+        for (size_t i = 0; i < 3; ++i) {
+            if (std::fabs(actual[i] - expected[i]) > 1e-5f) return false;
+        }
+        return true;
+    };
+    EXPECT_TRUE(near(rgb_at(heat, 0, 0), {1, 1, 1}));  // white: no error
+    EXPECT_TRUE(near(rgb_at(heat, 1, 0), {1, 1, 0}));  // yellow at a third
+    EXPECT_TRUE(near(rgb_at(heat, 2, 0), {1, 0, 0}));  // red at two thirds
+    EXPECT_TRUE(near(rgb_at(heat, 3, 0), {0, 0, 0}));  // black at full scale
+    EXPECT_TRUE(near(rgb_at(heat, 4, 0), {0, 0, 0}));  // and beyond
+    EXPECT_TRUE(near(rgb_at(heat, 5, 0), {0, 0, 0}));  // NaN: error 1
+}
+
+TEST(ErrorHeatMap, FullScaleIsAParameter) {
+    // Error 0.05 at full scale 0.1 is half way: between yellow (1/3) and red (2/3), green 0.5.
+    const FloatImage heat = error_heat_map(constant_image(1, 1, 0.55f), constant_image(1, 1, 0.5f), 0.1);
+    EXPECT_EQ(heat.at(0, 0, 0), 1.0f);
+    EXPECT_NEAR(heat.at(0, 0, 1), 0.5f, 1e-5f);
+    EXPECT_EQ(heat.at(0, 0, 2), 0.0f);
+    EXPECT_THROW(error_heat_map(constant_image(1, 1, 0.0f), constant_image(1, 1, 0.0f), 0.0), std::invalid_argument);
+}
+
+// ---- flicker --------------------------------------------------------------------------------------
+
+TEST(Flicker, IdenticalMotionIsZeroWhateverTheOffset) {
+    // The method is the reference plus a constant 0.1: every frame-to-frame change matches.
+    std::vector<FloatImage> reference, method;
+    for (int f = 0; f < 4; ++f) {
+        reference.push_back(make_image(2, 1, {0.1f * float(f), 0.5f}));
+        method.push_back(make_image(2, 1, {0.1f * float(f) + 0.125f, 0.625f}));
+    }
+    EXPECT_NEAR(flicker(method, reference), 0.0, 1e-7);
+}
+
+TEST(Flicker, MeasuresChangeTheReferenceDoesNotHave) {
+    // Reference still; the method's first pixel alternates 0.5, 0.75, 0.5: |0.25| per pair on one of
+    // two pixels -> mean 0.125.
+    const std::vector<FloatImage> reference(3, constant_image(2, 1, 0.5f));
+    const std::vector<FloatImage> method = {make_image(2, 1, {0.5f, 0.5f}), make_image(2, 1, {0.75f, 0.5f}),
+                                            make_image(2, 1, {0.5f, 0.5f})};
+    EXPECT_DOUBLE_EQ(flicker(method, reference), 0.125);
+}
+
+TEST(Flicker, NeedsMatchingFrameLists) {
+    const std::vector<FloatImage> two(2, constant_image(2, 1, 0.5f));
+    const std::vector<FloatImage> three(3, constant_image(2, 1, 0.5f));
+    EXPECT_THROW(flicker(two, three), std::invalid_argument);
+    EXPECT_THROW(flicker({two[0]}, {two[0]}), std::invalid_argument);
+    EXPECT_THROW(flicker(two, {two[0], constant_image(1, 1, 0.5f)}), std::invalid_argument);
+}
+
+// ---- contact_sheet -----------------------------------------------------------------------------------
+
+TEST(ContactSheet, GridSize) {
+    // Three 10x8 images in 2 columns: 2 rows; gaps of 4 around and between cells.
+    const std::vector<FloatImage> images(3, constant_image(10, 8, 1.0f));
+    const FloatImage sheet = contact_sheet(images, {}, 2);
+    EXPECT_EQ(sheet.channels, 3);
+    EXPECT_EQ(sheet.width, 2 * 10 + 3 * 4);
+    EXPECT_EQ(sheet.height, 2 * 8 + 3 * 4);
+    EXPECT_EQ(sheet.pixels.size(), size_t(sheet.width) * size_t(sheet.height) * 3);
+    // columns <= 0: a single row.
+    EXPECT_EQ(contact_sheet(images, {}, 0).width, 3 * 10 + 4 * 4);
+}
+
+TEST(ContactSheet, LabelsAddAStripUnderEachRow) {
+    // Cells narrower than 256: 1 pixel per font pixel, strip of 7 + 4.
+    const std::vector<FloatImage> images(3, constant_image(10, 8, 0.0f));
+    const FloatImage sheet = contact_sheet(images, {"a", "b", "c"}, 2);
+    EXPECT_EQ(sheet.height, 2 * (8 + 11) + 3 * 4);
+    // Ink (white) appears only in the label strips: the images are black, the background grey.
+    int ink = 0;
+    for (size_t i = 0; i < sheet.pixels.size(); i += 3) ink += sheet.pixels[i] == 1.0f;
+    EXPECT_GT(ink, 3 * 10);
+    // Cells of 256 pixels and more get double-size labels: strip of 14 + 4.
+    const FloatImage wide = contact_sheet({constant_image(256, 2, 0.0f)}, {"x"}, 1);
+    EXPECT_EQ(wide.height, 2 + 18 + 2 * 4);
+}
+
+TEST(ContactSheet, FirstImageAtTopLeftUpright) {
+    // A 2x2 gray image whose top row is white: the sheet's top-left cell shows it the same way up.
+    const FloatImage image = make_image(2, 2, {0.0f, 0.0f, 1.0f, 1.0f});  // rows bottom-up
+    const FloatImage sheet = contact_sheet({image, constant_image(2, 2, 0.5f, 3)}, {}, 1);
+    ASSERT_EQ(sheet.height, 2 * 2 + 3 * 4);
+    const int top = sheet.height - 1 - 4;  // first cell's top row, counted from the bottom
+    EXPECT_EQ(rgb_at(sheet, 4, top), (std::vector<float>{1, 1, 1}));
+    EXPECT_EQ(rgb_at(sheet, 4, top - 1), (std::vector<float>{0, 0, 0}));
+    EXPECT_EQ(rgb_at(sheet, 4, 4), (std::vector<float>{0.5f, 0.5f, 0.5f}));  // second cell, bottom row
+    EXPECT_EQ(rgb_at(sheet, 0, 0), (std::vector<float>{0.2f, 0.2f, 0.2f}));   // background
+}
+
+TEST(ContactSheet, RejectsBadInput) {
+    const FloatImage image = constant_image(2, 2, 0.0f);
+    EXPECT_THROW(contact_sheet({}, {}, 1), std::invalid_argument);
+    EXPECT_THROW(contact_sheet({image, image}, {"one"}, 1), std::invalid_argument);
+    EXPECT_THROW(contact_sheet({constant_image(2, 2, 0.0f, 2)}, {}, 1), std::invalid_argument);
+}
+
+// ---- JsonWriter ------------------------------------------------------------------------------------
+
+TEST(JsonWriter, NestedDocument) {
+    JsonWriter json;
+    json.begin_object().field("a", 1).key("b").begin_array().value(0.5).value("x\"y").null().end_array();
+    json.key("c").begin_object().end_object().field("d", true).field("n", size_t(7)).end_object();
+    EXPECT_EQ(json.str(),
+              "{\n"
+              "  \"a\": 1,\n"
+              "  \"b\": [\n"
+              "    0.5,\n"
+              "    \"x\\\"y\",\n"
+              "    null\n"
+              "  ],\n"
+              "  \"c\": {},\n"
+              "  \"d\": true,\n"
+              "  \"n\": 7\n"
+              "}");
+}
+
+TEST(JsonWriter, EscapesStrings) {
+    EXPECT_EQ(JsonWriter::quote("a\\b\n\t\x01 \xc3\xa9"), "\"a\\\\b\\n\\t\\u0001 \xc3\xa9\"");
+}
+
+TEST(JsonWriter, NumbersShortestAndNonFiniteAsNull) {
+    JsonWriter json;
+    json.begin_array().value(0.1).value(-2.5e-7).value(std::numeric_limits<double>::infinity());
+    json.value(std::nan("")).value(-3).end_array();
+    EXPECT_EQ(json.str(), "[\n  0.1,\n  -2.5e-07,\n  null,\n  null,\n  -3\n]");
+}
+
+TEST(JsonWriter, MisuseThrows) {
+    EXPECT_THROW(JsonWriter().key("k"), std::logic_error);
+    EXPECT_THROW(JsonWriter().begin_object().value(1), std::logic_error);
+    EXPECT_THROW(JsonWriter().begin_array().key("k"), std::logic_error);
+    EXPECT_THROW(JsonWriter().begin_array().end_object(), std::logic_error);
+    EXPECT_THROW(JsonWriter().begin_object().key("k").end_object(), std::logic_error);
+    EXPECT_THROW(JsonWriter().value(1).value(2), std::logic_error);
+    EXPECT_THROW(JsonWriter().begin_object().str(), std::logic_error);
+}
+
+}  // namespace
