@@ -42,6 +42,7 @@
 #include <vector>
 
 #include "demo_scene.h"
+#include "scene_library.h"
 #include "gl_test_support.h"
 #include "image_io.h"
 #include "metrics.h"
@@ -74,7 +75,7 @@ using SceneSetup = std::function<RenderedScene(int width, int height)>;
 struct GoldenCase {
     std::string name;         // test name and golden file tests/golden/<name>.png
     SceneSetup scene;
-    std::string method;       // CLI method spec: "hbao" or "hbao:directions=4,blur=off"
+    std::string method;       // CLI method spec: "hbao" or "hbao:directions=4:blur=off"
     bool use_normals = false; // pass the scene's normals instead of reconstructing them from depth
     GoldenTolerance tolerance = kGoldenTolerance;
 };
@@ -89,18 +90,34 @@ SceneSetup demo_room(ProjectionKind projection = ProjectionKind::Perspective) {
     };
 }
 
+// A built-in scene of the scene library from its default viewpoint.
+SceneSetup library_scene(const std::string& name) {
+    return [name](int width, int height) {
+        const obscura::samples::Scene scene = obscura::samples::load_scene(name);
+        obscura::samples::SceneRenderOptions options;
+        options.width = width;
+        options.height = height;
+        options.camera = scene.viewpoints[0].camera;
+        return obscura::samples::render_scene(scene.mesh, options);
+    };
+}
+
 const std::vector<GoldenCase>& golden_cases() {
     static const std::vector<GoldenCase> cases = {
         {"hbao_demo_room", demo_room(), "hbao"},
-        {"hbao_demo_room_k4_n6_noblur", demo_room(), "hbao:directions=4,steps=6,blur=off"},
+        {"hbao_demo_room_k4_n6_noblur", demo_room(), "hbao:directions=4:steps=6:blur=off"},
         {"hbao_demo_room_reversed_z", demo_room(ProjectionKind::ReversedZ), "hbao"},
+        {"hbao_atrium", library_scene("atrium"), "hbao"},
+        {"hbao_clutter_scene_normals", library_scene("clutter"), "hbao", true},
+        {"reference_analytic_16_rays", library_scene("analytic"), "reference:rays=16"},
+        {"reference_objects_16_rays", library_scene("objects"), "reference:rays=16"},
     };
     return cases;
 }
 
 void PrintTo(const GoldenCase& golden_case, std::ostream* out) { *out << golden_case.name; }
 
-// "hbao:directions=4,steps=6,blur=off" -> settings through obscura_set_setting (on/off -> 1/0).
+// "hbao:directions=4:steps=6:blur=off" (the CLI's method specs) -> settings through obscura_set_setting (on/off -> 1/0).
 obscura_settings parse_method(const std::string& spec) {
     const size_t colon = spec.find(':');
     const std::string method_name = spec.substr(0, colon);
@@ -114,7 +131,7 @@ obscura_settings parse_method(const std::string& spec) {
     if (obscura_default_settings(method, &settings) != OBSCURA_OK) throw std::runtime_error("obscura_default_settings");
     size_t start = colon == std::string::npos ? spec.size() : colon + 1;
     while (start < spec.size()) {
-        const size_t end = std::min(spec.find(',', start), spec.size());
+        const size_t end = std::min(spec.find(':', start), spec.size());
         const std::string item = spec.substr(start, end - start);
         const size_t equals = item.find('=');
         const std::string key = item.substr(0, equals);
