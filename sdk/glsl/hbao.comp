@@ -34,8 +34,9 @@ void main() {
     if (any(greaterThanEqual(gl_GlobalInvocationID.xy, uvec2(work_rect.zw)))) return;
 
     float depth = texelFetch(u_linear_depth, p, 0).r;
+    bool count_taps = target_params.w == OBSCURA_DEBUG_VIEW_TAP_COUNT;
     if (obscura_is_sky(depth)) {
-        imageStore(u_ao, p, vec4(1.0));
+        imageStore(u_ao, p, vec4(count_taps ? 0.0 : 1.0));
         return;
     }
     vec3 position = obscura_view_position(p, depth);
@@ -44,9 +45,10 @@ void main() {
     float radius_px = min(hbao.falloff.z * obscura_pixels_per_view_unit(depth), hbao.falloff.w);
     int directions = hbao.counts.x, steps = hbao.counts.y;
     if (radius_px < 1.0) {  // the radius covers less than a texel: nothing to march
-        imageStore(u_ao, p, vec4(1.0));
+        imageStore(u_ao, p, vec4(count_taps ? 0.0 : 1.0));
         return;
     }
+    int taps_read = 0;
     float step_px = radius_px / float(steps);
     vec2 noise = obscura_pixel_noise(p);
     vec2 pixel_center = vec2(p) + 0.5;
@@ -80,6 +82,7 @@ void main() {
             if (any(lessThan(s, ivec2(0))) || any(greaterThanEqual(s, depth_size.xy))) break;
             if (s == p) continue;
             float sample_depth = texelFetch(u_linear_depth, s, 0).r;
+            ++taps_read;
             if (obscura_is_sky(sample_depth)) continue;
             vec3 h = obscura_view_position(s, sample_depth) - position;
             float off_slice = dot(h, slice_normal);
@@ -101,5 +104,5 @@ void main() {
     }
     obscurance *= hbao.shaping.y / float(directions);
     float visibility = pow(clamp(1.0 - obscurance, 0.0, 1.0), hbao.shaping.z);
-    imageStore(u_ao, p, vec4(visibility));
+    imageStore(u_ao, p, vec4(count_taps ? float(taps_read) / 256.0 : visibility));
 }

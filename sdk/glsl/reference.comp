@@ -242,5 +242,7 @@ void main() {
         }
     }
     float value = last_batch ? (obscura_is_sky(depth) ? 1.0 : clamp(1.0 - sum * reference.params.y, 0.0, 1.0)) : sum;
+    // The tap-count debug view counts texel reads of the methods that take a few; rays take thousands.
+    if (last_batch && target_params.w == OBSCURA_DEBUG_VIEW_TAP_COUNT) value = 0.0;
     imageStore(u_accumulator, p, vec4(value));
 }

@@ -60,7 +60,9 @@ OBSCURA_API const char* obscura_method_name(obscura_method method) {
 
 OBSCURA_API int obscura_method_available(obscura_method method) {
     obscura_method resolved = obscura::resolve_method(method);
-    return resolved == OBSCURA_METHOD_HBAO || resolved == OBSCURA_METHOD_REFERENCE ? 1 : 0;
+    return resolved == OBSCURA_METHOD_HBAO || resolved == OBSCURA_METHOD_SAO || resolved == OBSCURA_METHOD_REFERENCE
+               ? 1
+               : 0;
 }
 
 OBSCURA_API obscura_status obscura_create_context(const obscura_context_desc* desc, obscura_context** out_context) {

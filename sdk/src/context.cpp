@@ -115,7 +115,7 @@ void Context::destroy(Context* context) {
 }
 
 PassEnv Context::env() const {
-    return PassEnv{gl_, alloc_, log_, log_user_data_, sampler_.name(), uniform_buffer_.name()};
+    return PassEnv{gl_, alloc_, log_, log_user_data_, sampler_.name(), sampler_mipmap_.name(), uniform_buffer_.name()};
 }
 
 Error Context::initialize() {
@@ -174,6 +174,7 @@ Error Context::initialize() {
     gl::StateGuard guard(gl_);
     gl_.GetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &uniform_alignment_);
     sampler_ = gl::create_sampler_nearest_clamp(gl_);
+    sampler_mipmap_ = gl::create_sampler_nearest_mipmap_clamp(gl_);
     gl_.GetIntegerv(GL_MAX_TEXTURE_SIZE, &max_texture_size_);
     // Identity of our GL context: a framebuffer object (never shared between contexts, unlike samplers or
     // textures) labelled with a process-unique string (names repeat across contexts, each counts from 1).
@@ -257,6 +258,37 @@ Error Context::ensure_reference_accumulator() {
     return Error();
 }
 
+Error Context::ensure_sao_resources(int levels) {
+    gl_.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_SOURCE));  // a unit the StateGuard restores
+    if (resources_.linear_depth.levels() < levels) {
+        // Its contents are rewritten by the depth preparation every frame: replacing it loses nothing.
+        resources_.linear_depth = gl::Texture2D::create(gl_, GL_R32F, resources_.width, resources_.height, levels);
+        if (!resources_.linear_depth) {
+            return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating the %dx%d z pyramid (%d levels) failed",
+                               resources_.width, resources_.height, levels);
+        }
+    }
+    if (!resources_.packed_ao) resources_.packed_ao = gl::Texture2D::create(gl_, GL_RGBA8, resources_.width, resources_.height);
+    if (!resources_.packed_temp) {
+        resources_.packed_temp = gl::Texture2D::create(gl_, GL_RGBA8, resources_.width, resources_.height);
+    }
+    if (!resources_.packed_ao || !resources_.packed_temp) {
+        return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating the %dx%d SAO textures failed", resources_.width,
+                           resources_.height);
+    }
+    return Error();
+}
+
+Error Context::ensure_method_resources(const obscura_settings& settings) {
+    switch (settings.method) {
+        case OBSCURA_METHOD_REFERENCE: return ensure_reference_accumulator();
+        case OBSCURA_METHOD_SAO:
+            return ensure_sao_resources(
+                ZPyramidPass::level_count(resources_.width, resources_.height, SaoPass::wanted_levels(settings.sao)));
+        default: return Error();
+    }
+}
+
 Error Context::prepare(int width, int height, const obscura_settings& settings) {
     obscura_settings resolved;
     Error error = resolve_settings(settings, &resolved);
@@ -273,7 +305,7 @@ Error Context::prepare(int width, int height, const obscura_settings& settings) 
     if (error) return error;
     gl::StateGuard guard(gl_);
     error = ensure_resources(width, height);
-    if (!error && resolved.method == OBSCURA_METHOD_REFERENCE) error = ensure_reference_accumulator();
+    if (!error) error = ensure_method_resources(resolved);
     return error;
 }
 
@@ -362,31 +394,66 @@ void Context::disarm_gl_deletes() {
     gl_.DeleteProgram = &keep_name;
 }
 
+namespace {
+// The blur's reach on each side and the regions of a frame's passes for one method.
+struct FramePlan {
+    bool blur = false;
+    int apron = 0;       // pixels the blur reads beyond the output rectangle on each side
+    Region ao_region;    // where the AO pass computes
+    Region blur_x_region;
+};
+
+// SAO's quad filter pairs pixels of 2x2 quads in absolute coordinates: start its region on even ones.
+Region aligned_to_quads(Region r) {
+    const int x0 = r.x & ~1, y0 = r.y & ~1;
+    r.width += r.x - x0;
+    r.height += r.y - y0;
+    r.x = x0;
+    r.y = y0;
+    return r;
+}
+}  // namespace
+
 Error Context::record_frame(const FrameInput& input, const obscura_settings& settings, const OutputTarget& target) {
     PassEnv pass_env = env();
-    Error error = depth_prepare_.prepare(pass_env, input);
+    const obscura_method method = settings.method;
+    // Before the depth preparation: SAO may replace the linear-depth texture with one that has MIP levels.
+    Error error = ensure_method_resources(settings);
+    if (error) return error;
+    error = depth_prepare_.prepare(pass_env, input);
     if (error) return error;
     // Blit targets compose into a staging texture: RGBA16F for float attachments (MULTIPLY keeps HDR).
     GLenum staging_format = target.attachment_float ? GL_RGBA16F : GL_RGBA8;
     GLenum composite_format = target.kind == TargetKind::Image ? target.format : staging_format;
     error = composite_.prepare(pass_env, composite_format);
     if (error) return error;
-
-    const bool reference = settings.method == OBSCURA_METHOD_REFERENCE;
-    if (reference) {
-        error = reference_.prepare(pass_env);
-        if (error) return error;
-        error = ensure_reference_accumulator();
-        if (error) return error;
+    if (method == OBSCURA_METHOD_REFERENCE) error = reference_.prepare(pass_env);
+    if (method == OBSCURA_METHOD_SAO) {
+        error = z_pyramid_.prepare(pass_env);
+        if (!error) error = sao_.prepare(pass_env);
+        if (!error) error = sao_blur_.prepare(pass_env);
     }
+    if (error) return error;
+
+    // The raw-AO debug views show the AO pass's own output: no blur runs.
+    const bool raw_view =
+        target.debug_view == OBSCURA_DEBUG_AO_BEFORE_BLUR || target.debug_view == OBSCURA_DEBUG_TAP_COUNT;
     const obscura_hbao_settings& hbao = settings.hbao;
-    bool blur = !reference && hbao.blur == OBSCURA_TOGGLE_ON;
-    int blur_radius = blur ? hbao.blur_radius : 0;
+    const obscura_sao_settings& sao = settings.sao;
     Region rect{input.output_rect.x, input.output_rect.y, input.output_rect.width, input.output_rect.height};
     Region whole{0, 0, input.width, input.height};
-    // AO is computed where the blur will read it: the output rect plus the blur radius on both axes.
-    Region ao_region = rect.expanded(blur_radius, blur_radius, input.width, input.height);
-    Region blur_x_region = rect.expanded(0, blur_radius, input.width, input.height);
+    FramePlan plan;
+    if (method == OBSCURA_METHOD_HBAO) {
+        plan.blur = !raw_view && hbao.blur == OBSCURA_TOGGLE_ON;
+        plan.apron = plan.blur ? hbao.blur_radius : 0;
+    } else if (method == OBSCURA_METHOD_SAO) {
+        plan.blur = !raw_view && sao.blur == OBSCURA_TOGGLE_ON;
+        plan.apron = plan.blur ? sao.blur_radius * sao.blur_stride : 0;
+    }
+    // AO is computed where the blur will read it: the output rect plus the apron on both axes.
+    plan.ao_region = rect.expanded(plan.apron, plan.apron, input.width, input.height);
+    if (method == OBSCURA_METHOD_SAO) plan.ao_region = aligned_to_quads(plan.ao_region);
+    plan.blur_x_region = rect.expanded(0, plan.apron, input.width, input.height);
 
     // Blit targets: compose into the staging texture at (0, 0), then blit it to the host framebuffer.
     OutputTarget composite_target = target;
@@ -403,18 +470,44 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
             gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, resources_.staging.name(), 0);
         }
     }
-    float radius = reference ? settings.reference.radius : hbao.radius;
+    float radius = method == OBSCURA_METHOD_REFERENCE ? settings.reference.radius
+                   : method == OBSCURA_METHOD_SAO     ? sao.radius
+                                                     : hbao.radius;
     float debug_depth_scale = 1.0f / (4.0f * radius * input.meters_to_view_units);
+
+    // SAO: the z pyramid's levels (1: the hierarchy is off or the texture too small for a level 1).
+    const int sao_levels = method == OBSCURA_METHOD_SAO
+                               ? ZPyramidPass::level_count(input.width, input.height, SaoPass::wanted_levels(sao))
+                               : 1;
+    const int pyramid_dispatches = ZPyramidPass::dispatch_count(sao_levels);
+    static_assert(OBSCURA_DEBUG_VIEW_TAP_COUNT == OBSCURA_DEBUG_TAP_COUNT, "shader_interface.h mirrors the API");
 
     uniforms_.reset(uniform_alignment_);
     UniformRange frame_whole = uniforms_.push(frame_constants(input, composite_target, whole, debug_depth_scale));
-    UniformRange frame_ao = uniforms_.push(frame_constants(input, composite_target, ao_region, debug_depth_scale));
-    UniformRange frame_blur_x = uniforms_.push(frame_constants(input, composite_target, blur_x_region, debug_depth_scale));
+    UniformRange frame_ao = uniforms_.push(frame_constants(input, composite_target, plan.ao_region, debug_depth_scale));
+    UniformRange frame_blur_x =
+        uniforms_.push(frame_constants(input, composite_target, plan.blur_x_region, debug_depth_scale));
     UniformRange frame_blur_y = uniforms_.push(frame_constants(input, composite_target, rect, debug_depth_scale));
-    UniformRange method_pass = reference ? uniforms_.push(ReferencePass::constants(settings.reference, input))
-                                         : uniforms_.push(HbaoPass::constants(hbao, input));
-    UniformRange blur_x_pass = uniforms_.push(BilateralBlurPass::constants(blur_radius, hbao.blur_sharpness, 1, 0));
-    UniformRange blur_y_pass = uniforms_.push(BilateralBlurPass::constants(blur_radius, hbao.blur_sharpness, 0, 1));
+    UniformRange method_pass, blur_x_pass, blur_y_pass;
+    UniformRange pyramid_passes[4];
+    switch (method) {
+        case OBSCURA_METHOD_REFERENCE:
+            method_pass = uniforms_.push(ReferencePass::constants(settings.reference, input));
+            break;
+        case OBSCURA_METHOD_SAO:
+            for (int d = 0; d < pyramid_dispatches && d < 4; ++d) {
+                pyramid_passes[d] = uniforms_.push(ZPyramidPass::constants(d, sao_levels, sao.mip_filter));
+            }
+            method_pass = uniforms_.push(SaoPass::constants(sao, input, sao_levels - 1));
+            blur_x_pass = uniforms_.push(SaoBlurPass::constants(sao, 1, 0));
+            blur_y_pass = uniforms_.push(SaoBlurPass::constants(sao, 0, 1));
+            break;
+        default:
+            method_pass = uniforms_.push(HbaoPass::constants(hbao, input));
+            blur_x_pass = uniforms_.push(BilateralBlurPass::constants(plan.apron, hbao.blur_sharpness, 1, 0));
+            blur_y_pass = uniforms_.push(BilateralBlurPass::constants(plan.apron, hbao.blur_sharpness, 0, 1));
+            break;
+    }
     uniforms_.upload(gl_, uniform_buffer_.name());
 
     bool validate = (flags_ & OBSCURA_CONTEXT_FLAG_VALIDATE_PASSES) != 0;
@@ -429,29 +522,47 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
     timer_.begin_frame();
     depth_prepare_.run(pass_env, input, frame_whole, resources_);
     error = after_pass("depth_prepare");
-    const gl::Texture2D* result = &resources_.ao;
-    if (!error && reference) {
+    const gl::Texture2D* raw = &resources_.ao;  // the AO pass's output
+    const gl::Texture2D* result = raw;          // what the composite shows without a debug view
+    if (!error && method == OBSCURA_METHOD_REFERENCE) {
         // Each batch is flushed so the GPU starts on it while the next is recorded, and no single
         // submission runs long (watchdogs, a responsive desktop).
-        reference_.run(pass_env, frame_ao, method_pass, ao_region, settings.reference, resources_,
+        reference_.run(pass_env, frame_ao, method_pass, plan.ao_region, settings.reference, resources_,
                        resources_.reference, [&] { gl_.Flush(); });
-        result = &resources_.reference;
+        raw = result = &resources_.reference;
         error = after_pass("reference");
+    } else if (!error && method == OBSCURA_METHOD_SAO) {
+        if (sao_levels > 1) {
+            z_pyramid_.run(pass_env, pyramid_passes, pyramid_dispatches, resources_.linear_depth);
+            error = after_pass("z_pyramid");
+        }
+        if (!error) {
+            sao_.run(pass_env, frame_ao, method_pass, plan.ao_region, resources_);
+            raw = result = &resources_.packed_ao;
+            error = after_pass("sao");
+        }
+        if (!error && plan.blur) {
+            sao_blur_.run(pass_env, frame_blur_x, blur_x_pass, plan.blur_x_region, resources_.packed_ao,
+                          resources_.packed_temp, false);
+            sao_blur_.run(pass_env, frame_blur_y, blur_y_pass, rect, resources_.packed_temp, resources_.ao_blurred,
+                          true);
+            result = &resources_.ao_blurred;
+            error = after_pass("blur");
+        }
     } else if (!error) {
-        hbao_.run(pass_env, frame_ao, method_pass, ao_region, resources_);
+        hbao_.run(pass_env, frame_ao, method_pass, plan.ao_region, resources_);
         error = after_pass("hbao");
-    }
-    if (!error && blur) {
-        blur_.run(pass_env, frame_blur_x, blur_x_pass, blur_x_region, resources_.linear_depth, resources_.ao,
-                  resources_.blur_temp);
-        blur_.run(pass_env, frame_blur_y, blur_y_pass, rect, resources_.linear_depth, resources_.blur_temp,
-                  resources_.ao_blurred);
-        result = &resources_.ao_blurred;
-        error = after_pass("blur");
+        if (!error && plan.blur) {
+            blur_.run(pass_env, frame_blur_x, blur_x_pass, plan.blur_x_region, resources_.linear_depth, resources_.ao,
+                      resources_.blur_temp);
+            blur_.run(pass_env, frame_blur_y, blur_y_pass, rect, resources_.linear_depth, resources_.blur_temp,
+                      resources_.ao_blurred);
+            result = &resources_.ao_blurred;
+            error = after_pass("blur");
+        }
     }
     if (!error) {
-        const gl::Texture2D& source =
-            target.debug_view == OBSCURA_DEBUG_AO_BEFORE_BLUR && !reference ? resources_.ao : *result;
+        const gl::Texture2D& source = raw_view ? *raw : *result;
         if (target.kind == TargetKind::Image) {
             composite_.run(pass_env, frame_blur_y, input.output_rect, source, resources_, target.texture, target.format);
         } else {

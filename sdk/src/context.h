@@ -15,6 +15,8 @@
 #include "passes/hbao.h"
 #include "passes/pass_common.h"
 #include "passes/reference.h"
+#include "passes/sao.h"
+#include "passes/z_pyramid.h"
 
 struct obscura_context {};  // the opaque handle type; Context derives from it
 
@@ -54,6 +56,10 @@ private:
     Error ensure_resources(int width, int height);
     // The REFERENCE method's R32F accumulator, allocated the first time the method renders at this size.
     Error ensure_reference_accumulator();
+    // SAO's resources: `levels` MIP levels on the linear depth (the z pyramid) and the packed AO textures.
+    Error ensure_sao_resources(int levels);
+    // The method-specific resources a render with these resolved settings needs.
+    Error ensure_method_resources(const obscura_settings& settings);
     Error record_frame(const FrameInput& input, const obscura_settings& settings, const OutputTarget& target);
 
     AllocatorCallbacks alloc_;
@@ -69,11 +75,15 @@ private:
     gl::Object target_framebuffer_;  // see blit_framebuffer()
 
     gl::Object sampler_;
+    gl::Object sampler_mipmap_;
     gl::Buffer uniform_buffer_;
     UniformArena uniforms_;
     DepthPreparePass depth_prepare_;
     HbaoPass hbao_;
     ReferencePass reference_;
+    ZPyramidPass z_pyramid_;
+    SaoPass sao_;
+    SaoBlurPass sao_blur_;
     BilateralBlurPass blur_;
     CompositePass composite_;
     FrameResources resources_;

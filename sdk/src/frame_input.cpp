@@ -216,7 +216,7 @@ Error validate_output(const gl::Table& gl, const obscura_output& output, const o
     if (blend != OBSCURA_BLEND_OVERWRITE && blend != OBSCURA_BLEND_MULTIPLY) {
         return Error::make(OBSCURA_STATUS_INVALID_ENUM, "output.blend = %d is not an obscura_blend_mode", int(blend));
     }
-    if (debug_view < OBSCURA_DEBUG_NONE || debug_view > OBSCURA_DEBUG_AO_BEFORE_BLUR) {
+    if (debug_view < OBSCURA_DEBUG_NONE || debug_view > OBSCURA_DEBUG_TAP_COUNT) {
         return Error::make(OBSCURA_STATUS_INVALID_ENUM, "output.debug_view = %d is not an obscura_debug_view",
                            int(debug_view));
     }

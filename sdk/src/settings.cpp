@@ -69,6 +69,49 @@ const obscura_setting_info kReferenceSettings[] = {
 
 #undef OBSCURA_REFERENCE_FIELD
 
+#define OBSCURA_SAO_FIELD(field) offsetof(obscura_settings, sao) + offsetof(obscura_sao_settings, field)
+
+// SAO (McGuire et al. 2012). Defaults are the paper's: s = 9, tau = 7, q' = 2^3, rotated-grid MIPs, 7-tap
+// blur with stride 3 and edge constant 2^11 over z packed across 200 m. The estimator constants follow
+// AlchemyAO (sigma = k = 1); beta and epsilon were chosen against the reference (docs/quality.md).
+const obscura_setting_info kSaoSettings[] = {
+    {"radius", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 1e4, "m", "world-space radius r of the sample ball (eq. 5)",
+     OBSCURA_SAO_FIELD(radius)},
+    {"samples", OBSCURA_SETTING_INT, 9, 1, 64, "", "s spiral taps per pixel", OBSCURA_SAO_FIELD(samples)},
+    {"turns", OBSCURA_SETTING_INT, 0, 1, 1024, "",
+     "tau turns of the spiral; 0 derives the integer nearest 7s/9 sharing no factor with s (7 for s = 9)",
+     OBSCURA_SAO_FIELD(turns)},
+    {"mip", OBSCURA_SETTING_TOGGLE, 1, 0, 1, "", "z-MIP hierarchy; off: every tap reads level 0 (quality baseline)",
+     OBSCURA_SAO_FIELD(mip)},
+    {"mip_filter", OBSCURA_SETTING_INT, 1, 1, 5, "",
+     "MIP filter (Table 1): 1 rotated-grid subsample, 2 mean, 3 harmonic mean, 4 min, 5 max",
+     OBSCURA_SAO_FIELD(mip_filter)},
+    {"log_q", OBSCURA_SETTING_INT, 3, 1, 8, "", "log2 q': taps move one MIP level down per doubling past q' px",
+     OBSCURA_SAO_FIELD(log_q)},
+    {"intensity", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "sigma of the AlchemyAO estimator",
+     OBSCURA_SAO_FIELD(intensity)},
+    {"bias", OBSCURA_SETTING_FLOAT, 1e-3, 1e-6, 0.1, "", "beta: v.n must exceed beta * receiver distance",
+     OBSCURA_SAO_FIELD(bias)},
+    {"contrast", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "k: exponent of the visibility",
+     OBSCURA_SAO_FIELD(contrast)},
+    {"epsilon", OBSCURA_SETTING_FLOAT, 0.01, 1e-6, 1.0, "", "epsilon / r^2 in the estimator's denominator",
+     OBSCURA_SAO_FIELD(epsilon)},
+    {"max_radius_pixels", OBSCURA_SETTING_FLOAT, 256.0, 1.0, 4096.0, "px", "cap of the screen radius r'",
+     OBSCURA_SAO_FIELD(max_radius_pixels)},
+    {"quad_filter", OBSCURA_SETTING_TOGGLE, 1, 0, 1, "", "2x2 bilateral step at the end of the AO pass",
+     OBSCURA_SAO_FIELD(quad_filter)},
+    {"blur", OBSCURA_SETTING_TOGGLE, 1, 0, 1, "", "separable bilateral blur", OBSCURA_SAO_FIELD(blur)},
+    {"blur_radius", OBSCURA_SETTING_INT, 3, 1, 8, "", "blur taps on each side (3: the paper's 7 taps)",
+     OBSCURA_SAO_FIELD(blur_radius)},
+    {"blur_stride", OBSCURA_SETTING_INT, 3, 1, 4, "px", "pixels between blur taps", OBSCURA_SAO_FIELD(blur_stride)},
+    {"blur_sharpness", OBSCURA_SETTING_FLOAT, 2048.0, 1.0, 1e6, "",
+     "edge weight max(0, 1 - sharpness |dz| / blur_depth_range)", OBSCURA_SAO_FIELD(blur_sharpness)},
+    {"blur_depth_range", OBSCURA_SETTING_FLOAT, 200.0, 1e-2, 1e5, "m",
+     "distance over which z is packed in 16 bits beside the AO (the paper's z_min)", OBSCURA_SAO_FIELD(blur_depth_range)},
+};
+
+#undef OBSCURA_SAO_FIELD
+
 template <class T>
 T* field_at(obscura_settings* settings, size_t offset) {
     return reinterpret_cast<T*>(reinterpret_cast<unsigned char*>(settings) + offset);
@@ -165,6 +208,27 @@ Error check_falloff_table(const obscura_reference_settings& reference) {
 
 }  // namespace
 
+int default_spiral_turns(int samples) {
+    if (samples <= 2) return 1;
+    auto coprime = [samples](int t) {
+        int a = samples, b = t;
+        while (b != 0) {
+            int r = a % b;
+            a = b;
+            b = r;
+        }
+        return a == 1;
+    };
+    // Nearest to 7s/9 (the paper's ratio), the larger on a tie; 1 is coprime with everything.
+    const double target = 7.0 * samples / 9.0;
+    int best = 1;
+    for (int t = 1; t < samples; ++t) {
+        if (!coprime(t)) continue;
+        if (std::fabs(t - target) <= std::fabs(best - target)) best = t;
+    }
+    return best;
+}
+
 obscura_method resolve_method(obscura_method method) { return resolve_method_value(int32_t(method)); }
 
 const obscura_setting_info* setting_infos(obscura_method method, uint32_t* count) {
@@ -175,6 +239,9 @@ const obscura_setting_info* setting_infos(obscura_method method, uint32_t* count
         case OBSCURA_METHOD_REFERENCE:
             *count = uint32_t(sizeof kReferenceSettings / sizeof kReferenceSettings[0]);
             return kReferenceSettings;
+        case OBSCURA_METHOD_SAO:
+            *count = uint32_t(sizeof kSaoSettings / sizeof kSaoSettings[0]);
+            return kSaoSettings;
         default:
             *count = 0;
             return nullptr;
@@ -227,6 +294,8 @@ Error resolve_settings(const obscura_settings& in, obscura_settings* out) {
     if (hbao.decay_rate == 0.0f) hbao.decay_rate = hbao.falloff_c * hbao.radius * hbao.radius;
     obscura_reference_settings& reference = resolved.reference;
     if (reference.decay_rate == 0.0f) reference.decay_rate = reference.falloff_c * reference.radius * reference.radius;
+    obscura_sao_settings& sao = resolved.sao;
+    if (sao.turns == 0) sao.turns = default_spiral_turns(sao.samples);
     Error error = check_falloff_table(reference);
     if (error) return error;
     *out = resolved;
@@ -251,6 +320,13 @@ Error reference_settings_for(const obscura_settings& method_settings, obscura_se
             reference.reference.radius = resolved.hbao.radius;
             reference.reference.falloff_c = resolved.hbao.falloff_c;
             reference.reference.decay_rate = resolved.hbao.decay_rate;
+            break;
+        case OBSCURA_METHOD_SAO:
+            // The AlchemyAO estimator counts every occluder inside the ball of radius r at full weight: a step
+            // falloff (1 up to r, 0 beyond).
+            reference.reference.falloff = OBSCURA_FALLOFF_TABLE;
+            reference.reference.radius = resolved.sao.radius;
+            for (float& value : reference.reference.falloff_table) value = 1.0f;
             break;
         default:
             // Methods without a falloff of their own yet are compared with the default reference.

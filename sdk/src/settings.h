@@ -13,6 +13,9 @@ const obscura_setting_info* setting_infos(obscura_method method, uint32_t* count
 // Resolved method (DEFAULT -> HBAO); OBSCURA_METHOD_COUNT_ for unknown values.
 obscura_method resolve_method(obscura_method method);
 
+// SAO's default spiral turns for s samples: the integer nearest 7s/9 sharing no factor with s (7 for 9).
+int default_spiral_turns(int samples);
+
 // Sizes of every released version of obscura_settings that the library accepts.
 bool is_known_settings_size(uint32_t struct_size);
 

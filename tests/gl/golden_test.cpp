@@ -109,6 +109,8 @@ const std::vector<GoldenCase>& golden_cases() {
         {"hbao_demo_room_reversed_z", demo_room(ProjectionKind::ReversedZ), "hbao"},
         {"hbao_atrium", library_scene("atrium"), "hbao"},
         {"hbao_clutter_scene_normals", library_scene("clutter"), "hbao", true},
+        {"sao_atrium", library_scene("atrium"), "sao"},
+        {"sao_objects_r2", library_scene("objects"), "sao:radius=2"},
         {"reference_analytic_16_rays", library_scene("analytic"), "reference:rays=16"},
         {"reference_objects_16_rays", library_scene("objects"), "reference:rays=16"},
     };

@@ -33,14 +33,20 @@ bool obscura_is_perspective() { return proj_depth.z != 0.0; }
 // Clip w of a view point at distance `view_depth`: the distance itself (perspective) or 1 (orthographic).
 float obscura_clip_w(float view_depth) { return -view_depth * proj_depth.z + proj_depth.w; }
 
-// View-space position (camera looks down -z) of the centre of texel `pixel` at distance `view_depth`.
-vec3 obscura_view_position(ivec2 pixel, float view_depth) {
-    vec2 ndc = (vec2(pixel) + 0.5) * depth_params.zw * 2.0 - 1.0;
+// View-space position (camera looks down -z) of the point at `pixel_position` (texel units, texel centres at
+// .5) and distance `view_depth`.
+vec3 obscura_view_position_at(vec2 pixel_position, float view_depth) {
+    vec2 ndc = pixel_position * depth_params.zw * 2.0 - 1.0;
     float z = -view_depth;
     float w = obscura_clip_w(view_depth);
     // ndc.x = (m0 x + m8 z + m12) / w, likewise y.
     vec2 xy = (ndc * w - proj_scale.zw * z - proj_offset.xy) / proj_scale.xy;
     return vec3(xy, z);
+}
+
+// View-space position of the centre of texel `pixel` at distance `view_depth`.
+vec3 obscura_view_position(ivec2 pixel, float view_depth) {
+    return obscura_view_position_at(vec2(pixel) + 0.5, view_depth);
 }
 
 // Pixels covered by one view unit at distance `view_depth`, along y (square pixels assumed for x).

@@ -15,7 +15,11 @@
 // Image units (imageStore / imageLoad).
 #define OBSCURA_IMAGE_OUT0 0
 #define OBSCURA_IMAGE_OUT1 1
-#define OBSCURA_IMAGE_UNIT_COUNT 2
+#define OBSCURA_IMAGE_OUT2 2
+#define OBSCURA_IMAGE_OUT3 3
+#define OBSCURA_IMAGE_OUT4 4
+#define OBSCURA_IMAGE_OUT5 5
+#define OBSCURA_IMAGE_UNIT_COUNT 6
 
 // Uniform buffer binding points.
 #define OBSCURA_UBO_FRAME 0
@@ -33,6 +37,14 @@
 #define OBSCURA_COMPOSITE_GROUP_Y 8
 #define OBSCURA_REFERENCE_GROUP_X 8
 #define OBSCURA_REFERENCE_GROUP_Y 8
+// z pyramid: 16x16 threads build a 32x32 tile of the first level written and every level below it.
+#define OBSCURA_Z_PYRAMID_GROUP 16
+#define OBSCURA_Z_PYRAMID_TILE 32
+#define OBSCURA_Z_PYRAMID_LEVELS_PER_DISPATCH 6
+// SAO: 8x8 groups (whole 2x2 quads for the quad filter; the work region starts on even coordinates).
+#define OBSCURA_SAO_GROUP_X 8
+#define OBSCURA_SAO_GROUP_Y 8
+#define OBSCURA_SAO_MAX_SAMPLES 64
 
 // ---- Conventions ---------------------------------------------------------------------------------
 // Linear view depth is a positive distance from the eye plane in view units; sky pixels (far-plane
@@ -50,6 +62,9 @@
 #define OBSCURA_NORMALS_RECONSTRUCT 0
 #define OBSCURA_NORMALS_SIGNED 1   // float / snorm texture, used as is
 #define OBSCURA_NORMALS_UNSIGNED 2 // unorm texture, decoded as n * 2 - 1
+
+// Debug views the passes themselves act on (FrameConstants.target_params.w; values of obscura_debug_view).
+#define OBSCURA_DEBUG_VIEW_TAP_COUNT 4
 
 // ---- Uniform block: per-frame constants every pass sees (std140, vec4/ivec4 members only) -------
 #ifdef __cplusplus
@@ -116,6 +131,38 @@ OBSCURA_PASS_BLOCK_BEGIN(ReferenceConstants)
   OBSCURA_IVEC4(config);   // falloff kind, total rays, unused, unused
   OBSCURA_VEC4(table[4]);  // the 16 falloff-table values, 4 per vec4
 OBSCURA_PASS_BLOCK_END(ReferenceConstants, reference)
+#endif
+
+// MIP filters of the z pyramid (ZPyramidConstants.config.z, SaoConstants.options.x): the values of
+// obscura_sao_settings.mip_filter.
+#define OBSCURA_MIP_FILTER_ROTATED_GRID 1
+#define OBSCURA_MIP_FILTER_MEAN 2
+#define OBSCURA_MIP_FILTER_HARMONIC_MEAN 3
+#define OBSCURA_MIP_FILTER_MIN 4
+#define OBSCURA_MIP_FILTER_MAX 5
+
+#if defined(__cplusplus) || defined(OBSCURA_Z_PYRAMID_PASS)
+OBSCURA_PASS_BLOCK_BEGIN(ZPyramidConstants)
+  OBSCURA_IVEC4(config);   // source level, levels written (1..6, to image units OUT0..), filter, unused
+OBSCURA_PASS_BLOCK_END(ZPyramidConstants, z_pyramid)
+#endif
+
+#if defined(__cplusplus) || defined(OBSCURA_SAO_PASS)
+OBSCURA_PASS_BLOCK_BEGIN(SaoConstants)
+  OBSCURA_VEC4(ball);      // r, r^2 (view units), 2 sigma r / s, epsilon r^2
+  OBSCURA_VEC4(shaping);   // beta, k, max screen radius (px), quad-filter edge scale (sharpness / depth range)
+  OBSCURA_VEC4(packing);   // 1 / blur depth range (view units^-1), unused x3
+  OBSCURA_IVEC4(config);   // s, log2 q', deepest MIP level (0: level 0 only), quad filter on
+  OBSCURA_IVEC4(options);  // MIP filter (OBSCURA_MIP_FILTER_*), unused x3
+  OBSCURA_VEC4(taps[OBSCURA_SAO_MAX_SAMPLES]); // unrotated tap i: cos, sin of 2 pi tau alpha_i; alpha_i; unused
+OBSCURA_PASS_BLOCK_END(SaoConstants, sao)
+#endif
+
+#if defined(__cplusplus) || defined(OBSCURA_SAO_BLUR_PASS)
+OBSCURA_PASS_BLOCK_BEGIN(SaoBlurConstants)
+  OBSCURA_VEC4(params);    // edge scale (sharpness, on the packed key), 1 / (2 sigma^2), unused, unused
+  OBSCURA_IVEC4(config);   // radius in taps, stride, axis x, axis y
+OBSCURA_PASS_BLOCK_END(SaoBlurConstants, sao_blur)
 #endif
 
 #endif  // OBSCURA_SHADER_INTERFACE_H

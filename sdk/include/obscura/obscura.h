@@ -15,7 +15,8 @@
  * METHODS (papers in docs/algorithms.md)
  *   OBSCURA_METHOD_HBAO       Horizon-based AO: K directions x N steps ray marching with the
  *                             falloff rho0 of Timonen, "Line-Sweep Ambient Obscurance" (EGSR 2013), sec. 6.
- *   OBSCURA_METHOD_SAO        McGuire et al., "Scalable Ambient Obscurance" (HPG 2012).     [not yet available]
+ *   OBSCURA_METHOD_SAO        McGuire et al., "Scalable Ambient Obscurance" (HPG 2012): z-MIP hierarchy,
+ *                             spiral taps and the AlchemyAO estimator, 2x2 + separable bilateral reconstruction.
  *   OBSCURA_METHOD_LSAO       Timonen, "Line-Sweep Ambient Obscurance" (EGSR 2013).         [not yet available]
  *   OBSCURA_METHOD_FFAO       Timonen, "Screen-Space Far-Field Ambient Obscurance" (HPG 2013). [not yet available]
  *   OBSCURA_METHOD_REFERENCE  Screen-space ray-traced ground truth: eq. 1 of the FFAO paper evaluated by
@@ -93,7 +94,7 @@ extern "C" {
 
 /* ---- Version --------------------------------------------------------------------------------- */
 #define OBSCURA_VERSION_MAJOR 0
-#define OBSCURA_VERSION_MINOR 2
+#define OBSCURA_VERSION_MINOR 3
 #define OBSCURA_VERSION_PATCH 0
 /* Packed version: major * 10000 + minor * 100 + patch. */
 #define OBSCURA_VERSION (OBSCURA_VERSION_MAJOR * 10000 + OBSCURA_VERSION_MINOR * 100 + OBSCURA_VERSION_PATCH)
@@ -242,6 +243,37 @@ typedef struct obscura_hbao_settings {
     float blur_sharpness; /* depth edge sharpness, [1e-3, 1000]. Default 16 */
 } obscura_hbao_settings;
 
+/* SAO: McGuire, Mara, Luebke, "Scalable Ambient Obscurance" (HPG 2012). s taps on a spiral (eq. 6-8) read
+   camera-space z from a MIP hierarchy (level from the tap's screen radius, eq. 9-10), feed the AlchemyAO
+   estimator A = max(0, 1 - (2 sigma r / s) sum max(0, v.n + z_C beta) / (v.v + epsilon r^2))^k over the taps
+   inside the ball of radius r (SAO eq. 1; sigma and epsilon are relative to r so the result does not change
+   with the scene's scale), then a 2x2 bilateral step and a separable 7-tap bilateral blur. Every field: 0
+   selects the default given after it. */
+typedef struct obscura_sao_settings {
+    float radius;         /* metres, [1e-3, 1e4]: world-space radius r of the sample ball (eq. 5). Default 1 */
+    int32_t samples;      /* s taps per pixel, [1, 64]. Default 9 */
+    int32_t turns;        /* tau turns of the spiral, [1, 1024]. Default: the integer nearest 7s/9 that shares no
+                             factor with s, so the s angles are all different (the paper's 7 for s = 9) */
+    obscura_toggle mip;   /* z-MIP hierarchy; off: every tap reads level 0 (the paper's quality baseline). Default on */
+    int32_t mip_filter;   /* z^(m+1) from z^m (Table 1): 1 rotated-grid subsample, 2 arithmetic mean, 3 harmonic
+                             mean, 4 min, 5 max, [1, 5]. Default 1 */
+    int32_t log_q;        /* log2 of q', the screen radius (px) at which taps move one level down (eq. 9), [1, 8].
+                             Default 3 */
+    float intensity;      /* sigma, [1e-3, 16]. Default 1 */
+    float bias;           /* beta: v.n must exceed beta times the receiver's distance, [1e-6, 0.1]. Default 1e-3 */
+    float contrast;       /* k, [1e-3, 16]. Default 1 */
+    float epsilon;        /* epsilon / r^2, [1e-6, 1]. Default 0.01 */
+    float max_radius_pixels; /* cap of the screen radius r' (eq. 5), [1, 4096]. Default 256 */
+    obscura_toggle quad_filter; /* the 2x2 bilateral step at the end of the AO pass. Default on */
+    obscura_toggle blur;  /* the separable bilateral blur. Default on */
+    int32_t blur_radius;  /* taps each side, [1, 8]. Default 3 (the paper's 7 taps) */
+    int32_t blur_stride;  /* pixels between taps, [1, 4]. Default 3 (the paper's, after the 2x2 step) */
+    float blur_sharpness; /* edge weight max(0, 1 - sharpness |z - z_tap| / blur_depth_range), [1, 1e6].
+                             Default 2048 (the paper's 2^11) */
+    float blur_depth_range; /* metres over which z is packed in 16 bits beside the AO (the paper's z_min),
+                             [1e-2, 1e5]. Default 200 */
+} obscura_sao_settings;
+
 /* Falloff rho(d) of the obscurance integral (FFAO paper eq. 1), d in metres, r = decay_rate in m^2. */
 typedef enum obscura_falloff {
     OBSCURA_FALLOFF_DEFAULT = 0,           /* RHO0 */
@@ -277,6 +309,7 @@ typedef struct obscura_settings {
     obscura_method method;  /* which method renders. Default HBAO */
     obscura_hbao_settings hbao;
     obscura_reference_settings reference;
+    obscura_sao_settings sao;
 } obscura_settings;
 
 /* Fills `out` with the defaults of `method` (struct_size set, every field explicit).
@@ -372,7 +405,9 @@ typedef enum obscura_debug_view {
     OBSCURA_DEBUG_NONE = 0,        /* final AO */
     OBSCURA_DEBUG_LINEAR_DEPTH = 1, /* view depth / (4 * radius), clamped: near = black */
     OBSCURA_DEBUG_NORMALS = 2,     /* view-space normal * 0.5 + 0.5 in rgb (single-channel targets get z) */
-    OBSCURA_DEBUG_AO_BEFORE_BLUR = 3
+    OBSCURA_DEBUG_AO_BEFORE_BLUR = 3,
+    OBSCURA_DEBUG_TAP_COUNT = 4    /* depth texels the AO pass read for the pixel / 256 (HBAO, SAO; others 0);
+                                      a float target reads the counts exactly */
 } obscura_debug_view;
 
 typedef struct obscura_output {
@@ -411,8 +446,8 @@ OBSCURA_API void obscura_release_resources(obscura_context* context);
 
 /* ---- Queries --------------------------------------------------------------------------------- */
 typedef struct obscura_timing {
-    const char* label; /* "total" first, then one entry per pass: "depth_prepare", "hbao" or "reference", "blur",
-                          "composite" */
+    const char* label; /* "total" first, then one entry per pass: "depth_prepare", then "hbao", "reference" or
+                          "z_pyramid" + "sao", then "blur", "composite" */
     double milliseconds;
 } obscura_timing;
 

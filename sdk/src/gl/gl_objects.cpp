@@ -29,13 +29,13 @@ uint32_t bytes_per_texel(GLenum internal_format) {
     }
 }
 
-Texture2D Texture2D::create(const Table& gl, GLenum internal_format, int width, int height) {
+Texture2D Texture2D::create(const Table& gl, GLenum internal_format, int width, int height, int levels) {
     // The caller holds a StateGuard, so binding on the active unit is restored afterwards.
     GLuint name = 0;
     gl.GenTextures(1, &name);
     gl.BindTexture(GL_TEXTURE_2D, name);
-    gl.TexStorage2D(GL_TEXTURE_2D, 1, internal_format, width, height);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl.TexStorage2D(GL_TEXTURE_2D, levels, internal_format, width, height);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, levels > 1 ? GL_NEAREST_MIPMAP_NEAREST : GL_NEAREST);
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
@@ -46,7 +46,12 @@ Texture2D Texture2D::create(const Table& gl, GLenum internal_format, int width, 
     texture.width_ = width;
     texture.height_ = height;
     texture.format_ = internal_format;
-    texture.bytes_ = uint64_t(width) * uint64_t(height) * bytes_per_texel(internal_format);
+    texture.levels_ = levels;
+    for (int level = 0; level < levels; ++level) {
+        uint64_t w = uint64_t(width >> level > 0 ? width >> level : 1);
+        uint64_t h = uint64_t(height >> level > 0 ? height >> level : 1);
+        texture.bytes_ += w * h * bytes_per_texel(internal_format);
+    }
     return texture;
 }
 
@@ -73,6 +78,12 @@ Object create_sampler_nearest_clamp(const Table& gl) {
     // A host shadow-map texture may have compare mode on; the sampler object overrides it.
     gl.SamplerParameteri(name, GL_TEXTURE_COMPARE_MODE, GL_NONE);
     return Object(&gl, ObjectKind::Sampler, name);
+}
+
+Object create_sampler_nearest_mipmap_clamp(const Table& gl) {
+    Object sampler = create_sampler_nearest_clamp(gl);
+    gl.SamplerParameteri(sampler.name(), GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+    return sampler;
 }
 
 Object create_query(const Table& gl) {

@@ -45,18 +45,19 @@ private:
 class Texture2D {
 public:
     Texture2D() = default;
-    // Allocates storage; returns an empty texture if GL reports an error (out of memory).
-    static Texture2D create(const Table& gl, GLenum internal_format, int width, int height);
+    // Allocates storage for `levels` MIP levels; returns an empty texture if GL reports an error (out of memory).
+    static Texture2D create(const Table& gl, GLenum internal_format, int width, int height, int levels = 1);
     GLuint name() const { return object_.name(); }
     explicit operator bool() const { return static_cast<bool>(object_); }
     int width() const { return width_; }
     int height() const { return height_; }
     GLenum internal_format() const { return format_; }
+    int levels() const { return levels_; }
     uint64_t bytes() const { return bytes_; }
 
 private:
     Object object_;
-    int width_ = 0, height_ = 0;
+    int width_ = 0, height_ = 0, levels_ = 0;
     GLenum format_ = 0;
     uint64_t bytes_ = 0;
 };
@@ -75,6 +76,8 @@ private:
 };
 
 Object create_sampler_nearest_clamp(const Table& gl);
+// The same, with nearest MIP selection: texelFetch of levels above 0 needs a mipmapped minification filter.
+Object create_sampler_nearest_mipmap_clamp(const Table& gl);
 Object create_query(const Table& gl);
 Object create_framebuffer(const Table& gl);
 

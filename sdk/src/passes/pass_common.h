@@ -16,7 +16,7 @@ namespace obscura {
 // Per-size GPU resources shared by the passes; all cover the whole depth texture.
 struct FrameResources {
     int width = 0, height = 0;
-    gl::Texture2D linear_depth; // R32F positive view depth, OBSCURA_SKY_DEPTH for sky
+    gl::Texture2D linear_depth; // R32F positive view depth, OBSCURA_SKY_DEPTH for sky; levels above 0: SAO's z pyramid
     gl::Texture2D normals;      // RG16_SNORM octahedral view-space normals
     gl::Texture2D ao;           // R16F visibility before blur
     gl::Texture2D blur_temp;    // R16F after the horizontal blur
@@ -24,9 +24,11 @@ struct FrameResources {
     gl::Texture2D staging;      // RGBA8 output-rect sized, only for framebuffer targets reached by blits
     gl::Object staging_framebuffer;
     gl::Texture2D reference;    // R32F ray-traced reference: falloff sums, then visibility (REFERENCE only)
+    gl::Texture2D packed_ao;    // RGBA8 SAO visibility + 16-bit z key + geometry flag (SAO only) ...
+    gl::Texture2D packed_temp;  // ... and the same after the horizontal blur
     uint64_t bytes() const {
         return linear_depth.bytes() + normals.bytes() + ao.bytes() + blur_temp.bytes() + ao_blurred.bytes() +
-               staging.bytes() + reference.bytes();
+               staging.bytes() + reference.bytes() + packed_ao.bytes() + packed_temp.bytes();
     }
 };
 
@@ -71,6 +73,7 @@ struct PassEnv {
     obscura_log_fn log;
     void* log_user_data;
     GLuint sampler;         // nearest, clamp, compare off
+    GLuint sampler_mipmap;  // the same with nearest MIP selection (texelFetch of the z pyramid's levels)
     GLuint uniform_buffer;  // the UniformArena's buffer
 
     Error build(const char* entry, const char* defines, gl::Object* program) const {
@@ -80,6 +83,11 @@ struct PassEnv {
         gl.ActiveTexture(GLenum(GL_TEXTURE0 + unit));
         gl.BindTexture(target, texture);
         gl.BindSampler(GLuint(unit), target == GL_TEXTURE_2D_MULTISAMPLE ? 0 : sampler);
+    }
+    void bind_texture_mipmapped(int unit, GLuint texture) const {
+        gl.ActiveTexture(GLenum(GL_TEXTURE0 + unit));
+        gl.BindTexture(GL_TEXTURE_2D, texture);
+        gl.BindSampler(GLuint(unit), sampler_mipmap);
     }
     void bind_uniforms(GLuint binding, const UniformRange& range) const {
         gl.BindBufferRange(GL_UNIFORM_BUFFER, binding, uniform_buffer, range.offset, range.size);

@@ -1,0 +1,116 @@
+#include "passes/sao.h"
+
+#include <cmath>
+
+namespace obscura {
+namespace {
+constexpr double kTwoPi = 6.283185307179586;
+}  // namespace
+
+SpiralTap spiral_tap(int i, int samples, int turns) {
+    const double alpha = (double(i) + 0.5) / double(samples);
+    // Reduced to one turn here in double precision: the shader only rotates it.
+    double turns_done = alpha * double(turns);
+    turns_done -= std::floor(turns_done);
+    return SpiralTap{float(alpha), float(kTwoPi * turns_done)};
+}
+
+float spiral_rotation(int x, int y) {
+    const uint32_t ux = uint32_t(x), uy = uint32_t(y);
+    float phi = float((30u * ux) ^ uy) + float(10u * ux * uy);
+    const float two_pi = 6.28318530718f;
+    phi -= two_pi * std::floor(phi * (1.0f / two_pi));
+    return phi;
+}
+
+Error SaoPass::prepare(const PassEnv& env) {
+    if (program_) return Error();
+    return env.build("sao.comp", "", &program_);
+}
+
+int SaoPass::wanted_levels(const obscura_sao_settings& settings) {
+    if (settings.mip != OBSCURA_TOGGLE_ON) return 1;
+    // The outermost tap sits at alpha = (s - 0.5) / s of the capped screen radius.
+    const double outermost = double(settings.max_radius_pixels) * (settings.samples - 0.5) / settings.samples;
+    int msb = 0;
+    for (int h = int(outermost); h > 1; h >>= 1) ++msb;
+    int deepest = msb - settings.log_q;
+    return deepest > 0 ? deepest + 1 : 1;
+}
+
+SaoConstants SaoPass::constants(const obscura_sao_settings& settings, const FrameInput& input, int deepest_level) {
+    const float m2v = input.meters_to_view_units;
+    const float r = settings.radius * m2v;
+    SaoConstants c = {};
+    c.ball[0] = r;
+    c.ball[1] = r * r;
+    // sigma and epsilon are relative to r: the estimator's sum has units of 1/length.
+    c.ball[2] = 2.0f * settings.intensity * r / float(settings.samples);
+    c.ball[3] = settings.epsilon * r * r;
+    c.shaping[0] = settings.bias;
+    c.shaping[1] = settings.contrast;
+    c.shaping[2] = settings.max_radius_pixels;
+    const float depth_range = settings.blur_depth_range * m2v;
+    c.shaping[3] = settings.blur_sharpness / depth_range;
+    c.packing[0] = 1.0f / depth_range;
+    c.config[0] = settings.samples;
+    c.config[1] = settings.log_q;
+    c.config[2] = deepest_level;
+    c.config[3] = settings.quad_filter == OBSCURA_TOGGLE_ON ? 1 : 0;
+    c.options[0] = settings.mip_filter;
+    for (int i = 0; i < settings.samples && i < OBSCURA_SAO_MAX_SAMPLES; ++i) {
+        SpiralTap tap = spiral_tap(i, settings.samples, settings.turns);
+        c.taps[i][0] = std::cos(tap.angle);
+        c.taps[i][1] = std::sin(tap.angle);
+        c.taps[i][2] = tap.alpha;
+    }
+    return c;
+}
+
+void SaoPass::run(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
+                  FrameResources& resources) {
+    const gl::Table& gl = env.gl;
+    gl.UseProgram(program_.name());
+    env.bind_texture_mipmapped(OBSCURA_UNIT_LINEAR_DEPTH, resources.linear_depth.name());
+    env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
+    gl.BindImageTexture(OBSCURA_IMAGE_OUT0, resources.packed_ao.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+    env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
+    env.bind_uniforms(OBSCURA_UBO_PASS, pass);
+    env.dispatch(region.width, region.height, OBSCURA_SAO_GROUP_X, OBSCURA_SAO_GROUP_Y);
+    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+Error SaoBlurPass::prepare(const PassEnv& env) {
+    Error error;
+    if (!packed_program_) error = env.build("sao_blur.comp", "FINAL_OUTPUT 0\n", &packed_program_);
+    if (!error && !final_program_) error = env.build("sao_blur.comp", "FINAL_OUTPUT 1\n", &final_program_);
+    return error;
+}
+
+SaoBlurConstants SaoBlurPass::constants(const obscura_sao_settings& settings, int axis_x, int axis_y) {
+    SaoBlurConstants c = {};
+    // sigma = (R + 1) / 2 taps keeps the outermost tap at a weight of about e^-2, as the HBAO blur.
+    const float sigma = 0.5f * float(settings.blur_radius + 1);
+    c.params[0] = settings.blur_sharpness;
+    c.params[1] = 1.0f / (2.0f * sigma * sigma);
+    c.config[0] = settings.blur_radius;
+    c.config[1] = settings.blur_stride;
+    c.config[2] = axis_x;
+    c.config[3] = axis_y;
+    return c;
+}
+
+void SaoBlurPass::run(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
+                      const gl::Texture2D& source, const gl::Texture2D& destination, bool final) {
+    const gl::Table& gl = env.gl;
+    gl.UseProgram(final ? final_program_.name() : packed_program_.name());
+    env.bind_texture(OBSCURA_UNIT_SOURCE, GL_TEXTURE_2D, source.name());
+    gl.BindImageTexture(OBSCURA_IMAGE_OUT0, destination.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
+                        final ? GL_R16F : GL_RGBA8);
+    env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
+    env.bind_uniforms(OBSCURA_UBO_PASS, pass);
+    env.dispatch(region.width, region.height, OBSCURA_BLUR_GROUP_X, OBSCURA_BLUR_GROUP_Y);
+    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+}  // namespace obscura

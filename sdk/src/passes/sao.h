@@ -1,0 +1,54 @@
+// SAO's distributed AO sample pass (sdk/glsl/sao.comp) and its spiral: the unrotated taps are computed
+// here, once per settings change, and uploaded with the pass constants.
+#ifndef OBSCURA_SAO_H
+#define OBSCURA_SAO_H
+
+#include "frame_input.h"
+#include "passes/pass_common.h"
+
+namespace obscura {
+
+// Tap i of an s-tap spiral with tau turns (SAO eq. 6-7) before the per-pixel rotation: the fraction of the
+// screen radius alpha_i = (i + 0.5) / s and the angle 2 pi tau alpha_i.
+struct SpiralTap {
+    float alpha;
+    float angle;
+};
+SpiralTap spiral_tap(int i, int samples, int turns);
+
+// Eq. 8: the per-pixel rotation phi = 30 x ^ y + 10 x y in radians, reduced to [0, 2 pi) (the shader's).
+float spiral_rotation(int x, int y);
+
+class SaoPass {
+public:
+    Error prepare(const PassEnv& env);
+    // The deepest z-pyramid level the taps can ask for (eq. 9 at the largest screen radius), plus one.
+    static int wanted_levels(const obscura_sao_settings& settings);
+    // Resolved settings (metres) -> the shader's constants (view units). `deepest_level`: the last level of
+    // the z pyramid (0 without the hierarchy).
+    static SaoConstants constants(const obscura_sao_settings& settings, const FrameInput& input, int deepest_level);
+    // Writes packed visibility into resources.packed_ao over `region` (which starts on even coordinates).
+    void run(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
+             FrameResources& resources);
+
+private:
+    gl::Object program_;
+};
+
+// The separable bilateral blur (sdk/glsl/sao_blur.comp): the horizontal pass keeps the packed RGBA8 layout,
+// the vertical one (`final`) writes plain visibility to an R16F texture.
+class SaoBlurPass {
+public:
+    Error prepare(const PassEnv& env);
+    static SaoBlurConstants constants(const obscura_sao_settings& settings, int axis_x, int axis_y);
+    void run(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
+             const gl::Texture2D& source, const gl::Texture2D& destination, bool final);
+
+private:
+    gl::Object packed_program_;
+    gl::Object final_program_;
+};
+
+}  // namespace obscura
+
+#endif  // OBSCURA_SAO_H
