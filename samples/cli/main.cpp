@@ -14,7 +14,7 @@ namespace {
 
 const char* const kUsage = R"(usage:
   obscura render [--method SPEC] [--set KEY=VALUE]... --out AO.png [--pfm AO.pfm] [--json OUT.json]
-                 [--debug-view none|depth|normals|ao-before-blur] [--sync-timing] [SCENE]
+                 [--debug-view none|depth|normals|ao-before-blur|tap-count] [--sync-timing] [SCENE]
   obscura compare [--methods SPEC,SPEC,...] [--set KEY=VALUE]... [--reference-rays 256]
                   [--out-dir compare-output] [--json REPORT.json] [--orbit DEG --frames N]
                   [--sync-timing] [SCENE]

@@ -20,7 +20,8 @@ obscura_debug_view parse_debug_view(const std::string& name) {
     if (name == "depth") return OBSCURA_DEBUG_LINEAR_DEPTH;
     if (name == "normals") return OBSCURA_DEBUG_NORMALS;
     if (name == "ao-before-blur") return OBSCURA_DEBUG_AO_BEFORE_BLUR;
-    throw UsageError("unknown --debug-view '" + name + "' (valid: none, depth, normals, ao-before-blur)");
+    if (name == "tap-count") return OBSCURA_DEBUG_TAP_COUNT;
+    throw UsageError("unknown --debug-view '" + name + "' (valid: none, depth, normals, ao-before-blur, tap-count)");
 }
 
 struct RenderConfig {

@@ -1,5 +1,7 @@
 #include "ao_test_scene.h"
 
+#include <algorithm>
+#include <cmath>
 #include <sstream>
 #include <utility>
 
@@ -28,5 +30,13 @@ std::string describe(const Stats& s) {
     out << s.count << " texels, min " << s.min << " mean " << s.mean << " max " << s.max;
     return out.str();
 }
+
+AoScene corner_scene(Projection projection) {
+    return make_ao_scene(projection, look_at(glm::dvec3(0.3, 1.3, 2.8), glm::dvec3(0.0, 0.45, 0.0)),
+                         {plane(1, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0)),
+                          plane(2, glm::dvec3(0.0), glm::dvec3(0.0, 0.0, 1.0))});
+}
+
+double crease_distance(const Hit& h) { return std::hypot(std::max(h.world.y, 0.0), std::max(h.world.z, 0.0)); }
 
 }  // namespace obscura_test

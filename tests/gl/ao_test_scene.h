@@ -38,6 +38,11 @@ std::vector<bool> select(const std::vector<Hit>& hits, int width, int height, in
     return mask;
 }
 
+// A concave corner: floor (y = 0) and a wall (z = 0, facing +z), seen from (0.3, 1.3, 2.8).
+AoScene corner_scene(Projection projection = Projection::Perspective);
+// World distance of a hit on the corner's floor or wall from the crease (the line y = 0, z = 0).
+double crease_distance(const Hit& h);
+
 // "N texels, min a mean b max c" for failure messages.
 std::string describe(const Stats& s);
 

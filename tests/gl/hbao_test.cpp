@@ -69,14 +69,7 @@ INSTANTIATE_TEST_SUITE_P(Variants, HbaoFlatPlane,
 
 // ---- A concave corner: floor (y = 0) and a wall (z = 0, facing +z) --------------------------------------
 
-AoScene corner_scene(Projection projection = Projection::Perspective) {
-    return make_ao_scene(projection, look_at(glm::dvec3(0.3, 1.3, 2.8), glm::dvec3(0.0, 0.45, 0.0)),
-                         {plane(1, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0)),
-                          plane(2, glm::dvec3(0.0), glm::dvec3(0.0, 0.0, 1.0))});
-}
-
-// World distance of a hit on the floor or the wall from the crease (the line y = 0, z = 0).
-double crease_distance(const Hit& h) { return std::hypot(std::max(h.world.y, 0.0), std::max(h.world.z, 0.0)); }
+// corner_scene() and crease_distance() come from ao_test_scene.h.
 
 TEST_F(Hbao, CornerOccludedNearCrease) {
     AoScene scene = corner_scene();
