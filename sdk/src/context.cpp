@@ -206,7 +206,7 @@ obscura_status Context::report(const Error& error) {
     return error.status();
 }
 
-uint64_t Context::memory_bytes() const { return resources_.bytes() + uniform_buffer_.bytes(); }
+uint64_t Context::memory_bytes() const { return resources_.bytes() + uniform_buffer_.bytes() + lsao_.bytes(); }
 
 Error Context::check_gl_context() {
     const GLubyte* version = gl_.GetString(GL_VERSION);
@@ -245,7 +245,10 @@ Error Context::ensure_resources(int width, int height) {
     return Error();
 }
 
-void Context::release_resources() { resources_ = FrameResources(); }
+void Context::release_resources() {
+    resources_ = FrameResources();
+    lsao_.release();
+}
 
 Error Context::ensure_reference_accumulator() {
     if (resources_.reference) return Error();
@@ -285,6 +288,7 @@ Error Context::ensure_method_resources(const obscura_settings& settings) {
         case OBSCURA_METHOD_SAO:
             return ensure_sao_resources(
                 ZPyramidPass::level_count(resources_.width, resources_.height, SaoPass::wanted_levels(settings.sao)));
+        case OBSCURA_METHOD_LSAO: return lsao_.ensure_layout(env(), settings.lsao, resources_.width, resources_.height);
         default: return Error();
     }
 }
@@ -428,6 +432,7 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
     error = composite_.prepare(pass_env, composite_format);
     if (error) return error;
     if (method == OBSCURA_METHOD_REFERENCE) error = reference_.prepare(pass_env);
+    if (method == OBSCURA_METHOD_LSAO) error = lsao_.prepare(pass_env);
     if (method == OBSCURA_METHOD_SAO) {
         error = z_pyramid_.prepare(pass_env);
         if (!error) error = sao_.prepare(pass_env);
@@ -472,6 +477,7 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
     }
     float radius = method == OBSCURA_METHOD_REFERENCE ? settings.reference.radius
                    : method == OBSCURA_METHOD_SAO     ? sao.radius
+                   : method == OBSCURA_METHOD_LSAO    ? settings.lsao.radius
                                                      : hbao.radius;
     float debug_depth_scale = 1.0f / (4.0f * radius * input.meters_to_view_units);
 
@@ -493,6 +499,9 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
     switch (method) {
         case OBSCURA_METHOD_REFERENCE:
             method_pass = uniforms_.push(ReferencePass::constants(settings.reference, input));
+            break;
+        case OBSCURA_METHOD_LSAO:
+            method_pass = uniforms_.push(lsao_.constants(settings.lsao, input));
             break;
         case OBSCURA_METHOD_SAO:
             for (int d = 0; d < pyramid_dispatches && d < 4; ++d) {
@@ -531,6 +540,13 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
                        resources_.reference, [&] { gl_.Flush(); });
         raw = result = &resources_.reference;
         error = after_pass("reference");
+    } else if (!error && method == OBSCURA_METHOD_LSAO) {
+        lsao_.run_sweeps(pass_env, frame_whole, method_pass, resources_);
+        error = after_pass("line_sweep");
+        if (!error) {
+            lsao_.run_gather(pass_env, frame_ao, method_pass, plan.ao_region, resources_);
+            error = after_pass("gather");
+        }
     } else if (!error && method == OBSCURA_METHOD_SAO) {
         if (sao_levels > 1) {
             z_pyramid_.run(pass_env, pyramid_passes, pyramid_dispatches, resources_.linear_depth);

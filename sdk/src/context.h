@@ -13,6 +13,7 @@
 #include "passes/composite.h"
 #include "passes/depth_prepare.h"
 #include "passes/hbao.h"
+#include "passes/lsao.h"
 #include "passes/pass_common.h"
 #include "passes/reference.h"
 #include "passes/sao.h"
@@ -84,6 +85,7 @@ private:
     ZPyramidPass z_pyramid_;
     SaoPass sao_;
     SaoBlurPass sao_blur_;
+    LsaoPass lsao_;
     BilateralBlurPass blur_;
     CompositePass composite_;
     FrameResources resources_;

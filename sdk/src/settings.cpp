@@ -112,6 +112,58 @@ const obscura_setting_info kSaoSettings[] = {
 
 #undef OBSCURA_SAO_FIELD
 
+#define OBSCURA_LSAO_FIELD(field) offsetof(obscura_settings, lsao) + offsetof(obscura_lsao_settings, field)
+
+// LSAO (Timonen 2013). Defaults are the paper's: falloff r/(r+d^2), the K = 16 configuration of Table 2,
+// aligned sampling patterns, fixed tangent sin(t) = -0.85 for hull and occlusion (strategy 3).
+const obscura_setting_info kLsaoSettings[] = {
+    {"radius", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 1e4, "m", "falloff scale: the decay rate defaults to C*radius^2",
+     OBSCURA_LSAO_FIELD(radius)},
+    {"falloff", OBSCURA_SETTING_INT, 2, 1, 2, "", "1: rho0 (LSAO eq. 3, HBAO's); 2: r/(r+d^2) (LSAO eq. 2)",
+     OBSCURA_LSAO_FIELD(falloff)},
+    {"falloff_c", OBSCURA_SETTING_FLOAT, 0.3, 1e-3, 0.999, "", "C: rho0's sink and the decay-rate default",
+     OBSCURA_LSAO_FIELD(falloff_c)},
+    {"decay_rate", OBSCURA_SETTING_FLOAT, 0.0, 1e-8, 1e8, "m^2", "r of the falloff; 0 derives C*radius^2",
+     OBSCURA_LSAO_FIELD(decay_rate)},
+    {"preset", OBSCURA_SETTING_INT, 2, 1, 6, "",
+     "K/D_S/D_L: 1 8/1.41/1.41, 2 16/2.43/1.64, 3 24/3.56/1.69, 4 32/4.69/1.70, 5 8/2.83/2.12, 6 16/4.87/2.46",
+     OBSCURA_LSAO_FIELD(preset)},
+    {"pattern", OBSCURA_SETTING_INT, 1, 1, 2, "", "1: aligned 8n directions on texel centres; 2: free (interpolated)",
+     OBSCURA_LSAO_FIELD(pattern)},
+    {"directions", OBSCURA_SETTING_INT, 0, 1, 64, "", "K; aligned patterns need a multiple of 8; 0: the preset's",
+     OBSCURA_LSAO_FIELD(directions)},
+    {"step_length", OBSCURA_SETTING_FLOAT, 0.0, 0.5, 16.0, "px", "D_S (free pattern); 0: the preset's",
+     OBSCURA_LSAO_FIELD(step_length)},
+    {"line_spacing", OBSCURA_SETTING_FLOAT, 0.0, 0.5, 16.0, "px", "D_L between parallel lines; 0: the preset's",
+     OBSCURA_LSAO_FIELD(line_spacing)},
+    {"tangent", OBSCURA_SETTING_FLOAT, -0.85, -1.0, 0.5, "", "the fixed sin(t) of the hull and the occlusion",
+     OBSCURA_LSAO_FIELD(tangent)},
+    {"tangent_strategy", OBSCURA_SETTING_INT, 3, 1, 3, "",
+     "1: receiver's tangent for hull and occlusion; 2: fixed for the hull, receiver's for occlusion; 3: fixed",
+     OBSCURA_LSAO_FIELD(tangent_strategy)},
+    {"hull_capacity", OBSCURA_SETTING_INT, 64, 2, 256, "", "points kept per line; the oldest is dropped when full",
+     OBSCURA_LSAO_FIELD(hull_capacity)},
+    {"exact", OBSCURA_SETTING_TOGGLE, 0, 0, 1, "", "brute-force largest occluder instead of the hull (validation)",
+     OBSCURA_LSAO_FIELD(exact)},
+    {"depth_threshold", OBSCURA_SETTING_FLOAT, 0.05, 1e-4, 10.0, "", "gather: relative depth difference that rejects",
+     OBSCURA_LSAO_FIELD(depth_threshold)},
+    {"normal_test", OBSCURA_SETTING_TOGGLE, 0, 0, 1, "", "gather: also reject by normal", OBSCURA_LSAO_FIELD(normal_test)},
+    {"normal_threshold", OBSCURA_SETTING_FLOAT, 0.8, -1.0, 1.0, "", "gather: minimum dot of the normals",
+     OBSCURA_LSAO_FIELD(normal_threshold)},
+    {"intensity", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "obscurance multiplier", OBSCURA_LSAO_FIELD(intensity)},
+    {"power", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "exponent applied to the visibility", OBSCURA_LSAO_FIELD(power)},
+};
+
+#undef OBSCURA_LSAO_FIELD
+
+struct LsaoPreset {
+    int directions;
+    double step_length, line_spacing;
+};
+// LSAO paper Table 2 (1-4) and Figures 1 and 13 (5, 6).
+const LsaoPreset kLsaoPresets[] = {{8, 1.41, 1.41}, {16, 2.43, 1.64}, {24, 3.56, 1.69},
+                                   {32, 4.69, 1.70}, {8, 2.83, 2.12}, {16, 4.87, 2.46}};
+
 template <class T>
 T* field_at(obscura_settings* settings, size_t offset) {
     return reinterpret_cast<T*>(reinterpret_cast<unsigned char*>(settings) + offset);
@@ -185,6 +237,23 @@ void store_value(obscura_settings* settings, const obscura_setting_info& info, d
     }
 }
 
+// LSAO's derived values: the preset fills K, D_S and D_L, the decay rate follows the radius. An aligned
+// pattern exists only for K = 8n.
+Error resolve_lsao(obscura_lsao_settings* lsao) {
+    const LsaoPreset& preset = kLsaoPresets[lsao->preset - 1];
+    if (lsao->directions == 0) lsao->directions = preset.directions;
+    if (lsao->step_length == 0.0f) lsao->step_length = float(preset.step_length);
+    if (lsao->line_spacing == 0.0f) lsao->line_spacing = float(preset.line_spacing);
+    if (lsao->decay_rate == 0.0f) lsao->decay_rate = lsao->falloff_c * lsao->radius * lsao->radius;
+    if (lsao->pattern == 1 && lsao->directions % 8 != 0) {
+        return Error::make(OBSCURA_STATUS_INVALID_SETTING,
+                           "lsao.directions = %d: the aligned pattern has K = 8n directions (8, 16, 24 ... 64); "
+                           "use pattern 2 (free) for other counts",
+                           int(lsao->directions));
+    }
+    return Error();
+}
+
 // The falloff table is read only with OBSCURA_FALLOFF_TABLE, where it must describe a falloff.
 Error check_falloff_table(const obscura_reference_settings& reference) {
     if (reference.falloff != OBSCURA_FALLOFF_TABLE) return Error();
@@ -242,6 +311,9 @@ const obscura_setting_info* setting_infos(obscura_method method, uint32_t* count
         case OBSCURA_METHOD_SAO:
             *count = uint32_t(sizeof kSaoSettings / sizeof kSaoSettings[0]);
             return kSaoSettings;
+        case OBSCURA_METHOD_LSAO:
+            *count = uint32_t(sizeof kLsaoSettings / sizeof kLsaoSettings[0]);
+            return kLsaoSettings;
         default:
             *count = 0;
             return nullptr;
@@ -296,7 +368,9 @@ Error resolve_settings(const obscura_settings& in, obscura_settings* out) {
     if (reference.decay_rate == 0.0f) reference.decay_rate = reference.falloff_c * reference.radius * reference.radius;
     obscura_sao_settings& sao = resolved.sao;
     if (sao.turns == 0) sao.turns = default_spiral_turns(sao.samples);
-    Error error = check_falloff_table(reference);
+    Error error = resolve_lsao(&resolved.lsao);
+    if (error) return error;
+    error = check_falloff_table(reference);
     if (error) return error;
     *out = resolved;
     return Error();
@@ -320,6 +394,13 @@ Error reference_settings_for(const obscura_settings& method_settings, obscura_se
             reference.reference.radius = resolved.hbao.radius;
             reference.reference.falloff_c = resolved.hbao.falloff_c;
             reference.reference.decay_rate = resolved.hbao.decay_rate;
+            break;
+        case OBSCURA_METHOD_LSAO:
+            reference.reference.falloff =
+                resolved.lsao.falloff == 1 ? OBSCURA_FALLOFF_RHO0 : OBSCURA_FALLOFF_INVERSE_QUADRATIC;
+            reference.reference.radius = resolved.lsao.radius;
+            reference.reference.falloff_c = resolved.lsao.falloff_c;
+            reference.reference.decay_rate = resolved.lsao.decay_rate;
             break;
         case OBSCURA_METHOD_SAO:
             // The AlchemyAO estimator counts every occluder inside the ball of radius r at full weight: a step

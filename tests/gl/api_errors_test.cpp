@@ -680,7 +680,7 @@ TEST_P(ApiMethodNotAvailable, PrepareNamesTheMethod) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, ApiMethodNotAvailable,
-                         ::testing::Values(OBSCURA_METHOD_LSAO, OBSCURA_METHOD_FFAO),
+                         ::testing::Values(OBSCURA_METHOD_FFAO),
                          [](const ::testing::TestParamInfo<obscura_method>& param_info) {
                              return std::string(obscura_method_name(param_info.param));
                          });

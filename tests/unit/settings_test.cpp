@@ -396,7 +396,7 @@ TEST(SettingsSetGet, UnknownNames) {
 
 TEST(SettingsSetGet, MethodWithoutTableHasNoSettings) {
     obscura_settings s = zero_settings();
-    s.method = OBSCURA_METHOD_LSAO;
+    s.method = OBSCURA_METHOD_FFAO;
     double v = 0;
     EXPECT_EQ(obscura_set_setting(&s, "radius", 1.0), OBSCURA_STATUS_UNKNOWN_SETTING);
     EXPECT_EQ(obscura_get_setting(&s, "radius", &v), OBSCURA_STATUS_UNKNOWN_SETTING);
@@ -507,7 +507,7 @@ TEST(SettingsTable, DefaultMethodSharesHbaoTable) {
 }
 
 TEST(SettingsTable, UnavailableMethodsHaveEmptyTables) {
-    for (obscura_method m : {OBSCURA_METHOD_LSAO, OBSCURA_METHOD_FFAO}) {
+    for (obscura_method m : {OBSCURA_METHOD_FFAO}) {
         const obscura_setting_info* infos = reinterpret_cast<const obscura_setting_info*>(1);
         uint32_t count = 99;
         ASSERT_EQ(obscura_get_setting_infos(m, &infos, &count), OBSCURA_OK);

@@ -26,6 +26,12 @@
 #define OBSCURA_UBO_PASS 1
 #define OBSCURA_UBO_COUNT 2
 
+// Shader storage buffer binding points.
+#define OBSCURA_SSBO_LSAO_LINES 0   // the sweep lines (LsaoLayout)
+#define OBSCURA_SSBO_LSAO_VALUES 1  // the sweeps' results, two halves per uint
+#define OBSCURA_SSBO_LSAO_STATS 2   // counters: steps, hull pops, points dropped from full hulls
+#define OBSCURA_SSBO_COUNT 3
+
 // ---- Workgroup sizes (the dispatch math in C++ reads the same numbers) ------------------------
 #define OBSCURA_DEPTH_PREPARE_GROUP_X 8
 #define OBSCURA_DEPTH_PREPARE_GROUP_Y 8
@@ -45,6 +51,14 @@
 #define OBSCURA_SAO_GROUP_X 8
 #define OBSCURA_SAO_GROUP_Y 8
 #define OBSCURA_SAO_MAX_SAMPLES 64
+// LSAO: one invocation per line, 64 per group; the gather in 8x8 groups.
+#define OBSCURA_LSAO_SWEEP_GROUP 64
+#define OBSCURA_LSAO_GATHER_GROUP_X 8
+#define OBSCURA_LSAO_GATHER_GROUP_Y 8
+#define OBSCURA_LSAO_MAX_DIRECTIONS 64
+#define OBSCURA_LSAO_MAX_HULL 256
+// The value a sweep writes where no earlier sample exists (outside every sin h, which is <= 1).
+#define OBSCURA_LSAO_NO_OCCLUDER 4.0
 
 // ---- Conventions ---------------------------------------------------------------------------------
 // Linear view depth is a positive distance from the eye plane in view units; sky pixels (far-plane
@@ -163,6 +177,21 @@ OBSCURA_PASS_BLOCK_BEGIN(SaoBlurConstants)
   OBSCURA_VEC4(params);    // edge scale (sharpness, on the packed key), 1 / (2 sigma^2), unused, unused
   OBSCURA_IVEC4(config);   // radius in taps, stride, axis x, axis y
 OBSCURA_PASS_BLOCK_END(SaoBlurConstants, sao_blur)
+#endif
+
+#if defined(__cplusplus) || defined(OBSCURA_LSAO_PASS)
+// LsaoConstants.config.w flags.
+#define OBSCURA_LSAO_FLAG_EXACT 1
+#define OBSCURA_LSAO_FLAG_ALIGNED 2
+#define OBSCURA_LSAO_FLAG_NORMAL_TEST 4
+OBSCURA_PASS_BLOCK_BEGIN(LsaoConstants)
+  OBSCURA_VEC4(falloff);   // r (view units^2), C (0: r / (r + d^2)), fixed sin t, D_L (texels)
+  OBSCURA_VEC4(gather);    // depth threshold (relative), normal threshold (dot), intensity, power
+  OBSCURA_IVEC4(config);   // K, total lines, hull capacity, flags
+  OBSCURA_IVEC4(strategy); // tangent strategy (1-3), unused x3
+  OBSCURA_VEC4(directions[OBSCURA_LSAO_MAX_DIRECTIONS]); // unit direction xy, step vector xy (texels)
+  OBSCURA_VEC4(coverage[OBSCURA_LSAO_MAX_DIRECTIONS]);   // weight, perpendicular offset of line 0, first line, line count
+OBSCURA_PASS_BLOCK_END(LsaoConstants, lsao)
 #endif
 
 #endif  // OBSCURA_SHADER_INTERFACE_H

@@ -17,7 +17,8 @@
  *                             falloff rho0 of Timonen, "Line-Sweep Ambient Obscurance" (EGSR 2013), sec. 6.
  *   OBSCURA_METHOD_SAO        McGuire et al., "Scalable Ambient Obscurance" (HPG 2012): z-MIP hierarchy,
  *                             spiral taps and the AlchemyAO estimator, 2x2 + separable bilateral reconstruction.
- *   OBSCURA_METHOD_LSAO       Timonen, "Line-Sweep Ambient Obscurance" (EGSR 2013).         [not yet available]
+ *   OBSCURA_METHOD_LSAO       Timonen, "Line-Sweep Ambient Obscurance" (EGSR 2013): obscure-hull line sweeps in K
+ *                             directions, sparse lines gathered per pixel; cost independent of the radius.
  *   OBSCURA_METHOD_FFAO       Timonen, "Screen-Space Far-Field Ambient Obscurance" (HPG 2013). [not yet available]
  *   OBSCURA_METHOD_REFERENCE  Screen-space ray-traced ground truth: eq. 1 of the FFAO paper evaluated by
  *                             cosine-weighted rays stepped through the whole depth buffer (its sec. 8).
@@ -274,6 +275,39 @@ typedef struct obscura_sao_settings {
                              [1e-2, 1e5]. Default 200 */
 } obscura_sao_settings;
 
+/* LSAO: Timonen, "Line-Sweep Ambient Obscurance" (EGSR 2013). Lines D_L texels apart cross the whole depth
+   texture in K directions; each is walked in steps of D_S texels, keeping the obscure hull (Algorithm 1) of
+   the points behind, so each step finds its largest falloff-weighted occluder in amortised O(1): the cost
+   does not depend on the radius. A gather pass takes, per pixel and direction, the nearest line sample that
+   is on the same surface and averages them weighted by azimuthal coverage (eq. 1). Every field: 0 selects the
+   default given after it; `preset` fills K, D_S and D_L where those are 0. */
+typedef struct obscura_lsao_settings {
+    float radius;         /* metres, [1e-3, 1e4]: falloff scale, the decay rate defaults to C*radius^2. Default 1 */
+    int32_t falloff;      /* 1: rho0 (HBAO's, LSAO eq. 3), 2: r/(r+d^2) (LSAO eq. 2), [1, 2]. Default 2 */
+    float falloff_c;      /* C, [1e-3, 0.999]: rho0's sink, and the decay-rate default. Default 0.3 */
+    float decay_rate;     /* r in m^2, [1e-8, 1e8]. Default C*radius^2 */
+    int32_t preset;       /* K, D_S, D_L of the paper: 1: 8, 1.41, 1.41; 2: 16, 2.43, 1.64; 3: 24, 3.56, 1.69;
+                             4: 32, 4.69, 1.70 (Table 2); 5: 8, 2.83, 2.12 (Figure 1); 6: 16, 4.87, 2.46
+                             (Figure 13), [1, 6]. Default 2 */
+    int32_t pattern;      /* 1: aligned 8n directions on texel centres (sec. 5.2); 2: free: any K, interpolated
+                             depth, snapped at depth edges, [1, 2]. Default 1 */
+    int32_t directions;   /* K, [1, 64]; aligned: a multiple of 8. Default: the preset's */
+    float step_length;    /* D_S in texels, [0.5, 16]; free pattern only (aligned ones derive it). Default: preset's */
+    float line_spacing;   /* D_L in texels, [0.5, 16]. Default: the preset's */
+    float tangent;        /* the fixed sin(t), [-1, 0.5]. Default -0.85 */
+    int32_t tangent_strategy; /* sec. 4.1: 1 the receiver's tangent for hull and occlusion, 2 fixed for the hull
+                             and the receiver's for occlusion, 3 fixed for both, [1, 3]. Default 3 */
+    int32_t hull_capacity; /* points kept per line (the oldest is dropped when full), [2, 256]. Default 64 */
+    obscura_toggle exact; /* brute-force largest occluder over all earlier samples instead of the hull (O(M^2)
+                             per line, for validation). Default off */
+    float depth_threshold; /* gather: values whose depth differs by more than this fraction are rejected,
+                             [1e-4, 10]. Default 0.05 */
+    obscura_toggle normal_test; /* gather: also reject values whose normal differs. Default off */
+    float normal_threshold; /* gather: minimum dot of the two normals, [-1, 1]. Default 0.8 */
+    float intensity;      /* obscurance multiplier, [1e-3, 16]. Default 1 */
+    float power;          /* visibility exponent, [1e-3, 16]. Default 1 */
+} obscura_lsao_settings;
+
 /* Falloff rho(d) of the obscurance integral (FFAO paper eq. 1), d in metres, r = decay_rate in m^2. */
 typedef enum obscura_falloff {
     OBSCURA_FALLOFF_DEFAULT = 0,           /* RHO0 */
@@ -310,6 +344,7 @@ typedef struct obscura_settings {
     obscura_hbao_settings hbao;
     obscura_reference_settings reference;
     obscura_sao_settings sao;
+    obscura_lsao_settings lsao;
 } obscura_settings;
 
 /* Fills `out` with the defaults of `method` (struct_size set, every field explicit).

@@ -28,6 +28,13 @@ StateGuard::StateGuard(const Table& gl) : gl_(gl) {
         gl.GetInteger64i_v(GL_UNIFORM_BUFFER_START, GLuint(index), &binding.start);
         gl.GetInteger64i_v(GL_UNIFORM_BUFFER_SIZE, GLuint(index), &binding.size);
     }
+    gl.GetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &storage_buffer_);
+    for (int index = 0; index < OBSCURA_SSBO_COUNT; ++index) {
+        IndexedBuffer& binding = storage_indexed_[index];
+        gl.GetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, GLuint(index), &binding.name);
+        gl.GetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, GLuint(index), &binding.start);
+        gl.GetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, GLuint(index), &binding.size);
+    }
     gl.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_framebuffer_);
     gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw_framebuffer_);
 }
@@ -61,6 +68,16 @@ StateGuard::~StateGuard() {
         }
     }
     gl.BindBuffer(GL_UNIFORM_BUFFER, GLuint(uniform_buffer_));
+    for (int index = 0; index < OBSCURA_SSBO_COUNT; ++index) {
+        const IndexedBuffer& binding = storage_indexed_[index];
+        if (binding.name != 0 && binding.size > 0) {
+            gl.BindBufferRange(GL_SHADER_STORAGE_BUFFER, GLuint(index), GLuint(binding.name), GLintptr(binding.start),
+                               GLsizeiptr(binding.size));
+        } else {
+            gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, GLuint(index), GLuint(binding.name));
+        }
+    }
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, GLuint(storage_buffer_));
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(read_framebuffer_));
     gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(draw_framebuffer_));
 }

@@ -1,6 +1,6 @@
 // StateGuard saves, on construction, every binding an SDK call may touch and restores it on
 // destruction: program, active texture, texture and sampler bindings on the SDK's units, image units,
-// uniform-buffer bindings (generic and indexed), and read/draw framebuffers. The set mirrors
+// uniform- and storage-buffer bindings (generic and indexed), and read/draw framebuffers. The set mirrors
 // shader_interface.h's unit counts; a pass that uses more must grow it. Capabilities that only blits
 // care about (scissor, rasterizer discard) are saved by BlitStateGuard, only when a blit happens.
 #ifndef OBSCURA_STATE_GUARD_H
@@ -35,6 +35,8 @@ private:
     ImageUnit image_[OBSCURA_IMAGE_UNIT_COUNT] = {};
     GLint uniform_buffer_ = 0;
     IndexedBuffer uniform_indexed_[OBSCURA_UBO_COUNT] = {};
+    GLint storage_buffer_ = 0;
+    IndexedBuffer storage_indexed_[OBSCURA_SSBO_COUNT] = {};
     GLint read_framebuffer_ = 0;
     GLint draw_framebuffer_ = 0;
 };

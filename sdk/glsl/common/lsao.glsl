@@ -1,0 +1,70 @@
+// Shared by line_sweep.comp and lsao_gather.comp: the line layout's data, where a line's sample j lies,
+// and the 2D frame of a line's slice (the plane through the eye that contains the screen line).
+// Needs FrameConstants, LsaoConstants and depth.glsl.
+
+struct LsaoLine {
+    vec2 origin;      // texel units
+    int first_step;   // j of the first sample inside the texture
+    int steps;        // samples inside the texture
+    int offset;       // first value in the values buffer (even)
+    int direction;
+    int pad0, pad1;
+};
+
+layout(std430, binding = OBSCURA_SSBO_LSAO_LINES) readonly buffer LsaoLines { LsaoLine lsao_lines[]; };
+
+bool lsao_aligned() { return (lsao.config.w & OBSCURA_LSAO_FLAG_ALIGNED) != 0; }
+
+// Sample j of a line: aligned patterns read the texel containing origin + j * step (its centre is returned),
+// free ones the point itself.
+vec2 lsao_sample_point(LsaoLine line, int j) {
+    vec2 p = line.origin + float(j) * lsao.directions[line.direction].zw;
+    return lsao_aligned() ? floor(p) + 0.5 : p;
+}
+
+// An orthonormal 2D frame in the slice through `pixel` along screen direction `dir`: origin b0, axes a (along
+// the line) and b. For a perspective projection the slice contains the eye, so every point of the line and
+// the vector towards the eye lie in it exactly (the paper's (p.xy . D, p.z) is the orthographic case).
+void lsao_slice_frame(vec2 pixel, vec2 dir, out vec3 b0, out vec3 a, out vec3 b) {
+    b0 = obscura_view_position_at(pixel, 1.0);
+    a = normalize(obscura_view_position_at(pixel + dir, 1.0) - b0);
+    vec3 deeper = obscura_view_position_at(pixel, 2.0) - b0;
+    b = normalize(deeper - a * dot(deeper, a));
+}
+
+vec2 lsao_in_slice(vec3 p, vec3 b0, vec3 a, vec3 b) { return vec2(dot(p - b0, a), dot(p - b0, b)); }
+
+// Unit vector from p towards the eye, in the slice.
+vec2 lsao_zenith(vec3 p, vec3 a, vec3 b) {
+    vec3 t = obscura_towards_eye(p);
+    return normalize(vec2(dot(t, a), dot(t, b)));
+}
+
+// sin of the receiver's own tangent towards -a (where the earlier samples of a sweep along +a lie), from
+// its normal n projected into the slice; 0 if the normal is perpendicular to the slice.
+float lsao_receiver_sin_t(vec3 n, vec2 zenith, vec3 a, vec3 b) {
+    vec2 n2 = vec2(dot(n, a), dot(n, b));
+    if (dot(n2, n2) <= 0.0) return 0.0;
+    vec2 t2 = normalize(vec2(-n2.y, n2.x));
+    if (t2.x > 0.0) t2 = -t2;
+    return dot(t2, zenith);
+}
+
+// rho(d) from d^2 (view units): r(1+C)/(r+d^2) - C clipped at 0; C = 0 gives LSAO eq. 2, r / (r + d^2).
+float lsao_falloff(float distance_sq) {
+    float r = lsao.falloff.x, c = lsao.falloff.y;
+    return max(0.0, r * (1.0 + c) / (r + distance_sq) - c);
+}
+
+// Algorithm 1's occlusion(): sin t + max(0, sin h - sin t) rho(|h|).
+float lsao_occlusion(vec2 h, vec2 u, float sin_t) {
+    float length_sq = dot(h, h);
+    if (length_sq <= 0.0) return sin_t;
+    float sin_h = dot(h, u) * inversesqrt(length_sq);
+    return sin_t + max(0.0, sin_h - sin_t) * lsao_falloff(length_sq);
+}
+
+float lsao_sin_h(vec2 h, vec2 u) {
+    float length_sq = dot(h, h);
+    return length_sq > 0.0 ? dot(h, u) * inversesqrt(length_sq) : -1.0;
+}

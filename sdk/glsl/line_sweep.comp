@@ -1,0 +1,125 @@
+// LSAO's line sweeps (Timonen, "Line-Sweep Ambient Obscurance", EGSR 2013, sec. 4, Algorithm 1): one
+// invocation walks one line of the layout (lines D_L apart in K directions across the whole depth texture,
+// steps D_S long). At every step it samples the depth, places the point in the line's slice, pops the
+// obscure hull until its top casts the largest obscurance on the point (or the hull's horizon is reached),
+// writes that obscurance and pushes the point. Each step costs amortised O(1): the work is the number of
+// steps, whatever the falloff's reach. The hull is a ring of at most `hull capacity` points; when full, the
+// oldest (farthest, least weighted) is dropped. FLAG_EXACT replaces the hull with the brute-force largest
+// occluder over every earlier sample (O(M^2), for validation).
+#define OBSCURA_LSAO_PASS 1
+#include "common/shader_interface.h"
+#include "common/depth.glsl"
+#include "common/normal_encoding.glsl"
+#include "common/lsao.glsl"
+
+layout(local_size_x = OBSCURA_LSAO_SWEEP_GROUP) in;
+
+layout(binding = OBSCURA_UNIT_LINEAR_DEPTH) uniform sampler2D u_depth;
+layout(binding = OBSCURA_UNIT_NORMALS) uniform sampler2D u_normals;
+layout(std430, binding = OBSCURA_SSBO_LSAO_VALUES) writeonly buffer LsaoValues { uint lsao_values[]; };
+layout(std430, binding = OBSCURA_SSBO_LSAO_STATS) buffer LsaoStats { uint lsao_stats[]; };
+
+// Depth at a sample: aligned patterns read their texel; free ones interpolate bilinearly unless the four
+// texels span a depth edge (then the nearest texel, whose centre becomes the sample's position).
+float sample_depth(inout vec2 point) {
+    if (lsao_aligned()) return texelFetch(u_depth, ivec2(point), 0).r;
+    vec2 f = point - 0.5;
+    ivec2 base = ivec2(floor(f));
+    vec2 t = f - vec2(base);
+    ivec2 hi = depth_size.xy - 1;
+    float d00 = texelFetch(u_depth, clamp(base, ivec2(0), hi), 0).r;
+    float d10 = texelFetch(u_depth, clamp(base + ivec2(1, 0), ivec2(0), hi), 0).r;
+    float d01 = texelFetch(u_depth, clamp(base + ivec2(0, 1), ivec2(0), hi), 0).r;
+    float d11 = texelFetch(u_depth, clamp(base + ivec2(1, 1), ivec2(0), hi), 0).r;
+    float lo = min(min(d00, d10), min(d01, d11)), hi_d = max(max(d00, d10), max(d01, d11));
+    if (obscura_is_sky(hi_d) || hi_d > lo * (1.0 + lsao.gather.x)) {
+        ivec2 nearest = clamp(ivec2(floor(point)), ivec2(0), hi);
+        point = vec2(nearest) + 0.5;
+        return texelFetch(u_depth, nearest, 0).r;
+    }
+    return mix(mix(d00, d10, t.x), mix(d01, d11, t.x), t.y);
+}
+
+vec2 g_hull[OBSCURA_LSAO_MAX_HULL];
+
+void main() {
+    int index = int(gl_GlobalInvocationID.x);
+    if (index >= lsao.config.y) return;
+    LsaoLine line = lsao_lines[index];
+    if (line.steps <= 0) return;
+    vec2 dir = lsao.directions[line.direction].xy;
+    vec3 b0, a, b;
+    lsao_slice_frame(lsao_sample_point(line, line.first_step), dir, b0, a, b);
+    bool exact = (lsao.config.w & OBSCURA_LSAO_FLAG_EXACT) != 0;
+    int capacity = lsao.config.z;
+    int strategy = lsao.strategy.x;
+    float fixed_sin_t = lsao.falloff.z;
+
+    int start = 0, count = 0;  // the hull: g_hull[(start + i) % capacity], i < count, top last
+    uint pops = 0u, dropped = 0u;
+    float pending = 0.0;
+    for (int i = 0; i < line.steps; ++i) {
+        int j = line.first_step + i;
+        vec2 point = lsao_sample_point(line, j);
+        float depth = sample_depth(point);
+        float value = OBSCURA_LSAO_NO_OCCLUDER;
+        bool sky = obscura_is_sky(depth);
+        vec2 pk = vec2(0.0), u = vec2(0.0, 1.0);
+        if (!sky) {
+            vec3 p = obscura_view_position_at(point, depth);
+            pk = lsao_in_slice(p, b0, a, b);
+            u = lsao_zenith(p, a, b);
+            // Strategy 3 fixes the tangent for both uses; 1 uses the receiver's for both, 2 only for the occlusion.
+            float real_sin_t = fixed_sin_t;
+            if (strategy != 3) {
+                vec3 n = obscura_decode_normal(texelFetch(u_normals, ivec2(point), 0).xy);
+                real_sin_t = lsao_receiver_sin_t(n, u, a, b);
+            }
+            float hull_sin_t = strategy == 1 ? real_sin_t : fixed_sin_t;
+            float occlusion_sin_t = strategy == 3 ? fixed_sin_t : real_sin_t;
+            if (exact) {
+                // Every earlier sample of the line, read again.
+                bool any = false;
+                float best = occlusion_sin_t;
+                for (int e = 0; e < i; ++e) {
+                    vec2 q = lsao_sample_point(line, line.first_step + e);
+                    float qd = sample_depth(q);
+                    if (obscura_is_sky(qd)) continue;
+                    vec2 qk = lsao_in_slice(obscura_view_position_at(q, qd), b0, a, b);
+                    best = max(best, lsao_occlusion(qk - pk, u, occlusion_sin_t));
+                    any = true;
+                }
+                if (any) value = best;
+            } else {
+                while (count >= 2) {
+                    vec2 h1 = g_hull[(start + count - 1) % capacity] - pk;
+                    vec2 h2 = g_hull[(start + count - 2) % capacity] - pk;
+                    if (!(lsao_occlusion(h1, u, hull_sin_t) < lsao_occlusion(h2, u, hull_sin_t) &&
+                          lsao_sin_h(h1, u) < lsao_sin_h(h2, u))) {
+                        break;
+                    }
+                    --count;
+                    ++pops;
+                }
+                if (count > 0) value = lsao_occlusion(g_hull[(start + count - 1) % capacity] - pk, u, occlusion_sin_t);
+                if (count == capacity) {
+                    start = (start + 1) % capacity;
+                    --count;
+                    ++dropped;
+                }
+                g_hull[(start + count) % capacity] = pk;
+                ++count;
+            }
+        }
+        // Two halves per uint: write on every second step (lines start on even offsets).
+        if ((i & 1) == 0) {
+            pending = value;
+            if (i == line.steps - 1) lsao_values[(line.offset + i) >> 1] = packHalf2x16(vec2(pending, 0.0));
+        } else {
+            lsao_values[(line.offset + i) >> 1] = packHalf2x16(vec2(pending, value));
+        }
+    }
+    atomicAdd(lsao_stats[0], uint(line.steps));
+    atomicAdd(lsao_stats[1], pops);
+    atomicAdd(lsao_stats[2], dropped);
+}

@@ -1,0 +1,141 @@
+#include "passes/lsao.h"
+
+#include <cmath>
+#include <cstring>
+
+namespace obscura {
+namespace {
+
+// std430 layout of LsaoLine in common/lsao.glsl.
+struct GpuLine {
+    float origin[2];
+    int32_t first_step, steps, offset, direction, pad0, pad1;
+};
+static_assert(sizeof(GpuLine) == 32, "matches the std430 struct");
+
+}  // namespace
+
+std::vector<LsaoDirection> lsao_directions(const obscura_lsao_settings& settings) {
+    if (settings.pattern == 1) return aligned_directions(settings.directions / 8);
+    return free_directions(settings.directions, settings.step_length);
+}
+
+Error LsaoPass::prepare(const PassEnv& env) {
+    Error error;
+    if (!sweep_program_) error = env.build("line_sweep.comp", "", &sweep_program_);
+    if (!error && !gather_program_) error = env.build("lsao_gather.comp", "", &gather_program_);
+    return error;
+}
+
+Error LsaoPass::ensure_layout(const PassEnv& env, const obscura_lsao_settings& settings, int width, int height) {
+    const std::vector<LsaoDirection> directions = lsao_directions(settings);
+    bool same = lines_.name() != 0 && layout_.width == width && layout_.height == height && pattern_ == settings.pattern &&
+                layout_.line_spacing == double(settings.line_spacing) && layout_.directions.size() == directions.size();
+    for (size_t k = 0; same && k < directions.size(); ++k) {
+        same = layout_.directions[k].step[0] == directions[k].step[0] && layout_.directions[k].step[1] == directions[k].step[1];
+    }
+    if (same) return Error();
+    release();
+    layout_ = make_lsao_layout(directions, settings.line_spacing, width, height, settings.pattern == 1);
+    pattern_ = settings.pattern;
+    std::vector<GpuLine> lines(layout_.lines.size());
+    for (size_t i = 0; i < lines.size(); ++i) {
+        const LsaoLine& l = layout_.lines[i];
+        lines[i] = GpuLine{{l.origin[0], l.origin[1]}, l.first_step, l.steps, l.offset, l.direction, 0, 0};
+    }
+    const gl::Table& gl = env.gl;
+    lines_ = gl::Buffer::create(gl, GL_SHADER_STORAGE_BUFFER, lines.size() * sizeof(GpuLine));
+    values_ = gl::Buffer::create(gl, GL_SHADER_STORAGE_BUFFER, uint64_t(layout_.values) * 2 + 4);
+    stats_ = gl::Buffer::create(gl, GL_SHADER_STORAGE_BUFFER, 16);
+    if (!lines_.name() || !values_.name() || !stats_.name()) {
+        release();
+        return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating LSAO's line buffers (%lld values) failed",
+                           static_cast<long long>(layout_.values));
+    }
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, lines_.name());
+    gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(lines.size() * sizeof(GpuLine)), lines.data());
+    return Error();
+}
+
+void LsaoPass::release() {
+    lines_ = gl::Buffer();
+    values_ = gl::Buffer();
+    stats_ = gl::Buffer();
+    layout_ = LsaoLayout();
+    pattern_ = 0;
+}
+
+LsaoConstants LsaoPass::constants(const obscura_lsao_settings& settings, const FrameInput& input) const {
+    const float m2v = input.meters_to_view_units;
+    LsaoConstants c = {};
+    c.falloff[0] = settings.decay_rate * m2v * m2v;
+    c.falloff[1] = settings.falloff == 1 ? settings.falloff_c : 0.0f;
+    c.falloff[2] = settings.tangent;
+    c.falloff[3] = settings.line_spacing;
+    c.gather[0] = settings.depth_threshold;
+    c.gather[1] = settings.normal_threshold;
+    c.gather[2] = settings.intensity;
+    c.gather[3] = settings.power;
+    c.config[0] = int32_t(layout_.directions.size());
+    c.config[1] = int32_t(layout_.lines.size());
+    c.config[2] = settings.hull_capacity;
+    c.config[3] = (settings.exact == OBSCURA_TOGGLE_ON ? OBSCURA_LSAO_FLAG_EXACT : 0) |
+                  (settings.pattern == 1 ? OBSCURA_LSAO_FLAG_ALIGNED : 0) |
+                  (settings.normal_test == OBSCURA_TOGGLE_ON ? OBSCURA_LSAO_FLAG_NORMAL_TEST : 0);
+    c.strategy[0] = settings.tangent_strategy;
+    for (size_t k = 0; k < layout_.directions.size() && k < OBSCURA_LSAO_MAX_DIRECTIONS; ++k) {
+        const LsaoDirection& d = layout_.directions[k];
+        const LsaoDirectionLines& lines = layout_.direction_lines[k];
+        c.directions[k][0] = float(d.dir[0]);
+        c.directions[k][1] = float(d.dir[1]);
+        c.directions[k][2] = float(d.step[0]);
+        c.directions[k][3] = float(d.step[1]);
+        c.coverage[k][0] = float(d.weight);
+        c.coverage[k][1] = float(lines.line_origin_v);
+        c.coverage[k][2] = float(lines.first_line);
+        c.coverage[k][3] = float(lines.line_count);
+    }
+    return c;
+}
+
+void LsaoPass::run_sweeps(const PassEnv& env, const UniformRange& frame, const UniformRange& pass,
+                          FrameResources& resources) {
+    const gl::Table& gl = env.gl;
+    const uint32_t zero[4] = {0, 0, 0, 0};
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, stats_.name());
+    gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof zero, zero);
+    gl.UseProgram(sweep_program_.name());
+    env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
+    env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_LSAO_LINES, lines_.name());
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_LSAO_VALUES, values_.name());
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_LSAO_STATS, stats_.name());
+    env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
+    env.bind_uniforms(OBSCURA_UBO_PASS, pass);
+    env.dispatch(int(layout_.lines.size()), 1, OBSCURA_LSAO_SWEEP_GROUP, 1);
+    gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void LsaoPass::run_gather(const PassEnv& env, const UniformRange& frame, const UniformRange& pass,
+                          const Region& region, FrameResources& resources) {
+    const gl::Table& gl = env.gl;
+    gl.UseProgram(gather_program_.name());
+    env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
+    env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_LSAO_LINES, lines_.name());
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_LSAO_VALUES, values_.name());
+    gl.BindImageTexture(OBSCURA_IMAGE_OUT0, resources.ao.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
+    env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
+    env.bind_uniforms(OBSCURA_UBO_PASS, pass);
+    env.dispatch(region.width, region.height, OBSCURA_LSAO_GATHER_GROUP_X, OBSCURA_LSAO_GATHER_GROUP_Y);
+    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+void LsaoPass::read_stats(const gl::Table& gl, uint32_t out[3]) const {
+    uint32_t values[4] = {};
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, stats_.name());
+    gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof values, values);
+    std::memcpy(out, values, 3 * sizeof(uint32_t));
+}
+
+}  // namespace obscura

@@ -1,0 +1,46 @@
+// LSAO (sdk/glsl/line_sweep.comp, lsao_gather.comp): the line layout for the current size and pattern
+// (passes/lsao_pattern.h) in storage buffers, the sweep dispatch (one invocation per line) and the gather.
+#ifndef OBSCURA_LSAO_H
+#define OBSCURA_LSAO_H
+
+#include "frame_input.h"
+#include "passes/lsao_pattern.h"
+#include "passes/pass_common.h"
+
+namespace obscura {
+
+// The directions of resolved LSAO settings: the aligned 8n pattern for K = 8n, or K free directions.
+std::vector<LsaoDirection> lsao_directions(const obscura_lsao_settings& settings);
+
+class LsaoPass {
+public:
+    // Builds the programs on first use.
+    Error prepare(const PassEnv& env);
+    // Rebuilds the layout and its buffers when the size, the pattern, K, D_S or D_L changed.
+    Error ensure_layout(const PassEnv& env, const obscura_lsao_settings& settings, int width, int height);
+    // Resolved settings (metres) -> the shaders' constants (view units), for the current layout.
+    LsaoConstants constants(const obscura_lsao_settings& settings, const FrameInput& input) const;
+    // The sweeps over every line, then the gather over `region` into resources.ao.
+    void run_sweeps(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, FrameResources& resources);
+    void run_gather(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
+                    FrameResources& resources);
+    const LsaoLayout& layout() const { return layout_; }
+    uint64_t bytes() const { return lines_.bytes() + values_.bytes() + stats_.bytes(); }
+    void release();
+    // The counters of the last sweeps (steps, hull pops, points dropped from full hulls); reads the buffer
+    // back, so it waits for the GPU: tests only.
+    void read_stats(const gl::Table& gl, uint32_t out[3]) const;
+
+private:
+    gl::Object sweep_program_;
+    gl::Object gather_program_;
+    LsaoLayout layout_;
+    int pattern_ = 0;
+    gl::Buffer lines_;
+    gl::Buffer values_;
+    gl::Buffer stats_;
+};
+
+}  // namespace obscura
+
+#endif  // OBSCURA_LSAO_H

@@ -1,0 +1,234 @@
+#include "passes/lsao_pattern.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace obscura {
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586;
+
+double angle_of(const double v[2]) {
+    double a = std::atan2(v[1], v[0]);
+    return a < 0.0 ? a + kTwoPi : a;
+}
+
+// Azimuthal coverage: half the angular gap to each neighbour, over 2 pi.
+void assign_coverage_weights(std::vector<LsaoDirection>* directions) {
+    const size_t k = directions->size();
+    if (k == 1) {
+        (*directions)[0].weight = 1.0;
+        return;
+    }
+    for (size_t i = 0; i < k; ++i) {
+        double prev = angle_of((*directions)[(i + k - 1) % k].dir);
+        double here = angle_of((*directions)[i].dir);
+        double next = angle_of((*directions)[(i + 1) % k].dir);
+        double before = here - prev, after = next - here;
+        if (before <= 0.0) before += kTwoPi;
+        if (after <= 0.0) after += kTwoPi;
+        (*directions)[i].weight = 0.5 * (before + after) / kTwoPi;
+    }
+}
+
+}  // namespace
+
+std::vector<LsaoDirection> aligned_directions(int n) {
+    std::vector<LsaoDirection> out;
+    if (n < 1) return out;
+    double sum = 0.0;
+    int non_axis = 0;
+    for (int j = -n; j <= n; ++j)
+        for (int i = -n; i <= n; ++i) {
+            if (std::max(std::abs(i), std::abs(j)) != n) continue;  // the template's outer ring
+            LsaoDirection d = {};
+            d.axis = i == 0 || j == 0;
+            const double length = std::hypot(double(i), double(j));
+            d.dir[0] = i / length;
+            d.dir[1] = j / length;
+            d.step[0] = i;
+            d.step[1] = j;
+            d.step_length = length;
+            if (!d.axis) {
+                sum += length;
+                ++non_axis;
+            }
+            out.push_back(d);
+        }
+    // Axis directions may use any step length and take the average of the others.
+    const double average = sum / double(non_axis);
+    for (LsaoDirection& d : out) {
+        if (!d.axis) continue;
+        d.step[0] = d.dir[0] * average;
+        d.step[1] = d.dir[1] * average;
+        d.step_length = average;
+    }
+    std::sort(out.begin(), out.end(),
+              [](const LsaoDirection& a, const LsaoDirection& b) { return angle_of(a.dir) < angle_of(b.dir); });
+    assign_coverage_weights(&out);
+    return out;
+}
+
+std::vector<LsaoDirection> free_directions(int k, double step_length) {
+    std::vector<LsaoDirection> out;
+    for (int i = 0; i < k; ++i) {
+        const double angle = kTwoPi * i / k;
+        LsaoDirection d = {};
+        d.dir[0] = std::cos(angle);
+        d.dir[1] = std::sin(angle);
+        d.step[0] = d.dir[0] * step_length;
+        d.step[1] = d.dir[1] * step_length;
+        d.step_length = step_length;
+        d.axis = false;
+        out.push_back(d);
+    }
+    assign_coverage_weights(&out);
+    return out;
+}
+
+double average_step_length(const std::vector<LsaoDirection>& directions) {
+    double sum = 0.0;
+    for (const LsaoDirection& d : directions) sum += d.step_length;
+    return directions.empty() ? 0.0 : sum / double(directions.size());
+}
+
+namespace {
+
+// Range of j with floor(origin + j * step) inside [0, size) on one axis, intersected into [lo, hi].
+void clip_axis(double origin, double step, int size, double* lo, double* hi) {
+    if (step == 0.0) {
+        if (origin < 0.0 || origin >= double(size)) {
+            *lo = 1.0;
+            *hi = 0.0;
+        }
+        return;
+    }
+    double a = (0.0 - origin) / step, b = (double(size) - origin) / step;
+    if (a > b) std::swap(a, b);
+    *lo = std::max(*lo, a);
+    *hi = std::min(*hi, b);
+}
+
+bool inside(const double p[2], int width, int height) {
+    return p[0] >= 0.0 && p[1] >= 0.0 && std::floor(p[0]) < double(width) && std::floor(p[1]) < double(height);
+}
+
+}  // namespace
+
+void lsao_sample_position(const LsaoLayout& layout, const LsaoLine& line, int j, bool aligned, double out[2]) {
+    const LsaoDirection& d = layout.directions[size_t(line.direction)];
+    out[0] = double(line.origin[0]) + j * d.step[0];
+    out[1] = double(line.origin[1]) + j * d.step[1];
+    if (aligned) {
+        out[0] = std::floor(out[0]) + 0.5;
+        out[1] = std::floor(out[1]) + 0.5;
+    }
+}
+
+LsaoLayout make_lsao_layout(const std::vector<LsaoDirection>& directions, double line_spacing, int width, int height,
+                            bool aligned) {
+    LsaoLayout layout;
+    layout.width = width;
+    layout.height = height;
+    layout.line_spacing = line_spacing;
+    layout.directions = directions;
+    const double corners[4][2] = {{0.0, 0.0}, {double(width), 0.0}, {0.0, double(height)},
+                                  {double(width), double(height)}};
+    const double center[2] = {0.5 * width, 0.5 * height};
+    int64_t offset = 0;
+    for (size_t k = 0; k < directions.size(); ++k) {
+        const LsaoDirection& d = directions[k];
+        const double perp[2] = {-d.dir[1], d.dir[0]};
+        double v_min = 1e300, v_max = -1e300;
+        for (const auto& c : corners) {
+            const double v = c[0] * perp[0] + c[1] * perp[1];
+            v_min = std::min(v_min, v);
+            v_max = std::max(v_max, v);
+        }
+        LsaoDirectionLines summary;
+        summary.first_line = int32_t(layout.lines.size());
+        summary.line_count = std::max(1, int(std::ceil((v_max - v_min) / line_spacing)));
+        summary.line_origin_v = v_min + 0.5 * line_spacing;
+        const double center_v = center[0] * perp[0] + center[1] * perp[1];
+        for (int l = 0; l < summary.line_count; ++l) {
+            const double v = summary.line_origin_v + l * line_spacing;
+            double ideal[2] = {center[0] + (v - center_v) * perp[0], center[1] + (v - center_v) * perp[1]};
+            double origin[2] = {ideal[0], ideal[1]};
+            if (aligned) {
+                // The texel centre of the 2x2 around the ideal point that lies closest to the ideal line: its
+                // lattice line (texel centres along the step) is then the nearest one.
+                const double bx = std::floor(ideal[0] - 0.5) + 0.5, by = std::floor(ideal[1] - 0.5) + 0.5;
+                double best = 1e300;
+                for (int c = 0; c < 4; ++c) {
+                    const double cx = bx + (c & 1), cy = by + (c >> 1);
+                    const double off = std::fabs(cx * perp[0] + cy * perp[1] - v);
+                    if (off < best - 1e-12) {
+                        best = off;
+                        origin[0] = cx;
+                        origin[1] = cy;
+                    }
+                }
+            }
+            double lo = -1e300, hi = 1e300;
+            clip_axis(origin[0], d.step[0], width, &lo, &hi);
+            clip_axis(origin[1], d.step[1], height, &lo, &hi);
+            LsaoLine line = {};
+            line.origin[0] = float(origin[0]);
+            line.origin[1] = float(origin[1]);
+            line.direction = int32_t(k);
+            if (lo <= hi) {
+                // Rounding at the ends is settled by testing the samples themselves.
+                int first = int(std::ceil(lo)) - 1, last = int(std::floor(hi)) + 1;
+                double p[2];
+                auto sample_inside = [&](int j) {
+                    lsao_sample_position(layout, line, j, aligned, p);
+                    return inside(p, width, height);
+                };
+                while (first <= last && !sample_inside(first)) ++first;
+                while (last >= first && !sample_inside(last)) --last;
+                line.first_step = first;
+                line.steps = last >= first ? last - first + 1 : 0;
+            }
+            line.offset = int32_t(offset);
+            offset += (int64_t(line.steps) + 1) / 2 * 2;
+            layout.lines.push_back(line);
+        }
+        layout.direction_lines.push_back(summary);
+    }
+    layout.values = offset;
+    return layout;
+}
+
+bool lsao_nearest_sample(const LsaoLayout& layout, int k, int x, int y, bool aligned, int* line_index, int* step,
+                         double* distance) {
+    const LsaoDirection& d = layout.directions[size_t(k)];
+    const LsaoDirectionLines& summary = layout.direction_lines[size_t(k)];
+    const double p[2] = {x + 0.5, y + 0.5};
+    const double perp[2] = {-d.dir[1], d.dir[0]};
+    const double v = p[0] * perp[0] + p[1] * perp[1];
+    const int nominal = int(std::lround((v - summary.line_origin_v) / layout.line_spacing));
+    const double step_sq = d.step[0] * d.step[0] + d.step[1] * d.step[1];
+    bool found = false;
+    double best = 1e300;
+    for (int l = nominal - 1; l <= nominal + 1; ++l) {
+        if (l < 0 || l >= summary.line_count) continue;
+        const LsaoLine& line = layout.lines[size_t(summary.first_line + l)];
+        if (line.steps == 0) continue;
+        const double rel[2] = {p[0] - line.origin[0], p[1] - line.origin[1]};
+        int j = int(std::lround((rel[0] * d.step[0] + rel[1] * d.step[1]) / step_sq));
+        j = std::clamp(j, line.first_step, line.first_step + line.steps - 1);
+        double q[2];
+        lsao_sample_position(layout, line, j, aligned, q);
+        const double dist = std::hypot(q[0] - p[0], q[1] - p[1]);
+        if (dist < best) {
+            best = dist;
+            found = true;
+            *line_index = summary.first_line + l;
+            *step = j;
+            *distance = dist;
+        }
+    }
+    return found;
+}
+
+}  // namespace obscura
