@@ -19,25 +19,34 @@ layout(binding = OBSCURA_UNIT_NORMALS) uniform sampler2D u_normals;
 layout(std430, binding = OBSCURA_SSBO_LSAO_VALUES) writeonly buffer LsaoValues { uint lsao_values[]; };
 layout(std430, binding = OBSCURA_SSBO_LSAO_STATS) buffer LsaoStats { uint lsao_stats[]; };
 
-// Depth at a sample: aligned patterns read their texel; free ones interpolate bilinearly unless the four
-// texels span a depth edge (then the nearest texel, whose centre becomes the sample's position).
+// Depth at a sample: aligned patterns read their texel. Free ones interpolate bilinearly in 1/w (affine in
+// the screen on planes, so interpolated points stay on them) unless the four texels are not planar, which
+// marks a depth edge or a crease: then the nearest texel is read and its centre becomes the sample's position.
+const float kPlanarity = 1e-3;  // |k00 + k11 - k10 - k01| / k that still counts as one plane
+
 float sample_depth(inout vec2 point) {
     if (lsao_aligned()) return texelFetch(u_depth, ivec2(point), 0).r;
     vec2 f = point - 0.5;
-    ivec2 base = ivec2(floor(f));
-    vec2 t = f - vec2(base);
     ivec2 hi = depth_size.xy - 1;
+    ivec2 base = min(ivec2(floor(f)), hi - 1);  // the layout keeps the four texels inside the texture
+    vec2 t = f - vec2(base);
     float d00 = texelFetch(u_depth, clamp(base, ivec2(0), hi), 0).r;
     float d10 = texelFetch(u_depth, clamp(base + ivec2(1, 0), ivec2(0), hi), 0).r;
     float d01 = texelFetch(u_depth, clamp(base + ivec2(0, 1), ivec2(0), hi), 0).r;
     float d11 = texelFetch(u_depth, clamp(base + ivec2(1, 1), ivec2(0), hi), 0).r;
-    float lo = min(min(d00, d10), min(d01, d11)), hi_d = max(max(d00, d10), max(d01, d11));
-    if (obscura_is_sky(hi_d) || hi_d > lo * (1.0 + lsao.gather.x)) {
-        ivec2 nearest = clamp(ivec2(floor(point)), ivec2(0), hi);
-        point = vec2(nearest) + 0.5;
-        return texelFetch(u_depth, nearest, 0).r;
+    bool sky = obscura_is_sky(d00) || obscura_is_sky(d10) || obscura_is_sky(d01) || obscura_is_sky(d11);
+    if (!sky) {
+        // Interpolate 1/w (perspective) or the depth itself (orthographic, where w = 1).
+        bool perspective = obscura_is_perspective();
+        vec4 k = perspective ? 1.0 / vec4(d00, d10, d01, d11) : vec4(d00, d10, d01, d11);
+        if (abs(k.x + k.w - k.y - k.z) <= kPlanarity * max(max(k.x, k.y), max(k.z, k.w))) {
+            float kk = mix(mix(k.x, k.y, t.x), mix(k.z, k.w, t.x), t.y);
+            return perspective ? 1.0 / kk : kk;
+        }
     }
-    return mix(mix(d00, d10, t.x), mix(d01, d11, t.x), t.y);
+    ivec2 nearest = clamp(ivec2(floor(point)), ivec2(0), hi);
+    point = vec2(nearest) + 0.5;
+    return texelFetch(u_depth, nearest, 0).r;
 }
 
 vec2 g_hull[OBSCURA_LSAO_MAX_HULL];

@@ -111,6 +111,8 @@ const std::vector<GoldenCase>& golden_cases() {
         {"hbao_clutter_scene_normals", library_scene("clutter"), "hbao", true},
         {"sao_atrium", library_scene("atrium"), "sao"},
         {"sao_objects_r2", library_scene("objects"), "sao:radius=2"},
+        {"lsao_atrium", library_scene("atrium"), "lsao"},
+        {"lsao_clutter_k32", library_scene("clutter"), "lsao:preset=4"},
         {"reference_analytic_16_rays", library_scene("analytic"), "reference:rays=16"},
         {"reference_objects_16_rays", library_scene("objects"), "reference:rays=16"},
     };

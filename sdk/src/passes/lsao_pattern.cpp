@@ -109,7 +109,10 @@ void clip_axis(double origin, double step, int size, double* lo, double* hi) {
     *hi = std::min(*hi, b);
 }
 
-bool inside(const double p[2], int width, int height) {
+// Aligned samples read the texel containing them; free ones interpolate the four texel centres around them,
+// which must all exist.
+bool inside(const double p[2], int width, int height, bool aligned) {
+    if (!aligned) return p[0] >= 0.5 && p[1] >= 0.5 && p[0] <= width - 0.5 && p[1] <= height - 0.5;
     return p[0] >= 0.0 && p[1] >= 0.0 && std::floor(p[0]) < double(width) && std::floor(p[1]) < double(height);
 }
 
@@ -182,7 +185,7 @@ LsaoLayout make_lsao_layout(const std::vector<LsaoDirection>& directions, double
                 double p[2];
                 auto sample_inside = [&](int j) {
                     lsao_sample_position(layout, line, j, aligned, p);
-                    return inside(p, width, height);
+                    return inside(p, width, height, aligned);
                 };
                 while (first <= last && !sample_inside(first)) ++first;
                 while (last >= first && !sample_inside(last)) --last;

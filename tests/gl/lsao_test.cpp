@@ -1,0 +1,170 @@
+// LSAO behaviour through the public API (320x180 analytic scenes, CPU ray cast, uploaded as depth) and
+// on the built-in scene library:
+//   - flat surfaces get no occlusion, with every projection, aligned and free patterns,
+//   - a concave corner gets occlusion near its crease, decreasing away from it,
+//   - the obscure hull gives the same picture as the brute-force largest occluder (the paper: 0.02-0.3 %),
+//   - every preset and tangent strategy renders cleanly.
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "ao_test_scene.h"
+#include "demo_scene.h"
+#include "scene_library.h"
+
+namespace obscura_test {
+namespace {
+
+constexpr int kWidth = 320;
+constexpr int kHeight = 180;
+
+obscura_settings lsao_settings(float radius = 1.0f) {
+    obscura_settings s;
+    obscura_default_settings(OBSCURA_METHOD_LSAO, &s);
+    s.lsao.radius = radius;
+    return s;
+}
+
+class Lsao : public GLTest {};
+
+class LsaoFlatPlane : public GLTest, public ::testing::WithParamInterface<Projection> {};
+
+// Every sample of a line lies on the plane: the largest occluder is the plane itself, whose obscurance is the
+// receiver's own tangent, so the gather's mean is 0.
+TEST_P(LsaoFlatPlane, SteepFloorIsUnoccluded) {
+    AoScene scene = make_ao_scene(GetParam(), look_at(glm::dvec3(0.0, 3.0, 0.0), glm::dvec3(0.0, 0.0, -2.5)),
+                                  {plane(1, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0))});
+    std::vector<bool> geometry(scene.hits.size());
+    for (size_t i = 0; i < geometry.size(); ++i) geometry[i] = scene.hits[i].hit;
+    for (int pattern : {1, 2}) {
+        obscura_settings settings = lsao_settings(1.0f);
+        settings.lsao.pattern = pattern;
+        if (pattern == 2) settings.lsao.directions = 12;
+        std::vector<float> v = render_visibility(ctx(), scene.input, settings);
+        ASSERT_FALSE(v.empty());
+        Stats s = stats(v, geometry);
+        ASSERT_GT(s.count, kWidth * kHeight / 2);
+        EXPECT_GT(s.min, 0.995) << "pattern " << pattern << ": " << describe(s);
+    }
+}
+
+TEST_P(LsaoFlatPlane, TiltedIsUnoccluded) {
+    AoScene scene = make_ao_scene(GetParam(), glm::dmat4(1.0),
+                                  {plane(1, glm::dvec3(0.0, 0.0, -5.0), glm::dvec3(0.3, 0.5, 1.0))});
+    std::vector<float> v = render_visibility(ctx(), scene.input, lsao_settings(2.0f));
+    ASSERT_FALSE(v.empty());
+    Stats s = stats(v, std::vector<bool>(v.size(), true));
+    EXPECT_GT(s.min, 0.995) << describe(s);
+}
+
+INSTANTIATE_TEST_SUITE_P(Variants, LsaoFlatPlane,
+                         ::testing::Values(Projection::Perspective, Projection::ReversedZ, Projection::Infinite,
+                                           Projection::ReversedInfinite, Projection::Orthographic,
+                                           Projection::LinearView),
+                         [](const ::testing::TestParamInfo<Projection>& param_info) {
+                             return projection_name(param_info.param);
+                         });
+
+TEST_F(Lsao, CornerOcclusionNearTheCreaseFadesAway) {
+    AoScene scene = corner_scene();
+    obscura_settings settings = lsao_settings(1.0f);
+    settings.lsao.falloff = 1;  // rho0 reaches 0 at the radius: far texels must be unoccluded
+    std::vector<float> v = render_visibility(ctx(), scene.input, settings);
+    ASSERT_FALSE(v.empty());
+    double previous = 0.0;
+    for (double d : {0.05, 0.2, 0.4, 0.7}) {
+        Stats band = stats(v, select(scene.hits, kWidth, kHeight, 8, [d](const Hit& h) {
+            const double c = crease_distance(h);
+            return c > d * 0.8 && c < d * 1.2;
+        }));
+        ASSERT_GT(band.count, 20) << d;
+        EXPECT_GT(band.mean, previous) << "band " << d << ": " << describe(band);
+        previous = band.mean;
+    }
+    Stats near = stats(v, select(scene.hits, kWidth, kHeight, 8, [](const Hit& h) { return crease_distance(h) < 0.05; }));
+    EXPECT_LT(near.mean, 0.8) << describe(near);
+    Stats far = stats(v, select(scene.hits, kWidth, kHeight, 8, [](const Hit& h) { return crease_distance(h) > 1.2; }));
+    ASSERT_GT(far.count, 1000);
+    EXPECT_GT(far.min, 0.99) << describe(far);
+}
+
+TEST_F(Lsao, EveryPresetStrategyAndPatternRendersCleanly) {
+    AoScene scene = corner_scene();
+    auto near_mean = [&](const obscura_settings& settings) {
+        std::vector<float> v = render_visibility(ctx(), scene.input, settings);
+        return stats(v, select(scene.hits, kWidth, kHeight, 8, [](const Hit& h) { return crease_distance(h) < 0.1; }))
+            .mean;
+    };
+    for (int preset = 1; preset <= 6; ++preset) {
+        obscura_settings settings = lsao_settings(1.0f);
+        settings.lsao.preset = preset;
+        EXPECT_LT(near_mean(settings), 0.85) << "preset " << preset;
+    }
+    for (int strategy = 1; strategy <= 3; ++strategy) {
+        obscura_settings settings = lsao_settings(1.0f);
+        settings.lsao.tangent_strategy = strategy;
+        EXPECT_LT(near_mean(settings), 0.9) << "strategy " << strategy;
+    }
+    obscura_settings free_pattern = lsao_settings(1.0f);
+    free_pattern.lsao.pattern = 2;
+    free_pattern.lsao.directions = 10;
+    EXPECT_LT(near_mean(free_pattern), 0.85);
+    obscura_settings normals = lsao_settings(1.0f);
+    normals.lsao.normal_test = OBSCURA_TOGGLE_ON;
+    EXPECT_LT(near_mean(normals), 0.85);
+}
+
+TEST_F(Lsao, AlignedPatternNeedsEightNDirections) {
+    obscura_settings settings = lsao_settings(1.0f);
+    settings.lsao.directions = 12;
+    obscura_settings resolved;
+    EXPECT_EQ(obscura_resolve_settings(ctx(), &settings, &resolved), OBSCURA_STATUS_INVALID_SETTING);
+    EXPECT_NE(std::string(obscura_get_last_error(ctx())).find("8n"), std::string::npos);
+}
+
+// ---- The hull against the brute force, on the scene library ---------------------------------------------
+
+// The paper: the obscure hull's answer differs from the largest occluder's in rare configurations, costing
+// 0.02-0.3 % of the final AO. Here: mean |hull - exact| over the image at 320x180, default settings.
+// Measured (llvmpipe): atrium 0.13 %, terrain 0.002 %, objects 0.06 %, analytic 0.00 %, room 0.04 %,
+// clutter 0.56 %. The clutter room exceeds the paper's range: under perspective each receiver's zenith
+// points at the eye, so the fixed tangent turns along the line and points popped for an earlier receiver
+// can be the largest occluder of a later one (orthographic views of the same scene: 0.46 % at r = 2 m
+// against 1.95 % in perspective; docs/quality.md).
+struct HullCase {
+    std::string scene;
+    double limit;
+};
+
+class LsaoScenes : public GLTest, public ::testing::WithParamInterface<HullCase> {};
+
+TEST_P(LsaoScenes, HullMatchesExactSweep) {
+    const obscura::samples::Scene scene = obscura::samples::load_scene(GetParam().scene);
+    obscura::samples::SceneRenderOptions options;
+    options.width = kWidth;
+    options.height = kHeight;
+    options.camera = scene.viewpoints[0].camera;
+    obscura::samples::RenderedScene rendered(obscura::samples::render_scene(scene.mesh, options));
+    const obscura_input input = rendered->make_input();
+    obscura_settings hull = lsao_settings(1.0f);
+    obscura_settings exact = hull;
+    exact.lsao.exact = OBSCURA_TOGGLE_ON;
+    std::vector<float> a = render_visibility(ctx(), input, hull);
+    std::vector<float> b = render_visibility(ctx(), input, exact);
+    ASSERT_EQ(a.size(), b.size());
+    ASSERT_FALSE(a.empty());
+    double sum = 0.0;
+    for (size_t i = 0; i < a.size(); ++i) sum += std::fabs(double(a[i]) - b[i]);
+    const double mean = sum / double(a.size());
+    EXPECT_LT(mean, GetParam().limit) << GetParam().scene;
+    RecordProperty("mean_abs_hull_vs_exact", std::to_string(mean));
+}
+
+INSTANTIATE_TEST_SUITE_P(Library, LsaoScenes,
+                         ::testing::Values(HullCase{"atrium", 0.003}, HullCase{"terrain", 0.003},
+                                           HullCase{"objects", 0.003}, HullCase{"analytic", 0.003},
+                                           HullCase{"room", 0.003}, HullCase{"clutter", 0.0075}),
+                         [](const ::testing::TestParamInfo<HullCase>& param_info) { return param_info.param.scene; });
+
+}  // namespace
+}  // namespace obscura_test
