@@ -100,17 +100,20 @@ void main() {
                 }
                 if (any) value = best;
             } else {
+                // The top's (occlusion, sin h) carries over when the one below becomes the top.
+                vec2 top = count > 0 ? lsao_occlusion_and_sin_h(g_hull[(start + count - 1) % capacity] - pk, u, hull_sin_t)
+                                     : vec2(0.0);
                 while (count >= 2) {
-                    vec2 h1 = g_hull[(start + count - 1) % capacity] - pk;
-                    vec2 h2 = g_hull[(start + count - 2) % capacity] - pk;
-                    if (!(lsao_occlusion(h1, u, hull_sin_t) < lsao_occlusion(h2, u, hull_sin_t) &&
-                          lsao_sin_h(h1, u) < lsao_sin_h(h2, u))) {
-                        break;
-                    }
+                    vec2 below = lsao_occlusion_and_sin_h(g_hull[(start + count - 2) % capacity] - pk, u, hull_sin_t);
+                    if (!(top.x < below.x && top.y < below.y)) break;
+                    top = below;
                     --count;
                     ++pops;
                 }
-                if (count > 0) value = lsao_occlusion(g_hull[(start + count - 1) % capacity] - pk, u, occlusion_sin_t);
+                if (count > 0) {
+                    value = strategy == 2 ? lsao_occlusion(g_hull[(start + count - 1) % capacity] - pk, u, occlusion_sin_t)
+                                          : top.x;
+                }
                 if (count == capacity) {
                     start = (start + 1) % capacity;
                     --count;

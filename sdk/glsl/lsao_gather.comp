@@ -36,6 +36,7 @@ void main() {
     vec3 position = obscura_view_position(p, depth);
     vec3 normal = obscura_decode_normal(texelFetch(u_normals, p, 0).xy);
     bool normal_test = (lsao.config.w & OBSCURA_LSAO_FLAG_NORMAL_TEST) != 0;
+    vec3 towards_eye = obscura_towards_eye(position);  // every slice through the receiver contains it
     float line_spacing = lsao.falloff.w;
 
     float sum = 0.0, weight_sum = 0.0;
@@ -44,17 +45,18 @@ void main() {
         vec4 coverage = lsao.coverage[k];
         vec2 perp = vec2(-direction.y, direction.x);
         int first_line = int(coverage.z), line_count = int(coverage.w);
-        int nominal = int(round((dot(center, perp) - coverage.y) / line_spacing));
-        float step_sq = dot(direction.zw, direction.zw);
-        // The nearest sample among the three lines around the pixel (snapped origins are not exactly D_L apart).
+        int below = int(floor((dot(center, perp) - coverage.y) / line_spacing));
+        float inv_step_sq = lsao.axes[k].w;
+        // The nearest sample of the two lines whose ideal positions bracket the pixel (snapped origins move a
+        // line by at most half a lattice step, less than half of D_L).
         float best = 1e30;
         int best_index = -1;
         vec2 best_point = vec2(0.0);
-        for (int l = nominal - 1; l <= nominal + 1; ++l) {
+        for (int l = below; l <= below + 1; ++l) {
             if (l < 0 || l >= line_count) continue;
             LsaoLine line = lsao_lines[first_line + l];
             if (line.steps <= 0) continue;
-            int j = int(round(dot(center - line.origin, direction.zw) / step_sq));
+            int j = int(round(dot(center - line.origin, direction.zw) * inv_step_sq));
             j = clamp(j, line.first_step, line.first_step + line.steps - 1);
             vec2 q = lsao_sample_point(line, j);
             float d = dot(q - center, q - center);
@@ -75,9 +77,7 @@ void main() {
         float value = read_value(best_index);
         float obscurance = 0.0;  // no earlier sample: the horizon is the receiver's tangent
         if (value < 0.5 * OBSCURA_LSAO_NO_OCCLUDER) {
-            vec3 b0, a, b;
-            lsao_slice_frame(center, direction.xy, b0, a, b);
-            obscurance = value - lsao_receiver_sin_t(normal, lsao_zenith(position, a, b), a, b);
+            obscurance = value - lsao_receiver_sin_t_3d(normal, towards_eye, lsao.axes[k].xyz);
         }
         sum += coverage.x * obscurance;
         weight_sum += coverage.x;

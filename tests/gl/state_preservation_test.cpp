@@ -16,7 +16,7 @@ constexpr int kWidth = 96;
 constexpr int kHeight = 64;
 constexpr int kTextureUnits = 8;
 constexpr int kSamplerUnits = 4;
-constexpr int kImageUnits = 3;
+constexpr int kImageUnits = 7;  // the SDK uses 6 (the z pyramid writes six levels) and one beyond
 constexpr int kBufferIndices = 3;
 
 // Every piece of state the sentinel setup touches, as plain integers, with names for the diff.
@@ -413,6 +413,26 @@ TEST_F(StatePreservation, RenderDebugViews) {
         ASSERT_EQ(obscura_render(ctx(), &input_, &settings_, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
     }
     expect_unchanged(before, "debug-view renders");
+}
+
+// Every method binds its own passes' resources: SAO six image units and a mipmapped sampler, LSAO storage
+// buffers, the reference its accumulator.
+TEST_F(StatePreservation, EveryMethod) {
+    set_sentinel_state();
+    Snapshot before = capture();
+    for (obscura_method method : {OBSCURA_METHOD_HBAO, OBSCURA_METHOD_SAO, OBSCURA_METHOD_LSAO, OBSCURA_METHOD_REFERENCE}) {
+        obscura_settings settings;
+        ASSERT_EQ(obscura_default_settings(method, &settings), OBSCURA_OK);
+        settings.reference.rays = 4;
+        for (obscura_debug_view view : {OBSCURA_DEBUG_NONE, OBSCURA_DEBUG_TAP_COUNT}) {
+            obscura_output output = texture_output();
+            output.debug_view = view;
+            ASSERT_EQ(obscura_render(ctx(), &input_, &settings, &output), OBSCURA_OK)
+                << obscura_method_name(method) << ": " << obscura_get_last_error(ctx());
+        }
+    }
+    ASSERT_EQ(obscura_prepare(ctx(), input_.depth_width, input_.depth_height, &settings_), OBSCURA_OK);
+    expect_unchanged(before, "a render of every method");
 }
 
 TEST_F(StatePreservation, FailedRender) {

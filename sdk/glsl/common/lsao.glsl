@@ -32,6 +32,11 @@ void lsao_slice_frame(vec2 pixel, vec2 dir, out vec3 b0, out vec3 a, out vec3 b)
     b = normalize(deeper - a * dot(deeper, a));
 }
 
+// The slice's axis along screen direction `dir`: view-space positions at a fixed clip w are affine in the
+// texel coordinate, so it is the same for every pixel (cheaper than lsao_slice_frame where only the axes
+// are needed).
+vec3 lsao_screen_axis(vec2 dir) { return normalize(vec3(dir * 2.0 / (proj_scale.xy * vec2(depth_size.xy)), 0.0)); }
+
 vec2 lsao_in_slice(vec3 p, vec3 b0, vec3 a, vec3 b) { return vec2(dot(p - b0, a), dot(p - b0, b)); }
 
 // Unit vector from p towards the eye, in the slice.
@@ -50,6 +55,17 @@ float lsao_receiver_sin_t(vec3 n, vec2 zenith, vec3 a, vec3 b) {
     return dot(t2, zenith);
 }
 
+// The same sine from 3D vectors: the receiver's normal n, the unit vector towards the eye z and the slice's
+// screen axis a (the slice holds z and a). In the frame (h, z), h = a made orthogonal to z, the normal is
+// (n.h, n.z) and the tangent towards -h has sine n.h / |(n.h, n.z)| (for a normal facing the eye).
+float lsao_receiver_sin_t_3d(vec3 n, vec3 z, vec3 a) {
+    float az = dot(a, z), nz = dot(n, z);
+    float nh = (dot(n, a) - nz * az) * inversesqrt(max(1.0 - az * az, 1e-12));
+    float len_sq = nh * nh + nz * nz;
+    if (len_sq <= 0.0) return 0.0;
+    return (nz >= 0.0 ? nh : -nh) * inversesqrt(len_sq);
+}
+
 // rho(d) from d^2 (view units): r(1+C)/(r+d^2) - C clipped at 0; C = 0 gives LSAO eq. 2, r / (r + d^2).
 float lsao_falloff(float distance_sq) {
     float r = lsao.falloff.x, c = lsao.falloff.y;
@@ -62,6 +78,14 @@ float lsao_occlusion(vec2 h, vec2 u, float sin_t) {
     if (length_sq <= 0.0) return sin_t;
     float sin_h = dot(h, u) * inversesqrt(length_sq);
     return sin_t + max(0.0, sin_h - sin_t) * lsao_falloff(length_sq);
+}
+
+// Both of Algorithm 1's tests for one hull point in one go: (occlusion, sin h).
+vec2 lsao_occlusion_and_sin_h(vec2 h, vec2 u, float sin_t) {
+    float length_sq = dot(h, h);
+    if (length_sq <= 0.0) return vec2(sin_t, -1.0);
+    float sin_h = dot(h, u) * inversesqrt(length_sq);
+    return vec2(sin_t + max(0.0, sin_h - sin_t) * lsao_falloff(length_sq), sin_h);
 }
 
 float lsao_sin_h(vec2 h, vec2 u) {

@@ -191,6 +191,7 @@ OBSCURA_PASS_BLOCK_BEGIN(LsaoConstants)
   OBSCURA_IVEC4(strategy); // tangent strategy (1-3), unused x3
   OBSCURA_VEC4(directions[OBSCURA_LSAO_MAX_DIRECTIONS]); // unit direction xy, step vector xy (texels)
   OBSCURA_VEC4(coverage[OBSCURA_LSAO_MAX_DIRECTIONS]);   // weight, perpendicular offset of line 0, first line, line count
+  OBSCURA_VEC4(axes[OBSCURA_LSAO_MAX_DIRECTIONS]);       // view-space screen axis of the direction, 1 / |step|^2
 OBSCURA_PASS_BLOCK_END(LsaoConstants, lsao)
 #endif
 

@@ -481,8 +481,8 @@ OBSCURA_API void obscura_release_resources(obscura_context* context);
 
 /* ---- Queries --------------------------------------------------------------------------------- */
 typedef struct obscura_timing {
-    const char* label; /* "total" first, then one entry per pass: "depth_prepare", then "hbao", "reference" or
-                          "z_pyramid" + "sao", then "blur", "composite" */
+    const char* label; /* "total" first, then one entry per pass: "depth_prepare", then "hbao", "reference",
+                          "z_pyramid" + "sao" or "line_sweep" + "gather", then "blur", "composite" */
     double milliseconds;
 } obscura_timing;
 

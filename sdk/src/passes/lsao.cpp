@@ -94,6 +94,14 @@ LsaoConstants LsaoPass::constants(const obscura_lsao_settings& settings, const F
         c.coverage[k][1] = float(lines.line_origin_v);
         c.coverage[k][2] = float(lines.first_line);
         c.coverage[k][3] = float(lines.line_count);
+        // View-space positions at a fixed clip w are affine in the texel coordinate with these slopes.
+        const double ax = d.dir[0] * 2.0 / (double(input.projection.m[0]) * input.width);
+        const double ay = d.dir[1] * 2.0 / (double(input.projection.m[5]) * input.height);
+        const double length = std::hypot(ax, ay);
+        c.axes[k][0] = float(ax / length);
+        c.axes[k][1] = float(ay / length);
+        c.axes[k][2] = 0.0f;
+        c.axes[k][3] = float(1.0 / (d.step[0] * d.step[0] + d.step[1] * d.step[1]));
     }
     return c;
 }

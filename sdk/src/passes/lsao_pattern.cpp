@@ -209,11 +209,12 @@ bool lsao_nearest_sample(const LsaoLayout& layout, int k, int x, int y, bool ali
     const double p[2] = {x + 0.5, y + 0.5};
     const double perp[2] = {-d.dir[1], d.dir[0]};
     const double v = p[0] * perp[0] + p[1] * perp[1];
-    const int nominal = int(std::lround((v - summary.line_origin_v) / layout.line_spacing));
+    // The two lines whose ideal positions bracket the texel (as lsao_gather.comp).
+    const int below = int(std::floor((v - summary.line_origin_v) / layout.line_spacing));
     const double step_sq = d.step[0] * d.step[0] + d.step[1] * d.step[1];
     bool found = false;
     double best = 1e300;
-    for (int l = nominal - 1; l <= nominal + 1; ++l) {
+    for (int l = below; l <= below + 1; ++l) {
         if (l < 0 || l >= summary.line_count) continue;
         const LsaoLine& line = layout.lines[size_t(summary.first_line + l)];
         if (line.steps == 0) continue;

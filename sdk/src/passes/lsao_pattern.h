@@ -65,8 +65,8 @@ LsaoLayout make_lsao_layout(const std::vector<LsaoDirection>& directions, double
 // The sample j of `line` as the texel it reads (aligned) or the point it interpolates at (free).
 void lsao_sample_position(const LsaoLayout& layout, const LsaoLine& line, int j, bool aligned, double out[2]);
 
-// The gather's choice for the texel centre (x + 0.5, y + 0.5) in direction k: the nearest sample among the
-// lines around it. Returns false if no line of the direction has a sample near it. `line_index` is an
+// The gather's choice for the texel centre (x + 0.5, y + 0.5) in direction k: the nearest sample of the two
+// lines whose ideal positions bracket it. Returns false if no line of the direction has a sample near it. `line_index` is an
 // index into layout.lines, `step` the sample's j, `distance` how far its position is from the texel centre.
 bool lsao_nearest_sample(const LsaoLayout& layout, int k, int x, int y, bool aligned, int* line_index, int* step,
                          double* distance);
