@@ -22,6 +22,7 @@ obscura_settings lsao_settings(float radius = 1.0f) {
     obscura_settings s;
     obscura_default_settings(OBSCURA_METHOD_LSAO, &s);
     s.lsao.radius = radius;
+    s.lsao.decay_rate = 0.0f;  // derived from the radius
     return s;
 }
 

@@ -7,25 +7,12 @@
 #include <string>
 #include <vector>
 
-#include <gtest/gtest.h>
-
-#include "gl/gl_api.h"
-#include "gl/gl_objects.h"
-#include "headless_gl.h"
-#include "host_allocator.h"
-#include "passes/pass_common.h"
+#include "pass_test_support.h"
 #include "passes/z_pyramid.h"
 
 namespace {
 
-using obscura::samples::HeadlessGL;
 namespace gl = obscura::gl;
-
-HeadlessGL& shared_gl() {
-    // Leaked on purpose, as in gl_test_support.cpp: Mesa's own exit handlers must not race its destruction.
-    static HeadlessGL* context = new HeadlessGL();
-    return *context;
-}
 
 // The SAO paper's Table 1, z^(m+1)(x, y) from z^m, on the CPU.
 float reduce_cpu(const std::vector<float>& level, int width, int x, int y, int filter) {
@@ -40,18 +27,8 @@ float reduce_cpu(const std::vector<float>& level, int width, int x, int y, int f
     }
 }
 
-class ZPyramid : public ::testing::TestWithParam<int> {
+class ZPyramid : public obscura_pass_test::PassTest, public ::testing::WithParamInterface<int> {
 protected:
-    void SetUp() override {
-        shared_gl().make_current();
-        loader_.plain = &HeadlessGL::get_proc_address;
-        ASSERT_GE(obscura_gl_load_table(&gl_, &loader_), 40003);
-        sampler_ = gl::create_sampler_nearest_clamp(gl_);
-        sampler_mipmap_ = gl::create_sampler_nearest_mipmap_clamp(gl_);
-        uniforms_ = gl::Buffer::create(gl_, GL_UNIFORM_BUFFER, obscura::UniformArena::kCapacity);
-    }
-    void TearDown() override { EXPECT_EQ(gl_.GetError(), GLenum(GL_NO_ERROR)); }
-
     // Builds the pyramid of a width x height pattern with `filter`; checks every level against the CPU.
     void check(int width, int height, int wanted_levels, int filter) {
         const int levels = obscura::ZPyramidPass::level_count(width, height, wanted_levels);
@@ -69,19 +46,13 @@ protected:
         gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
         gl_.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, GL_RED, GL_FLOAT, level0.data());
 
-        obscura::AllocatorCallbacks alloc = obscura::AllocatorCallbacks::from(obscura_allocator{});
-        obscura::PassEnv env{gl_, alloc, nullptr, nullptr, sampler_.name(), sampler_mipmap_.name(), uniforms_.name()};
         obscura::ZPyramidPass pass;
-        ASSERT_FALSE(pass.prepare(env));
+        ASSERT_FALSE(pass.prepare(env()));
         const int dispatches = obscura::ZPyramidPass::dispatch_count(levels);
-        obscura::UniformArena arena;
-        GLint alignment = 256;
-        gl_.GetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);
-        arena.reset(alignment);
         std::vector<obscura::UniformRange> ranges;
-        for (int d = 0; d < dispatches; ++d) ranges.push_back(arena.push(obscura::ZPyramidPass::constants(d, levels, filter)));
-        arena.upload(gl_, uniforms_.name());
-        pass.run(env, ranges.data(), int(ranges.size()), depth);
+        for (int d = 0; d < dispatches; ++d) ranges.push_back(arena_.push(obscura::ZPyramidPass::constants(d, levels, filter)));
+        arena_.upload(gl_, uniforms_.name());
+        pass.run(env(), ranges.data(), int(ranges.size()), depth);
         gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
 
         std::vector<float> previous = level0;
@@ -113,11 +84,6 @@ protected:
         EXPECT_EQ(mismatches, 0) << width << "x" << height << ", " << levels << " levels, filter " << filter;
         gl_.BindTexture(GL_TEXTURE_2D, 0);
     }
-
-    ObscuraGlLoader loader_ = {};
-    gl::Table gl_ = {};
-    gl::Object sampler_, sampler_mipmap_;
-    gl::Buffer uniforms_;
 };
 
 // An odd size (odd levels drop their last row/column), levels within one dispatch.

@@ -147,3 +147,23 @@ void LsaoPass::read_stats(const gl::Table& gl, uint32_t out[3]) const {
 }
 
 }  // namespace obscura
+
+namespace obscura {
+
+std::vector<float> LsaoPass::read_values(const gl::Table& gl) const {
+    std::vector<uint16_t> halves(size_t(layout_.values));
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, values_.name());
+    gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(halves.size() * 2), halves.data());
+    std::vector<float> out(halves.size());
+    for (size_t i = 0; i < halves.size(); ++i) {
+        // IEEE half -> float (values are finite: obscurance in [-1, 1] or OBSCURA_LSAO_NO_OCCLUDER).
+        const uint32_t h = halves[i];
+        const uint32_t sign = (h >> 15) & 1u, exponent = (h >> 10) & 31u, mantissa = h & 1023u;
+        float magnitude = exponent == 0 ? std::ldexp(float(mantissa), -24)
+                                        : std::ldexp(float(mantissa | 1024u), int(exponent) - 25);
+        out[i] = sign ? -magnitude : magnitude;
+    }
+    return out;
+}
+
+}  // namespace obscura

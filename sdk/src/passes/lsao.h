@@ -30,6 +30,8 @@ public:
     // The counters of the last sweeps (steps, hull pops, points dropped from full hulls); reads the buffer
     // back, so it waits for the GPU: tests only.
     void read_stats(const gl::Table& gl, uint32_t out[3]) const;
+    // The sweeps' values in layout order (OBSCURA_LSAO_NO_OCCLUDER where a sample had none); tests only.
+    std::vector<float> read_values(const gl::Table& gl) const;
 
 private:
     gl::Object sweep_program_;

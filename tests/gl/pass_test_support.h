@@ -1,0 +1,52 @@
+// A fixture for tests that drive SDK passes directly through the private headers (obscura_pass_tests):
+// the process's GL context, the SDK's function table loaded from it, and a PassEnv with the SDK's samplers
+// and a uniform buffer.
+#ifndef OBSCURA_TESTS_PASS_TEST_SUPPORT_H
+#define OBSCURA_TESTS_PASS_TEST_SUPPORT_H
+
+#include <gtest/gtest.h>
+
+#include "gl/gl_api.h"
+#include "gl/gl_objects.h"
+#include "headless_gl.h"
+#include "host_allocator.h"
+#include "passes/pass_common.h"
+
+namespace obscura_pass_test {
+
+inline obscura::samples::HeadlessGL& shared_gl() {
+    // Leaked on purpose, as in gl_test_support.cpp: Mesa's own exit handlers must not race its destruction.
+    static obscura::samples::HeadlessGL* context = new obscura::samples::HeadlessGL();
+    return *context;
+}
+
+class PassTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        shared_gl().make_current();
+        loader_.plain = &obscura::samples::HeadlessGL::get_proc_address;
+        ASSERT_GE(obscura_gl_load_table(&gl_, &loader_), 40003);
+        sampler_ = obscura::gl::create_sampler_nearest_clamp(gl_);
+        sampler_mipmap_ = obscura::gl::create_sampler_nearest_mipmap_clamp(gl_);
+        uniforms_ = obscura::gl::Buffer::create(gl_, GL_UNIFORM_BUFFER, obscura::UniformArena::kCapacity);
+        GLint alignment = 256;
+        gl_.GetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);
+        arena_.reset(alignment);
+    }
+    void TearDown() override { EXPECT_EQ(gl_.GetError(), GLenum(GL_NO_ERROR)); }
+
+    obscura::PassEnv env() const {
+        return obscura::PassEnv{gl_, alloc_, nullptr, nullptr, sampler_.name(), sampler_mipmap_.name(), uniforms_.name()};
+    }
+
+    ObscuraGlLoader loader_ = {};
+    obscura::gl::Table gl_ = {};
+    obscura::AllocatorCallbacks alloc_ = obscura::AllocatorCallbacks::from(obscura_allocator{});
+    obscura::gl::Object sampler_, sampler_mipmap_;
+    obscura::gl::Buffer uniforms_;
+    obscura::UniformArena arena_;
+};
+
+}  // namespace obscura_pass_test
+
+#endif  // OBSCURA_TESTS_PASS_TEST_SUPPORT_H
