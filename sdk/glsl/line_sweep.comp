@@ -51,6 +51,10 @@ float sample_depth(inout vec2 point) {
 
 vec2 g_hull[OBSCURA_LSAO_MAX_HULL];
 
+// Ring index of start + i (i < capacity): a compare instead of an integer division, which CPU rasterisers
+// cannot vectorise.
+int ring(int start_plus_i, int capacity) { return start_plus_i >= capacity ? start_plus_i - capacity : start_plus_i; }
+
 void main() {
     int index = int(gl_GlobalInvocationID.x);
     if (index >= lsao.config.y) return;
@@ -64,7 +68,7 @@ void main() {
     int strategy = lsao.strategy.x;
     float fixed_sin_t = lsao.falloff.z;
 
-    int start = 0, count = 0;  // the hull: g_hull[(start + i) % capacity], i < count, top last
+    int start = 0, count = 0;  // the hull: g_hull[ring(start + i)], i < count, top last
     uint pops = 0u, dropped = 0u;
     float pending = 0.0;
     for (int i = 0; i < line.steps; ++i) {
@@ -101,25 +105,25 @@ void main() {
                 if (any) value = best;
             } else {
                 // The top's (occlusion, sin h) carries over when the one below becomes the top.
-                vec2 top = count > 0 ? lsao_occlusion_and_sin_h(g_hull[(start + count - 1) % capacity] - pk, u, hull_sin_t)
+                vec2 top = count > 0 ? lsao_occlusion_and_sin_h(g_hull[ring(start + count - 1, capacity)] - pk, u, hull_sin_t)
                                      : vec2(0.0);
                 while (count >= 2) {
-                    vec2 below = lsao_occlusion_and_sin_h(g_hull[(start + count - 2) % capacity] - pk, u, hull_sin_t);
+                    vec2 below = lsao_occlusion_and_sin_h(g_hull[ring(start + count - 2, capacity)] - pk, u, hull_sin_t);
                     if (!(top.x < below.x && top.y < below.y)) break;
                     top = below;
                     --count;
                     ++pops;
                 }
                 if (count > 0) {
-                    value = strategy == 2 ? lsao_occlusion(g_hull[(start + count - 1) % capacity] - pk, u, occlusion_sin_t)
+                    value = strategy == 2 ? lsao_occlusion(g_hull[ring(start + count - 1, capacity)] - pk, u, occlusion_sin_t)
                                           : top.x;
                 }
                 if (count == capacity) {
-                    start = (start + 1) % capacity;
+                    start = ring(start + 1, capacity);
                     --count;
                     ++dropped;
                 }
-                g_hull[(start + count) % capacity] = pk;
+                g_hull[ring(start + count, capacity)] = pk;
                 ++count;
             }
         }

@@ -39,4 +39,28 @@ AoScene corner_scene(Projection projection) {
 
 double crease_distance(const Hit& h) { return std::hypot(std::max(h.world.y, 0.0), std::max(h.world.z, 0.0)); }
 
+AoScene tilted_plane_scene(Projection projection) {
+    return make_ao_scene(projection, glm::dmat4(1.0), {plane(1, glm::dvec3(0.0, 0.0, -5.0), glm::dvec3(0.3, 0.5, 1.0))});
+}
+
+AoScene steep_floor_scene(Projection projection) {
+    return make_ao_scene(projection, look_at(glm::dvec3(0.0, 3.0, 0.0), glm::dvec3(0.0, 0.0, -2.5)),
+                         {plane(1, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0))});
+}
+
+Stats geometry_stats(const AoScene& scene, const std::vector<float>& visibility) {
+    std::vector<bool> geometry(visibility.size(), false);
+    for (size_t i = 0; i < geometry.size() && i < scene.hits.size(); ++i) geometry[i] = scene.hits[i].hit;
+    return stats(visibility, geometry);
+}
+
+::testing::internal::ParamGenerator<Projection> all_projections() {
+    return ::testing::Values(Projection::Perspective, Projection::ReversedZ, Projection::Infinite,
+                             Projection::ReversedInfinite, Projection::Orthographic, Projection::LinearView);
+}
+
+std::string projection_test_name(const ::testing::TestParamInfo<Projection>& param_info) {
+    return projection_name(param_info.param);
+}
+
 }  // namespace obscura_test

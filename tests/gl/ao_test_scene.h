@@ -38,6 +38,16 @@ std::vector<bool> select(const std::vector<Hit>& hits, int width, int height, in
     return mask;
 }
 
+// A plane through (0, 0, -5) with normal (0.3, 0.5, 1) filling the image, seen from the origin.
+AoScene tilted_plane_scene(Projection projection);
+// A floor seen 35 degrees from grazing, covering the whole image (no horizon in view).
+AoScene steep_floor_scene(Projection projection);
+// Statistics of `visibility` over the texels that hit geometry.
+Stats geometry_stats(const AoScene& scene, const std::vector<float>& visibility);
+// The six projection variants of the flat-plane tests, and the test-name generator for them.
+::testing::internal::ParamGenerator<Projection> all_projections();
+std::string projection_test_name(const ::testing::TestParamInfo<Projection>& param_info);
+
 // A concave corner: floor (y = 0) and a wall (z = 0, facing +z), seen from (0.3, 1.3, 2.8).
 AoScene corner_scene(Projection projection = Projection::Perspective);
 // World distance of a hit on the corner's floor or wall from the crease (the line y = 0, z = 0).

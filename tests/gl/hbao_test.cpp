@@ -38,34 +38,20 @@ TEST_P(HbaoFlatPlane, FacingCameraIsUnoccluded) {
 }
 
 TEST_P(HbaoFlatPlane, TiltedIsUnoccluded) {
-    AoScene scene = make_ao_scene(GetParam(), glm::dmat4(1.0),
-                                  {plane(1, glm::dvec3(0.0, 0.0, -5.0), glm::dvec3(0.3, 0.5, 1.0))});
-    std::vector<float> v = render_visibility(ctx(), scene.input, make_settings(1.0f));
-    ASSERT_FALSE(v.empty());
-    Stats s = stats(v, std::vector<bool>(v.size(), true));
+    AoScene scene = tilted_plane_scene(GetParam());
+    Stats s = geometry_stats(scene, render_visibility(ctx(), scene.input, make_settings(1.0f)));
+    ASSERT_EQ(s.count, kWidth * kHeight);
     EXPECT_GT(s.min, 0.995) << describe(s);
 }
 
 TEST_P(HbaoFlatPlane, SteepFloorIsUnoccluded) {
-    // A floor seen 35 degrees from grazing, covering the whole image (no horizon in view).
-    AoScene scene = make_ao_scene(GetParam(), look_at(glm::dvec3(0.0, 3.0, 0.0), glm::dvec3(0.0, 0.0, -2.5)),
-                                  {plane(1, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0))});
-    std::vector<float> v = render_visibility(ctx(), scene.input, make_settings(1.0f));
-    ASSERT_FALSE(v.empty());
-    std::vector<bool> geometry(v.size());
-    for (size_t i = 0; i < v.size(); ++i) geometry[i] = scene.hits[i].hit;
-    Stats s = stats(v, geometry);
+    AoScene scene = steep_floor_scene(GetParam());
+    Stats s = geometry_stats(scene, render_visibility(ctx(), scene.input, make_settings(1.0f)));
     ASSERT_GT(s.count, kWidth * kHeight / 2);
     EXPECT_GT(s.min, 0.995) << describe(s);
 }
 
-INSTANTIATE_TEST_SUITE_P(Variants, HbaoFlatPlane,
-                         ::testing::Values(Projection::Perspective, Projection::ReversedZ, Projection::Infinite,
-                                           Projection::ReversedInfinite, Projection::Orthographic,
-                                           Projection::LinearView),
-                         [](const ::testing::TestParamInfo<Projection>& param_info) {
-                             return projection_name(param_info.param);
-                         });
+INSTANTIATE_TEST_SUITE_P(Variants, HbaoFlatPlane, all_projections(), projection_test_name);
 
 // ---- A concave corner: floor (y = 0) and a wall (z = 0, facing +z) --------------------------------------
 

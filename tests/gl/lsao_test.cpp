@@ -33,38 +33,25 @@ class LsaoFlatPlane : public GLTest, public ::testing::WithParamInterface<Projec
 // Every sample of a line lies on the plane: the largest occluder is the plane itself, whose obscurance is the
 // receiver's own tangent, so the gather's mean is 0.
 TEST_P(LsaoFlatPlane, SteepFloorIsUnoccluded) {
-    AoScene scene = make_ao_scene(GetParam(), look_at(glm::dvec3(0.0, 3.0, 0.0), glm::dvec3(0.0, 0.0, -2.5)),
-                                  {plane(1, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0))});
-    std::vector<bool> geometry(scene.hits.size());
-    for (size_t i = 0; i < geometry.size(); ++i) geometry[i] = scene.hits[i].hit;
+    AoScene scene = steep_floor_scene(GetParam());
     for (int pattern : {1, 2}) {
         obscura_settings settings = lsao_settings(1.0f);
         settings.lsao.pattern = pattern;
         if (pattern == 2) settings.lsao.directions = 12;
-        std::vector<float> v = render_visibility(ctx(), scene.input, settings);
-        ASSERT_FALSE(v.empty());
-        Stats s = stats(v, geometry);
+        Stats s = geometry_stats(scene, render_visibility(ctx(), scene.input, settings));
         ASSERT_GT(s.count, kWidth * kHeight / 2);
         EXPECT_GT(s.min, 0.995) << "pattern " << pattern << ": " << describe(s);
     }
 }
 
 TEST_P(LsaoFlatPlane, TiltedIsUnoccluded) {
-    AoScene scene = make_ao_scene(GetParam(), glm::dmat4(1.0),
-                                  {plane(1, glm::dvec3(0.0, 0.0, -5.0), glm::dvec3(0.3, 0.5, 1.0))});
-    std::vector<float> v = render_visibility(ctx(), scene.input, lsao_settings(2.0f));
-    ASSERT_FALSE(v.empty());
-    Stats s = stats(v, std::vector<bool>(v.size(), true));
+    AoScene scene = tilted_plane_scene(GetParam());
+    Stats s = geometry_stats(scene, render_visibility(ctx(), scene.input, lsao_settings(2.0f)));
+    ASSERT_EQ(s.count, kWidth * kHeight);
     EXPECT_GT(s.min, 0.995) << describe(s);
 }
 
-INSTANTIATE_TEST_SUITE_P(Variants, LsaoFlatPlane,
-                         ::testing::Values(Projection::Perspective, Projection::ReversedZ, Projection::Infinite,
-                                           Projection::ReversedInfinite, Projection::Orthographic,
-                                           Projection::LinearView),
-                         [](const ::testing::TestParamInfo<Projection>& param_info) {
-                             return projection_name(param_info.param);
-                         });
+INSTANTIATE_TEST_SUITE_P(Variants, LsaoFlatPlane, all_projections(), projection_test_name);
 
 TEST_F(Lsao, CornerOcclusionNearTheCreaseFadesAway) {
     AoScene scene = corner_scene();

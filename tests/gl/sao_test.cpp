@@ -32,37 +32,24 @@ class SaoFlatPlane : public GLTest, public ::testing::WithParamInterface<Project
 // A plane seen at 35 degrees from grazing covers the image: every tap lies on the receiver's tangent plane,
 // so v.n = 0 and the estimator adds nothing, whichever MIP level a tap reads.
 TEST_P(SaoFlatPlane, SteepFloorIsUnoccluded) {
-    AoScene scene = make_ao_scene(GetParam(), look_at(glm::dvec3(0.0, 3.0, 0.0), glm::dvec3(0.0, 0.0, -2.5)),
-                                  {plane(1, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0))});
-    std::vector<bool> geometry(scene.hits.size());
-    for (size_t i = 0; i < geometry.size(); ++i) geometry[i] = scene.hits[i].hit;
+    AoScene scene = steep_floor_scene(GetParam());
     for (obscura_toggle mip : {OBSCURA_TOGGLE_ON, OBSCURA_TOGGLE_OFF}) {
         obscura_settings settings = sao_settings(1.0f);
         settings.sao.mip = mip;
-        std::vector<float> v = render_visibility(ctx(), scene.input, settings);
-        ASSERT_FALSE(v.empty());
-        Stats s = stats(v, geometry);
+        Stats s = geometry_stats(scene, render_visibility(ctx(), scene.input, settings));
         ASSERT_GT(s.count, kWidth * kHeight / 2);
         EXPECT_GT(s.min, 0.995) << "mip " << (mip == OBSCURA_TOGGLE_ON ? "on" : "off") << ": " << describe(s);
     }
 }
 
 TEST_P(SaoFlatPlane, TiltedIsUnoccluded) {
-    AoScene scene = make_ao_scene(GetParam(), glm::dmat4(1.0),
-                                  {plane(1, glm::dvec3(0.0, 0.0, -5.0), glm::dvec3(0.3, 0.5, 1.0))});
-    std::vector<float> v = render_visibility(ctx(), scene.input, sao_settings(2.0f));
-    ASSERT_FALSE(v.empty());
-    Stats s = stats(v, std::vector<bool>(v.size(), true));
+    AoScene scene = tilted_plane_scene(GetParam());
+    Stats s = geometry_stats(scene, render_visibility(ctx(), scene.input, sao_settings(2.0f)));
+    ASSERT_EQ(s.count, kWidth * kHeight);
     EXPECT_GT(s.min, 0.995) << describe(s);
 }
 
-INSTANTIATE_TEST_SUITE_P(Variants, SaoFlatPlane,
-                         ::testing::Values(Projection::Perspective, Projection::ReversedZ, Projection::Infinite,
-                                           Projection::ReversedInfinite, Projection::Orthographic,
-                                           Projection::LinearView),
-                         [](const ::testing::TestParamInfo<Projection>& param_info) {
-                             return projection_name(param_info.param);
-                         });
+INSTANTIATE_TEST_SUITE_P(Variants, SaoFlatPlane, all_projections(), projection_test_name);
 
 // ---- A concave corner: floor (y = 0) and a wall (z = 0, facing +z) --------------------------------------
 

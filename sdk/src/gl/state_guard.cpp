@@ -2,6 +2,27 @@
 
 namespace obscura::gl {
 
+void StateGuard::save_indexed(const Table& gl, GLenum binding_pname, GLenum start_pname, GLenum size_pname,
+                              IndexedBuffer* bindings, int count) {
+    for (int index = 0; index < count; ++index) {
+        gl.GetIntegeri_v(binding_pname, GLuint(index), &bindings[index].name);
+        gl.GetInteger64i_v(start_pname, GLuint(index), &bindings[index].start);
+        gl.GetInteger64i_v(size_pname, GLuint(index), &bindings[index].size);
+    }
+}
+
+void StateGuard::restore_indexed(const Table& gl, GLenum target, const IndexedBuffer* bindings, int count) {
+    for (int index = 0; index < count; ++index) {
+        const IndexedBuffer& binding = bindings[index];
+        if (binding.name != 0 && binding.size > 0) {
+            gl.BindBufferRange(target, GLuint(index), GLuint(binding.name), GLintptr(binding.start),
+                               GLsizeiptr(binding.size));
+        } else {
+            gl.BindBufferBase(target, GLuint(index), GLuint(binding.name));
+        }
+    }
+}
+
 StateGuard::StateGuard(const Table& gl) : gl_(gl) {
     gl.GetIntegerv(GL_CURRENT_PROGRAM, &program_);
     gl.GetIntegerv(GL_ACTIVE_TEXTURE, &active_texture_);
@@ -22,19 +43,11 @@ StateGuard::StateGuard(const Table& gl) : gl_(gl) {
         gl.GetIntegeri_v(GL_IMAGE_BINDING_FORMAT, GLuint(unit), &image.format);
     }
     gl.GetIntegerv(GL_UNIFORM_BUFFER_BINDING, &uniform_buffer_);
-    for (int index = 0; index < OBSCURA_UBO_COUNT; ++index) {
-        IndexedBuffer& binding = uniform_indexed_[index];
-        gl.GetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, GLuint(index), &binding.name);
-        gl.GetInteger64i_v(GL_UNIFORM_BUFFER_START, GLuint(index), &binding.start);
-        gl.GetInteger64i_v(GL_UNIFORM_BUFFER_SIZE, GLuint(index), &binding.size);
-    }
+    save_indexed(gl, GL_UNIFORM_BUFFER_BINDING, GL_UNIFORM_BUFFER_START, GL_UNIFORM_BUFFER_SIZE, uniform_indexed_,
+                 OBSCURA_UBO_COUNT);
     gl.GetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &storage_buffer_);
-    for (int index = 0; index < OBSCURA_SSBO_COUNT; ++index) {
-        IndexedBuffer& binding = storage_indexed_[index];
-        gl.GetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, GLuint(index), &binding.name);
-        gl.GetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, GLuint(index), &binding.start);
-        gl.GetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, GLuint(index), &binding.size);
-    }
+    save_indexed(gl, GL_SHADER_STORAGE_BUFFER_BINDING, GL_SHADER_STORAGE_BUFFER_START, GL_SHADER_STORAGE_BUFFER_SIZE,
+                 storage_indexed_, OBSCURA_SSBO_COUNT);
     gl.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_framebuffer_);
     gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw_framebuffer_);
 }
@@ -58,25 +71,9 @@ StateGuard::~StateGuard() {
                             access, format);
     }
     // Indexed binds also change the generic binding, so the generic one is restored last.
-    for (int index = 0; index < OBSCURA_UBO_COUNT; ++index) {
-        const IndexedBuffer& binding = uniform_indexed_[index];
-        if (binding.name != 0 && binding.size > 0) {
-            gl.BindBufferRange(GL_UNIFORM_BUFFER, GLuint(index), GLuint(binding.name), GLintptr(binding.start),
-                               GLsizeiptr(binding.size));
-        } else {
-            gl.BindBufferBase(GL_UNIFORM_BUFFER, GLuint(index), GLuint(binding.name));
-        }
-    }
+    restore_indexed(gl, GL_UNIFORM_BUFFER, uniform_indexed_, OBSCURA_UBO_COUNT);
     gl.BindBuffer(GL_UNIFORM_BUFFER, GLuint(uniform_buffer_));
-    for (int index = 0; index < OBSCURA_SSBO_COUNT; ++index) {
-        const IndexedBuffer& binding = storage_indexed_[index];
-        if (binding.name != 0 && binding.size > 0) {
-            gl.BindBufferRange(GL_SHADER_STORAGE_BUFFER, GLuint(index), GLuint(binding.name), GLintptr(binding.start),
-                               GLsizeiptr(binding.size));
-        } else {
-            gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, GLuint(index), GLuint(binding.name));
-        }
-    }
+    restore_indexed(gl, GL_SHADER_STORAGE_BUFFER, storage_indexed_, OBSCURA_SSBO_COUNT);
     gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, GLuint(storage_buffer_));
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(read_framebuffer_));
     gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(draw_framebuffer_));

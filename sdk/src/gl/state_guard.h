@@ -26,6 +26,10 @@ private:
         GLint name;
         GLint64 start, size;
     };
+    static void save_indexed(const Table& gl, GLenum binding_pname, GLenum start_pname, GLenum size_pname,
+                             IndexedBuffer* bindings, int count);
+    static void restore_indexed(const Table& gl, GLenum target, const IndexedBuffer* bindings, int count);
+
     const Table& gl_;
     GLint program_ = 0;
     GLint active_texture_ = 0;
