@@ -3,7 +3,7 @@
 # at 640x360 with every available method and the ray-traced reference (256 rays per pixel, traced in
 # chunks with progress on stderr), printing each method's time and its error against the reference, and
 # writing the images (method, error heat map, reference, contact sheet) into demo-output/.
-# On llvmpipe the reference takes about a minute.
+# On a 2-core llvmpipe machine the references (one per falloff) take about two and a half minutes.
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
