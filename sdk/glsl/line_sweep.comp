@@ -86,7 +86,7 @@ void main() {
             float real_sin_t = fixed_sin_t;
             if (strategy != 3) {
                 vec3 n = obscura_decode_normal(texelFetch(u_normals, ivec2(point), 0).xy);
-                real_sin_t = lsao_receiver_sin_t(n, u, a, b);
+                real_sin_t = lsao_receiver_sin_t_3d(n, obscura_towards_eye(p), a);
             }
             float hull_sin_t = strategy == 1 ? real_sin_t : fixed_sin_t;
             float occlusion_sin_t = strategy == 3 ? fixed_sin_t : real_sin_t;

@@ -32,11 +32,6 @@ void lsao_slice_frame(vec2 pixel, vec2 dir, out vec3 b0, out vec3 a, out vec3 b)
     b = normalize(deeper - a * dot(deeper, a));
 }
 
-// The slice's axis along screen direction `dir`: view-space positions at a fixed clip w are affine in the
-// texel coordinate, so it is the same for every pixel (cheaper than lsao_slice_frame where only the axes
-// are needed).
-vec3 lsao_screen_axis(vec2 dir) { return normalize(vec3(dir * 2.0 / (proj_scale.xy * vec2(depth_size.xy)), 0.0)); }
-
 vec2 lsao_in_slice(vec3 p, vec3 b0, vec3 a, vec3 b) { return vec2(dot(p - b0, a), dot(p - b0, b)); }
 
 // Unit vector from p towards the eye, in the slice.
@@ -45,18 +40,8 @@ vec2 lsao_zenith(vec3 p, vec3 a, vec3 b) {
     return normalize(vec2(dot(t, a), dot(t, b)));
 }
 
-// sin of the receiver's own tangent towards -a (where the earlier samples of a sweep along +a lie), from
-// its normal n projected into the slice; 0 if the normal is perpendicular to the slice.
-float lsao_receiver_sin_t(vec3 n, vec2 zenith, vec3 a, vec3 b) {
-    vec2 n2 = vec2(dot(n, a), dot(n, b));
-    if (dot(n2, n2) <= 0.0) return 0.0;
-    vec2 t2 = normalize(vec2(-n2.y, n2.x));
-    if (t2.x > 0.0) t2 = -t2;
-    return dot(t2, zenith);
-}
-
-// The same sine from 3D vectors: the receiver's normal n, the unit vector towards the eye z and the slice's
-// screen axis a (the slice holds z and a). In the frame (h, z), h = a made orthogonal to z, the normal is
+// sin of the receiver's own tangent towards -a (where the earlier samples of a sweep along +a lie), from its
+// normal n, the unit vector towards the eye z and the slice's screen axis a (the slice holds z and a). In the frame (h, z), h = a made orthogonal to z, the normal is
 // (n.h, n.z) and the tangent towards -h has sine n.h / |(n.h, n.z)| (for a normal facing the eye).
 float lsao_receiver_sin_t_3d(vec3 n, vec3 z, vec3 a) {
     float az = dot(a, z), nz = dot(n, z);
@@ -88,7 +73,3 @@ vec2 lsao_occlusion_and_sin_h(vec2 h, vec2 u, float sin_t) {
     return vec2(sin_t + max(0.0, sin_h - sin_t) * lsao_falloff(length_sq), sin_h);
 }
 
-float lsao_sin_h(vec2 h, vec2 u) {
-    float length_sq = dot(h, h);
-    return length_sq > 0.0 ? dot(h, u) * inversesqrt(length_sq) : -1.0;
-}

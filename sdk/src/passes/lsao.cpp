@@ -28,16 +28,14 @@ Error LsaoPass::prepare(const PassEnv& env) {
 }
 
 Error LsaoPass::ensure_layout(const PassEnv& env, const obscura_lsao_settings& settings, int width, int height) {
+    // Every frame asks: compare what the layout depends on before building anything.
+    const LayoutKey key{width, height, settings.pattern, settings.directions, settings.step_length,
+                        settings.line_spacing};
+    if (lines_.name() != 0 && key == key_) return Error();
     const std::vector<LsaoDirection> directions = lsao_directions(settings);
-    bool same = lines_.name() != 0 && layout_.width == width && layout_.height == height && pattern_ == settings.pattern &&
-                layout_.line_spacing == double(settings.line_spacing) && layout_.directions.size() == directions.size();
-    for (size_t k = 0; same && k < directions.size(); ++k) {
-        same = layout_.directions[k].step[0] == directions[k].step[0] && layout_.directions[k].step[1] == directions[k].step[1];
-    }
-    if (same) return Error();
     release();
     layout_ = make_lsao_layout(directions, settings.line_spacing, width, height, settings.pattern == 1);
-    pattern_ = settings.pattern;
+    key_ = key;
     std::vector<GpuLine> lines(layout_.lines.size());
     for (size_t i = 0; i < lines.size(); ++i) {
         const LsaoLine& l = layout_.lines[i];
@@ -62,7 +60,7 @@ void LsaoPass::release() {
     values_ = gl::Buffer();
     stats_ = gl::Buffer();
     layout_ = LsaoLayout();
-    pattern_ = 0;
+    key_ = LayoutKey();
 }
 
 LsaoConstants LsaoPass::constants(const obscura_lsao_settings& settings, const FrameInput& input) const {

@@ -36,8 +36,17 @@ public:
 private:
     gl::Object sweep_program_;
     gl::Object gather_program_;
+    // What the layout was built for (D_S matters only for the free pattern, but is compared anyway).
+    struct LayoutKey {
+        int width = 0, height = 0, pattern = 0, directions = 0;
+        float step_length = 0.0f, line_spacing = 0.0f;
+        bool operator==(const LayoutKey& o) const {
+            return width == o.width && height == o.height && pattern == o.pattern && directions == o.directions &&
+                   step_length == o.step_length && line_spacing == o.line_spacing;
+        }
+    };
     LsaoLayout layout_;
-    int pattern_ = 0;
+    LayoutKey key_;
     gl::Buffer lines_;
     gl::Buffer values_;
     gl::Buffer stats_;
