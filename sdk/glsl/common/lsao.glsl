@@ -41,8 +41,9 @@ vec2 lsao_zenith(vec3 p, vec3 a, vec3 b) {
 }
 
 // sin of the receiver's own tangent towards -a (where the earlier samples of a sweep along +a lie), from its
-// normal n, the unit vector towards the eye z and the slice's screen axis a (the slice holds z and a). In the frame (h, z), h = a made orthogonal to z, the normal is
-// (n.h, n.z) and the tangent towards -h has sine n.h / |(n.h, n.z)| (for a normal facing the eye).
+// normal n, the unit vector towards the eye z and the slice's screen axis a (the slice holds z and a). In the
+// frame (h, z), h = a made orthogonal to z, the normal is (n.h, n.z) and the tangent towards -h has sine
+// n.h / |(n.h, n.z)| (for a normal facing the eye).
 float lsao_receiver_sin_t_3d(vec3 n, vec3 z, vec3 a) {
     float az = dot(a, z), nz = dot(n, z);
     float nh = (dot(n, a) - nz * az) * inversesqrt(max(1.0 - az * az, 1e-12));
