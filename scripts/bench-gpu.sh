@@ -1,27 +1,89 @@
 #!/usr/bin/env bash
-# Runs the GPU benchmark table of docs/performance.md on a machine with an NVIDIA GPU and EGL.
-# Usage: scripts/bench-gpu.sh BUILD_DIR OUT_DIR
-#   BUILD_DIR holds bin/obscura built here with -DOBSCURA_SAMPLES_WITH_OSMESA=OFF (no Mesa needed there).
+# Runs the GPU checks of docs/performance.md on a machine with an NVIDIA GPU and EGL (the lent H100).
+# Usage: scripts/bench-gpu.sh BUILD_DIR OUT_DIR [tests] [bench] [lsao]
+#   BUILD_DIR holds bin/obscura (and tests/obscura_*_tests for "tests") built on an x86-64 Debian machine
+#   with -DOBSCURA_SAMPLES_WITH_OSMESA=OFF (no Mesa needed there), and lib/ with the shared libraries the
+#   GPU machine lacks (libtinyobjloader). scripts/stage-gpu-build.sh prepares it.
 #   If .gl/ holds Debian's GLVND .debs (libegl1, libglvnd0, libopengl0 ...), they are unpacked first, for
 #   driver-only machines without the GLVND dispatch libraries.
-# The scene is the demo room (--scene room), the one docs/performance.md was measured on; the clock is
-# the SDK's GL timer queries (bench reports "clock": "gpu-timer" in its JSON).
-set -euo pipefail
-build="${1:?build dir}"
+#   tests: the GL, pass and unit test executables on the GPU (goldens are read from the path they were built
+#          with, which is linked to this checkout when it does not exist).
+#   bench: every method at 1920x1080 + 10 % guard band per side (2304x1296 texels), and the LSAO scaling runs.
+#   lsao:  the LSAO sweep variants (segments, warm-up tolerances) at 1920x1080.
+#   lsao-error: the AO error each sweep variant costs against whole lines and the exact sweep, per scene.
+# The clock is the SDK's GL timer queries (bench reports "clock": "gpu-timer" in its JSON).
+set -uo pipefail
+build="$(cd "${1:?build dir}" && pwd)"
 out="${2:?output dir}"
+shift 2
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 if compgen -G "$root/.gl/*.deb" > /dev/null; then
   for f in "$root"/.gl/*.deb; do dpkg -x "$f" /; done
   ldconfig
 fi
+export LD_LIBRARY_PATH="$build/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+export OBSCURA_GL_BACKEND=egl-device
 mkdir -p "$out"
 nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm --format=csv | tee "$out/gpu.txt" || true
-bench() { "$build/bin/obscura" bench --scene room --frames 200 --warmup 20 "$@"; }
-{
-  bench --methods hbao,hbao:blur=off,hbao:directions=16:steps=48 \
-        --sizes 640x360,1280x720,1920x1080,3840x2160 --csv "$out/hbao_gb10.csv" --json "$out/hbao_gb10.json"
-  bench --guard-band 0.2 --methods hbao,hbao:directions=16:steps=48 --sizes 1920x1080 \
-        --csv "$out/hbao_gb20.csv" --json "$out/hbao_gb20.json"
-  bench --methods hbao:radius=0.25,hbao:radius=1,hbao:radius=4 --sizes 1920x1080 \
-        --csv "$out/hbao_radius.csv" --json "$out/hbao_radius.json"
-} 2>&1 | tee "$out/bench.txt"
+bench() { "$build/bin/obscura" bench --frames 200 --warmup 20 "$@"; }
+status=0
+for what in "$@"; do
+  case "$what" in
+    tests)
+      golden_dir="$(cat "$build/golden_dir" 2>/dev/null || true)"
+      if [[ -n "$golden_dir" && ! -e "$golden_dir" ]]; then
+        mkdir -p "$(dirname "$golden_dir")" && ln -s "$root/tests/golden" "$golden_dir"
+      fi
+      for t in obscura_unit_tests obscura_pass_tests obscura_gl_tests; do
+        [[ -x "$build/tests/$t" ]] || continue
+        echo "== $t"
+        "$build/tests/$t" --gtest_brief=1 > "$out/$t.txt" 2>&1 || status=1
+        grep -E '^\[  (PASSED|FAILED) |^\[  FAILED  \]|tests ran' "$out/$t.txt" | head -40
+      done
+      if [[ -d /tmp/obscura-golden-failures ]]; then
+        tar czf "$out/golden_failures.tgz" -C /tmp obscura-golden-failures
+      fi
+      ;;
+    bench)
+      {
+        bench --scene atrium --sizes 1920x1080 \
+              --methods hbao,hbao:directions=16:steps=48,sao,lsao,lsao:preset=1,lsao:preset=3,lsao:preset=4,lsao:exact=on \
+              --json "$out/methods_1080.json"
+        bench --scene atrium --sizes 1280x720,2560x1600,3840x2160 --methods hbao:directions=16:steps=48,sao,lsao \
+              --json "$out/methods_sizes.json"
+        bench --scene atrium --sizes 1920x1080 --methods lsao:radius=0.1,lsao:radius=1,lsao:radius=10 \
+              --json "$out/lsao_radius.json"
+      } 2>&1 | tee "$out/bench.txt"
+      ;;
+    lsao)
+      # Sweep parallelism: whole lines vs segments of several lengths and warm-up tolerances.
+      bench --scene atrium --sizes 1920x1080 \
+            --methods lsao:segment_steps=-1,lsao,lsao:segment_steps=32,lsao:segment_steps=64,lsao:segment_steps=256,lsao:warmup_tolerance=0.05,lsao:warmup_tolerance=0.2,lsao:warmup_tolerance=0.002,lsao:radius=0.1,lsao:radius=10,lsao:preset=4,hbao:directions=16:steps=48 \
+            --json "$out/lsao.json" 2>&1 | grep -E '^[a-z].* @ |total|line_sweep|gather' | tee "$out/lsao.txt"
+      ;;
+    lsao-error)
+      # What the segments cost against whole-line sweeps and the exact (brute-force) sweep, per scene, at
+      # 1920x1080: mean absolute difference of the AO images (obscura diff).
+      mkdir -p "$out/img"
+      variants=(lsao:exact=on lsao:segment_steps=-1 lsao lsao:segment_steps=32 lsao:warmup_tolerance=0.05 lsao:warmup_tolerance=0.2)
+      for scene in atrium terrain objects clutter analytic room; do
+        for v in "${variants[@]}"; do
+          name="${scene}_$(echo "$v" | tr ':=' '__')"
+          "$build/bin/obscura" render --scene "$scene" --size 1920x1080 --method "$v" --out "$out/img/$name.png" \
+            > /dev/null 2>&1 || echo "render $name failed"
+        done
+        for v in "${variants[@]:1}"; do
+          name="${scene}_$(echo "$v" | tr ':=' '__')"
+          for ref in lsao_exact_on lsao_segment_steps_-1; do
+            "$build/bin/obscura" diff "$out/img/$name.png" "$out/img/${scene}_$ref.png" --json "$out/img/d.json" \
+              > /dev/null 2>&1
+            printf '%-9s %-32s vs %-22s %s\n' "$scene" "$v" "$ref" "$(tr -d '\n ' < "$out/img/d.json" | grep -o '"mean_abs":[0-9.e-]*')"
+          done
+        done
+      done 2>&1 | tee "$out/lsao_error.txt"
+      tar czf "$out/lsao_images.tgz" -C "$out" img && rm -rf "$out/img"
+      ;;
+    *) echo "unknown step: $what" >&2; status=2 ;;
+  esac
+done
+exit $status

@@ -1,11 +1,19 @@
 // LSAO's line sweeps (Timonen, "Line-Sweep Ambient Obscurance", EGSR 2013, sec. 4, Algorithm 1): one
-// invocation walks one line of the layout (lines D_L apart in K directions across the whole depth texture,
-// steps D_S long). At every step it samples the depth, places the point in the line's slice, pops the
-// obscure hull until its top casts the largest obscurance on the point (or the hull's horizon is reached),
-// writes that obscurance and pushes the point. Each step costs amortised O(1): the work is the number of
-// steps, whatever the falloff's reach. The hull is a ring of at most `hull capacity` points; when full, the
-// oldest (farthest, least weighted) is dropped. FLAG_EXACT replaces the hull with the brute-force largest
-// occluder over every earlier sample (O(M^2), for validation).
+// invocation walks one segment of one line of the layout (lines D_L apart in K directions across the whole
+// depth texture, steps D_S long). At every step it samples the depth, places the point in the line's slice,
+// pops the obscure hull until its top casts the largest obscurance on the point (or the hull's horizon is
+// reached), writes that obscurance and pushes the point. Each step costs amortised O(1): the work is the
+// number of steps, whatever the falloff's reach. The hull is a ring of at most `hull capacity` points in
+// shared memory (a per-invocation array would live in local memory, which a GPU reaches through its caches
+// at hundreds of cycles per access); when full, the oldest (farthest, least weighted) is dropped.
+//
+// Parallelism: a GPU runs ~100x more threads than there are lines (K x ~1400 at 1080p), so lines can be cut
+// into segments of `segment steps` steps, one invocation each. A segment first sweeps a warm-up run before
+// its start, long enough that any occluder before it lies farther than the warm-up distance from every
+// receiver of the segment, where the falloff bounds what it could cast (LsaoConstants.warmup; the distance
+// from a receiver at depth z to the ray of a texel m steps away is about z times their angle). The warm-up's
+// values are not written. FLAG_EXACT replaces the hull with the brute-force largest occluder over every
+// earlier sample of the whole line (O(M^2), for validation).
 #define OBSCURA_LSAO_PASS 1
 #include "common/shader_interface.h"
 #include "common/depth.glsl"
@@ -16,7 +24,8 @@ layout(local_size_x = OBSCURA_LSAO_SWEEP_GROUP) in;
 
 layout(binding = OBSCURA_UNIT_LINEAR_DEPTH) uniform sampler2D u_depth;
 layout(binding = OBSCURA_UNIT_NORMALS) uniform sampler2D u_normals;
-layout(std430, binding = OBSCURA_SSBO_LSAO_VALUES) writeonly buffer LsaoValues { uint lsao_values[]; };
+// Eight halves per uvec4: each line's values start on a multiple of OBSCURA_LSAO_VALUE_ALIGNMENT.
+layout(std430, binding = OBSCURA_SSBO_LSAO_VALUES) writeonly buffer LsaoValues { uvec4 lsao_values[]; };
 layout(std430, binding = OBSCURA_SSBO_LSAO_STATS) buffer LsaoStats { uint lsao_stats[]; };
 
 // Depth at a sample: aligned patterns read their texel. Free ones interpolate bilinearly in 1/w (affine in
@@ -49,39 +58,69 @@ float sample_depth(inout vec2 point) {
     return texelFetch(u_depth, nearest, 0).r;
 }
 
-vec2 g_hull[OBSCURA_LSAO_MAX_HULL];
+// The hulls of the group's invocations, slot-major: the invocations of a warp reading the same slot touch
+// consecutive words, and each invocation's slots fall in its own banks.
+shared vec2 s_hull[OBSCURA_LSAO_MAX_HULL * OBSCURA_LSAO_SWEEP_GROUP];
+
+int hull_slot(int i) { return i * OBSCURA_LSAO_SWEEP_GROUP + int(gl_LocalInvocationID.x); }
 
 // Ring index of start + i (i < capacity): a compare instead of an integer division, which CPU rasterisers
 // cannot vectorise.
 int ring(int start_plus_i, int capacity) { return start_plus_i >= capacity ? start_plus_i - capacity : start_plus_i; }
 
+// Steps of the warm-up before the segment [begin, end) of `line`: enough that the warm-up distance separates
+// the segment's nearest receiver from anything before the warm-up; all of the line before it if the
+// distance is unbounded (negative).
+int warmup_steps(LsaoLine line, int begin, int end) {
+    float distance = lsao.warmup.x;
+    if (distance < 0.0 || begin == 0) return begin;
+    if (distance == 0.0) return 0;
+    float nearest = OBSCURA_SKY_DEPTH;
+    for (int i = begin; i < end; ++i) {
+        vec2 point = lsao_sample_point(line, line.first_step + i);
+        nearest = min(nearest, texelFetch(u_depth, ivec2(point), 0).r);
+    }
+    if (obscura_is_sky(nearest)) return 0;  // no receiver
+    vec2 first = lsao_sample_point(line, line.first_step + begin);
+    vec2 step = lsao.directions[line.direction].zw;
+    // View-space length of one step at distance 1 (perspective) or at any distance (orthographic).
+    float step_angle = length(obscura_view_position_at(first + step, 1.0) - obscura_view_position_at(first, 1.0));
+    float scale = obscura_is_perspective() ? nearest : 1.0;
+    return min(begin, int(ceil(distance / max(step_angle * scale, 1e-20))));
+}
+
 void main() {
     int index = int(gl_GlobalInvocationID.x);
     if (index >= lsao.config.y) return;
     LsaoLine line = lsao_lines[index];
-    if (line.steps <= 0) return;
+    int segment_steps = lsao.sweep.y;
+    int begin = segment_steps > 0 ? int(gl_GlobalInvocationID.y) * segment_steps : 0;
+    if (begin >= line.steps) return;
+    int end = segment_steps > 0 ? min(line.steps, begin + segment_steps) : line.steps;
+    int warm_begin = begin - warmup_steps(line, begin, end);
+
     vec2 dir = lsao.directions[line.direction].xy;
     vec3 b0, a, b;
     lsao_slice_frame(lsao_sample_point(line, line.first_step), dir, b0, a, b);
     bool exact = (lsao.config.w & OBSCURA_LSAO_FLAG_EXACT) != 0;
     int capacity = lsao.config.z;
-    int strategy = lsao.strategy.x;
+    int strategy = lsao.sweep.x;
     float fixed_sin_t = lsao.falloff.z;
 
-    int start = 0, count = 0;  // the hull: g_hull[ring(start + i)], i < count, top last
+    int start = 0, count = 0;  // the hull: s_hull[hull_slot(ring(start + i))], i < count, top last
+    vec2 top_point = vec2(0.0);  // the top, also kept in a register: most steps pop nothing
     uint pops = 0u, dropped = 0u;
-    float pending = 0.0;
-    for (int i = 0; i < line.steps; ++i) {
+    uvec4 pending = uvec4(0u);  // packed values of the current group of 8, shifted in from .w
+    float half_value = 0.0;
+    for (int i = warm_begin; i < end; ++i) {
         int j = line.first_step + i;
         vec2 point = lsao_sample_point(line, j);
         float depth = sample_depth(point);
         float value = OBSCURA_LSAO_NO_OCCLUDER;
-        bool sky = obscura_is_sky(depth);
-        vec2 pk = vec2(0.0), u = vec2(0.0, 1.0);
-        if (!sky) {
+        if (!obscura_is_sky(depth)) {
             vec3 p = obscura_view_position_at(point, depth);
-            pk = lsao_in_slice(p, b0, a, b);
-            u = lsao_zenith(p, a, b);
+            vec2 pk = lsao_in_slice(p, b0, a, b);
+            vec2 u = lsao_zenith(p, a, b);
             // Strategy 3 fixes the tangent for both uses; 1 uses the receiver's for both, 2 only for the occlusion.
             float real_sin_t = fixed_sin_t;
             if (strategy != 3) {
@@ -105,37 +144,44 @@ void main() {
                 if (any) value = best;
             } else {
                 // The top's (occlusion, sin h) carries over when the one below becomes the top.
-                vec2 top = count > 0 ? lsao_occlusion_and_sin_h(g_hull[ring(start + count - 1, capacity)] - pk, u, hull_sin_t)
-                                     : vec2(0.0);
+                vec2 top = count > 0 ? lsao_occlusion_and_sin_h(top_point - pk, u, hull_sin_t) : vec2(0.0);
                 while (count >= 2) {
-                    vec2 below = lsao_occlusion_and_sin_h(g_hull[ring(start + count - 2, capacity)] - pk, u, hull_sin_t);
+                    vec2 below_point = s_hull[hull_slot(ring(start + count - 2, capacity))];
+                    vec2 below = lsao_occlusion_and_sin_h(below_point - pk, u, hull_sin_t);
                     if (!(top.x < below.x && top.y < below.y)) break;
                     top = below;
+                    top_point = below_point;
                     --count;
                     ++pops;
                 }
-                if (count > 0) {
-                    value = strategy == 2 ? lsao_occlusion(g_hull[ring(start + count - 1, capacity)] - pk, u, occlusion_sin_t)
-                                          : top.x;
-                }
+                if (count > 0) value = strategy == 2 ? lsao_occlusion(top_point - pk, u, occlusion_sin_t) : top.x;
                 if (count == capacity) {
                     start = ring(start + 1, capacity);
                     --count;
                     ++dropped;
                 }
-                g_hull[ring(start + count, capacity)] = pk;
+                s_hull[hull_slot(ring(start + count, capacity))] = pk;
+                top_point = pk;
                 ++count;
             }
         }
-        // Two halves per uint: write on every second step (lines start on even offsets).
+        if (i < begin) continue;  // warm-up
+        // Pairs of halves shift into `pending`; a full group of 8 (or the segment's last) is stored at once.
         if ((i & 1) == 0) {
-            pending = value;
-            if (i == line.steps - 1) lsao_values[(line.offset + i) >> 1] = packHalf2x16(vec2(pending, 0.0));
+            half_value = value;
         } else {
-            lsao_values[(line.offset + i) >> 1] = packHalf2x16(vec2(pending, value));
+            pending = uvec4(pending.yzw, packHalf2x16(vec2(half_value, value)));
+        }
+        bool last = i == end - 1;
+        if ((i & 7) == 7 || last) {
+            if ((i & 1) == 0) pending = uvec4(pending.yzw, packHalf2x16(vec2(half_value, 0.0)));
+            // Shift the partial group's pairs down to its start.
+            int missing = 3 - ((i & 7) >> 1);
+            for (int s = 0; s < missing; ++s) pending = uvec4(pending.yzw, 0u);
+            lsao_values[(line.offset + i) >> 3] = pending;
         }
     }
-    atomicAdd(lsao_stats[0], uint(line.steps));
+    atomicAdd(lsao_stats[0], uint(end - warm_begin));
     atomicAdd(lsao_stats[1], pops);
     atomicAdd(lsao_stats[2], dropped);
 }

@@ -11,6 +11,16 @@
 namespace obscura {
 namespace {
 
+// Mesa's and Google's CPU rasterisers: they run a dispatch on a few cores, so work that only adds
+// parallelism for a GPU (LSAO's line segments) is pure overhead there.
+bool is_cpu_renderer(const char* renderer) {
+    if (!renderer) return false;
+    for (const char* name : {"llvmpipe", "softpipe", "SwiftShader", "Software Rasterizer"}) {
+        if (std::strstr(renderer, name)) return true;
+    }
+    return false;
+}
+
 // A frame's shared constants for a pass computing `work`.
 FrameConstants frame_constants(const FrameInput& input, const OutputTarget& target, const Region& work,
                                float debug_depth_scale) {
@@ -115,7 +125,8 @@ void Context::destroy(Context* context) {
 }
 
 PassEnv Context::env() const {
-    return PassEnv{gl_, alloc_, log_, log_user_data_, sampler_.name(), sampler_mipmap_.name(), uniform_buffer_.name()};
+    return PassEnv{gl_,           alloc_, log_, log_user_data_, sampler_.name(), sampler_mipmap_.name(),
+                   uniform_buffer_.name(), cpu_renderer_};
 }
 
 Error Context::initialize() {
@@ -135,6 +146,7 @@ Error Context::initialize() {
                            "OpenGL %d.%d is current; Obscura needs 4.3 core (GL_VERSION \"%s\")", version / 10000,
                            version % 10000, reinterpret_cast<const char*>(get_string(GL_VERSION)));
     }
+    cpu_renderer_ = is_cpu_renderer(reinterpret_cast<const char*>(get_string(GL_RENDERER)));
     // Every function the SDK calls must have loaded (a host loader may return NULL for some).
     struct Required { const void* fn; const char* name; };
     const Required required[] = {
@@ -501,7 +513,7 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
             method_pass = uniforms_.push(ReferencePass::constants(settings.reference, input));
             break;
         case OBSCURA_METHOD_LSAO:
-            method_pass = uniforms_.push(lsao_.constants(settings.lsao, input));
+            method_pass = uniforms_.push(lsao_.constants(settings.lsao, input, cpu_renderer_));
             break;
         case OBSCURA_METHOD_SAO:
             for (int d = 0; d < pyramid_dispatches && d < 4; ++d) {
@@ -541,7 +553,7 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
         raw = result = &resources_.reference;
         error = after_pass("reference");
     } else if (!error && method == OBSCURA_METHOD_LSAO) {
-        lsao_.run_sweeps(pass_env, frame_whole, method_pass, resources_);
+        lsao_.run_sweeps(pass_env, settings.lsao, frame_whole, method_pass, resources_);
         error = after_pass("line_sweep");
         if (!error) {
             lsao_.run_gather(pass_env, frame_ao, method_pass, plan.ao_region, resources_);

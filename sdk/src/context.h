@@ -77,6 +77,7 @@ private:
 
     gl::Object sampler_;
     gl::Object sampler_mipmap_;
+    bool cpu_renderer_ = false;  // GL_RENDERER names a CPU rasteriser (is_cpu_renderer)
     gl::Buffer uniform_buffer_;
     UniformArena uniforms_;
     DepthPreparePass depth_prepare_;

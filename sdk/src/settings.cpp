@@ -1,5 +1,7 @@
 #include "settings.h"
 
+#include "common/shader_interface.h"
+
 #include <cmath>
 #include <cstddef>
 #include <cstring>
@@ -141,10 +143,16 @@ const obscura_setting_info kLsaoSettings[] = {
     {"tangent_strategy", OBSCURA_SETTING_INT, 3, 1, 3, "",
      "1: receiver's tangent for hull and occlusion; 2: fixed for the hull, receiver's for occlusion; 3: fixed",
      OBSCURA_LSAO_FIELD(tangent_strategy)},
-    {"hull_capacity", OBSCURA_SETTING_INT, 64, 2, 256, "", "points kept per line; the oldest is dropped when full",
-     OBSCURA_LSAO_FIELD(hull_capacity)},
+    {"hull_capacity", OBSCURA_SETTING_INT, 64, 2, OBSCURA_LSAO_MAX_HULL, "",
+     "points kept per line; the oldest is dropped when full", OBSCURA_LSAO_FIELD(hull_capacity)},
     {"exact", OBSCURA_SETTING_TOGGLE, 0, 0, 1, "", "brute-force largest occluder instead of the hull (validation)",
      OBSCURA_LSAO_FIELD(exact)},
+    {"segment_steps", OBSCURA_SETTING_INT, 0, -1, 4096, "",
+     "steps per line segment (one GPU thread each, after a warm-up); -1: whole lines; 0: whole on CPU renderers, "
+     "128 on GPUs", OBSCURA_LSAO_FIELD(segment_steps)},
+    {"warmup_tolerance", OBSCURA_SETTING_FLOAT, 0.01, 1e-4, 1.0, "",
+     "segments: most obscurance an occluder before the warm-up may cast (sets the warm-up length)",
+     OBSCURA_LSAO_FIELD(warmup_tolerance)},
     {"depth_threshold", OBSCURA_SETTING_FLOAT, 0.05, 1e-4, 10.0, "", "gather: relative depth difference that rejects",
      OBSCURA_LSAO_FIELD(depth_threshold)},
     {"normal_test", OBSCURA_SETTING_TOGGLE, 0, 0, 1, "", "gather: also reject by normal", OBSCURA_LSAO_FIELD(normal_test)},
@@ -245,6 +253,8 @@ Error resolve_lsao(obscura_lsao_settings* lsao) {
     if (lsao->step_length == 0.0f) lsao->step_length = float(preset.step_length);
     if (lsao->line_spacing == 0.0f) lsao->line_spacing = float(preset.line_spacing);
     if (lsao->decay_rate == 0.0f) lsao->decay_rate = lsao->falloff_c * lsao->radius * lsao->radius;
+    // Segments start on the sweep's 8-value stores; 0 (auto) is settled by the context, which knows the renderer.
+    if (lsao->segment_steps > 0) lsao->segment_steps = (lsao->segment_steps + 7) / 8 * 8;
     if (lsao->pattern == 1 && lsao->directions % 8 != 0) {
         return Error::make(OBSCURA_STATUS_INVALID_SETTING,
                            "lsao.directions = %d: the aligned pattern has K = 8n directions (8, 16, 24 ... 64); "

@@ -36,7 +36,9 @@ protected:
     void TearDown() override { EXPECT_EQ(gl_.GetError(), GLenum(GL_NO_ERROR)); }
 
     obscura::PassEnv env() const {
-        return obscura::PassEnv{gl_, alloc_, nullptr, nullptr, sampler_.name(), sampler_mipmap_.name(), uniforms_.name()};
+        // As on llvmpipe, where these tests run: default LSAO settings sweep whole lines.
+        return obscura::PassEnv{gl_,        alloc_, nullptr, nullptr, sampler_.name(), sampler_mipmap_.name(),
+                                uniforms_.name(), true};
     }
 
     ObscuraGlLoader loader_ = {};

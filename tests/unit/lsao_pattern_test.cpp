@@ -107,10 +107,21 @@ TEST(LsaoLayout, EveryPixelHasANearbySampleInEveryDirection) {
                     EXPECT_LE(distance, radius + 0.5) << c.name << " k " << k << " (" << x << ", " << y << ")";
                 }
         }
-        // The buffer holds about K W H / (D_S D_L) values (lines are padded to an even count).
+        // The lines take about K W H / (D_S D_L) samples; each line's values start on a multiple of 8, right
+        // after the previous line's, and the longest line is recorded.
         const double expected = double(layout.directions.size()) * width * height /
                                 (obscura::average_step_length(layout.directions) * c.line_spacing);
-        EXPECT_NEAR(double(layout.values), expected, 0.2 * expected) << c.name;
+        int64_t samples = 0, padded = 0;
+        int32_t longest = 0;
+        for (const obscura::LsaoLine& line : layout.lines) {
+            EXPECT_EQ(line.offset, padded) << c.name;
+            samples += line.steps;
+            padded += (line.steps + 7) / 8 * 8;
+            longest = std::max(longest, line.steps);
+        }
+        EXPECT_NEAR(double(samples), expected, 0.2 * expected) << c.name;
+        EXPECT_EQ(layout.values, padded) << c.name;
+        EXPECT_EQ(layout.longest_line, longest) << c.name;
         RecordProperty(std::string(c.name) + "_worst_excess", std::to_string(worst));
     }
 }

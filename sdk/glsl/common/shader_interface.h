@@ -51,12 +51,15 @@
 #define OBSCURA_SAO_GROUP_X 8
 #define OBSCURA_SAO_GROUP_Y 8
 #define OBSCURA_SAO_MAX_SAMPLES 64
-// LSAO: one invocation per line, 64 per group; the gather in 8x8 groups.
-#define OBSCURA_LSAO_SWEEP_GROUP 64
+// LSAO: one invocation per line segment, 32 per group (each keeps its hull in shared memory:
+// 32 x OBSCURA_LSAO_MAX_HULL x 8 bytes = 16 KiB); the gather in 8x8 groups.
+#define OBSCURA_LSAO_SWEEP_GROUP 32
 #define OBSCURA_LSAO_GATHER_GROUP_X 8
 #define OBSCURA_LSAO_GATHER_GROUP_Y 8
 #define OBSCURA_LSAO_MAX_DIRECTIONS 64
-#define OBSCURA_LSAO_MAX_HULL 256
+#define OBSCURA_LSAO_MAX_HULL 64
+// Every line's values start on a multiple of this many (the sweep stores 8 halves, 16 bytes, at a time).
+#define OBSCURA_LSAO_VALUE_ALIGNMENT 8
 // The value a sweep writes where no earlier sample exists (outside every sin h, which is <= 1).
 #define OBSCURA_LSAO_NO_OCCLUDER 4.0
 
@@ -188,7 +191,8 @@ OBSCURA_PASS_BLOCK_BEGIN(LsaoConstants)
   OBSCURA_VEC4(falloff);   // r (view units^2), C (0: r / (r + d^2)), fixed sin t, D_L (texels)
   OBSCURA_VEC4(gather);    // depth threshold (relative), normal threshold (dot), intensity, power
   OBSCURA_IVEC4(config);   // K, total lines, hull capacity, flags
-  OBSCURA_IVEC4(strategy); // tangent strategy (1-3), unused x3
+  OBSCURA_IVEC4(sweep);    // tangent strategy (1-3), segment steps (0: whole lines), unused x2
+  OBSCURA_VEC4(warmup);    // segments' warm-up distance (view units; < 0: from the line start), unused x3
   OBSCURA_VEC4(directions[OBSCURA_LSAO_MAX_DIRECTIONS]); // unit direction xy, step vector xy (texels)
   OBSCURA_VEC4(coverage[OBSCURA_LSAO_MAX_DIRECTIONS]);   // weight, perpendicular offset of line 0, first line, line count
   OBSCURA_VEC4(axes[OBSCURA_LSAO_MAX_DIRECTIONS]);       // view-space screen axis of the direction, 1 / |step|^2

@@ -1,5 +1,6 @@
 #include "passes/lsao.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -18,6 +19,23 @@ static_assert(sizeof(GpuLine) == 32, "matches the std430 struct");
 std::vector<LsaoDirection> lsao_directions(const obscura_lsao_settings& settings) {
     if (settings.pattern == 1) return aligned_directions(settings.directions / 8);
     return free_directions(settings.directions, settings.step_length);
+}
+
+int lsao_segment_steps(const obscura_lsao_settings& settings, bool cpu_renderer) {
+    if (settings.segment_steps < 0) return 0;
+    if (settings.segment_steps == 0) return cpu_renderer ? 0 : kLsaoGpuSegmentSteps;
+    return settings.segment_steps;
+}
+
+double lsao_warmup_distance(const obscura_lsao_settings& settings, float meters_to_view_units) {
+    // An occluder at distance d casts at most A rho(d), A = 1 - sin t the widest gap between sin h and the
+    // tangent (2 when receivers' own tangents take part). Solve A (r(1+C)/(r+d^2) - C) = tolerance for d.
+    const double m2v = meters_to_view_units;
+    const double r = double(settings.decay_rate) * m2v * m2v;
+    const double c = settings.falloff == 1 ? double(settings.falloff_c) : 0.0;
+    const double a = settings.tangent_strategy == 3 ? 1.0 - double(settings.tangent) : 2.0;
+    const double d_sq = r * (1.0 + c) / (double(settings.warmup_tolerance) / a + c) - r;
+    return std::sqrt(std::max(0.0, d_sq));
 }
 
 Error LsaoPass::prepare(const PassEnv& env) {
@@ -63,7 +81,8 @@ void LsaoPass::release() {
     key_ = LayoutKey();
 }
 
-LsaoConstants LsaoPass::constants(const obscura_lsao_settings& settings, const FrameInput& input) const {
+LsaoConstants LsaoPass::constants(const obscura_lsao_settings& settings, const FrameInput& input,
+                                  bool cpu_renderer) const {
     const float m2v = input.meters_to_view_units;
     LsaoConstants c = {};
     c.falloff[0] = settings.decay_rate * m2v * m2v;
@@ -80,7 +99,9 @@ LsaoConstants LsaoPass::constants(const obscura_lsao_settings& settings, const F
     c.config[3] = (settings.exact == OBSCURA_TOGGLE_ON ? OBSCURA_LSAO_FLAG_EXACT : 0) |
                   (settings.pattern == 1 ? OBSCURA_LSAO_FLAG_ALIGNED : 0) |
                   (settings.normal_test == OBSCURA_TOGGLE_ON ? OBSCURA_LSAO_FLAG_NORMAL_TEST : 0);
-    c.strategy[0] = settings.tangent_strategy;
+    c.sweep[0] = settings.tangent_strategy;
+    c.sweep[1] = lsao_segment_steps(settings, cpu_renderer);
+    c.warmup[0] = float(lsao_warmup_distance(settings, m2v));
     for (size_t k = 0; k < layout_.directions.size() && k < OBSCURA_LSAO_MAX_DIRECTIONS; ++k) {
         const LsaoDirection& d = layout_.directions[k];
         const LsaoDirectionLines& lines = layout_.direction_lines[k];
@@ -104,8 +125,8 @@ LsaoConstants LsaoPass::constants(const obscura_lsao_settings& settings, const F
     return c;
 }
 
-void LsaoPass::run_sweeps(const PassEnv& env, const UniformRange& frame, const UniformRange& pass,
-                          FrameResources& resources) {
+void LsaoPass::run_sweeps(const PassEnv& env, const obscura_lsao_settings& settings, const UniformRange& frame,
+                          const UniformRange& pass, FrameResources& resources) {
     const gl::Table& gl = env.gl;
     const uint32_t zero[4] = {0, 0, 0, 0};
     gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, stats_.name());
@@ -118,7 +139,9 @@ void LsaoPass::run_sweeps(const PassEnv& env, const UniformRange& frame, const U
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_LSAO_STATS, stats_.name());
     env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
     env.bind_uniforms(OBSCURA_UBO_PASS, pass);
-    env.dispatch(int(layout_.lines.size()), 1, OBSCURA_LSAO_SWEEP_GROUP, 1);
+    const int segment_steps = lsao_segment_steps(settings, env.cpu_renderer);
+    const int segments = segment_steps > 0 ? (layout_.longest_line + segment_steps - 1) / segment_steps : 1;
+    env.dispatch(int(layout_.lines.size()), std::max(segments, 1), OBSCURA_LSAO_SWEEP_GROUP, 1);
     gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
@@ -147,6 +170,12 @@ void LsaoPass::read_stats(const gl::Table& gl, uint32_t out[3]) const {
 }  // namespace obscura
 
 namespace obscura {
+
+void LsaoPass::fill_values(const gl::Table& gl, uint16_t half_bits) const {
+    const std::vector<uint16_t> halves(size_t(layout_.values), half_bits);
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, values_.name());
+    gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(halves.size() * 2), halves.data());
+}
 
 std::vector<float> LsaoPass::read_values(const gl::Table& gl) const {
     std::vector<uint16_t> halves(size_t(layout_.values));

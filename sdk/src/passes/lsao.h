@@ -1,5 +1,6 @@
 // LSAO (sdk/glsl/line_sweep.comp, lsao_gather.comp): the line layout for the current size and pattern
-// (passes/lsao_pattern.h) in storage buffers, the sweep dispatch (one invocation per line) and the gather.
+// (passes/lsao_pattern.h) in storage buffers, the sweep dispatch (one invocation per line segment) and the
+// gather.
 #ifndef OBSCURA_LSAO_H
 #define OBSCURA_LSAO_H
 
@@ -12,6 +13,16 @@ namespace obscura {
 // The directions of resolved LSAO settings: the aligned 8n pattern for K = 8n, or K free directions.
 std::vector<LsaoDirection> lsao_directions(const obscura_lsao_settings& settings);
 
+// Steps per sweep segment for resolved settings, 0 for whole lines: segment_steps, or for 0 (auto) whole
+// lines on a CPU renderer and kLsaoGpuSegmentSteps on a GPU.
+constexpr int kLsaoGpuSegmentSteps = 128;
+int lsao_segment_steps(const obscura_lsao_settings& settings, bool cpu_renderer);
+
+// The warm-up distance (view units) beyond which an occluder casts at most `warmup_tolerance` on any
+// receiver under the settings' falloff and tangent; negative when no distance bounds it (a tolerance under
+// the falloff's floor).
+double lsao_warmup_distance(const obscura_lsao_settings& settings, float meters_to_view_units);
+
 class LsaoPass {
 public:
     // Builds the programs on first use.
@@ -19,9 +30,10 @@ public:
     // Rebuilds the layout and its buffers when the size, the pattern, K, D_S or D_L changed.
     Error ensure_layout(const PassEnv& env, const obscura_lsao_settings& settings, int width, int height);
     // Resolved settings (metres) -> the shaders' constants (view units), for the current layout.
-    LsaoConstants constants(const obscura_lsao_settings& settings, const FrameInput& input) const;
-    // The sweeps over every line, then the gather over `region` into resources.ao.
-    void run_sweeps(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, FrameResources& resources);
+    LsaoConstants constants(const obscura_lsao_settings& settings, const FrameInput& input, bool cpu_renderer) const;
+    // The sweeps over every line (segment), then the gather over `region` into resources.ao.
+    void run_sweeps(const PassEnv& env, const obscura_lsao_settings& settings, const UniformRange& frame,
+                    const UniformRange& pass, FrameResources& resources);
     void run_gather(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
                     FrameResources& resources);
     const LsaoLayout& layout() const { return layout_; }
@@ -32,6 +44,8 @@ public:
     void read_stats(const gl::Table& gl, uint32_t out[3]) const;
     // The sweeps' values in layout order (OBSCURA_LSAO_NO_OCCLUDER where a sample had none); tests only.
     std::vector<float> read_values(const gl::Table& gl) const;
+    // Fills the values with one half-float bit pattern (tests: poison before a sweep to see what it writes).
+    void fill_values(const gl::Table& gl, uint16_t half_bits) const;
 
 private:
     gl::Object sweep_program_;

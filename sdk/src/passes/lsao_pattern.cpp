@@ -1,5 +1,7 @@
 #include "passes/lsao_pattern.h"
 
+#include "common/shader_interface.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -193,12 +195,15 @@ LsaoLayout make_lsao_layout(const std::vector<LsaoDirection>& directions, double
                 line.steps = last >= first ? last - first + 1 : 0;
             }
             line.offset = int32_t(offset);
-            offset += (int64_t(line.steps) + 1) / 2 * 2;
+            // The sweep stores OBSCURA_LSAO_VALUE_ALIGNMENT values at a time from the line's start.
+            const int64_t alignment = OBSCURA_LSAO_VALUE_ALIGNMENT;
+            offset += (int64_t(line.steps) + alignment - 1) / alignment * alignment;
             layout.lines.push_back(line);
         }
         layout.direction_lines.push_back(summary);
     }
     layout.values = offset;
+    for (const LsaoLine& line : layout.lines) layout.longest_line = std::max(layout.longest_line, line.steps);
     return layout;
 }
 

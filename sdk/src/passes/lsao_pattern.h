@@ -36,7 +36,7 @@ struct LsaoLine {
     float origin[2];      // texel units (texel centres at .5)
     int32_t first_step;   // j of the first sample inside the texture
     int32_t steps;        // samples inside the texture (0: the line misses it)
-    int32_t offset;       // index of the line's first value in the intermediate buffer (even)
+    int32_t offset;       // index of the line's first value in the intermediate buffer (a multiple of 8)
     int32_t direction;    // index into the directions
 };
 
@@ -54,7 +54,8 @@ struct LsaoLayout {
     std::vector<LsaoDirection> directions;
     std::vector<LsaoDirectionLines> direction_lines;
     std::vector<LsaoLine> lines;
-    int64_t values = 0;  // intermediate buffer length (each line's count rounded up to even)
+    int64_t values = 0;  // intermediate buffer length (each line's count rounded up to a multiple of 8)
+    int32_t longest_line = 0;  // the most steps of any line
 };
 
 // Lines D_L apart across a width x height texture for every direction. `aligned`: line origins are chosen

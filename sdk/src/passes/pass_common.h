@@ -75,6 +75,7 @@ struct PassEnv {
     GLuint sampler;         // nearest, clamp, compare off
     GLuint sampler_mipmap;  // the same with nearest MIP selection (texelFetch of the z pyramid's levels)
     GLuint uniform_buffer;  // the UniformArena's buffer
+    bool cpu_renderer;      // llvmpipe and the like: no idle lanes, so extra parallelism only adds work
 
     Error build(const char* entry, const char* defines, gl::Object* program) const {
         return gl::build_compute_program(gl, entry, defines, alloc, log, log_user_data, program);
