@@ -12,8 +12,8 @@
 // its start, long enough that any occluder before it lies farther than the warm-up distance from every
 // receiver of the segment, where the falloff bounds what it could cast (LsaoConstants.warmup; the distance
 // from a receiver at depth z to the ray of a texel m steps away is about z times their angle). The warm-up's
-// values are not written. FLAG_EXACT replaces the hull with the brute-force largest occluder over every
-// earlier sample of the whole line (O(M^2), for validation).
+// values are not written. OBSCURA_LSAO_EXACT_SWEEP 1 (another program) replaces the hull with the
+// brute-force largest occluder over every earlier sample of the whole line (O(M^2), for validation).
 #define OBSCURA_LSAO_PASS 1
 #include "common/shader_interface.h"
 #include "common/depth.glsl"
@@ -58,15 +58,22 @@ float sample_depth(inout vec2 point) {
     return texelFetch(u_depth, nearest, 0).r;
 }
 
+// The program is built per hull capacity (OBSCURA_LSAO_HULL_CAPACITY points): the shared memory a group
+// takes decides how many groups an SM holds, and a small hull (the default) leaves room for many.
+#ifndef OBSCURA_LSAO_HULL_CAPACITY
+#error "OBSCURA_LSAO_HULL_CAPACITY must be defined"
+#endif
+const int kCapacity = OBSCURA_LSAO_HULL_CAPACITY;
+
 // The hulls of the group's invocations, slot-major: the invocations of a warp reading the same slot touch
 // consecutive words, and each invocation's slots fall in its own banks.
-shared vec2 s_hull[OBSCURA_LSAO_MAX_HULL * OBSCURA_LSAO_SWEEP_GROUP];
+shared vec2 s_hull[kCapacity * OBSCURA_LSAO_SWEEP_GROUP];
 
 int hull_slot(int i) { return i * OBSCURA_LSAO_SWEEP_GROUP + int(gl_LocalInvocationID.x); }
 
 // Ring index of start + i (i < capacity): a compare instead of an integer division, which CPU rasterisers
 // cannot vectorise.
-int ring(int start_plus_i, int capacity) { return start_plus_i >= capacity ? start_plus_i - capacity : start_plus_i; }
+int ring(int start_plus_i) { return start_plus_i >= kCapacity ? start_plus_i - kCapacity : start_plus_i; }
 
 // Steps of the warm-up before the segment [begin, end) of `line`: enough that the warm-up distance separates
 // the segment's nearest receiver from anything before the warm-up; all of the line before it if the
@@ -89,99 +96,155 @@ int warmup_steps(LsaoLine line, int begin, int end) {
     return min(begin, int(ceil(distance / max(step_angle * scale, 1e-20))));
 }
 
+// The invocation's line, its slice frame and the part of it that it writes.
+LsaoLine g_line;
+vec3 g_b0, g_a, g_b;
+int g_begin, g_end;
+
+// View positions are affine in the depth and, at a fixed depth, in the texel position; so are their slice
+// coordinates: pk = at0 + depth (at1 - at0), at_w = g_at[w] + g_slope[w] (point - g_origin). Ten FMAs per
+// step instead of a deprojection and two projections.
+vec2 g_origin;
+vec2 g_at[2];
+mat2 g_slope[2];
+vec2 g_eye;            // perspective: the eye in slice coordinates
+vec2 g_ortho_zenith;   // orthographic: the direction towards the eye in the slice
+
+void setup_slice(vec2 origin) {
+    lsao_slice_frame(origin, lsao.directions[g_line.direction].xy, g_b0, g_a, g_b);
+    g_origin = origin;
+    for (int w = 0; w < 2; ++w) {
+        float depth = float(w);
+        vec2 at = lsao_in_slice(obscura_view_position_at(origin, depth), g_b0, g_a, g_b);
+        vec2 x = lsao_in_slice(obscura_view_position_at(origin + vec2(1.0, 0.0), depth), g_b0, g_a, g_b);
+        vec2 y = lsao_in_slice(obscura_view_position_at(origin + vec2(0.0, 1.0), depth), g_b0, g_a, g_b);
+        g_at[w] = at;
+        g_slope[w] = mat2(x - at, y - at);
+    }
+    g_eye = lsao_in_slice(vec3(0.0), g_b0, g_a, g_b);
+    g_ortho_zenith = normalize(vec2(g_a.z, g_b.z));
+}
+
+vec2 slice_point(vec2 point, float depth) {
+    vec2 q = point - g_origin;
+    vec2 at0 = g_at[0] + g_slope[0] * q;
+    vec2 at1 = g_at[1] + g_slope[1] * q;
+    return at0 + depth * (at1 - at0);
+}
+
+// Unit vector towards the eye from the slice point pk.
+vec2 slice_zenith(vec2 pk) { return obscura_is_perspective() ? normalize(g_eye - pk) : g_ortho_zenith; }
+// The hull: s_hull[hull_slot(ring(g_start + i))], i < g_count, top last; the top also in a register (most
+// steps pop nothing).
+int g_start = 0, g_count = 0;
+vec2 g_top_point = vec2(0.0);
+uint g_pops = 0u, g_dropped = 0u;
+// Output: pairs of halves shift into g_pending from .w; a full group of 8 (or the segment's last) is stored.
+uvec4 g_pending = uvec4(0u);
+float g_half_value = 0.0;
+
+// Algorithm 1's body for step i at `point` with `depth`: the value for the receiver there (pops, then the
+// top's obscurance), then the point is pushed; written when i is in the invocation's segment.
+void sweep_step(int i, vec2 point, float depth) {
+    if (i >= g_end) return;
+    float value = OBSCURA_LSAO_NO_OCCLUDER;
+    if (!obscura_is_sky(depth)) {
+        int strategy = lsao.sweep.x;
+        float fixed_sin_t = lsao.falloff.z;
+        vec2 pk = slice_point(point, depth);
+        vec2 u = slice_zenith(pk);
+        // Strategy 3 fixes the tangent for both uses; 1 uses the receiver's for both, 2 only for the occlusion.
+        float real_sin_t = fixed_sin_t;
+        if (strategy != 3) {
+            vec3 n = obscura_decode_normal(texelFetch(u_normals, ivec2(point), 0).xy);
+            real_sin_t = lsao_receiver_sin_t_3d(n, obscura_towards_eye(obscura_view_position_at(point, depth)), g_a);
+        }
+        float hull_sin_t = strategy == 1 ? real_sin_t : fixed_sin_t;
+        float occlusion_sin_t = strategy == 3 ? fixed_sin_t : real_sin_t;
+#if OBSCURA_LSAO_EXACT_SWEEP
+        // Validation: every earlier sample of the whole line, read again.
+        bool any = false;
+        float best = occlusion_sin_t;
+        for (int e = 0; e < i; ++e) {
+            vec2 q = lsao_sample_point(g_line, g_line.first_step + e);
+            float qd = sample_depth(q);
+            if (obscura_is_sky(qd)) continue;
+            vec2 qk = slice_point(q, qd);
+            best = max(best, lsao_occlusion(qk - pk, u, occlusion_sin_t));
+            any = true;
+        }
+        if (any) value = best;
+#else
+        // The top's (occlusion, sin h) carries over when the one below becomes the top.
+        vec2 top = g_count > 0 ? lsao_occlusion_and_sin_h(g_top_point - pk, u, hull_sin_t) : vec2(0.0);
+        while (g_count >= 2) {
+            vec2 below_point = s_hull[hull_slot(ring(g_start + g_count - 2))];
+            vec2 below = lsao_occlusion_and_sin_h(below_point - pk, u, hull_sin_t);
+            if (!(top.x < below.x && top.y < below.y)) break;
+            top = below;
+            g_top_point = below_point;
+            --g_count;
+            ++g_pops;
+        }
+        if (g_count > 0) value = strategy == 2 ? lsao_occlusion(g_top_point - pk, u, occlusion_sin_t) : top.x;
+        if (g_count == kCapacity) {
+            g_start = ring(g_start + 1);
+            --g_count;
+            ++g_dropped;
+        }
+        s_hull[hull_slot(ring(g_start + g_count))] = pk;
+        g_top_point = pk;
+        ++g_count;
+#endif
+    }
+    if (i < g_begin) return;  // warm-up
+    if ((i & 1) == 0) {
+        g_half_value = value;
+    } else {
+        g_pending = uvec4(g_pending.yzw, packHalf2x16(vec2(g_half_value, value)));
+    }
+    if ((i & 7) == 7 || i == g_end - 1) {
+        if ((i & 1) == 0) g_pending = uvec4(g_pending.yzw, packHalf2x16(vec2(g_half_value, 0.0)));
+        // Shift a partial group's pairs down to its start.
+        for (int missing = 3 - ((i & 7) >> 1); missing > 0; --missing) g_pending = uvec4(g_pending.yzw, 0u);
+        lsao_values[(g_line.offset + i) >> 3] = g_pending;
+    }
+}
+
+// Sample i of the line, clamped to the segment's last (blocks may run past it).
+vec2 block_point(int i) { return lsao_sample_point(g_line, g_line.first_step + min(i, g_end - 1)); }
+
 void main() {
     int index = int(gl_GlobalInvocationID.x);
     if (index >= lsao.config.y) return;
-    LsaoLine line = lsao_lines[index];
+    g_line = lsao_lines[index];
     int segment_steps = lsao.sweep.y;
-    int begin = segment_steps > 0 ? int(gl_GlobalInvocationID.y) * segment_steps : 0;
-    if (begin >= line.steps) return;
-    int end = segment_steps > 0 ? min(line.steps, begin + segment_steps) : line.steps;
-    int warm_begin = begin - warmup_steps(line, begin, end);
+    g_begin = segment_steps > 0 ? int(gl_GlobalInvocationID.y) * segment_steps : 0;
+    if (g_begin >= g_line.steps) return;
+    g_end = segment_steps > 0 ? min(g_line.steps, g_begin + segment_steps) : g_line.steps;
+    int warm_begin = g_begin - warmup_steps(g_line, g_begin, g_end);
+    setup_slice(lsao_sample_point(g_line, g_line.first_step));
 
-    vec2 dir = lsao.directions[line.direction].xy;
-    vec3 b0, a, b;
-    lsao_slice_frame(lsao_sample_point(line, line.first_step), dir, b0, a, b);
-    bool exact = (lsao.config.w & OBSCURA_LSAO_FLAG_EXACT) != 0;
-    int capacity = lsao.config.z;
-    int strategy = lsao.sweep.x;
-    float fixed_sin_t = lsao.falloff.z;
-
-    int start = 0, count = 0;  // the hull: s_hull[hull_slot(ring(start + i))], i < count, top last
-    vec2 top_point = vec2(0.0);  // the top, also kept in a register: most steps pop nothing
-    uint pops = 0u, dropped = 0u;
-    uvec4 pending = uvec4(0u);  // packed values of the current group of 8, shifted in from .w
-    float half_value = 0.0;
-    for (int i = warm_begin; i < end; ++i) {
-        int j = line.first_step + i;
-        vec2 point = lsao_sample_point(line, j);
-        float depth = sample_depth(point);
-        float value = OBSCURA_LSAO_NO_OCCLUDER;
-        if (!obscura_is_sky(depth)) {
-            vec3 p = obscura_view_position_at(point, depth);
-            vec2 pk = lsao_in_slice(p, b0, a, b);
-            vec2 u = lsao_zenith(p, a, b);
-            // Strategy 3 fixes the tangent for both uses; 1 uses the receiver's for both, 2 only for the occlusion.
-            float real_sin_t = fixed_sin_t;
-            if (strategy != 3) {
-                vec3 n = obscura_decode_normal(texelFetch(u_normals, ivec2(point), 0).xy);
-                real_sin_t = lsao_receiver_sin_t_3d(n, obscura_towards_eye(p), a);
-            }
-            float hull_sin_t = strategy == 1 ? real_sin_t : fixed_sin_t;
-            float occlusion_sin_t = strategy == 3 ? fixed_sin_t : real_sin_t;
-            if (exact) {
-                // Every earlier sample of the line, read again.
-                bool any = false;
-                float best = occlusion_sin_t;
-                for (int e = 0; e < i; ++e) {
-                    vec2 q = lsao_sample_point(line, line.first_step + e);
-                    float qd = sample_depth(q);
-                    if (obscura_is_sky(qd)) continue;
-                    vec2 qk = lsao_in_slice(obscura_view_position_at(q, qd), b0, a, b);
-                    best = max(best, lsao_occlusion(qk - pk, u, occlusion_sin_t));
-                    any = true;
-                }
-                if (any) value = best;
-            } else {
-                // The top's (occlusion, sin h) carries over when the one below becomes the top.
-                vec2 top = count > 0 ? lsao_occlusion_and_sin_h(top_point - pk, u, hull_sin_t) : vec2(0.0);
-                while (count >= 2) {
-                    vec2 below_point = s_hull[hull_slot(ring(start + count - 2, capacity))];
-                    vec2 below = lsao_occlusion_and_sin_h(below_point - pk, u, hull_sin_t);
-                    if (!(top.x < below.x && top.y < below.y)) break;
-                    top = below;
-                    top_point = below_point;
-                    --count;
-                    ++pops;
-                }
-                if (count > 0) value = strategy == 2 ? lsao_occlusion(top_point - pk, u, occlusion_sin_t) : top.x;
-                if (count == capacity) {
-                    start = ring(start + 1, capacity);
-                    --count;
-                    ++dropped;
-                }
-                s_hull[hull_slot(ring(start + count, capacity))] = pk;
-                top_point = pk;
-                ++count;
-            }
-        }
-        if (i < begin) continue;  // warm-up
-        // Pairs of halves shift into `pending`; a full group of 8 (or the segment's last) is stored at once.
-        if ((i & 1) == 0) {
-            half_value = value;
-        } else {
-            pending = uvec4(pending.yzw, packHalf2x16(vec2(half_value, value)));
-        }
-        bool last = i == end - 1;
-        if ((i & 7) == 7 || last) {
-            if ((i & 1) == 0) pending = uvec4(pending.yzw, packHalf2x16(vec2(half_value, 0.0)));
-            // Shift the partial group's pairs down to its start.
-            int missing = 3 - ((i & 7) >> 1);
-            for (int s = 0; s < missing; ++s) pending = uvec4(pending.yzw, 0u);
-            lsao_values[(line.offset + i) >> 3] = pending;
-        }
+    // Blocks of 8 samples whose depths are all fetched before the first is used: the hull's loop-carried
+    // work cannot hide a fetch's latency, eight fetches in flight can.
+    for (int i = warm_begin; i < g_end; i += 8) {
+        vec2 p0 = block_point(i), p1 = block_point(i + 1), p2 = block_point(i + 2), p3 = block_point(i + 3);
+        vec2 p4 = block_point(i + 4), p5 = block_point(i + 5), p6 = block_point(i + 6), p7 = block_point(i + 7);
+        float d0 = sample_depth(p0), d1 = sample_depth(p1), d2 = sample_depth(p2), d3 = sample_depth(p3);
+        float d4 = sample_depth(p4), d5 = sample_depth(p5), d6 = sample_depth(p6), d7 = sample_depth(p7);
+        sweep_step(i, p0, d0);
+        sweep_step(i + 1, p1, d1);
+        sweep_step(i + 2, p2, d2);
+        sweep_step(i + 3, p3, d3);
+        sweep_step(i + 4, p4, d4);
+        sweep_step(i + 5, p5, d5);
+        sweep_step(i + 6, p6, d6);
+        sweep_step(i + 7, p7, d7);
     }
-    atomicAdd(lsao_stats[0], uint(end - warm_begin));
-    atomicAdd(lsao_stats[1], pops);
-    atomicAdd(lsao_stats[2], dropped);
+    // Counters for tests only: thousands of invocations adding to one address would serialise.
+    if ((lsao.config.w & OBSCURA_LSAO_FLAG_STATS) != 0) {
+        atomicAdd(lsao_stats[0], uint(g_end - warm_begin));
+        atomicAdd(lsao_stats[1], g_pops);
+        atomicAdd(lsao_stats[2], g_dropped);
+    }
 }

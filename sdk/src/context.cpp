@@ -444,7 +444,7 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
     error = composite_.prepare(pass_env, composite_format);
     if (error) return error;
     if (method == OBSCURA_METHOD_REFERENCE) error = reference_.prepare(pass_env);
-    if (method == OBSCURA_METHOD_LSAO) error = lsao_.prepare(pass_env);
+    if (method == OBSCURA_METHOD_LSAO) error = lsao_.prepare(pass_env, settings.lsao);
     if (method == OBSCURA_METHOD_SAO) {
         error = z_pyramid_.prepare(pass_env);
         if (!error) error = sao_.prepare(pass_env);

@@ -86,7 +86,8 @@ protected:
         settings.lsao = lsao;
         obscura_settings resolved;
         EXPECT_FALSE(obscura::resolve_settings(settings, &resolved));
-        EXPECT_FALSE(pass_.prepare(env()));
+        EXPECT_FALSE(pass_.prepare(env(), resolved.lsao));
+        pass_.collect_stats(true);
         EXPECT_FALSE(pass_.ensure_layout(env(), resolved.lsao, kWidth, kHeight));
         GLint alignment = 256;
         gl_.GetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);

@@ -625,7 +625,8 @@ TEST(AnalyticScene, MeshLiesOnThePrimitives) {
 
 TEST_F(SceneGLTest, AnalyticDepthMatchesRayCasting) {
     // Every texel's rasterised view depth equals the ray-cast distance along the texel's ray (relative
-    // 1e-4), and sky is where rays miss; edge texels may disagree on coverage.
+    // 1e-4; a GPU's rasteriser interpolates depth its own way, so a few texels in a thousand may reach
+    // 1e-3), and sky is where rays miss; edge texels may disagree on coverage.
     const Scene scene = obscura::samples::load_scene("analytic");
     const Camera& camera = scene.viewpoints[0].camera;
     const RenderedScene rendered = obscura::samples::render_scene(scene.mesh, options_for(camera));
@@ -636,6 +637,7 @@ TEST_F(SceneGLTest, AnalyticDepthMatchesRayCasting) {
     const glm::dmat4 inverse_view = glm::inverse(glm::dmat4(frame.view));
     const double n = frame.near_plane, f = frame.far_plane;
     int mismatched_coverage = 0, compared = 0, hits = 0;
+    double worst = 0.0;
     for (int y = 0; y < frame.depth_height; ++y) {
         for (int x = 0; x < frame.depth_width; ++x) {
             const glm::dvec4 ndc((x + 0.5) / frame.depth_width * 2.0 - 1.0, (y + 0.5) / frame.depth_height * 2.0 - 1.0,
@@ -656,11 +658,15 @@ TEST_F(SceneGLTest, AnalyticDepthMatchesRayCasting) {
             const double expected = -(t * view_ray).z;
             const double rasterised = n * f / (f - window * (f - n));  // standard [-1, 1] perspective
             compared += std::fabs(rasterised - expected) > 1e-4 * expected;
+            worst = std::max(worst, std::fabs(rasterised - expected) / expected);
         }
     }
     EXPECT_GT(hits, frame.depth_width * frame.depth_height / 2);
-    EXPECT_EQ(compared, 0);
+    EXPECT_LE(compared, hits / 1000);
+    EXPECT_LT(worst, 1e-3);
     EXPECT_LE(mismatched_coverage, frame.depth_width);
+    RecordProperty("texels_over_1e-4", compared);
+    RecordProperty("worst_relative_error", std::to_string(worst));
 }
 
 }  // namespace

@@ -51,9 +51,10 @@
 #define OBSCURA_SAO_GROUP_X 8
 #define OBSCURA_SAO_GROUP_Y 8
 #define OBSCURA_SAO_MAX_SAMPLES 64
-// LSAO: one invocation per line segment, 32 per group (each keeps its hull in shared memory:
-// 32 x OBSCURA_LSAO_MAX_HULL x 8 bytes = 16 KiB); the gather in 8x8 groups.
-#define OBSCURA_LSAO_SWEEP_GROUP 32
+// LSAO: one invocation per line segment, 64 per group, each keeping its hull in shared memory (64 x hull
+// capacity x 8 bytes: 16 KiB at the default 32 points, 32 KiB, GL's guaranteed minimum, at the most);
+// the gather in 8x8 groups.
+#define OBSCURA_LSAO_SWEEP_GROUP 64
 #define OBSCURA_LSAO_GATHER_GROUP_X 8
 #define OBSCURA_LSAO_GATHER_GROUP_Y 8
 #define OBSCURA_LSAO_MAX_DIRECTIONS 64
@@ -184,8 +185,8 @@ OBSCURA_PASS_BLOCK_END(SaoBlurConstants, sao_blur)
 
 #if defined(__cplusplus) || defined(OBSCURA_LSAO_PASS)
 // LsaoConstants.config.w flags.
-#define OBSCURA_LSAO_FLAG_EXACT 1
 #define OBSCURA_LSAO_FLAG_ALIGNED 2
+#define OBSCURA_LSAO_FLAG_STATS 8  // the sweep counts steps, pops and drops (tests)
 #define OBSCURA_LSAO_FLAG_NORMAL_TEST 4
 OBSCURA_PASS_BLOCK_BEGIN(LsaoConstants)
   OBSCURA_VEC4(falloff);   // r (view units^2), C (0: r / (r + d^2)), fixed sin t, D_L (texels)

@@ -297,7 +297,7 @@ typedef struct obscura_lsao_settings {
     float tangent;        /* the fixed sin(t), [-1, 0.5]. Default -0.85 */
     int32_t tangent_strategy; /* sec. 4.1: 1 the receiver's tangent for hull and occlusion, 2 fixed for the hull
                              and the receiver's for occlusion, 3 fixed for both, [1, 3]. Default 3 */
-    int32_t hull_capacity; /* points kept per line (the oldest is dropped when full), [2, 64]. Default 64 */
+    int32_t hull_capacity; /* points kept per line (the oldest is dropped when full), [2, 64]. Default 32 */
     obscura_toggle exact; /* brute-force largest occluder over all earlier samples instead of the hull (O(M^2)
                              per line, for validation). Default off */
     int32_t segment_steps; /* lines are swept in segments of this many steps (rounded up to a multiple of 8), one
@@ -305,8 +305,9 @@ typedef struct obscura_lsao_settings {
                              [-1, 4096]. Default (0): whole lines on CPU renderers (llvmpipe, softpipe), which
                              have no idle lanes to fill, and 128 on GPUs */
     float warmup_tolerance; /* segments: the most obscurance an occluder before a segment's warm-up may cast; the
-                             falloff turns it into the warm-up's length (exact for rho0 beyond its reach),
-                             [1e-4, 1]. Default 0.01 */
+                             falloff turns it into the warm-up's length (exact for rho0 beyond its reach). The
+                             hull's top is nearly always a near point: at 0.1 the AO moved by < 1e-5 on every
+                             built-in scene (docs/performance.md), [1e-4, 1]. Default 0.1 */
     float depth_threshold; /* gather: values whose depth differs by more than this fraction are rejected,
                              [1e-4, 10]. Default 0.05 */
     obscura_toggle normal_test; /* gather: also reject values whose normal differs. Default off */

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 namespace obscura {
@@ -38,9 +39,18 @@ double lsao_warmup_distance(const obscura_lsao_settings& settings, float meters_
     return std::sqrt(std::max(0.0, d_sq));
 }
 
-Error LsaoPass::prepare(const PassEnv& env) {
+Error LsaoPass::prepare(const PassEnv& env, const obscura_lsao_settings& settings) {
     Error error;
-    if (!sweep_program_) error = env.build("line_sweep.comp", "", &sweep_program_);
+    const bool exact = settings.exact == OBSCURA_TOGGLE_ON;
+    if (!sweep_program_ || sweep_capacity_ != settings.hull_capacity || sweep_exact_ != exact) {
+        char defines[96];
+        std::snprintf(defines, sizeof defines, "OBSCURA_LSAO_HULL_CAPACITY %d\nOBSCURA_LSAO_EXACT_SWEEP %d\n",
+                      settings.hull_capacity, exact ? 1 : 0);
+        sweep_program_ = gl::Object();
+        error = env.build("line_sweep.comp", defines, &sweep_program_);
+        sweep_capacity_ = error ? 0 : settings.hull_capacity;
+        sweep_exact_ = exact;
+    }
     if (!error && !gather_program_) error = env.build("lsao_gather.comp", "", &gather_program_);
     return error;
 }
@@ -96,8 +106,7 @@ LsaoConstants LsaoPass::constants(const obscura_lsao_settings& settings, const F
     c.config[0] = int32_t(layout_.directions.size());
     c.config[1] = int32_t(layout_.lines.size());
     c.config[2] = settings.hull_capacity;
-    c.config[3] = (settings.exact == OBSCURA_TOGGLE_ON ? OBSCURA_LSAO_FLAG_EXACT : 0) |
-                  (settings.pattern == 1 ? OBSCURA_LSAO_FLAG_ALIGNED : 0) |
+    c.config[3] = (collect_stats_ ? OBSCURA_LSAO_FLAG_STATS : 0) | (settings.pattern == 1 ? OBSCURA_LSAO_FLAG_ALIGNED : 0) |
                   (settings.normal_test == OBSCURA_TOGGLE_ON ? OBSCURA_LSAO_FLAG_NORMAL_TEST : 0);
     c.sweep[0] = settings.tangent_strategy;
     c.sweep[1] = lsao_segment_steps(settings, cpu_renderer);

@@ -25,8 +25,8 @@ double lsao_warmup_distance(const obscura_lsao_settings& settings, float meters_
 
 class LsaoPass {
 public:
-    // Builds the programs on first use.
-    Error prepare(const PassEnv& env);
+    // Builds the programs on first use, and the sweep again when the hull capacity or `exact` changed.
+    Error prepare(const PassEnv& env, const obscura_lsao_settings& settings);
     // Rebuilds the layout and its buffers when the size, the pattern, K, D_S or D_L changed.
     Error ensure_layout(const PassEnv& env, const obscura_lsao_settings& settings, int width, int height);
     // Resolved settings (metres) -> the shaders' constants (view units), for the current layout.
@@ -46,9 +46,14 @@ public:
     std::vector<float> read_values(const gl::Table& gl) const;
     // Fills the values with one half-float bit pattern (tests: poison before a sweep to see what it writes).
     void fill_values(const gl::Table& gl, uint16_t half_bits) const;
+    // Whether the sweeps count their work for read_stats (off by default: the counters cost atomics).
+    void collect_stats(bool on) { collect_stats_ = on; }
 
 private:
     gl::Object sweep_program_;
+    int sweep_capacity_ = 0;    // the hull capacity sweep_program_ was built for
+    bool sweep_exact_ = false;  // built as the brute-force validation sweep (settings.exact)
+    bool collect_stats_ = false;
     gl::Object gather_program_;
     // What the layout was built for (D_S matters only for the free pattern, but is compared anyway).
     struct LayoutKey {
