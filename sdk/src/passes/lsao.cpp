@@ -105,7 +105,6 @@ LsaoConstants LsaoPass::constants(const obscura_lsao_settings& settings, const F
     c.gather[3] = settings.power;
     c.config[0] = int32_t(layout_.directions.size());
     c.config[1] = int32_t(layout_.lines.size());
-    c.config[2] = settings.hull_capacity;
     c.config[3] = (collect_stats_ ? OBSCURA_LSAO_FLAG_STATS : 0) | (settings.pattern == 1 ? OBSCURA_LSAO_FLAG_ALIGNED : 0) |
                   (settings.normal_test == OBSCURA_TOGGLE_ON ? OBSCURA_LSAO_FLAG_NORMAL_TEST : 0);
     c.sweep[0] = settings.tangent_strategy;
