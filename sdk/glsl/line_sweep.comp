@@ -70,6 +70,8 @@ const int kCapacity = OBSCURA_LSAO_HULL_CAPACITY;
 shared vec2 s_hull[kCapacity * OBSCURA_LSAO_SWEEP_GROUP];
 
 int hull_slot(int i) { return i * OBSCURA_LSAO_SWEEP_GROUP + int(gl_LocalInvocationID.x); }
+vec2 hull_load(int slot) { return s_hull[hull_slot(slot)]; }
+void hull_store(int slot, vec2 p) { s_hull[hull_slot(slot)] = p; }
 
 // Ring index of start + i (i < capacity): a compare instead of an integer division, which CPU rasterisers
 // cannot vectorise.
@@ -89,15 +91,17 @@ int warmup_steps(LsaoLine line, int begin, int end) {
     }
     if (obscura_is_sky(nearest)) return 0;  // no receiver
     vec2 first = lsao_sample_point(line, line.first_step + begin);
-    vec2 step = lsao.directions[line.direction].zw;
+    vec2 step = line.step;
     // View-space length of one step at distance 1 (perspective) or at any distance (orthographic).
     float step_angle = length(obscura_view_position_at(first + step, 1.0) - obscura_view_position_at(first, 1.0));
     float scale = obscura_is_perspective() ? nearest : 1.0;
     return min(begin, int(ceil(distance / max(step_angle * scale, 1e-20))));
 }
 
-// The invocation's line, its slice frame and the part of it that it writes.
+// The invocation's line (of direction g_direction, one per workgroup layer), its first value's index, its
+// slice frame and the part of it that it writes.
 LsaoLine g_line;
+int g_direction, g_offset;
 vec3 g_b0, g_a, g_b;
 int g_begin, g_end;
 
@@ -111,7 +115,7 @@ vec2 g_eye;            // perspective: the eye in slice coordinates
 vec2 g_ortho_zenith;   // orthographic: the direction towards the eye in the slice
 
 void setup_slice(vec2 origin) {
-    lsao_slice_frame(origin, lsao.directions[g_line.direction].xy, g_b0, g_a, g_b);
+    lsao_slice_frame(origin, lsao.directions[g_direction].xy, g_b0, g_a, g_b);
     g_origin = origin;
     for (int w = 0; w < 2; ++w) {
         float depth = float(w);
@@ -178,7 +182,7 @@ void sweep_step(int i, vec2 point, float depth) {
         // The top's (occlusion, sin h) carries over when the one below becomes the top.
         vec2 top = g_count > 0 ? lsao_occlusion_and_sin_h(g_top_point - pk, u, hull_sin_t) : vec2(0.0);
         while (g_count >= 2) {
-            vec2 below_point = s_hull[hull_slot(ring(g_start + g_count - 2))];
+            vec2 below_point = hull_load(ring(g_start + g_count - 2));
             vec2 below = lsao_occlusion_and_sin_h(below_point - pk, u, hull_sin_t);
             if (!(top.x < below.x && top.y < below.y)) break;
             top = below;
@@ -192,7 +196,7 @@ void sweep_step(int i, vec2 point, float depth) {
             --g_count;
             ++g_dropped;
         }
-        s_hull[hull_slot(ring(g_start + g_count))] = pk;
+        hull_store(ring(g_start + g_count), pk);
         g_top_point = pk;
         ++g_count;
 #endif
@@ -207,7 +211,7 @@ void sweep_step(int i, vec2 point, float depth) {
         if ((i & 1) == 0) g_pending = uvec4(g_pending.yzw, packHalf2x16(vec2(g_half_value, 0.0)));
         // Shift a partial group's pairs down to its start.
         for (int missing = 3 - ((i & 7) >> 1); missing > 0; --missing) g_pending = uvec4(g_pending.yzw, 0u);
-        lsao_values[(g_line.offset + i) >> 3] = g_pending;
+        lsao_values[(g_offset + i) >> 3] = g_pending;
     }
 }
 
@@ -215,9 +219,11 @@ void sweep_step(int i, vec2 point, float depth) {
 vec2 block_point(int i) { return lsao_sample_point(g_line, g_line.first_step + min(i, g_end - 1)); }
 
 void main() {
+    g_direction = int(gl_WorkGroupID.z);
     int index = int(gl_GlobalInvocationID.x);
-    if (index >= lsao.config.y) return;
-    g_line = lsao_lines[index];
+    if (index >= int(lsao.coverage[g_direction].w)) return;
+    g_line = lsao_line(g_direction, index);
+    g_offset = g_line.value_base + g_line.first_step;
     int segment_steps = lsao.sweep.y;
     g_begin = segment_steps > 0 ? int(gl_GlobalInvocationID.y) * segment_steps : 0;
     if (g_begin >= g_line.steps) return;

@@ -16,12 +16,8 @@ layout(local_size_x = OBSCURA_LSAO_GATHER_GROUP_X, local_size_y = OBSCURA_LSAO_G
 layout(binding = OBSCURA_UNIT_LINEAR_DEPTH) uniform sampler2D u_depth;
 layout(binding = OBSCURA_UNIT_NORMALS) uniform sampler2D u_normals;
 layout(binding = OBSCURA_IMAGE_OUT0, r16f) writeonly uniform image2D u_ao;
-layout(std430, binding = OBSCURA_SSBO_LSAO_VALUES) readonly buffer LsaoValues { uint lsao_values[]; };
-
-float read_value(int index) {
-    vec2 pair = unpackHalf2x16(lsao_values[index >> 1]);
-    return (index & 1) == 0 ? pair.x : pair.y;
-}
+// The sweeps' values (R16F texels over the sweep's storage buffer).
+layout(binding = OBSCURA_UNIT_LSAO_VALUES) uniform samplerBuffer u_values;
 
 void main() {
     ivec2 p = work_rect.xy + ivec2(gl_GlobalInvocationID.xy);
@@ -44,7 +40,7 @@ void main() {
         vec4 direction = lsao.directions[k];
         vec4 coverage = lsao.coverage[k];
         vec2 perp = vec2(-direction.y, direction.x);
-        int first_line = int(coverage.z), line_count = int(coverage.w);
+        int line_count = int(coverage.w);
         int below = int(floor((dot(center, perp) - coverage.y) / line_spacing));
         float inv_step_sq = lsao.axes[k].w;
         // The nearest sample of the two lines whose ideal positions bracket the pixel (snapped origins move a
@@ -54,7 +50,7 @@ void main() {
         vec2 best_point = vec2(0.0);
         for (int l = below; l <= below + 1; ++l) {
             if (l < 0 || l >= line_count) continue;
-            LsaoLine line = lsao_lines[first_line + l];
+            LsaoLine line = lsao_line(k, l);
             if (line.steps <= 0) continue;
             int j = int(round(dot(center - line.origin, direction.zw) * inv_step_sq));
             j = clamp(j, line.first_step, line.first_step + line.steps - 1);
@@ -62,7 +58,7 @@ void main() {
             float d = dot(q - center, q - center);
             if (d < best) {
                 best = d;
-                best_index = line.offset + j - line.first_step;
+                best_index = line.value_base + j;
                 best_point = q;
             }
         }
@@ -74,7 +70,7 @@ void main() {
             vec3 q_normal = obscura_decode_normal(texelFetch(u_normals, q_texel, 0).xy);
             if (dot(q_normal, normal) < lsao.gather.y) continue;
         }
-        float value = read_value(best_index);
+        float value = texelFetch(u_values, best_index).r;
         float obscurance = 0.0;  // no earlier sample: the horizon is the receiver's tangent
         if (value < 0.5 * OBSCURA_LSAO_NO_OCCLUDER) {
             obscurance = value - lsao_receiver_sin_t_3d(normal, towards_eye, lsao.axes[k].xyz);

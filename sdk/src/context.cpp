@@ -154,6 +154,7 @@ Error Context::initialize() {
         {reinterpret_cast<const void*>(gl_.BindImageTexture), "glBindImageTexture"},
         {reinterpret_cast<const void*>(gl_.MemoryBarrier), "glMemoryBarrier"},
         {reinterpret_cast<const void*>(gl_.TexStorage2D), "glTexStorage2D"},
+        {reinterpret_cast<const void*>(gl_.TexBuffer), "glTexBuffer"},
         {reinterpret_cast<const void*>(gl_.QueryCounter), "glQueryCounter"},
         {reinterpret_cast<const void*>(gl_.GetQueryObjectui64v), "glGetQueryObjectui64v"},
         {reinterpret_cast<const void*>(gl_.BindBufferRange), "glBindBufferRange"},

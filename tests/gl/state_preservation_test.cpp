@@ -34,6 +34,7 @@ long long get_integer(GLenum pname) {
 Snapshot capture() {
     Snapshot s;
     s.add("CURRENT_PROGRAM", get_integer(GL_CURRENT_PROGRAM));
+    s.add("TEXTURE_BUFFER (buffer binding)", get_integer(GL_TEXTURE_BUFFER));
     s.add("ACTIVE_TEXTURE", get_integer(GL_ACTIVE_TEXTURE));
     GLint active = 0;
     glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
@@ -43,6 +44,7 @@ Snapshot capture() {
         {GL_TEXTURE_BINDING_3D, "3D"},
         {GL_TEXTURE_BINDING_CUBE_MAP, "CUBE"},
         {GL_TEXTURE_BINDING_2D_ARRAY, "2D_ARRAY"},
+        {GL_TEXTURE_BINDING_BUFFER, "BUFFER"},
     };
     for (int unit = 0; unit < kTextureUnits; ++unit) {
         glActiveTexture(GLenum(GL_TEXTURE0 + unit));
@@ -220,6 +222,10 @@ protected:
             glBufferData(GL_COPY_WRITE_BUFFER, 4096, nullptr, GL_STATIC_DRAW);
             buffers_.push_back(std::move(b));
         }
+        texture_buffer_ = HostTexture::create();
+        glBindTexture(GL_TEXTURE_BUFFER, texture_buffer_.get());
+        glTexBuffer(GL_TEXTURE_BUFFER, GL_R32F, buffers_[0].get());
+        glBindTexture(GL_TEXTURE_BUFFER, 0);
         glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
         vao_ = HostVertexArray::create();
         for (int i = 0; i < 2; ++i) {
@@ -254,6 +260,12 @@ protected:
         glBindTexture(GL_TEXTURE_2D_ARRAY, texture_array_.get());
         glActiveTexture(GL_TEXTURE5);
         glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, textures_ms_[2].get());
+        // Buffer textures on the units LSAO reads its lines and values through (4, 5) and on one it does not.
+        for (int unit : {4, 5, 7}) {
+            glActiveTexture(GLenum(GL_TEXTURE0 + unit));
+            glBindTexture(GL_TEXTURE_BUFFER, texture_buffer_.get());
+        }
+        glBindBuffer(GL_TEXTURE_BUFFER, buffers_[2].get());
         for (int unit = 0; unit < kSamplerUnits; ++unit) glBindSampler(GLuint(unit), samplers_[size_t(unit)]);
         glBindSampler(6, samplers_[4]);
         // Image units: level / layer / access / format all distinctive.
@@ -362,7 +374,7 @@ protected:
 
     HostProgram program_;
     std::vector<HostTexture> textures_2d_, textures_ms_;
-    HostTexture texture_3d_, texture_array_, texture_cube_, image_r32f_;
+    HostTexture texture_3d_, texture_array_, texture_cube_, texture_buffer_, image_r32f_;
     std::vector<GLuint> samplers_;
     std::vector<HostBuffer> buffers_;
     HostVertexArray vao_;

@@ -2,23 +2,37 @@
 // and the 2D frame of a line's slice (the plane through the eye that contains the screen line).
 // Needs FrameConstants, LsaoConstants and depth.glsl.
 
+// Line records (LsaoLayout, 16 bytes each, read as a buffer texture: CPU rasterisers fetch texels with vector
+// gathers but load storage buffers one invocation at a time): origin xy (float bits), the first step j inside
+// the texture in the low 16 bits and the step count in the high 16, and the value index of j = 0.
+layout(binding = OBSCURA_UNIT_LSAO_LINES) uniform usamplerBuffer u_lsao_lines;
+
 struct LsaoLine {
     vec2 origin;      // texel units
+    vec2 step;        // the direction's step vector (texels)
     int first_step;   // j of the first sample inside the texture
     int steps;        // samples inside the texture
-    int offset;       // first value in the values buffer (even)
-    int direction;
-    int pad0, pad1;
+    int value_base;   // values buffer index of sample j is value_base + j (first_step's is a multiple of 8)
 };
 
-layout(std430, binding = OBSCURA_SSBO_LSAO_LINES) readonly buffer LsaoLines { LsaoLine lsao_lines[]; };
+// Line l of direction k.
+LsaoLine lsao_line(int k, int l) {
+    uvec4 record = texelFetch(u_lsao_lines, int(lsao.coverage[k].z) + l);
+    LsaoLine line;
+    line.origin = uintBitsToFloat(record.xy);
+    line.step = lsao.directions[k].zw;
+    line.first_step = bitfieldExtract(int(record.z), 0, 16);
+    line.steps = int(record.z >> 16u);
+    line.value_base = int(record.w);
+    return line;
+}
 
 bool lsao_aligned() { return (lsao.config.w & OBSCURA_LSAO_FLAG_ALIGNED) != 0; }
 
 // Sample j of a line: aligned patterns read the texel containing origin + j * step (its centre is returned),
 // free ones the point itself.
 vec2 lsao_sample_point(LsaoLine line, int j) {
-    vec2 p = line.origin + float(j) * lsao.directions[line.direction].zw;
+    vec2 p = line.origin + float(j) * line.step;
     return lsao_aligned() ? floor(p) + 0.5 : p;
 }
 

@@ -10,7 +10,9 @@
 #define OBSCURA_UNIT_NORMALS 1      // host normals, or the SDK's normal texture
 #define OBSCURA_UNIT_LINEAR_DEPTH 2 // linear view depth (R32F)
 #define OBSCURA_UNIT_SOURCE 3       // pass input (AO, blur intermediate)
-#define OBSCURA_TEXTURE_UNIT_COUNT 4
+#define OBSCURA_UNIT_LSAO_LINES 4   // LSAO's line records (usamplerBuffer, RGBA32UI)
+#define OBSCURA_UNIT_LSAO_VALUES 5  // LSAO's sweep values read by the gather (samplerBuffer, R16F)
+#define OBSCURA_TEXTURE_UNIT_COUNT 6
 
 // Image units (imageStore / imageLoad).
 #define OBSCURA_IMAGE_OUT0 0
@@ -27,10 +29,9 @@
 #define OBSCURA_UBO_COUNT 2
 
 // Shader storage buffer binding points.
-#define OBSCURA_SSBO_LSAO_LINES 0   // the sweep lines (LsaoLayout)
-#define OBSCURA_SSBO_LSAO_VALUES 1  // the sweeps' results, two halves per uint
-#define OBSCURA_SSBO_LSAO_STATS 2   // counters: steps, hull pops, points dropped from full hulls
-#define OBSCURA_SSBO_COUNT 3
+#define OBSCURA_SSBO_LSAO_VALUES 0  // the sweeps' results, eight halves per uvec4
+#define OBSCURA_SSBO_LSAO_STATS 1   // counters: steps, hull pops, points dropped from full hulls
+#define OBSCURA_SSBO_COUNT 2
 
 // ---- Workgroup sizes (the dispatch math in C++ reads the same numbers) ------------------------
 #define OBSCURA_DEPTH_PREPARE_GROUP_X 8

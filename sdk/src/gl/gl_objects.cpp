@@ -68,6 +68,17 @@ Buffer Buffer::create(const Table& gl, GLenum target, uint64_t size) {
     return buffer;
 }
 
+Object create_buffer_texture(const Table& gl, GLenum internal_format, GLuint buffer) {
+    GLuint name = 0;
+    gl.GenTextures(1, &name);
+    gl.BindTexture(GL_TEXTURE_BUFFER, name);
+    gl.TexBuffer(GL_TEXTURE_BUFFER, internal_format, buffer);
+    gl.BindTexture(GL_TEXTURE_BUFFER, 0);
+    Object texture(&gl, ObjectKind::Texture, name);
+    if (gl.GetError() != GL_NO_ERROR) return Object();
+    return texture;
+}
+
 Object create_sampler_nearest_clamp(const Table& gl) {
     GLuint name = 0;
     gl.GenSamplers(1, &name);

@@ -75,6 +75,11 @@ private:
     uint64_t bytes_ = 0;
 };
 
+// A buffer texture that reads `buffer` as texels of `internal_format` (texelFetch on a samplerBuffer): CPU
+// rasterisers fetch texels with vector gathers, where they load storage buffers one invocation at a time.
+// Binds on the active unit (the caller's StateGuard restores it); empty if GL reports an error.
+Object create_buffer_texture(const Table& gl, GLenum internal_format, GLuint buffer);
+
 Object create_sampler_nearest_clamp(const Table& gl);
 // The same, with nearest MIP selection: texelFetch of levels above 0 needs a mipmapped minification filter.
 Object create_sampler_nearest_mipmap_clamp(const Table& gl);

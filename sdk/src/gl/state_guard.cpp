@@ -30,6 +30,7 @@ StateGuard::StateGuard(const Table& gl) : gl_(gl) {
         gl.ActiveTexture(GLenum(GL_TEXTURE0 + unit));
         gl.GetIntegerv(GL_TEXTURE_BINDING_2D, &texture_2d_[unit]);
         gl.GetIntegerv(GL_TEXTURE_BINDING_2D_MULTISAMPLE, &texture_2d_ms_[unit]);
+        gl.GetIntegerv(GL_TEXTURE_BINDING_BUFFER, &texture_buffer_[unit]);
         gl.GetIntegerv(GL_SAMPLER_BINDING, &sampler_[unit]);
     }
     gl.ActiveTexture(GLenum(active_texture_));
@@ -59,6 +60,7 @@ StateGuard::~StateGuard() {
         gl.ActiveTexture(GLenum(GL_TEXTURE0 + unit));
         gl.BindTexture(GL_TEXTURE_2D, GLuint(texture_2d_[unit]));
         gl.BindTexture(GL_TEXTURE_2D_MULTISAMPLE, GLuint(texture_2d_ms_[unit]));
+        gl.BindTexture(GL_TEXTURE_BUFFER, GLuint(texture_buffer_[unit]));
         gl.BindSampler(GLuint(unit), GLuint(sampler_[unit]));
     }
     gl.ActiveTexture(GLenum(active_texture_));

@@ -35,6 +35,7 @@ private:
     GLint active_texture_ = 0;
     GLint texture_2d_[OBSCURA_TEXTURE_UNIT_COUNT] = {};
     GLint texture_2d_ms_[OBSCURA_TEXTURE_UNIT_COUNT] = {};
+    GLint texture_buffer_[OBSCURA_TEXTURE_UNIT_COUNT] = {};
     GLint sampler_[OBSCURA_TEXTURE_UNIT_COUNT] = {};
     ImageUnit image_[OBSCURA_IMAGE_UNIT_COUNT] = {};
     GLint uniform_buffer_ = 0;

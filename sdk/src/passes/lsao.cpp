@@ -8,12 +8,13 @@
 namespace obscura {
 namespace {
 
-// std430 layout of LsaoLine in common/lsao.glsl.
+// One RGBA32UI texel of common/lsao.glsl's line records.
 struct GpuLine {
     float origin[2];
-    int32_t first_step, steps, offset, direction, pad0, pad1;
+    uint32_t steps;       // first step (signed) in the low 16 bits, step count in the high 16
+    int32_t value_base;   // values index of sample j = 0
 };
-static_assert(sizeof(GpuLine) == 32, "matches the std430 struct");
+static_assert(sizeof(GpuLine) == 16, "one RGBA32UI texel");
 
 }  // namespace
 
@@ -64,16 +65,41 @@ Error LsaoPass::ensure_layout(const PassEnv& env, const obscura_lsao_settings& s
     release();
     layout_ = make_lsao_layout(directions, settings.line_spacing, width, height, settings.pattern == 1);
     key_ = key;
+    const gl::Table& gl = env.gl;
+    // The gather reads the values as a buffer texture, whose size GL bounds (at least 65536 texels in 4.3;
+    // 2^27 on current desktop drivers and llvmpipe, about 11x what K = 16 needs at 3840x2160 + 20 %).
+    GLint max_texels = 0;
+    gl.GetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
+    if (layout_.values + 2 > int64_t(max_texels)) {
+        const long long values = static_cast<long long>(layout_.values);
+        release();
+        return Error::make(OBSCURA_STATUS_INVALID_SIZE,
+                           "LSAO at %dx%d needs %lld sweep values, over GL_MAX_TEXTURE_BUFFER_SIZE (%d): use fewer "
+                           "directions or larger step_length / line_spacing",
+                           width, height, values, max_texels);
+    }
     std::vector<GpuLine> lines(layout_.lines.size());
     for (size_t i = 0; i < lines.size(); ++i) {
         const LsaoLine& l = layout_.lines[i];
-        lines[i] = GpuLine{{l.origin[0], l.origin[1]}, l.first_step, l.steps, l.offset, l.direction, 0, 0};
+        // A line's origin is near the texture's centre: |first step| is at most half its diagonal in steps.
+        if (l.first_step < -32768 || l.first_step > 32767 || l.steps > 65535) {
+            release();
+            return Error::make(OBSCURA_STATUS_INVALID_SIZE,
+                               "LSAO at %dx%d has lines of over 65535 steps: use a larger step_length", width, height);
+        }
+        const uint32_t packed = (uint32_t(l.first_step) & 0xffffu) | (uint32_t(l.steps) << 16);
+        lines[i] = GpuLine{{l.origin[0], l.origin[1]}, packed, l.offset - l.first_step};
     }
-    const gl::Table& gl = env.gl;
+    // Created and filled through the storage-buffer target, whose generic binding the StateGuard restores.
     lines_ = gl::Buffer::create(gl, GL_SHADER_STORAGE_BUFFER, lines.size() * sizeof(GpuLine));
     values_ = gl::Buffer::create(gl, GL_SHADER_STORAGE_BUFFER, uint64_t(layout_.values) * 2 + 4);
     stats_ = gl::Buffer::create(gl, GL_SHADER_STORAGE_BUFFER, 16);
-    if (!lines_.name() || !values_.name() || !stats_.name()) {
+    if (lines_.name() && values_.name()) {
+        gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_LSAO_LINES));  // a unit the StateGuard restores
+        lines_texture_ = gl::create_buffer_texture(gl, GL_RGBA32UI, lines_.name());
+        values_texture_ = gl::create_buffer_texture(gl, GL_R16F, values_.name());
+    }
+    if (!lines_texture_ || !values_texture_ || !stats_.name()) {
         release();
         return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating LSAO's line buffers (%lld values) failed",
                            static_cast<long long>(layout_.values));
@@ -84,6 +110,8 @@ Error LsaoPass::ensure_layout(const PassEnv& env, const obscura_lsao_settings& s
 }
 
 void LsaoPass::release() {
+    lines_texture_ = gl::Object();
+    values_texture_ = gl::Object();
     lines_ = gl::Buffer();
     values_ = gl::Buffer();
     stats_ = gl::Buffer();
@@ -142,15 +170,20 @@ void LsaoPass::run_sweeps(const PassEnv& env, const obscura_lsao_settings& setti
     gl.UseProgram(sweep_program_.name());
     env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
     env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_LSAO_LINES, lines_.name());
+    env.bind_texture(OBSCURA_UNIT_LSAO_LINES, GL_TEXTURE_BUFFER, lines_texture_.name());
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_LSAO_VALUES, values_.name());
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_LSAO_STATS, stats_.name());
     env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
     env.bind_uniforms(OBSCURA_UBO_PASS, pass);
     const int segment_steps = lsao_segment_steps(settings, env.cpu_renderer);
     const int segments = segment_steps > 0 ? (layout_.longest_line + segment_steps - 1) / segment_steps : 1;
-    env.dispatch(int(layout_.lines.size()), std::max(segments, 1), OBSCURA_LSAO_SWEEP_GROUP, 1);
-    gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    // Groups of OBSCURA_LSAO_SWEEP_GROUP lines of one direction (z), one segment each (y).
+    int most_lines = 0;
+    for (const LsaoDirectionLines& d : layout_.direction_lines) most_lines = std::max(most_lines, d.line_count);
+    gl.DispatchCompute(GLuint((most_lines + OBSCURA_LSAO_SWEEP_GROUP - 1) / OBSCURA_LSAO_SWEEP_GROUP),
+                       GLuint(std::max(segments, 1)), GLuint(layout_.directions.size()));
+    // The gather fetches the values as texels; read_values and the stats read the buffers.
+    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
 void LsaoPass::run_gather(const PassEnv& env, const UniformRange& frame, const UniformRange& pass,
@@ -159,8 +192,8 @@ void LsaoPass::run_gather(const PassEnv& env, const UniformRange& frame, const U
     gl.UseProgram(gather_program_.name());
     env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
     env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_LSAO_LINES, lines_.name());
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_LSAO_VALUES, values_.name());
+    env.bind_texture(OBSCURA_UNIT_LSAO_LINES, GL_TEXTURE_BUFFER, lines_texture_.name());
+    env.bind_texture(OBSCURA_UNIT_LSAO_VALUES, GL_TEXTURE_BUFFER, values_texture_.name());
     gl.BindImageTexture(OBSCURA_IMAGE_OUT0, resources.ao.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
     env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
     env.bind_uniforms(OBSCURA_UBO_PASS, pass);

@@ -1,6 +1,6 @@
 // LSAO (sdk/glsl/line_sweep.comp, lsao_gather.comp): the line layout for the current size and pattern
-// (passes/lsao_pattern.h) in storage buffers, the sweep dispatch (one invocation per line segment) and the
-// gather.
+// (passes/lsao_pattern.h) in buffers, the sweep dispatch (one invocation per line segment, a direction per
+// workgroup layer) and the gather.
 #ifndef OBSCURA_LSAO_H
 #define OBSCURA_LSAO_H
 
@@ -66,9 +66,11 @@ private:
     };
     LsaoLayout layout_;
     LayoutKey key_;
-    gl::Buffer lines_;
-    gl::Buffer values_;
+    gl::Buffer lines_;            // 16-byte line records, read through lines_texture_
+    gl::Buffer values_;           // the sweeps' halves: written as a storage buffer, read through values_texture_
     gl::Buffer stats_;
+    gl::Object lines_texture_;    // RGBA32UI over lines_
+    gl::Object values_texture_;   // R16F over values_
 };
 
 }  // namespace obscura
