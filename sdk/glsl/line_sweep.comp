@@ -64,6 +64,10 @@ float sample_depth(inout vec2 point) {
 #error "OBSCURA_LSAO_HULL_CAPACITY must be defined"
 #endif
 const int kCapacity = OBSCURA_LSAO_HULL_CAPACITY;
+// The tangent strategy (1-3) is compiled in too: strategy 3 never reads the normals.
+#ifndef OBSCURA_LSAO_TANGENT_STRATEGY
+#error "OBSCURA_LSAO_TANGENT_STRATEGY must be defined"
+#endif
 
 // The hulls of the group's invocations, slot-major: the invocations of a warp reading the same slot touch
 // consecutive words, and each invocation's slots fall in its own banks.
@@ -153,7 +157,7 @@ void sweep_step(int i, vec2 point, float depth) {
     if (i >= g_end) return;
     float value = OBSCURA_LSAO_NO_OCCLUDER;
     if (!obscura_is_sky(depth)) {
-        int strategy = lsao.sweep.x;
+        const int strategy = OBSCURA_LSAO_TANGENT_STRATEGY;
         float fixed_sin_t = lsao.falloff.z;
         vec2 pk = slice_point(point, depth);
         vec2 u = slice_zenith(pk);

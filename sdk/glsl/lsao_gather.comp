@@ -19,6 +19,25 @@ layout(binding = OBSCURA_IMAGE_OUT0, r16f) writeonly uniform image2D u_ao;
 // The sweeps' values (R16F texels over the sweep's storage buffer).
 layout(binding = OBSCURA_UNIT_LSAO_VALUES) uniform samplerBuffer u_values;
 
+// A line's sample nearest to a texel centre (clamped to the line's samples inside the texture), as the
+// index of its value, its position and its squared distance (1e30 when the line misses the texture).
+struct Candidate {
+    float distance_sq;
+    int index;
+    vec2 point;
+};
+
+Candidate nearest_on_line(int k, int l, vec2 center) {
+    LsaoLine line = lsao_line(k, l);
+    int j = int(round(dot(center - line.origin, line.step) * lsao.axes[k].w));
+    j = clamp(j, line.first_step, line.first_step + max(line.steps, 1) - 1);
+    Candidate c;
+    c.point = lsao_sample_point(line, j);
+    c.distance_sq = line.steps > 0 ? dot(c.point - center, c.point - center) : 1e30;
+    c.index = line.value_base + j;
+    return c;
+}
+
 void main() {
     ivec2 p = work_rect.xy + ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(gl_GlobalInvocationID.xy, uvec2(work_rect.zw)))) return;
@@ -31,7 +50,7 @@ void main() {
     vec2 center = vec2(p) + 0.5;
     vec3 position = obscura_view_position(p, depth);
     vec3 normal = obscura_decode_normal(texelFetch(u_normals, p, 0).xy);
-    bool normal_test = (lsao.config.w & OBSCURA_LSAO_FLAG_NORMAL_TEST) != 0;
+    const bool normal_test = OBSCURA_LSAO_NORMAL_TEST != 0;  // compiled in
     vec3 towards_eye = obscura_towards_eye(position);  // every slice through the receiver contains it
     float line_spacing = lsao.falloff.w;
 
@@ -40,43 +59,30 @@ void main() {
         vec4 direction = lsao.directions[k];
         vec4 coverage = lsao.coverage[k];
         vec2 perp = vec2(-direction.y, direction.x);
-        int line_count = int(coverage.w);
+        int last_line = int(coverage.w) - 1;
         int below = int(floor((dot(center, perp) - coverage.y) / line_spacing));
-        float inv_step_sq = lsao.axes[k].w;
         // The nearest sample of the two lines whose ideal positions bracket the pixel (snapped origins move a
-        // line by at most half a lattice step, less than half of D_L).
-        float best = 1e30;
-        int best_index = -1;
-        vec2 best_point = vec2(0.0);
-        for (int l = below; l <= below + 1; ++l) {
-            if (l < 0 || l >= line_count) continue;
-            LsaoLine line = lsao_line(k, l);
-            if (line.steps <= 0) continue;
-            int j = int(round(dot(center - line.origin, direction.zw) * inv_step_sq));
-            j = clamp(j, line.first_step, line.first_step + line.steps - 1);
-            vec2 q = lsao_sample_point(line, j);
-            float d = dot(q - center, q - center);
-            if (d < best) {
-                best = d;
-                best_index = line.value_base + j;
-                best_point = q;
-            }
-        }
-        if (best_index < 0) continue;
-        ivec2 q_texel = clamp(ivec2(floor(best_point)), ivec2(0), depth_size.xy - 1);
+        // line by at most half a lattice step, less than half of D_L). The layout's lines cover the texture,
+        // so only clamping at its edges can make them one line.
+        Candidate nearest = nearest_on_line(k, clamp(below, 0, last_line), center);
+        Candidate other = nearest_on_line(k, clamp(below + 1, 0, last_line), center);
+        if (other.distance_sq < nearest.distance_sq) nearest = other;
+        ivec2 q_texel = clamp(ivec2(floor(nearest.point)), ivec2(0), depth_size.xy - 1);
         float q_depth = texelFetch(u_depth, q_texel, 0).r;
-        if (obscura_is_sky(q_depth) || abs(q_depth - depth) > lsao.gather.x * depth) continue;
+        bool keep = nearest.distance_sq < 1e30 && !obscura_is_sky(q_depth) &&
+                    abs(q_depth - depth) <= lsao.gather.x * depth;
         if (normal_test) {
             vec3 q_normal = obscura_decode_normal(texelFetch(u_normals, q_texel, 0).xy);
-            if (dot(q_normal, normal) < lsao.gather.y) continue;
+            keep = keep && dot(q_normal, normal) >= lsao.gather.y;
         }
-        float value = texelFetch(u_values, best_index).r;
-        float obscurance = 0.0;  // no earlier sample: the horizon is the receiver's tangent
-        if (value < 0.5 * OBSCURA_LSAO_NO_OCCLUDER) {
-            obscurance = value - lsao_receiver_sin_t_3d(normal, towards_eye, lsao.axes[k].xyz);
-        }
-        sum += coverage.x * obscurance;
-        weight_sum += coverage.x;
+        float value = texelFetch(u_values, max(nearest.index, 0)).r;
+        // No earlier sample: the horizon is the receiver's tangent.
+        float obscurance = value < 0.5 * OBSCURA_LSAO_NO_OCCLUDER
+                               ? value - lsao_receiver_sin_t_3d(normal, towards_eye, lsao.axes[k].xyz)
+                               : 0.0;
+        float weight = keep ? coverage.x : 0.0;
+        sum += weight * obscurance;
+        weight_sum += weight;
     }
     float ao = weight_sum > 0.0 ? sum / weight_sum : 0.0;
     float visibility = pow(clamp(1.0 - lsao.gather.z * ao, 0.0, 1.0), lsao.gather.w);

@@ -27,7 +27,11 @@ LsaoLine lsao_line(int k, int l) {
     return line;
 }
 
-bool lsao_aligned() { return (lsao.config.w & OBSCURA_LSAO_FLAG_ALIGNED) != 0; }
+// Compiled in (LsaoPass::prepare): an aligned 8n pattern (1) or free directions (0).
+#ifndef OBSCURA_LSAO_ALIGNED
+#error "OBSCURA_LSAO_ALIGNED must be defined"
+#endif
+bool lsao_aligned() { return OBSCURA_LSAO_ALIGNED != 0; }
 
 // Sample j of a line: aligned patterns read the texel containing origin + j * step (its centre is returned),
 // free ones the point itself.

@@ -186,14 +186,13 @@ OBSCURA_PASS_BLOCK_END(SaoBlurConstants, sao_blur)
 
 #if defined(__cplusplus) || defined(OBSCURA_LSAO_PASS)
 // LsaoConstants.config.w flags.
-#define OBSCURA_LSAO_FLAG_ALIGNED 2
+// (The pattern, tangent strategy, hull capacity and normal test are compiled in: see LsaoPass::prepare.)
 #define OBSCURA_LSAO_FLAG_STATS 8  // the sweep counts steps, pops and drops (tests)
-#define OBSCURA_LSAO_FLAG_NORMAL_TEST 4
 OBSCURA_PASS_BLOCK_BEGIN(LsaoConstants)
   OBSCURA_VEC4(falloff);   // r (view units^2), C (0: r / (r + d^2)), fixed sin t, D_L (texels)
   OBSCURA_VEC4(gather);    // depth threshold (relative), normal threshold (dot), intensity, power
   OBSCURA_IVEC4(config);   // K, total lines, unused (the hull capacity is compiled in), flags
-  OBSCURA_IVEC4(sweep);    // tangent strategy (1-3), segment steps (0: whole lines), unused x2
+  OBSCURA_IVEC4(sweep);    // unused, segment steps (0: whole lines), unused x2
   OBSCURA_VEC4(warmup);    // segments' warm-up distance (view units; < 0: from the line start), unused x3
   OBSCURA_VEC4(directions[OBSCURA_LSAO_MAX_DIRECTIONS]); // unit direction xy, step vector xy (texels)
   OBSCURA_VEC4(coverage[OBSCURA_LSAO_MAX_DIRECTIONS]);   // weight, perpendicular offset of line 0, first line, line count

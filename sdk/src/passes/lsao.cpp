@@ -40,20 +40,36 @@ double lsao_warmup_distance(const obscura_lsao_settings& settings, float meters_
     return std::sqrt(std::max(0.0, d_sq));
 }
 
-Error LsaoPass::prepare(const PassEnv& env, const obscura_lsao_settings& settings) {
-    Error error;
-    const bool exact = settings.exact == OBSCURA_TOGGLE_ON;
-    if (!sweep_program_ || sweep_capacity_ != settings.hull_capacity || sweep_exact_ != exact) {
-        char defines[96];
-        std::snprintf(defines, sizeof defines, "OBSCURA_LSAO_HULL_CAPACITY %d\nOBSCURA_LSAO_EXACT_SWEEP %d\n",
-                      settings.hull_capacity, exact ? 1 : 0);
-        sweep_program_ = gl::Object();
-        error = env.build("line_sweep.comp", defines, &sweep_program_);
-        sweep_capacity_ = error ? 0 : settings.hull_capacity;
-        sweep_exact_ = exact;
+Error LsaoPass::program_for(const PassEnv& env, const char* shader, const std::string& defines,
+                            std::vector<Variant>* cache, GLuint* program) {
+    for (const Variant& v : *cache) {
+        if (v.defines == defines) {
+            *program = v.program.name();
+            return Error();
+        }
     }
-    if (!error && !gather_program_) error = env.build("lsao_gather.comp", "", &gather_program_);
-    return error;
+    Variant built{defines, gl::Object()};
+    Error error = env.build(shader, defines.c_str(), &built.program);
+    if (error) return error;
+    if (cache->size() >= kMaxVariants) cache->erase(cache->begin());  // the oldest
+    *program = built.program.name();
+    cache->push_back(std::move(built));
+    return Error();
+}
+
+Error LsaoPass::prepare(const PassEnv& env, const obscura_lsao_settings& settings) {
+    const int aligned = settings.pattern == 1 ? 1 : 0;
+    char defines[256];
+    std::snprintf(defines, sizeof defines,
+                  "OBSCURA_LSAO_ALIGNED %d\nOBSCURA_LSAO_HULL_CAPACITY %d\nOBSCURA_LSAO_EXACT_SWEEP %d\n"
+                  "OBSCURA_LSAO_TANGENT_STRATEGY %d\n",
+                  aligned, settings.hull_capacity, settings.exact == OBSCURA_TOGGLE_ON ? 1 : 0,
+                  settings.tangent_strategy);
+    Error error = program_for(env, "line_sweep.comp", defines, &sweep_variants_, &sweep_program_);
+    if (error) return error;
+    std::snprintf(defines, sizeof defines, "OBSCURA_LSAO_ALIGNED %d\nOBSCURA_LSAO_NORMAL_TEST %d\n", aligned,
+                  settings.normal_test == OBSCURA_TOGGLE_ON ? 1 : 0);
+    return program_for(env, "lsao_gather.comp", defines, &gather_variants_, &gather_program_);
 }
 
 Error LsaoPass::ensure_layout(const PassEnv& env, const obscura_lsao_settings& settings, int width, int height) {
@@ -133,9 +149,7 @@ LsaoConstants LsaoPass::constants(const obscura_lsao_settings& settings, const F
     c.gather[3] = settings.power;
     c.config[0] = int32_t(layout_.directions.size());
     c.config[1] = int32_t(layout_.lines.size());
-    c.config[3] = (collect_stats_ ? OBSCURA_LSAO_FLAG_STATS : 0) | (settings.pattern == 1 ? OBSCURA_LSAO_FLAG_ALIGNED : 0) |
-                  (settings.normal_test == OBSCURA_TOGGLE_ON ? OBSCURA_LSAO_FLAG_NORMAL_TEST : 0);
-    c.sweep[0] = settings.tangent_strategy;
+    c.config[3] = collect_stats_ ? OBSCURA_LSAO_FLAG_STATS : 0;
     c.sweep[1] = lsao_segment_steps(settings, cpu_renderer);
     c.warmup[0] = float(lsao_warmup_distance(settings, m2v));
     for (size_t k = 0; k < layout_.directions.size() && k < OBSCURA_LSAO_MAX_DIRECTIONS; ++k) {
@@ -167,7 +181,7 @@ void LsaoPass::run_sweeps(const PassEnv& env, const obscura_lsao_settings& setti
     const uint32_t zero[4] = {0, 0, 0, 0};
     gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, stats_.name());
     gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof zero, zero);
-    gl.UseProgram(sweep_program_.name());
+    gl.UseProgram(sweep_program_);
     env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
     env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
     env.bind_texture(OBSCURA_UNIT_LSAO_LINES, GL_TEXTURE_BUFFER, lines_texture_.name());
@@ -189,7 +203,7 @@ void LsaoPass::run_sweeps(const PassEnv& env, const obscura_lsao_settings& setti
 void LsaoPass::run_gather(const PassEnv& env, const UniformRange& frame, const UniformRange& pass,
                           const Region& region, FrameResources& resources) {
     const gl::Table& gl = env.gl;
-    gl.UseProgram(gather_program_.name());
+    gl.UseProgram(gather_program_);
     env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
     env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
     env.bind_texture(OBSCURA_UNIT_LSAO_LINES, GL_TEXTURE_BUFFER, lines_texture_.name());

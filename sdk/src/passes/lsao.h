@@ -8,6 +8,9 @@
 #include "passes/lsao_pattern.h"
 #include "passes/pass_common.h"
 
+#include <string>
+#include <vector>
+
 namespace obscura {
 
 // The directions of resolved LSAO settings: the aligned 8n pattern for K = 8n, or K free directions.
@@ -25,7 +28,7 @@ double lsao_warmup_distance(const obscura_lsao_settings& settings, float meters_
 
 class LsaoPass {
 public:
-    // Builds the programs on first use, and the sweep again when the hull capacity or `exact` changed.
+    // Selects the programs for the settings, building them if no kept variant matches.
     Error prepare(const PassEnv& env, const obscura_lsao_settings& settings);
     // Rebuilds the layout and its buffers when the size, the pattern, K, D_S or D_L changed.
     Error ensure_layout(const PassEnv& env, const obscura_lsao_settings& settings, int width, int height);
@@ -50,11 +53,19 @@ public:
     void collect_stats(bool on) { collect_stats_ = on; }
 
 private:
-    gl::Object sweep_program_;
-    int sweep_capacity_ = 0;    // the hull capacity sweep_program_ was built for
-    bool sweep_exact_ = false;  // built as the brute-force validation sweep (settings.exact)
+    // Programs with the settings that select code compiled in (the pattern, the tangent strategy, the hull
+    // capacity, the normal test): CPU rasterisers run both sides of a branch, even of one on a uniform. The
+    // last few are kept, so toggling a setting does not compile again.
+    struct Variant {
+        std::string defines;
+        gl::Object program;
+    };
+    static constexpr size_t kMaxVariants = 4;
+    static Error program_for(const PassEnv& env, const char* shader, const std::string& defines,
+                             std::vector<Variant>* cache, GLuint* program);
+    std::vector<Variant> sweep_variants_, gather_variants_;
+    GLuint sweep_program_ = 0, gather_program_ = 0;  // the current settings' variants
     bool collect_stats_ = false;
-    gl::Object gather_program_;
     // What the layout was built for (D_S matters only for the free pattern, but is compared anyway).
     struct LayoutKey {
         int width = 0, height = 0, pattern = 0, directions = 0;
