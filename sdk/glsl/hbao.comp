@@ -91,7 +91,7 @@ void main() {
             if (distance_sq <= 0.0) continue;
             float sin_h = dot(h, zenith) * inversesqrt(distance_sq);
             float rho = falloff_rho0(distance_sq);
-            if (hbao.counts.z == 1) {
+            if (OBSCURA_HBAO_ESTIMATOR == 1) {  // compiled in
                 if (sin_h > horizon) {
                     direction_obscurance += rho * (sin_h - horizon);
                     horizon = sin_h;

@@ -579,7 +579,7 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
             error = after_pass("blur");
         }
     } else if (!error) {
-        hbao_.run(pass_env, frame_ao, method_pass, plan.ao_region, resources_);
+        hbao_.run(pass_env, settings.hbao, frame_ao, method_pass, plan.ao_region, resources_);
         error = after_pass("hbao");
         if (!error && plan.blur) {
             blur_.run(pass_env, frame_blur_x, blur_x_pass, plan.blur_x_region, resources_.linear_depth, resources_.ao,

@@ -127,7 +127,7 @@ OBSCURA_BLOCK_END(FrameConstants)
 OBSCURA_PASS_BLOCK_BEGIN(HbaoConstants)
   OBSCURA_VEC4(falloff);   // decay r (view units^2), C, radius (view units), max radius in pixels
   OBSCURA_VEC4(shaping);   // bias, intensity, power, unused
-  OBSCURA_IVEC4(counts);   // K directions, N steps, estimator (1 horizon-split, 2 largest occluder), unused
+  OBSCURA_IVEC4(counts);   // K directions, N steps, unused (the estimator is compiled in), unused
 OBSCURA_PASS_BLOCK_END(HbaoConstants, hbao)
 #endif
 

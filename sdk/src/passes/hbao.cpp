@@ -2,6 +2,12 @@
 
 namespace obscura {
 
+Error HbaoPass::create(const PassEnv& env) {
+    Error error = env.build("hbao.comp", "OBSCURA_HBAO_ESTIMATOR 1\n", &programs_[0]);
+    if (!error) error = env.build("hbao.comp", "OBSCURA_HBAO_ESTIMATOR 2\n", &programs_[1]);
+    return error;
+}
+
 HbaoConstants HbaoPass::constants(const obscura_hbao_settings& settings, const FrameInput& input) {
     float m2v = input.meters_to_view_units;
     HbaoConstants c = {};
@@ -14,14 +20,13 @@ HbaoConstants HbaoPass::constants(const obscura_hbao_settings& settings, const F
     c.shaping[2] = settings.power;
     c.counts[0] = settings.directions;
     c.counts[1] = settings.steps;
-    c.counts[2] = settings.estimator;
     return c;
 }
 
-void HbaoPass::run(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
-                   FrameResources& resources) {
+void HbaoPass::run(const PassEnv& env, const obscura_hbao_settings& settings, const UniformRange& frame,
+                   const UniformRange& pass, const Region& region, FrameResources& resources) {
     const gl::Table& gl = env.gl;
-    gl.UseProgram(program_.name());
+    gl.UseProgram(programs_[settings.estimator == 2 ? 1 : 0].name());
     env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
     env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
     gl.BindImageTexture(OBSCURA_IMAGE_OUT0, resources.ao.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);

@@ -10,15 +10,16 @@ namespace obscura {
 
 class HbaoPass {
 public:
-    Error create(const PassEnv& env) { return env.build("hbao.comp", "", &program_); }
+    // Builds one program per estimator (compiled in: CPU rasterisers run both sides of a branch on a uniform).
+    Error create(const PassEnv& env);
     // Converts resolved settings (metres) to the shader's constants (view units).
     static HbaoConstants constants(const obscura_hbao_settings& settings, const FrameInput& input);
     // Writes visibility into resources.ao over `region` (frame.work_rect must equal it).
-    void run(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
-             FrameResources& resources);
+    void run(const PassEnv& env, const obscura_hbao_settings& settings, const UniformRange& frame,
+             const UniformRange& pass, const Region& region, FrameResources& resources);
 
 private:
-    gl::Object program_;
+    gl::Object programs_[2];  // estimator 1 (horizon split), 2 (largest occluder)
 };
 
 }  // namespace obscura
