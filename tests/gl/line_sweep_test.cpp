@@ -173,6 +173,21 @@ TEST_F(LineSweep, HullMatchesBruteForce) {
     RecordProperty("samples_below_exact", std::to_string(worse));
 }
 
+// A GPU's program keeps the hulls in shared memory, a CPU rasteriser's in a private array: the same values.
+TEST_F(LineSweep, SharedMemoryHullMatchesPrivateHull) {
+    obscura_lsao_settings lsao = defaults();
+    lsao.segment_steps = -1;  // whole lines on both
+    const Sweep cpu = sweep(lsao);
+    cpu_renderer_ = false;
+    const Sweep gpu = sweep(lsao);
+    ASSERT_EQ(gpu.values.size(), cpu.values.size());
+    EXPECT_EQ(gpu.pops, cpu.pops);
+    int different = 0;
+    for (size_t i = 0; i < cpu.values.size(); ++i) different += gpu.values[i] != cpu.values[i];
+    EXPECT_EQ(different, 0);
+    EXPECT_GT(gpu.pops, 0u);
+}
+
 // What bounding the hull costs: capacity 4 drops points (and changes values); 16 agrees with 64, the
 // default and the largest (OBSCURA_LSAO_MAX_HULL, the shared-memory hull's size).
 TEST_F(LineSweep, BoundedHullError) {

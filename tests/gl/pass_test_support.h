@@ -36,10 +36,13 @@ protected:
     void TearDown() override { EXPECT_EQ(gl_.GetError(), GLenum(GL_NO_ERROR)); }
 
     obscura::PassEnv env() const {
-        // As on llvmpipe, where these tests run: default LSAO settings sweep whole lines.
         return obscura::PassEnv{gl_,        alloc_, nullptr, nullptr, sampler_.name(), sampler_mipmap_.name(),
-                                uniforms_.name(), true};
+                                uniforms_.name(), cpu_renderer_};
     }
+
+    // As on llvmpipe, where these tests run (LSAO: whole lines, a private hull); false selects what a GPU
+    // runs.
+    bool cpu_renderer_ = true;
 
     ObscuraGlLoader loader_ = {};
     obscura::gl::Table gl_ = {};

@@ -62,9 +62,9 @@ Error LsaoPass::prepare(const PassEnv& env, const obscura_lsao_settings& setting
     char defines[256];
     std::snprintf(defines, sizeof defines,
                   "OBSCURA_LSAO_ALIGNED %d\nOBSCURA_LSAO_HULL_CAPACITY %d\nOBSCURA_LSAO_EXACT_SWEEP %d\n"
-                  "OBSCURA_LSAO_TANGENT_STRATEGY %d\n",
+                  "OBSCURA_LSAO_TANGENT_STRATEGY %d\nOBSCURA_LSAO_PRIVATE_HULL %d\n",
                   aligned, settings.hull_capacity, settings.exact == OBSCURA_TOGGLE_ON ? 1 : 0,
-                  settings.tangent_strategy);
+                  settings.tangent_strategy, env.cpu_renderer ? 1 : 0);
     Error error = program_for(env, "line_sweep.comp", defines, &sweep_variants_, &sweep_program_);
     if (error) return error;
     std::snprintf(defines, sizeof defines, "OBSCURA_LSAO_ALIGNED %d\nOBSCURA_LSAO_NORMAL_TEST %d\n", aligned,
