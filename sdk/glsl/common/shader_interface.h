@@ -191,7 +191,7 @@ OBSCURA_PASS_BLOCK_END(SaoBlurConstants, sao_blur)
 OBSCURA_PASS_BLOCK_BEGIN(LsaoConstants)
   OBSCURA_VEC4(falloff);   // r (view units^2), C (0: r / (r + d^2)), fixed sin t, D_L (texels)
   OBSCURA_VEC4(gather);    // depth threshold (relative), normal threshold (dot), intensity, power
-  OBSCURA_IVEC4(config);   // K, total lines, unused (the hull capacity is compiled in), flags
+  OBSCURA_IVEC4(config);   // K, unused (the sweep bounds lines per direction by coverage.w), unused, flags
   OBSCURA_IVEC4(sweep);    // unused, segment steps (0: whole lines), unused x2
   OBSCURA_VEC4(warmup);    // segments' warm-up distance (view units; < 0: from the line start), unused x3
   OBSCURA_VEC4(directions[OBSCURA_LSAO_MAX_DIRECTIONS]); // unit direction xy, step vector xy (texels)

@@ -148,7 +148,6 @@ LsaoConstants LsaoPass::constants(const obscura_lsao_settings& settings, const F
     c.gather[2] = settings.intensity;
     c.gather[3] = settings.power;
     c.config[0] = int32_t(layout_.directions.size());
-    c.config[1] = int32_t(layout_.lines.size());
     c.config[3] = collect_stats_ ? OBSCURA_LSAO_FLAG_STATS : 0;
     c.sweep[1] = lsao_segment_steps(settings, cpu_renderer);
     c.warmup[0] = float(lsao_warmup_distance(settings, m2v));
