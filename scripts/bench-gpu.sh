@@ -9,7 +9,7 @@
 #   tests: the GL, pass and unit test executables on the GPU (goldens are read from the path they were built
 #          with, which is linked to this checkout when it does not exist).
 #   bench: every method at 1920x1080 + 10 % guard band per side (2304x1296 texels), and the LSAO scaling runs.
-#   lsao:  the LSAO sweep variants (segments, warm-up tolerances) at 1920x1080.
+#   lsao:  the LSAO sweep variants (segments, warm-up strides and tolerances, hull sizes) at 1920x1080.
 #   lsao-error: the AO error each sweep variant costs against whole lines and the exact sweep, per scene.
 # The clock is the SDK's GL timer queries (bench reports "clock": "gpu-timer" in its JSON).
 set -uo pipefail
@@ -58,14 +58,14 @@ for what in "$@"; do
     lsao)
       # Sweep parallelism: whole lines vs segments of several lengths and warm-up tolerances.
       bench --scene atrium --sizes 1920x1080 \
-            --methods lsao:segment_steps=-1,lsao,lsao:segment_steps=64,lsao:segment_steps=256,lsao:warmup_tolerance=0.01,lsao:warmup_tolerance=0.2,lsao:hull_capacity=16,lsao:hull_capacity=64,lsao:hull_capacity=16:segment_steps=-1,lsao:hull_capacity=64:segment_steps=-1,lsao:radius=0.1,lsao:radius=10,lsao:preset=1,lsao:preset=3,lsao:preset=4,hbao:directions=16:steps=48,hbao,sao \
+            --methods lsao:segment_steps=-1,lsao,lsao:segment_steps=64,lsao:segment_steps=256,lsao:warmup_stride=1,lsao:warmup_stride=2,lsao:warmup_stride=8,lsao:warmup_stride=16,lsao:warmup_tolerance=0.01,lsao:warmup_tolerance=0.2,lsao:hull_capacity=16,lsao:hull_capacity=64,lsao:hull_capacity=16:segment_steps=-1,lsao:hull_capacity=64:segment_steps=-1,lsao:hull_capacity=16:warmup_stride=8,lsao:radius=0.1,lsao:radius=10,lsao:radius=10:warmup_stride=8,lsao:preset=1,lsao:preset=3,lsao:preset=4,hbao:directions=16:steps=48,hbao,sao \
             --json "$out/lsao.json" 2>&1 | grep -E '^[a-z].* @ |total|line_sweep|gather' | tee "$out/lsao.txt"
       ;;
     lsao-error)
       # What the segments cost against whole-line sweeps and the exact (brute-force) sweep, per scene, at
       # 1920x1080: mean absolute difference of the AO images (obscura diff).
       mkdir -p "$out/img"
-      variants=(lsao:exact=on lsao:segment_steps=-1 lsao lsao:warmup_tolerance=0.2 lsao:hull_capacity=16 lsao:hull_capacity=64)
+      variants=(lsao:exact=on lsao:segment_steps=-1 lsao lsao:warmup_stride=1 lsao:warmup_stride=8 lsao:warmup_tolerance=0.2 lsao:hull_capacity=16 lsao:hull_capacity=64)
       for scene in atrium terrain objects clutter analytic room; do
         for v in "${variants[@]}"; do
           name="${scene}_$(echo "$v" | tr ':=' '__')"

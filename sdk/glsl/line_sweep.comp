@@ -70,12 +70,12 @@ const int kCapacity = OBSCURA_LSAO_HULL_CAPACITY;
 #error "OBSCURA_LSAO_TANGENT_STRATEGY must be defined"
 #endif
 
-// Where the hull lives (compiled in). CPU rasterisers (OBSCURA_LSAO_PRIVATE_HULL 1) reach shared memory one
+// Where the hull lives (compiled in). CPU rasterisers (OBSCURA_LSAO_CPU_RASTERISER 1) reach shared memory one
 // invocation at a time and a private array with vector gathers (llvmpipe, 1280x720, r = 10 m: sweep 61 ms
 // with the shared hull, 52 ms with the private one). GPUs keep it in shared memory, slot-major: the
 // invocations of a warp reading the same slot touch consecutive words, each invocation's slots fall in its
 // own banks.
-#if OBSCURA_LSAO_PRIVATE_HULL
+#if OBSCURA_LSAO_CPU_RASTERISER
 vec2 g_hull[kCapacity];
 vec2 hull_load(int slot) { return g_hull[slot]; }
 void hull_store(int slot, vec2 p) { g_hull[slot] = p; }
@@ -98,10 +98,16 @@ int warmup_steps(LsaoLine line, int begin, int end) {
     float distance = lsao.warmup.x;
     if (distance < 0.0 || begin == 0) return begin;
     if (distance == 0.0) return 0;
+    // Eight fetches in flight at a time (the segment's last sample repeats past its end): a loop that used
+    // each fetch before issuing the next waited a full memory latency per sample.
     float nearest = OBSCURA_SKY_DEPTH;
-    for (int i = begin; i < end; ++i) {
-        vec2 point = lsao_sample_point(line, line.first_step + i);
-        nearest = min(nearest, texelFetch(u_depth, ivec2(point), 0).r);
+    for (int i = begin; i < end; i += 8) {
+        float d[8];
+        for (int u = 0; u < 8; ++u) {
+            vec2 point = lsao_sample_point(line, line.first_step + min(i + u, end - 1));
+            d[u] = texelFetch(u_depth, ivec2(point), 0).r;
+        }
+        for (int u = 0; u < 8; ++u) nearest = min(nearest, d[u]);
     }
     if (obscura_is_sky(nearest)) return 0;  // no receiver
     vec2 first = lsao_sample_point(line, line.first_step + begin);
@@ -152,10 +158,10 @@ vec2 slice_point(vec2 point, float depth) {
 
 // Unit vector towards the eye from the slice point pk.
 vec2 slice_zenith(vec2 pk) { return obscura_is_perspective() ? normalize(g_eye - pk) : g_ortho_zenith; }
-// The hull: hull_load(ring(g_start + i)), i < g_count, top last; the top also in a register (most
-// steps pop nothing).
+// The hull: hull_load(ring(g_start + i)), i < g_count, top last; the top and the point below it also in
+// registers (most steps pop nothing).
 int g_start = 0, g_count = 0;
-vec2 g_top_point = vec2(0.0);
+vec2 g_top_point = vec2(0.0), g_below_point = vec2(0.0);
 uint g_pops = 0u, g_dropped = 0u;
 // Output: pairs of halves shift into g_pending from .w; a full group of 8 (or the segment's last) is stored.
 uvec4 g_pending = uvec4(0u);
@@ -193,16 +199,20 @@ void sweep_step(int i, vec2 point, float depth) {
         }
         if (any) value = best;
 #else
-        // The top's (occlusion, sin h) carries over when the one below becomes the top.
+        // The top's (occlusion, sin h) carries over when the one below becomes the top. The point below the
+        // top is kept in a register too, so a step that pops nothing (most) reads no hull memory.
         vec2 top = g_count > 0 ? lsao_occlusion_and_sin_h(g_top_point - pk, u, hull_sin_t) : vec2(0.0);
-        while (g_count >= 2) {
-            vec2 below_point = hull_load(ring(g_start + g_count - 2));
-            vec2 below = lsao_occlusion_and_sin_h(below_point - pk, u, hull_sin_t);
-            if (!(top.x < below.x && top.y < below.y)) break;
-            top = below;
-            g_top_point = below_point;
-            --g_count;
-            ++g_pops;
+        if (g_count >= 2) {
+            vec2 below = lsao_occlusion_and_sin_h(g_below_point - pk, u, hull_sin_t);
+            while (top.x < below.x && top.y < below.y) {
+                top = below;
+                g_top_point = g_below_point;
+                --g_count;
+                ++g_pops;
+                if (g_count < 2) break;
+                g_below_point = hull_load(ring(g_start + g_count - 2));
+                below = lsao_occlusion_and_sin_h(g_below_point - pk, u, hull_sin_t);
+            }
         }
         if (g_count > 0) value = strategy == 2 ? lsao_occlusion(g_top_point - pk, u, occlusion_sin_t) : top.x;
         if (g_count == kCapacity) {
@@ -211,6 +221,7 @@ void sweep_step(int i, vec2 point, float depth) {
             ++g_dropped;
         }
         hull_store(ring(g_start + g_count), pk);
+        g_below_point = g_top_point;
         g_top_point = pk;
         ++g_count;
 #endif
@@ -228,6 +239,9 @@ void sweep_step(int i, vec2 point, float depth) {
         lsao_values[(g_offset + i) >> 3] = g_pending;
     }
 }
+
+// The warm-up's last steps, swept at full resolution whatever its stride.
+const int kDenseWarmup = 16;
 
 // Sample i of the line, clamped to the segment's last (blocks may run past it).
 vec2 block_point(int i) { return lsao_sample_point(g_line, g_line.first_step + min(i, g_end - 1)); }
@@ -247,7 +261,28 @@ void main() {
 
     // Blocks of 8 samples whose depths are all fetched before the first is used: the hull's loop-carried
     // work cannot hide a fetch's latency, eight fetches in flight can.
-    for (int i = warm_begin; i < g_end; i += 8) {
+    // The warm-up's far part at a stride (the falloff leaves far occluders little weight, and a coarse hull of
+    // them casts nearly the same), ending kDenseWarmup steps before the segment, which are swept densely: the
+    // segment's first receivers see their nearest occluders at full resolution. Blocks of 8 strided samples,
+    // aligned to end at the dense part; samples before the warm-up's start are skipped.
+    int dense_begin = max(warm_begin, g_begin - kDenseWarmup);
+    int stride = max(lsao.sweep.x, 1);
+    int strided_steps = 0;
+    for (int base = dense_begin - ((dense_begin - warm_begin + 8 * stride - 1) / (8 * stride)) * 8 * stride;
+         base < dense_begin; base += 8 * stride) {
+        vec2 q[8];
+        float qd[8];
+        for (int u = 0; u < 8; ++u) {
+            q[u] = block_point(max(base + u * stride, 0));
+            qd[u] = sample_depth(q[u]);
+        }
+        for (int u = 0; u < 8; ++u) {
+            if (base + u * stride < warm_begin) continue;
+            sweep_step(base + u * stride, q[u], qd[u]);
+            ++strided_steps;
+        }
+    }
+    for (int i = dense_begin; i < g_end; i += 8) {
         vec2 p0 = block_point(i), p1 = block_point(i + 1), p2 = block_point(i + 2), p3 = block_point(i + 3);
         vec2 p4 = block_point(i + 4), p5 = block_point(i + 5), p6 = block_point(i + 6), p7 = block_point(i + 7);
         float d0 = sample_depth(p0), d1 = sample_depth(p1), d2 = sample_depth(p2), d3 = sample_depth(p3);
@@ -263,7 +298,7 @@ void main() {
     }
     // Counters for tests only: thousands of invocations adding to one address would serialise.
     if ((lsao.config.w & OBSCURA_LSAO_FLAG_STATS) != 0) {
-        atomicAdd(lsao_stats[0], uint(g_end - warm_begin));
+        atomicAdd(lsao_stats[0], uint(g_end - dense_begin + strided_steps));
         atomicAdd(lsao_stats[1], g_pops);
         atomicAdd(lsao_stats[2], g_dropped);
     }

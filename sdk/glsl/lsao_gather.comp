@@ -11,13 +11,74 @@
 #include "common/normal_encoding.glsl"
 #include "common/lsao.glsl"
 
-layout(local_size_x = OBSCURA_LSAO_GATHER_GROUP_X, local_size_y = OBSCURA_LSAO_GATHER_GROUP_Y) in;
+#if OBSCURA_LSAO_CPU_RASTERISER
+#define GATHER_GROUP_X OBSCURA_LSAO_GATHER_GROUP_X
+#define GATHER_GROUP_Y OBSCURA_LSAO_GATHER_GROUP_Y
+#else
+#define GATHER_GROUP_X OBSCURA_LSAO_GPU_GATHER_GROUP
+#define GATHER_GROUP_Y OBSCURA_LSAO_GPU_GATHER_GROUP
+#endif
+layout(local_size_x = GATHER_GROUP_X, local_size_y = GATHER_GROUP_Y) in;
 
 layout(binding = OBSCURA_UNIT_LINEAR_DEPTH) uniform sampler2D u_depth;
 layout(binding = OBSCURA_UNIT_NORMALS) uniform sampler2D u_normals;
 layout(binding = OBSCURA_IMAGE_OUT0, r16f) writeonly uniform image2D u_ao;
-// The sweeps' values (R16F texels over the sweep's storage buffer).
+
+// K compiled in (LsaoPass::prepare), so the loop over directions unrolls and every direction's line record
+// loads can be in flight together.
+#ifndef OBSCURA_LSAO_DIRECTIONS
+#error "OBSCURA_LSAO_DIRECTIONS must be defined"
+#endif
+
+#if OBSCURA_LSAO_CPU_RASTERISER
+// The sweeps' values as R16F texels over the sweep's storage buffer.
 layout(binding = OBSCURA_UNIT_LSAO_VALUES) uniform samplerBuffer u_values;
+float sweep_value(int index) { return texelFetch(u_values, index).r; }
+
+void load_depth_tile(ivec2 group_origin) {}
+float candidate_depth(ivec2 texel) { return texelFetch(u_depth, texel, 0).r; }
+#else
+layout(std430, binding = OBSCURA_SSBO_LSAO_VALUES) readonly buffer LsaoValues { uint lsao_value_pairs[]; };
+float sweep_value(int index) {
+    vec2 pair = unpackHalf2x16(lsao_value_pairs[index >> 1]);
+    return (index & 1) == 0 ? pair.x : pair.y;
+}
+
+// The group's depths and a margin around them in shared memory: every direction's nearest sample lies within
+// about sqrt((D_S/2)^2 + (D_L/2)^2) texels of its receiver, so 16 depth reads per pixel through the texture
+// unit become ~2 per pixel and 16 from shared memory. Samples outside it (clamped at a line's end) fall back
+// to a texel fetch. OBSCURA_LSAO_GATHER_MARGIN is compiled in from the pattern's longest step.
+#ifndef OBSCURA_LSAO_GATHER_MARGIN
+#error "OBSCURA_LSAO_GATHER_MARGIN must be defined"
+#endif
+const int kMargin = OBSCURA_LSAO_GATHER_MARGIN;
+const ivec2 kTile = ivec2(GATHER_GROUP_X, GATHER_GROUP_Y) + 2 * kMargin;
+shared float s_depth[kTile.x * kTile.y];
+ivec2 g_tile_origin;
+
+void load_depth_tile(ivec2 group_origin) {
+    g_tile_origin = group_origin - kMargin;
+    ivec2 hi = depth_size.xy - 1;
+    for (int i = int(gl_LocalInvocationIndex); i < kTile.x * kTile.y; i += GATHER_GROUP_X * GATHER_GROUP_Y) {
+        ivec2 texel = clamp(g_tile_origin + ivec2(i % kTile.x, i / kTile.x), ivec2(0), hi);
+        s_depth[i] = texelFetch(u_depth, texel, 0).r;
+    }
+    barrier();
+}
+
+float candidate_depth(ivec2 texel) {
+    ivec2 t = texel - g_tile_origin;
+    if (all(greaterThanEqual(t, ivec2(0))) && all(lessThan(t, kTile))) return s_depth[t.y * kTile.x + t.x];
+    return texelFetch(u_depth, texel, 0).r;
+}
+#endif
+
+// Directions per batch of value loads, compiled in: min(K, 16). On the H100 at 1080p, K = 16 took 0.59 ms
+// in batches of 4, 0.27 in batches of 8 and 0.24 in one of 16; K = 32 0.89 in batches of 8, 0.46 of 16.
+#ifndef OBSCURA_LSAO_GATHER_BATCH
+#error "OBSCURA_LSAO_GATHER_BATCH must be defined"
+#endif
+const int kBatch = OBSCURA_LSAO_GATHER_BATCH;
 
 // A line's sample nearest to a texel centre (clamped to the line's samples inside the texture), as the
 // index of its value, its position and its squared distance (1e30 when the line misses the texture).
@@ -39,9 +100,11 @@ Candidate nearest_on_line(int k, int l, vec2 center) {
 }
 
 void main() {
+    // Every invocation helps load the tile before any leaves.
+    load_depth_tile(work_rect.xy + ivec2(gl_WorkGroupID.xy) * ivec2(GATHER_GROUP_X, GATHER_GROUP_Y));
     ivec2 p = work_rect.xy + ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(gl_GlobalInvocationID.xy, uvec2(work_rect.zw)))) return;
-    float depth = texelFetch(u_depth, p, 0).r;
+    float depth = candidate_depth(p);
     bool count_taps = target_params.w == OBSCURA_DEBUG_VIEW_TAP_COUNT;
     if (obscura_is_sky(depth) || count_taps) {
         imageStore(u_ao, p, vec4(count_taps ? 0.0 : 1.0));
@@ -54,35 +117,49 @@ void main() {
     vec3 towards_eye = obscura_towards_eye(position);  // every slice through the receiver contains it
     float line_spacing = lsao.falloff.w;
 
+    // Directions in batches: first where each one's nearest sample lies and whether the depth test keeps it
+    // (line records, cached, and the depth tile), then the batch's value loads, independent of each other
+    // and in flight together, then the sums. A loop that used each value before looking up the next
+    // direction's waited a full memory latency per direction (the H100: 0.64 ms at 1080p).
     float sum = 0.0, weight_sum = 0.0;
-    for (int k = 0; k < lsao.config.x; ++k) {
-        vec4 direction = lsao.directions[k];
-        vec4 coverage = lsao.coverage[k];
-        vec2 perp = vec2(-direction.y, direction.x);
-        int last_line = int(coverage.w) - 1;
-        int below = int(floor((dot(center, perp) - coverage.y) / line_spacing));
-        // The nearest sample of the two lines whose ideal positions bracket the pixel (snapped origins move a
-        // line by at most half a lattice step, less than half of D_L). The layout's lines cover the texture,
-        // so only clamping at its edges can make them one line.
-        Candidate nearest = nearest_on_line(k, clamp(below, 0, last_line), center);
-        Candidate other = nearest_on_line(k, clamp(below + 1, 0, last_line), center);
-        if (other.distance_sq < nearest.distance_sq) nearest = other;
-        ivec2 q_texel = clamp(ivec2(floor(nearest.point)), ivec2(0), depth_size.xy - 1);
-        float q_depth = texelFetch(u_depth, q_texel, 0).r;
-        bool keep = nearest.distance_sq < 1e30 && !obscura_is_sky(q_depth) &&
-                    abs(q_depth - depth) <= lsao.gather.x * depth;
-        if (normal_test) {
-            vec3 q_normal = obscura_decode_normal(texelFetch(u_normals, q_texel, 0).xy);
-            keep = keep && dot(q_normal, normal) >= lsao.gather.y;
+    for (int k0 = 0; k0 < OBSCURA_LSAO_DIRECTIONS; k0 += kBatch) {
+        int index[kBatch];
+        float weight[kBatch];
+        for (int u = 0; u < kBatch; ++u) {
+            int k = min(k0 + u, OBSCURA_LSAO_DIRECTIONS - 1);
+            vec4 direction = lsao.directions[k];
+            vec4 coverage = lsao.coverage[k];
+            vec2 perp = vec2(-direction.y, direction.x);
+            int last_line = int(coverage.w) - 1;
+            int below = int(floor((dot(center, perp) - coverage.y) / line_spacing));
+            // The nearest sample of the two lines whose ideal positions bracket the pixel (snapped origins move
+            // a line by at most half a lattice step, less than half of D_L). The layout's lines cover the
+            // texture, so only clamping at its edges can make them one line.
+            Candidate nearest = nearest_on_line(k, clamp(below, 0, last_line), center);
+            Candidate other = nearest_on_line(k, clamp(below + 1, 0, last_line), center);
+            if (other.distance_sq < nearest.distance_sq) nearest = other;
+            ivec2 q_texel = clamp(ivec2(floor(nearest.point)), ivec2(0), depth_size.xy - 1);
+            float q_depth = candidate_depth(q_texel);
+            bool keep = k0 + u < OBSCURA_LSAO_DIRECTIONS && nearest.distance_sq < 1e30 &&
+                        !obscura_is_sky(q_depth) && abs(q_depth - depth) <= lsao.gather.x * depth;
+            if (normal_test) {
+                vec3 q_normal = obscura_decode_normal(texelFetch(u_normals, q_texel, 0).xy);
+                keep = keep && dot(q_normal, normal) >= lsao.gather.y;
+            }
+            weight[u] = keep ? coverage.x : 0.0;
+            index[u] = max(nearest.index, 0);
         }
-        float value = texelFetch(u_values, max(nearest.index, 0)).r;
-        // No earlier sample: the horizon is the receiver's tangent.
-        float obscurance = value < 0.5 * OBSCURA_LSAO_NO_OCCLUDER
-                               ? value - lsao_receiver_sin_t_3d(normal, towards_eye, lsao.axes[k].xyz)
-                               : 0.0;
-        float weight = keep ? coverage.x : 0.0;
-        sum += weight * obscurance;
-        weight_sum += weight;
+        float value[kBatch];
+        for (int u = 0; u < kBatch; ++u) value[u] = sweep_value(index[u]);
+        for (int u = 0; u < kBatch; ++u) {
+            int k = min(k0 + u, OBSCURA_LSAO_DIRECTIONS - 1);
+            // No earlier sample: the horizon is the receiver's tangent.
+            float obscurance = value[u] < 0.5 * OBSCURA_LSAO_NO_OCCLUDER
+                                   ? value[u] - lsao_receiver_sin_t_3d(normal, towards_eye, lsao.axes[k].xyz)
+                                   : 0.0;
+            sum += weight[u] * obscurance;
+            weight_sum += weight[u];
+        }
     }
     float ao = weight_sum > 0.0 ? sum / weight_sum : 0.0;
     float visibility = pow(clamp(1.0 - lsao.gather.z * ao, 0.0, 1.0), lsao.gather.w);

@@ -282,6 +282,7 @@ protected:
         glBindBuffer(GL_UNIFORM_BUFFER, buffers_[0].get());
         glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 0, buffers_[3].get(), ssbo_align, 128);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, buffers_[4].get());
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 2, buffers_[2].get(), 2 * ssbo_align, 64);
         glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers_[3].get());
         glBindBuffer(GL_ARRAY_BUFFER, buffers_[4].get());
         glBindBuffer(GL_PIXEL_PACK_BUFFER, buffers_[2].get());

@@ -2,10 +2,22 @@
 // and the 2D frame of a line's slice (the plane through the eye that contains the screen line).
 // Needs FrameConstants, LsaoConstants and depth.glsl.
 
-// Line records (LsaoLayout, 16 bytes each, read as a buffer texture: CPU rasterisers fetch texels with vector
-// gathers but load storage buffers one invocation at a time): origin xy (float bits), the first step j inside
-// the texture in the low 16 bits and the step count in the high 16, and the value index of j = 0.
+// Compiled in (LsaoPass::prepare): which memory paths the program takes. CPU rasterisers (1) fetch texels
+// with vector gathers but load storage buffers and shared memory one invocation at a time; GPUs (0) load
+// buffers through their caches in a few transactions per warp where a texture unit takes one texel a clock.
+#ifndef OBSCURA_LSAO_CPU_RASTERISER
+#error "OBSCURA_LSAO_CPU_RASTERISER must be defined"
+#endif
+
+// Line records (LsaoLayout, 16 bytes each): origin xy (float bits), the first step j inside the texture in
+// the low 16 bits and the step count in the high 16, and the value index of j = 0.
+#if OBSCURA_LSAO_CPU_RASTERISER
 layout(binding = OBSCURA_UNIT_LSAO_LINES) uniform usamplerBuffer u_lsao_lines;
+uvec4 lsao_line_record(int index) { return texelFetch(u_lsao_lines, index); }
+#else
+layout(std430, binding = OBSCURA_SSBO_LSAO_LINES) readonly buffer LsaoLines { uvec4 lsao_line_records[]; };
+uvec4 lsao_line_record(int index) { return lsao_line_records[index]; }
+#endif
 
 struct LsaoLine {
     vec2 origin;      // texel units
@@ -17,7 +29,7 @@ struct LsaoLine {
 
 // Line l of direction k.
 LsaoLine lsao_line(int k, int l) {
-    uvec4 record = texelFetch(u_lsao_lines, int(lsao.coverage[k].z) + l);
+    uvec4 record = lsao_line_record(int(lsao.coverage[k].z) + l);
     LsaoLine line;
     line.origin = uintBitsToFloat(record.xy);
     line.step = lsao.directions[k].zw;

@@ -10,8 +10,8 @@
 #define OBSCURA_UNIT_NORMALS 1      // host normals, or the SDK's normal texture
 #define OBSCURA_UNIT_LINEAR_DEPTH 2 // linear view depth (R32F)
 #define OBSCURA_UNIT_SOURCE 3       // pass input (AO, blur intermediate)
-#define OBSCURA_UNIT_LSAO_LINES 4   // LSAO's line records (usamplerBuffer, RGBA32UI)
-#define OBSCURA_UNIT_LSAO_VALUES 5  // LSAO's sweep values read by the gather (samplerBuffer, R16F)
+#define OBSCURA_UNIT_LSAO_LINES 4   // LSAO's line records (usamplerBuffer, RGBA32UI; CPU rasterisers)
+#define OBSCURA_UNIT_LSAO_VALUES 5  // LSAO's sweep values read by the gather (samplerBuffer, R16F; CPU rasterisers)
 #define OBSCURA_TEXTURE_UNIT_COUNT 6
 
 // Image units (imageStore / imageLoad).
@@ -31,7 +31,8 @@
 // Shader storage buffer binding points.
 #define OBSCURA_SSBO_LSAO_VALUES 0  // the sweeps' results, eight halves per uvec4
 #define OBSCURA_SSBO_LSAO_STATS 1   // counters: steps, hull pops, points dropped from full hulls
-#define OBSCURA_SSBO_COUNT 2
+#define OBSCURA_SSBO_LSAO_LINES 2   // LSAO's line records (GPUs read them as a storage buffer)
+#define OBSCURA_SSBO_COUNT 3
 
 // ---- Workgroup sizes (the dispatch math in C++ reads the same numbers) ------------------------
 #define OBSCURA_DEPTH_PREPARE_GROUP_X 8
@@ -54,10 +55,11 @@
 #define OBSCURA_SAO_MAX_SAMPLES 64
 // LSAO: one invocation per line segment, 64 per group, each keeping its hull in shared memory (64 x hull
 // capacity x 8 bytes: 16 KiB at the default 32 points, 32 KiB, GL's guaranteed minimum, at the most);
-// the gather in 8x8 groups.
+// the gather in 8x8 groups on CPU rasterisers and 16x16 on GPUs, whose groups share a tile of depths.
 #define OBSCURA_LSAO_SWEEP_GROUP 64
 #define OBSCURA_LSAO_GATHER_GROUP_X 8
 #define OBSCURA_LSAO_GATHER_GROUP_Y 8
+#define OBSCURA_LSAO_GPU_GATHER_GROUP 16
 #define OBSCURA_LSAO_MAX_DIRECTIONS 64
 #define OBSCURA_LSAO_MAX_HULL 64
 // Every line's values start on a multiple of this many (the sweep stores 8 halves, 16 bytes, at a time).
@@ -192,7 +194,7 @@ OBSCURA_PASS_BLOCK_BEGIN(LsaoConstants)
   OBSCURA_VEC4(falloff);   // r (view units^2), C (0: r / (r + d^2)), fixed sin t, D_L (texels)
   OBSCURA_VEC4(gather);    // depth threshold (relative), normal threshold (dot), intensity, power
   OBSCURA_IVEC4(config);   // K, unused (the sweep bounds lines per direction by coverage.w), unused, flags
-  OBSCURA_IVEC4(sweep);    // unused, segment steps (0: whole lines), unused x2
+  OBSCURA_IVEC4(sweep);    // warm-up stride, segment steps (0: whole lines), unused x2
   OBSCURA_VEC4(warmup);    // segments' warm-up distance (view units; < 0: from the line start), unused x3
   OBSCURA_VEC4(directions[OBSCURA_LSAO_MAX_DIRECTIONS]); // unit direction xy, step vector xy (texels)
   OBSCURA_VEC4(coverage[OBSCURA_LSAO_MAX_DIRECTIONS]);   // weight, perpendicular offset of line 0, first line, line count

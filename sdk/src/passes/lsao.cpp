@@ -57,18 +57,33 @@ Error LsaoPass::program_for(const PassEnv& env, const char* shader, const std::s
     return Error();
 }
 
+int lsao_gather_margin(const obscura_lsao_settings& settings) {
+    // A pixel's nearest sample of a direction lies within half a step along the lines and half a spacing
+    // across them, plus up to half a texel diagonal where aligned samples snap to texel centres.
+    const double longest_step = settings.pattern == 1 ? (settings.directions / 8) * std::sqrt(2.0)
+                                                      : double(settings.step_length);
+    const double reach = 0.5 * std::hypot(longest_step, double(settings.line_spacing)) + 0.5 * std::sqrt(2.0);
+    return std::clamp(int(std::ceil(reach)), 1, kLsaoMaxGatherMargin);
+}
+
 Error LsaoPass::prepare(const PassEnv& env, const obscura_lsao_settings& settings) {
     const int aligned = settings.pattern == 1 ? 1 : 0;
-    char defines[256];
+    const int cpu = env.cpu_renderer ? 1 : 0;
+    char defines[320];
     std::snprintf(defines, sizeof defines,
                   "OBSCURA_LSAO_ALIGNED %d\nOBSCURA_LSAO_HULL_CAPACITY %d\nOBSCURA_LSAO_EXACT_SWEEP %d\n"
-                  "OBSCURA_LSAO_TANGENT_STRATEGY %d\nOBSCURA_LSAO_PRIVATE_HULL %d\n",
+                  "OBSCURA_LSAO_TANGENT_STRATEGY %d\nOBSCURA_LSAO_CPU_RASTERISER %d\n",
                   aligned, settings.hull_capacity, settings.exact == OBSCURA_TOGGLE_ON ? 1 : 0,
-                  settings.tangent_strategy, env.cpu_renderer ? 1 : 0);
+                  settings.tangent_strategy, cpu);
     Error error = program_for(env, "line_sweep.comp", defines, &sweep_variants_, &sweep_program_);
     if (error) return error;
-    std::snprintf(defines, sizeof defines, "OBSCURA_LSAO_ALIGNED %d\nOBSCURA_LSAO_NORMAL_TEST %d\n", aligned,
-                  settings.normal_test == OBSCURA_TOGGLE_ON ? 1 : 0);
+    std::snprintf(defines, sizeof defines,
+                  "OBSCURA_LSAO_ALIGNED %d\nOBSCURA_LSAO_NORMAL_TEST %d\nOBSCURA_LSAO_CPU_RASTERISER %d\n"
+                  "OBSCURA_LSAO_DIRECTIONS %d\nOBSCURA_LSAO_GATHER_MARGIN %d\nOBSCURA_LSAO_GATHER_BATCH %d\n",
+                  aligned, settings.normal_test == OBSCURA_TOGGLE_ON ? 1 : 0, cpu, settings.directions,
+                  lsao_gather_margin(settings), cpu ? 1 : std::min(settings.directions, kLsaoGatherBatch));
+    gather_group_[0] = cpu ? OBSCURA_LSAO_GATHER_GROUP_X : OBSCURA_LSAO_GPU_GATHER_GROUP;
+    gather_group_[1] = cpu ? OBSCURA_LSAO_GATHER_GROUP_Y : OBSCURA_LSAO_GPU_GATHER_GROUP;
     return program_for(env, "lsao_gather.comp", defines, &gather_variants_, &gather_program_);
 }
 
@@ -149,6 +164,7 @@ LsaoConstants LsaoPass::constants(const obscura_lsao_settings& settings, const F
     c.gather[3] = settings.power;
     c.config[0] = int32_t(layout_.directions.size());
     c.config[3] = collect_stats_ ? OBSCURA_LSAO_FLAG_STATS : 0;
+    c.sweep[0] = settings.warmup_stride;
     c.sweep[1] = lsao_segment_steps(settings, cpu_renderer);
     c.warmup[0] = float(lsao_warmup_distance(settings, m2v));
     for (size_t k = 0; k < layout_.directions.size() && k < OBSCURA_LSAO_MAX_DIRECTIONS; ++k) {
@@ -184,6 +200,7 @@ void LsaoPass::run_sweeps(const PassEnv& env, const obscura_lsao_settings& setti
     env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
     env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
     env.bind_texture(OBSCURA_UNIT_LSAO_LINES, GL_TEXTURE_BUFFER, lines_texture_.name());
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_LSAO_LINES, lines_.name());
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_LSAO_VALUES, values_.name());
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_LSAO_STATS, stats_.name());
     env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
@@ -195,7 +212,8 @@ void LsaoPass::run_sweeps(const PassEnv& env, const obscura_lsao_settings& setti
     for (const LsaoDirectionLines& d : layout_.direction_lines) most_lines = std::max(most_lines, d.line_count);
     gl.DispatchCompute(GLuint((most_lines + OBSCURA_LSAO_SWEEP_GROUP - 1) / OBSCURA_LSAO_SWEEP_GROUP),
                        GLuint(std::max(segments, 1)), GLuint(layout_.directions.size()));
-    // The gather fetches the values as texels; read_values and the stats read the buffers.
+    // The gather reads the values as texels (CPU rasterisers) or from the buffer; read_values and the stats
+    // read the buffers back.
     gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
@@ -207,10 +225,12 @@ void LsaoPass::run_gather(const PassEnv& env, const UniformRange& frame, const U
     env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
     env.bind_texture(OBSCURA_UNIT_LSAO_LINES, GL_TEXTURE_BUFFER, lines_texture_.name());
     env.bind_texture(OBSCURA_UNIT_LSAO_VALUES, GL_TEXTURE_BUFFER, values_texture_.name());
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_LSAO_LINES, lines_.name());
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_LSAO_VALUES, values_.name());
     gl.BindImageTexture(OBSCURA_IMAGE_OUT0, resources.ao.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
     env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
     env.bind_uniforms(OBSCURA_UBO_PASS, pass);
-    env.dispatch(region.width, region.height, OBSCURA_LSAO_GATHER_GROUP_X, OBSCURA_LSAO_GATHER_GROUP_Y);
+    env.dispatch(region.width, region.height, gather_group_[0], gather_group_[1]);
     gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 

@@ -26,6 +26,13 @@ int lsao_segment_steps(const obscura_lsao_settings& settings, bool cpu_renderer)
 // the falloff's floor).
 double lsao_warmup_distance(const obscura_lsao_settings& settings, float meters_to_view_units);
 
+// The margin (texels) of the depth tile a GPU gather group shares: how far from a pixel the nearest sample
+// of a direction can lie under the settings' pattern, step length and line spacing.
+constexpr int kLsaoMaxGatherMargin = 8;
+// Directions whose value loads the gather issues together (fewer when K is smaller).
+constexpr int kLsaoGatherBatch = 16;
+int lsao_gather_margin(const obscura_lsao_settings& settings);
+
 class LsaoPass {
 public:
     // Selects the programs for the settings, building them if no kept variant matches.
@@ -65,6 +72,7 @@ private:
                              std::vector<Variant>* cache, GLuint* program);
     std::vector<Variant> sweep_variants_, gather_variants_;
     GLuint sweep_program_ = 0, gather_program_ = 0;  // the current settings' variants
+    int gather_group_[2] = {OBSCURA_LSAO_GATHER_GROUP_X, OBSCURA_LSAO_GATHER_GROUP_Y};
     bool collect_stats_ = false;
     // What the layout was built for (D_S matters only for the free pattern, but is compared anyway).
     struct LayoutKey {
@@ -77,8 +85,9 @@ private:
     };
     LsaoLayout layout_;
     LayoutKey key_;
-    gl::Buffer lines_;            // 16-byte line records, read through lines_texture_
-    gl::Buffer values_;           // the sweeps' halves: written as a storage buffer, read through values_texture_
+    // CPU rasterisers read the line records and values through buffer textures, GPUs as storage buffers.
+    gl::Buffer lines_;            // 16-byte line records
+    gl::Buffer values_;           // the sweeps' halves, written as a storage buffer
     gl::Buffer stats_;
     gl::Object lines_texture_;    // RGBA32UI over lines_
     gl::Object values_texture_;   // R16F over values_
