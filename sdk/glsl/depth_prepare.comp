@@ -31,7 +31,45 @@ float linear_depth_at(ivec2 p) {
 
 bool inside(ivec2 p) { return all(lessThan(p, depth_size.xy)) && all(greaterThanEqual(p, ivec2(0))); }
 
+// Compiled in (DepthPreparePass::prepare). Reconstructing a normal reads the depths up to 2 texels away on
+// each axis: 9 texel fetches and linearisations per texel. GPUs share them through a tile in shared memory
+// (a texture unit takes one texel a clock); CPU rasterisers, which reach shared memory one invocation at a
+// time, fetch them.
+#ifndef OBSCURA_CPU_RASTERISER
+#error "OBSCURA_CPU_RASTERISER must be defined"
+#endif
+#if OBSCURA_CPU_RASTERISER
+void load_depth_tile(bool reconstruct) {}
 float depth_or_sky(ivec2 p) { return inside(p) ? linear_depth_at(p) : OBSCURA_SKY_DEPTH; }
+#else
+const int kMargin = 2;
+const ivec2 kGroup = ivec2(OBSCURA_DEPTH_PREPARE_GROUP_X, OBSCURA_DEPTH_PREPARE_GROUP_Y);
+const ivec2 kTile = kGroup + 2 * kMargin;
+shared float s_depth[kTile.x * kTile.y];
+ivec2 g_tile_origin;
+
+// Linear depths of the group and its margin (sky outside the texture); only the group's own texels when
+// the host gives the normals.
+void load_depth_tile(bool reconstruct) {
+    g_tile_origin = ivec2(gl_WorkGroupID.xy) * kGroup - kMargin;
+    if (reconstruct) {
+        for (int i = int(gl_LocalInvocationIndex); i < kTile.x * kTile.y; i += kGroup.x * kGroup.y) {
+            ivec2 p = g_tile_origin + ivec2(i % kTile.x, i / kTile.x);
+            s_depth[i] = inside(p) ? linear_depth_at(p) : OBSCURA_SKY_DEPTH;
+        }
+    } else {
+        ivec2 p = ivec2(gl_GlobalInvocationID.xy), t = p - g_tile_origin;
+        s_depth[t.y * kTile.x + t.x] = inside(p) ? linear_depth_at(p) : OBSCURA_SKY_DEPTH;
+    }
+    barrier();
+}
+
+// Every texel a reconstruction reads lies in the tile.
+float depth_or_sky(ivec2 p) {
+    ivec2 t = p - g_tile_origin;
+    return s_depth[t.y * kTile.x + t.x];
+}
+#endif
 
 // How far the surface on one side, continued linearly from its two texels (in 1/w, affine on planes),
 // misses the centre's depth; a large value when that side cannot say (sky, outside).
@@ -61,9 +99,10 @@ vec3 one_sided_derivative(ivec2 p, vec3 center, float depth, ivec2 axis) {
 }
 
 void main() {
+    load_depth_tile(depth_size.w == OBSCURA_NORMALS_RECONSTRUCT);  // every invocation, before any leaves
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, depth_size.xy))) return;
-    float depth = linear_depth_at(p);
+    float depth = depth_or_sky(p);
     imageStore(u_linear_depth, p, vec4(depth));
 
     vec3 n = vec3(0.0, 0.0, 1.0);

@@ -70,12 +70,12 @@ const int kCapacity = OBSCURA_LSAO_HULL_CAPACITY;
 #error "OBSCURA_LSAO_TANGENT_STRATEGY must be defined"
 #endif
 
-// Where the hull lives (compiled in). CPU rasterisers (OBSCURA_LSAO_CPU_RASTERISER 1) reach shared memory one
+// Where the hull lives (compiled in). CPU rasterisers (OBSCURA_CPU_RASTERISER 1) reach shared memory one
 // invocation at a time and a private array with vector gathers (llvmpipe, 1280x720, r = 10 m: sweep 61 ms
 // with the shared hull, 52 ms with the private one). GPUs keep it in shared memory, slot-major: the
 // invocations of a warp reading the same slot touch consecutive words, each invocation's slots fall in its
 // own banks.
-#if OBSCURA_LSAO_CPU_RASTERISER
+#if OBSCURA_CPU_RASTERISER
 vec2 g_hull[kCapacity];
 vec2 hull_load(int slot) { return g_hull[slot]; }
 void hull_store(int slot, vec2 p) { g_hull[slot] = p; }
@@ -163,14 +163,10 @@ vec2 slice_zenith(vec2 pk) { return obscura_is_perspective() ? normalize(g_eye -
 int g_start = 0, g_count = 0;
 vec2 g_top_point = vec2(0.0), g_below_point = vec2(0.0);
 uint g_pops = 0u, g_dropped = 0u;
-// Output: pairs of halves shift into g_pending from .w; a full group of 8 (or the segment's last) is stored.
-uvec4 g_pending = uvec4(0u);
-float g_half_value = 0.0;
 
-// Algorithm 1's body for step i at `point` with `depth`: the value for the receiver there (pops, then the
-// top's obscurance), then the point is pushed; written when i is in the invocation's segment.
-void sweep_step(int i, vec2 point, float depth) {
-    if (i >= g_end) return;
+// Algorithm 1's body for step i at `point` with `depth`: returns the value for the receiver there (pops,
+// then the top's obscurance), then pushes the point.
+float sweep_step(int i, vec2 point, float depth) {
     float value = OBSCURA_LSAO_NO_OCCLUDER;
     if (!obscura_is_sky(depth)) {
         const int strategy = OBSCURA_LSAO_TANGENT_STRATEGY;
@@ -199,9 +195,23 @@ void sweep_step(int i, vec2 point, float depth) {
         }
         if (any) value = best;
 #else
-        // The top's (occlusion, sin h) carries over when the one below becomes the top. The point below the
-        // top is kept in a register too, so a step that pops nothing (most) reads no hull memory.
+        // The top's (occlusion, sin h) carries over when the one below becomes the top.
         vec2 top = g_count > 0 ? lsao_occlusion_and_sin_h(g_top_point - pk, u, hull_sin_t) : vec2(0.0);
+#if OBSCURA_CPU_RASTERISER
+        // CPU rasterisers run a loop's body for all lanes while any lane pops: the shortest loop is the
+        // fastest (llvmpipe: the GPU form below takes 10 % longer).
+        while (g_count >= 2) {
+            g_below_point = hull_load(ring(g_start + g_count - 2));
+            vec2 below = lsao_occlusion_and_sin_h(g_below_point - pk, u, hull_sin_t);
+            if (!(top.x < below.x && top.y < below.y)) break;
+            top = below;
+            g_top_point = g_below_point;
+            --g_count;
+            ++g_pops;
+        }
+#else
+        // GPUs keep the point below the top in a register too, so a step that pops nothing (most) reads no
+        // hull memory (the H100: 6 % off the sweep).
         if (g_count >= 2) {
             vec2 below = lsao_occlusion_and_sin_h(g_below_point - pk, u, hull_sin_t);
             while (top.x < below.x && top.y < below.y) {
@@ -214,6 +224,7 @@ void sweep_step(int i, vec2 point, float depth) {
                 below = lsao_occlusion_and_sin_h(g_below_point - pk, u, hull_sin_t);
             }
         }
+#endif
         if (g_count > 0) value = strategy == 2 ? lsao_occlusion(g_top_point - pk, u, occlusion_sin_t) : top.x;
         if (g_count == kCapacity) {
             g_start = ring(g_start + 1);
@@ -226,18 +237,7 @@ void sweep_step(int i, vec2 point, float depth) {
         ++g_count;
 #endif
     }
-    if (i < g_begin) return;  // warm-up
-    if ((i & 1) == 0) {
-        g_half_value = value;
-    } else {
-        g_pending = uvec4(g_pending.yzw, packHalf2x16(vec2(g_half_value, value)));
-    }
-    if ((i & 7) == 7 || i == g_end - 1) {
-        if ((i & 1) == 0) g_pending = uvec4(g_pending.yzw, packHalf2x16(vec2(g_half_value, 0.0)));
-        // Shift a partial group's pairs down to its start.
-        for (int missing = 3 - ((i & 7) >> 1); missing > 0; --missing) g_pending = uvec4(g_pending.yzw, 0u);
-        lsao_values[(g_offset + i) >> 3] = g_pending;
-    }
+    return value;
 }
 
 // The warm-up's last steps, swept at full resolution whatever its stride.
@@ -265,7 +265,9 @@ void main() {
     // them casts nearly the same), ending kDenseWarmup steps before the segment, which are swept densely: the
     // segment's first receivers see their nearest occluders at full resolution. Blocks of 8 strided samples,
     // aligned to end at the dense part; samples before the warm-up's start are skipped.
-    int dense_begin = max(warm_begin, g_begin - kDenseWarmup);
+    // The dense part starts on a multiple of 8, like the segment, so every block of the segment is one
+    // aligned store of 8 halves.
+    int dense_begin = max(warm_begin, g_begin - kDenseWarmup) & ~7;
     int stride = max(lsao.sweep.x, 1);
     int strided_steps = 0;
     for (int base = dense_begin - ((dense_begin - warm_begin + 8 * stride - 1) / (8 * stride)) * 8 * stride;
@@ -278,23 +280,25 @@ void main() {
         }
         for (int u = 0; u < 8; ++u) {
             if (base + u * stride < warm_begin) continue;
-            sweep_step(base + u * stride, q[u], qd[u]);
+            sweep_step(base + u * stride, q[u], qd[u]);  // the value is not written
             ++strided_steps;
         }
     }
     for (int i = dense_begin; i < g_end; i += 8) {
-        vec2 p0 = block_point(i), p1 = block_point(i + 1), p2 = block_point(i + 2), p3 = block_point(i + 3);
-        vec2 p4 = block_point(i + 4), p5 = block_point(i + 5), p6 = block_point(i + 6), p7 = block_point(i + 7);
-        float d0 = sample_depth(p0), d1 = sample_depth(p1), d2 = sample_depth(p2), d3 = sample_depth(p3);
-        float d4 = sample_depth(p4), d5 = sample_depth(p5), d6 = sample_depth(p6), d7 = sample_depth(p7);
-        sweep_step(i, p0, d0);
-        sweep_step(i + 1, p1, d1);
-        sweep_step(i + 2, p2, d2);
-        sweep_step(i + 3, p3, d3);
-        sweep_step(i + 4, p4, d4);
-        sweep_step(i + 5, p5, d5);
-        sweep_step(i + 6, p6, d6);
-        sweep_step(i + 7, p7, d7);
+        vec2 q[8];
+        float qd[8];
+        for (int u = 0; u < 8; ++u) {
+            q[u] = block_point(i + u);
+            qd[u] = sample_depth(q[u]);
+        }
+        // Past the segment's end (its last block) the padding is 0.
+        float v[8];
+        for (int u = 0; u < 8; ++u) v[u] = i + u < g_end ? sweep_step(i + u, q[u], qd[u]) : 0.0;
+        if (i >= g_begin) {
+            lsao_values[(g_offset + i) >> 3] =
+                uvec4(packHalf2x16(vec2(v[0], v[1])), packHalf2x16(vec2(v[2], v[3])),
+                      packHalf2x16(vec2(v[4], v[5])), packHalf2x16(vec2(v[6], v[7])));
+        }
     }
     // Counters for tests only: thousands of invocations adding to one address would serialise.
     if ((lsao.config.w & OBSCURA_LSAO_FLAG_STATS) != 0) {

@@ -11,7 +11,7 @@
 #include "common/normal_encoding.glsl"
 #include "common/lsao.glsl"
 
-#if OBSCURA_LSAO_CPU_RASTERISER
+#if OBSCURA_CPU_RASTERISER
 #define GATHER_GROUP_X OBSCURA_LSAO_GATHER_GROUP_X
 #define GATHER_GROUP_Y OBSCURA_LSAO_GATHER_GROUP_Y
 #else
@@ -30,7 +30,7 @@ layout(binding = OBSCURA_IMAGE_OUT0, r16f) writeonly uniform image2D u_ao;
 #error "OBSCURA_LSAO_DIRECTIONS must be defined"
 #endif
 
-#if OBSCURA_LSAO_CPU_RASTERISER
+#if OBSCURA_CPU_RASTERISER
 // The sweeps' values as R16F texels over the sweep's storage buffer.
 layout(binding = OBSCURA_UNIT_LSAO_VALUES) uniform samplerBuffer u_values;
 float sweep_value(int index) { return texelFetch(u_values, index).r; }

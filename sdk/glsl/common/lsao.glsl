@@ -5,13 +5,13 @@
 // Compiled in (LsaoPass::prepare): which memory paths the program takes. CPU rasterisers (1) fetch texels
 // with vector gathers but load storage buffers and shared memory one invocation at a time; GPUs (0) load
 // buffers through their caches in a few transactions per warp where a texture unit takes one texel a clock.
-#ifndef OBSCURA_LSAO_CPU_RASTERISER
-#error "OBSCURA_LSAO_CPU_RASTERISER must be defined"
+#ifndef OBSCURA_CPU_RASTERISER
+#error "OBSCURA_CPU_RASTERISER must be defined"
 #endif
 
 // Line records (LsaoLayout, 16 bytes each): origin xy (float bits), the first step j inside the texture in
 // the low 16 bits and the step count in the high 16, and the value index of j = 0.
-#if OBSCURA_LSAO_CPU_RASTERISER
+#if OBSCURA_CPU_RASTERISER
 layout(binding = OBSCURA_UNIT_LSAO_LINES) uniform usamplerBuffer u_lsao_lines;
 uvec4 lsao_line_record(int index) { return texelFetch(u_lsao_lines, index); }
 #else

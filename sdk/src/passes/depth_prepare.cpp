@@ -5,9 +5,9 @@ namespace obscura {
 Error DepthPreparePass::prepare(const PassEnv& env, const FrameInput& input) {
     gl::Object& program = program_for(input);
     if (program) return Error();
-    char defines[96];
-    std::snprintf(defines, sizeof defines, "DEPTH_LINEAR %d\nDEPTH_MULTISAMPLE %d\n", input.depth_linear ? 1 : 0,
-                  input.depth_multisample ? 1 : 0);
+    char defines[128];
+    std::snprintf(defines, sizeof defines, "DEPTH_LINEAR %d\nDEPTH_MULTISAMPLE %d\nOBSCURA_CPU_RASTERISER %d\n",
+                  input.depth_linear ? 1 : 0, input.depth_multisample ? 1 : 0, env.cpu_renderer ? 1 : 0);
     return env.build("depth_prepare.comp", defines, &program);
 }
 

@@ -72,13 +72,13 @@ Error LsaoPass::prepare(const PassEnv& env, const obscura_lsao_settings& setting
     char defines[320];
     std::snprintf(defines, sizeof defines,
                   "OBSCURA_LSAO_ALIGNED %d\nOBSCURA_LSAO_HULL_CAPACITY %d\nOBSCURA_LSAO_EXACT_SWEEP %d\n"
-                  "OBSCURA_LSAO_TANGENT_STRATEGY %d\nOBSCURA_LSAO_CPU_RASTERISER %d\n",
+                  "OBSCURA_LSAO_TANGENT_STRATEGY %d\nOBSCURA_CPU_RASTERISER %d\n",
                   aligned, settings.hull_capacity, settings.exact == OBSCURA_TOGGLE_ON ? 1 : 0,
                   settings.tangent_strategy, cpu);
     Error error = program_for(env, "line_sweep.comp", defines, &sweep_variants_, &sweep_program_);
     if (error) return error;
     std::snprintf(defines, sizeof defines,
-                  "OBSCURA_LSAO_ALIGNED %d\nOBSCURA_LSAO_NORMAL_TEST %d\nOBSCURA_LSAO_CPU_RASTERISER %d\n"
+                  "OBSCURA_LSAO_ALIGNED %d\nOBSCURA_LSAO_NORMAL_TEST %d\nOBSCURA_CPU_RASTERISER %d\n"
                   "OBSCURA_LSAO_DIRECTIONS %d\nOBSCURA_LSAO_GATHER_MARGIN %d\nOBSCURA_LSAO_GATHER_BATCH %d\n",
                   aligned, settings.normal_test == OBSCURA_TOGGLE_ON ? 1 : 0, cpu, settings.directions,
                   lsao_gather_margin(settings), cpu ? 1 : std::min(settings.directions, kLsaoGatherBatch));

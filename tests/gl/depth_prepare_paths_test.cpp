@@ -1,0 +1,139 @@
+// The depth preparation pass (sdk/src/passes/depth_prepare.*, sdk/glsl/depth_prepare.comp) run directly:
+// a GPU's program shares the depths a normal reconstruction reads through a tile in shared memory, a CPU
+// rasteriser's fetches them. Both must give the same linear depths and normals, at the texture's edges,
+// next to sky and with host normals too.
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "frame_input.h"
+#include "pass_test_support.h"
+#include "passes/depth_prepare.h"
+
+namespace {
+
+namespace gl = obscura::gl;
+
+// Not a multiple of the 8x8 groups, so the last groups are partial.
+constexpr int kWidth = 53, kHeight = 37;
+
+class DepthPreparePaths : public obscura_pass_test::PassTest {
+protected:
+    void SetUp() override {
+        PassTest::SetUp();
+        // Linear view depth: a tilted wavy wall, a box in front of it, a crease and a sky corner.
+        std::vector<float> depth(size_t(kWidth) * kHeight);
+        for (int y = 0; y < kHeight; ++y)
+            for (int x = 0; x < kWidth; ++x) {
+                float d = 5.0f + 0.03f * x + 0.5f * std::sin(x * 0.3f) * std::cos(y * 0.2f);
+                if (x >= 20 && x < 31 && y >= 9 && y < 22) d = 3.5f;
+                if (x >= 40) d -= 0.08f * float(x - 40);  // a crease
+                if (x + y < 8) d = INFINITY;              // sky
+                depth[size_t(y) * kWidth + x] = d;
+            }
+        std::vector<float> normals(size_t(kWidth) * kHeight * 4);
+        for (size_t i = 0; i < normals.size(); i += 4) {
+            normals[i] = 0.3f * std::sin(float(i));
+            normals[i + 1] = 0.2f;
+            normals[i + 2] = 0.9f;
+            normals[i + 3] = 0.0f;
+        }
+        host_depth_ = gl::Texture2D::create(gl_, GL_R32F, kWidth, kHeight);
+        host_normals_ = gl::Texture2D::create(gl_, GL_RGBA32F, kWidth, kHeight);
+        gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        gl_.BindTexture(GL_TEXTURE_2D, host_depth_.name());
+        gl_.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kWidth, kHeight, GL_RED, GL_FLOAT, depth.data());
+        gl_.BindTexture(GL_TEXTURE_2D, host_normals_.name());
+        gl_.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kWidth, kHeight, GL_RGBA, GL_FLOAT, normals.data());
+        gl_.BindTexture(GL_TEXTURE_2D, 0);
+        resources_.width = kWidth;
+        resources_.height = kHeight;
+        resources_.linear_depth = gl::Texture2D::create(gl_, GL_R32F, kWidth, kHeight);
+        resources_.normals = gl::Texture2D::create(gl_, GL_RG16_SNORM, kWidth, kHeight);
+
+        input_.depth_texture = host_depth_.name();
+        input_.depth_linear = true;
+        input_.width = kWidth;
+        input_.height = kHeight;
+        // A 60-degree perspective over the whole texture.
+        const float f = 1.0f / std::tan(0.5f * 1.0471976f), n = 0.1f, far_plane = 100.0f;
+        frame_ = {};
+        frame_.proj_scale[0] = f * kHeight / kWidth;
+        frame_.proj_scale[1] = f;
+        frame_.proj_depth[0] = (far_plane + n) / (n - far_plane);
+        frame_.proj_depth[1] = 2.0f * far_plane * n / (n - far_plane);
+        frame_.proj_depth[2] = -1.0f;
+        frame_.proj_offset[2] = 2.0f;
+        frame_.proj_offset[3] = -1.0f;
+        frame_.depth_params[0] = 1.0f;
+        frame_.depth_params[1] = 1.0f;
+        frame_.depth_params[2] = 1.0f / kWidth;
+        frame_.depth_params[3] = 1.0f / kHeight;
+        frame_.depth_size[0] = kWidth;
+        frame_.depth_size[1] = kHeight;
+        frame_.depth_size[2] = OBSCURA_DEPTH_SOURCE_LINEAR;
+        frame_.work_rect[2] = kWidth;
+        frame_.work_rect[3] = kHeight;
+    }
+
+    struct Prepared {
+        std::vector<float> depth;
+        std::vector<int16_t> normals;
+    };
+
+    Prepared prepare(int normal_mode) {
+        obscura::DepthPreparePass pass;  // a new one: the program depends on cpu_renderer_
+        input_.normal_texture = normal_mode == OBSCURA_NORMALS_RECONSTRUCT ? 0 : host_normals_.name();
+        input_.normal_mode = normal_mode;
+        frame_.depth_size[3] = normal_mode;
+        EXPECT_FALSE(pass.prepare(env(), input_));
+        arena_.reset(256);
+        GLint alignment = 256;
+        gl_.GetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);
+        arena_.reset(alignment);
+        const obscura::UniformRange frame = arena_.push(frame_);
+        arena_.upload(gl_, uniforms_.name());
+        pass.run(env(), input_, frame, resources_);
+        gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
+        Prepared out;
+        out.depth.assign(size_t(kWidth) * kHeight, -1.0f);
+        out.normals.assign(size_t(kWidth) * kHeight * 2, int16_t(-12345));
+        gl_.PixelStorei(GL_PACK_ALIGNMENT, 2);
+        gl_.BindTexture(GL_TEXTURE_2D, resources_.linear_depth.name());
+        gl_.GetTexImage(GL_TEXTURE_2D, 0, GL_RED, GL_FLOAT, out.depth.data());
+        gl_.BindTexture(GL_TEXTURE_2D, resources_.normals.name());
+        gl_.GetTexImage(GL_TEXTURE_2D, 0, GL_RG, GL_SHORT, out.normals.data());
+        gl_.BindTexture(GL_TEXTURE_2D, 0);
+        return out;
+    }
+
+    gl::Texture2D host_depth_, host_normals_;
+    obscura::FrameInput input_;
+    FrameConstants frame_ = {};
+    obscura::FrameResources resources_;
+};
+
+TEST_F(DepthPreparePaths, SharedMemoryTileMatchesTexelFetches) {
+    for (int mode : {OBSCURA_NORMALS_RECONSTRUCT, OBSCURA_NORMALS_SIGNED}) {
+        cpu_renderer_ = true;
+        const Prepared cpu = prepare(mode);
+        cpu_renderer_ = false;
+        const Prepared gpu = prepare(mode);
+        const std::string name = "normal mode " + std::to_string(mode);
+        int depth_different = 0, normals_different = 0, sky = 0, tilted = 0;
+        for (size_t i = 0; i < cpu.depth.size(); ++i) {
+            depth_different += std::memcmp(&cpu.depth[i], &gpu.depth[i], sizeof(float)) != 0;
+            normals_different += cpu.normals[2 * i] != gpu.normals[2 * i] || cpu.normals[2 * i + 1] != gpu.normals[2 * i + 1];
+            sky += cpu.depth[i] > 1e29f;
+            tilted += std::abs(int(gpu.normals[2 * i])) > 1000;  // octahedral x of a normal that is not +z
+        }
+        EXPECT_EQ(depth_different, 0) << name;
+        EXPECT_EQ(normals_different, 0) << name;
+        EXPECT_GT(sky, 20) << name << ": the sky corner";
+        EXPECT_GT(tilted, kWidth * kHeight / 4) << name << ": the wall is tilted and wavy, the host normals too";
+    }
+}
+
+}  // namespace
