@@ -58,14 +58,14 @@ for what in "$@"; do
     lsao)
       # Sweep parallelism: whole lines vs segments of several lengths and warm-up tolerances.
       bench --scene atrium --sizes 1920x1080 \
-            --methods lsao:segment_steps=-1,lsao,lsao:segment_steps=64,lsao:segment_steps=256,lsao:warmup_stride=1,lsao:warmup_stride=2,lsao:warmup_stride=8,lsao:warmup_stride=16,lsao:warmup_tolerance=0.01,lsao:warmup_tolerance=0.2,lsao:hull_capacity=16,lsao:hull_capacity=64,lsao:hull_capacity=16:segment_steps=-1,lsao:hull_capacity=64:segment_steps=-1,lsao:hull_capacity=16:warmup_stride=8,lsao:radius=0.1,lsao:radius=10,lsao:radius=10:warmup_stride=8,lsao:preset=1,lsao:preset=3,lsao:preset=4,hbao:directions=16:steps=48,hbao,sao \
+            --methods lsao:segment_steps=-1,lsao,lsao:segment_steps=64,lsao:segment_steps=256,lsao:warmup_stride=1,lsao:warmup_stride=2,lsao:warmup_stride=8,lsao:warmup_stride=16,lsao:warmup_tolerance=0.01,lsao:warmup_tolerance=0.2,lsao:hull_capacity=16,lsao:hull_capacity=64,lsao:hull_capacity=16:segment_steps=-1,lsao:hull_capacity=64:segment_steps=-1,lsao:hull_capacity=16:warmup_stride=8,lsao:hull_capacity=32,lsao:radius=0.1,lsao:radius=10,lsao:radius=10:warmup_stride=8,lsao:preset=1,lsao:preset=3,lsao:preset=4,hbao:directions=16:steps=48,hbao,sao \
             --json "$out/lsao.json" 2>&1 | grep -E '^[a-z].* @ |total|line_sweep|gather' | tee "$out/lsao.txt"
       ;;
     lsao-error)
       # What the segments cost against whole-line sweeps and the exact (brute-force) sweep, per scene, at
       # 1920x1080: mean absolute difference of the AO images (obscura diff).
       mkdir -p "$out/img"
-      variants=(lsao:exact=on lsao:segment_steps=-1 lsao lsao:warmup_stride=1 lsao:warmup_stride=8 lsao:warmup_tolerance=0.2 lsao:hull_capacity=16 lsao:hull_capacity=64)
+      variants=(lsao:exact=on lsao:segment_steps=-1 lsao lsao:warmup_stride=1 lsao:warmup_stride=8 lsao:warmup_tolerance=0.2 lsao:hull_capacity=16 lsao:hull_capacity=32 lsao:hull_capacity=64)
       for scene in atrium terrain objects clutter analytic room; do
         for v in "${variants[@]}"; do
           name="${scene}_$(echo "$v" | tr ':=' '__')"

@@ -143,7 +143,7 @@ const obscura_setting_info kLsaoSettings[] = {
     {"tangent_strategy", OBSCURA_SETTING_INT, 3, 1, 3, "",
      "1: receiver's tangent for hull and occlusion; 2: fixed for the hull, receiver's for occlusion; 3: fixed",
      OBSCURA_LSAO_FIELD(tangent_strategy)},
-    {"hull_capacity", OBSCURA_SETTING_INT, 32, 2, OBSCURA_LSAO_MAX_HULL, "",
+    {"hull_capacity", OBSCURA_SETTING_INT, 24, 2, OBSCURA_LSAO_MAX_HULL, "",
      "points kept per line; the oldest is dropped when full", OBSCURA_LSAO_FIELD(hull_capacity)},
     {"exact", OBSCURA_SETTING_TOGGLE, 0, 0, 1, "", "brute-force largest occluder instead of the hull (validation)",
      OBSCURA_LSAO_FIELD(exact)},

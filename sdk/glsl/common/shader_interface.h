@@ -54,7 +54,7 @@
 #define OBSCURA_SAO_GROUP_Y 8
 #define OBSCURA_SAO_MAX_SAMPLES 64
 // LSAO: one invocation per line segment, 64 per group, each keeping its hull in shared memory (64 x hull
-// capacity x 8 bytes: 16 KiB at the default 32 points, 32 KiB, GL's guaranteed minimum, at the most);
+// capacity x 8 bytes: 12 KiB at the default 24 points, 32 KiB, GL's guaranteed minimum, at the most);
 // the gather in 8x8 groups on CPU rasterisers and 16x16 on GPUs, whose groups share a tile of depths.
 #define OBSCURA_LSAO_SWEEP_GROUP 64
 #define OBSCURA_LSAO_GATHER_GROUP_X 8
