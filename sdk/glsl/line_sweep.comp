@@ -69,6 +69,11 @@ const int kCapacity = OBSCURA_LSAO_HULL_CAPACITY;
 #ifndef OBSCURA_LSAO_TANGENT_STRATEGY
 #error "OBSCURA_LSAO_TANGENT_STRATEGY must be defined"
 #endif
+// Whether lines are cut into segments with warm-ups (compiled in: whole lines, the default on CPU
+// rasterisers, carry none of the warm-up code, whose loops a CPU rasteriser would still step through).
+#ifndef OBSCURA_LSAO_SEGMENTS
+#error "OBSCURA_LSAO_SEGMENTS must be defined"
+#endif
 
 // Where the hull lives (compiled in). CPU rasterisers (OBSCURA_CPU_RASTERISER 1) reach shared memory one
 // invocation at a time and a private array with vector gathers (llvmpipe, 1280x720, r = 10 m: sweep 61 ms
@@ -256,20 +261,21 @@ void main() {
     g_begin = segment_steps > 0 ? int(gl_GlobalInvocationID.y) * segment_steps : 0;
     if (g_begin >= g_line.steps) return;
     g_end = segment_steps > 0 ? min(g_line.steps, g_begin + segment_steps) : g_line.steps;
-    int warm_begin = g_begin - warmup_steps(g_line, g_begin, g_end);
     setup_slice(lsao_sample_point(g_line, g_line.first_step));
 
     // Blocks of 8 samples whose depths are all fetched before the first is used: the hull's loop-carried
     // work cannot hide a fetch's latency, eight fetches in flight can.
+    int dense_begin = 0, strided_steps = 0;
+#if OBSCURA_LSAO_SEGMENTS
     // The warm-up's far part at a stride (the falloff leaves far occluders little weight, and a coarse hull of
     // them casts nearly the same), ending kDenseWarmup steps before the segment, which are swept densely: the
     // segment's first receivers see their nearest occluders at full resolution. Blocks of 8 strided samples,
     // aligned to end at the dense part; samples before the warm-up's start are skipped.
     // The dense part starts on a multiple of 8, like the segment, so every block of the segment is one
     // aligned store of 8 halves.
-    int dense_begin = max(warm_begin, g_begin - kDenseWarmup) & ~7;
+    int warm_begin = g_begin - warmup_steps(g_line, g_begin, g_end);
+    dense_begin = max(warm_begin, g_begin - kDenseWarmup) & ~7;
     int stride = max(lsao.sweep.x, 1);
-    int strided_steps = 0;
     for (int base = dense_begin - ((dense_begin - warm_begin + 8 * stride - 1) / (8 * stride)) * 8 * stride;
          base < dense_begin; base += 8 * stride) {
         vec2 q[8];
@@ -284,20 +290,26 @@ void main() {
             ++strided_steps;
         }
     }
+#endif
+    // Written out rather than as loops over arrays: a compiler that does not unroll a loop around the
+    // inlined step keeps the arrays in memory (llvmpipe's sweep took 23 % longer).
     for (int i = dense_begin; i < g_end; i += 8) {
-        vec2 q[8];
-        float qd[8];
-        for (int u = 0; u < 8; ++u) {
-            q[u] = block_point(i + u);
-            qd[u] = sample_depth(q[u]);
-        }
+        vec2 p0 = block_point(i), p1 = block_point(i + 1), p2 = block_point(i + 2), p3 = block_point(i + 3);
+        vec2 p4 = block_point(i + 4), p5 = block_point(i + 5), p6 = block_point(i + 6), p7 = block_point(i + 7);
+        float d0 = sample_depth(p0), d1 = sample_depth(p1), d2 = sample_depth(p2), d3 = sample_depth(p3);
+        float d4 = sample_depth(p4), d5 = sample_depth(p5), d6 = sample_depth(p6), d7 = sample_depth(p7);
         // Past the segment's end (its last block) the padding is 0.
-        float v[8];
-        for (int u = 0; u < 8; ++u) v[u] = i + u < g_end ? sweep_step(i + u, q[u], qd[u]) : 0.0;
+        float v0 = sweep_step(i, p0, d0);
+        float v1 = i + 1 < g_end ? sweep_step(i + 1, p1, d1) : 0.0;
+        float v2 = i + 2 < g_end ? sweep_step(i + 2, p2, d2) : 0.0;
+        float v3 = i + 3 < g_end ? sweep_step(i + 3, p3, d3) : 0.0;
+        float v4 = i + 4 < g_end ? sweep_step(i + 4, p4, d4) : 0.0;
+        float v5 = i + 5 < g_end ? sweep_step(i + 5, p5, d5) : 0.0;
+        float v6 = i + 6 < g_end ? sweep_step(i + 6, p6, d6) : 0.0;
+        float v7 = i + 7 < g_end ? sweep_step(i + 7, p7, d7) : 0.0;
         if (i >= g_begin) {
-            lsao_values[(g_offset + i) >> 3] =
-                uvec4(packHalf2x16(vec2(v[0], v[1])), packHalf2x16(vec2(v[2], v[3])),
-                      packHalf2x16(vec2(v[4], v[5])), packHalf2x16(vec2(v[6], v[7])));
+            lsao_values[(g_offset + i) >> 3] = uvec4(packHalf2x16(vec2(v0, v1)), packHalf2x16(vec2(v2, v3)),
+                                                     packHalf2x16(vec2(v4, v5)), packHalf2x16(vec2(v6, v7)));
         }
     }
     // Counters for tests only: thousands of invocations adding to one address would serialise.

@@ -72,9 +72,9 @@ Error LsaoPass::prepare(const PassEnv& env, const obscura_lsao_settings& setting
     char defines[320];
     std::snprintf(defines, sizeof defines,
                   "OBSCURA_LSAO_ALIGNED %d\nOBSCURA_LSAO_HULL_CAPACITY %d\nOBSCURA_LSAO_EXACT_SWEEP %d\n"
-                  "OBSCURA_LSAO_TANGENT_STRATEGY %d\nOBSCURA_CPU_RASTERISER %d\n",
+                  "OBSCURA_LSAO_TANGENT_STRATEGY %d\nOBSCURA_CPU_RASTERISER %d\nOBSCURA_LSAO_SEGMENTS %d\n",
                   aligned, settings.hull_capacity, settings.exact == OBSCURA_TOGGLE_ON ? 1 : 0,
-                  settings.tangent_strategy, cpu);
+                  settings.tangent_strategy, cpu, lsao_segment_steps(settings, env.cpu_renderer) > 0 ? 1 : 0);
     Error error = program_for(env, "line_sweep.comp", defines, &sweep_variants_, &sweep_program_);
     if (error) return error;
     std::snprintf(defines, sizeof defines,
