@@ -57,25 +57,7 @@ protected:
         input_.depth_linear = true;
         input_.width = kWidth;
         input_.height = kHeight;
-        // A 60-degree perspective over the whole texture.
-        const float f = 1.0f / std::tan(0.5f * 1.0471976f), n = 0.1f, far_plane = 100.0f;
-        frame_ = {};
-        frame_.proj_scale[0] = f * kHeight / kWidth;
-        frame_.proj_scale[1] = f;
-        frame_.proj_depth[0] = (far_plane + n) / (n - far_plane);
-        frame_.proj_depth[1] = 2.0f * far_plane * n / (n - far_plane);
-        frame_.proj_depth[2] = -1.0f;
-        frame_.proj_offset[2] = 2.0f;
-        frame_.proj_offset[3] = -1.0f;
-        frame_.depth_params[0] = 1.0f;
-        frame_.depth_params[1] = 1.0f;
-        frame_.depth_params[2] = 1.0f / kWidth;
-        frame_.depth_params[3] = 1.0f / kHeight;
-        frame_.depth_size[0] = kWidth;
-        frame_.depth_size[1] = kHeight;
-        frame_.depth_size[2] = OBSCURA_DEPTH_SOURCE_LINEAR;
-        frame_.work_rect[2] = kWidth;
-        frame_.work_rect[3] = kHeight;
+        frame_ = obscura_pass_test::perspective_linear_depth_frame(kWidth, kHeight, input_.projection.m);
     }
 
     struct Prepared {
@@ -89,7 +71,6 @@ protected:
         input_.normal_mode = normal_mode;
         frame_.depth_size[3] = normal_mode;
         EXPECT_FALSE(pass.prepare(env(), input_));
-        arena_.reset(256);
         GLint alignment = 256;
         gl_.GetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);
         arena_.reset(alignment);

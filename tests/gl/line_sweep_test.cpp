@@ -46,34 +46,9 @@ protected:
         gl_.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kWidth, kHeight, GL_RG, GL_SHORT, normals.data());
         gl_.BindTexture(GL_TEXTURE_2D, 0);
 
-        // A 60-degree perspective over the whole texture, near 0.1, far 100.
-        const float f = 1.0f / std::tan(0.5f * 1.0471976f), n = 0.1f, far_plane = 100.0f;
-        float* m = input_.projection.m;
-        for (int i = 0; i < 16; ++i) m[i] = 0.0f;
-        m[0] = f * kHeight / kWidth;
-        m[5] = f;
-        m[10] = (far_plane + n) / (n - far_plane);
-        m[11] = -1.0f;
-        m[14] = 2.0f * far_plane * n / (n - far_plane);
         input_.width = kWidth;
         input_.height = kHeight;
-        frame_ = {};
-        frame_.proj_scale[0] = m[0];
-        frame_.proj_scale[1] = m[5];
-        frame_.proj_depth[0] = m[10];
-        frame_.proj_depth[1] = m[14];
-        frame_.proj_depth[2] = m[11];
-        frame_.proj_offset[2] = 2.0f;
-        frame_.proj_offset[3] = -1.0f;
-        frame_.depth_params[0] = 1.0f;
-        frame_.depth_params[1] = 1.0f;
-        frame_.depth_params[2] = 1.0f / kWidth;
-        frame_.depth_params[3] = 1.0f / kHeight;
-        frame_.depth_size[0] = kWidth;
-        frame_.depth_size[1] = kHeight;
-        frame_.depth_size[2] = OBSCURA_DEPTH_SOURCE_LINEAR;
-        frame_.work_rect[2] = kWidth;
-        frame_.work_rect[3] = kHeight;
+        frame_ = obscura_pass_test::perspective_linear_depth_frame(kWidth, kHeight, input_.projection.m);
     }
 
     struct Sweep {

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "gl/gl_api.h"
 #include "gl/gl_objects.h"
 #include "headless_gl.h"
@@ -18,6 +20,36 @@ inline obscura::samples::HeadlessGL& shared_gl() {
     // Leaked on purpose, as in gl_test_support.cpp: Mesa's own exit handlers must not race its destruction.
     static obscura::samples::HeadlessGL* context = new obscura::samples::HeadlessGL();
     return *context;
+}
+
+// A GL perspective of 60 degrees vertically over a whole width x height texture, near 0.1, far 100, into
+// `matrix` (column-major), and the frame constants of a linear-depth input of that size under it.
+inline FrameConstants perspective_linear_depth_frame(int width, int height, float matrix[16]) {
+    const float f = 1.0f / std::tan(0.5f * 1.0471976f), n = 0.1f, far_plane = 100.0f;
+    for (int i = 0; i < 16; ++i) matrix[i] = 0.0f;
+    matrix[0] = f * float(height) / float(width);
+    matrix[5] = f;
+    matrix[10] = (far_plane + n) / (n - far_plane);
+    matrix[11] = -1.0f;
+    matrix[14] = 2.0f * far_plane * n / (n - far_plane);
+    FrameConstants frame = {};
+    frame.proj_scale[0] = matrix[0];
+    frame.proj_scale[1] = matrix[5];
+    frame.proj_depth[0] = matrix[10];
+    frame.proj_depth[1] = matrix[14];
+    frame.proj_depth[2] = matrix[11];
+    frame.proj_offset[2] = 2.0f;
+    frame.proj_offset[3] = -1.0f;
+    frame.depth_params[0] = 1.0f;
+    frame.depth_params[1] = 1.0f;
+    frame.depth_params[2] = 1.0f / float(width);
+    frame.depth_params[3] = 1.0f / float(height);
+    frame.depth_size[0] = width;
+    frame.depth_size[1] = height;
+    frame.depth_size[2] = OBSCURA_DEPTH_SOURCE_LINEAR;
+    frame.work_rect[2] = width;
+    frame.work_rect[3] = height;
+    return frame;
 }
 
 class PassTest : public ::testing::Test {
