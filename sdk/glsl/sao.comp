@@ -16,16 +16,19 @@ layout(binding = OBSCURA_UNIT_LINEAR_DEPTH) uniform sampler2D u_z;  // the z pyr
 layout(binding = OBSCURA_UNIT_NORMALS) uniform sampler2D u_normals;
 layout(binding = OBSCURA_IMAGE_OUT0, rgba8) writeonly uniform image2D u_packed;
 
-const float kTwoPi = 6.28318530718;
 const int kGroupSize = OBSCURA_SAO_GROUP_X * OBSCURA_SAO_GROUP_Y;
 shared float s_visibility[kGroupSize];
 shared float s_depth[kGroupSize];
 
-// Eq. 8: phi = 30 x' ^ y' + 10 x' y' (radians), reduced to [0, 2 pi) before the one sin/cos per pixel.
+// Eq. 8: phi = 30 x' ^ y' + 10 x' y' (radians), reduced to [0, 2 pi) before the one sin/cos per pixel. The
+// integer is exact; it is reduced in double precision (SaoPass's spiral_rotation does the same), because a
+// float's reduction (a spacing of 4 at 10 x' y' = 4e7) left GPUs and llvmpipe with unrelated angles for
+// the same pixel, and so with other images.
 vec2 rotation(ivec2 p) {
     uvec2 u = uvec2(p);
-    float phi = float((30u * u.x) ^ u.y) + float(10u * u.x * u.y);
-    phi -= kTwoPi * floor(phi * (1.0 / kTwoPi));
+    double n = double((30u * u.x) ^ u.y) + double(10u * u.x * u.y);
+    double turns = n * (1.0LF / 6.283185307179586LF);
+    float phi = float((turns - floor(turns)) * 6.283185307179586LF);
     return vec2(cos(phi), sin(phi));
 }
 

@@ -47,12 +47,12 @@ TEST(SaoSpiral, AnglesAndRadiiAreEvenlySpaced) {
 }
 
 TEST(SaoSpiral, RotationIsEquation8) {
-    // phi = 30 x ^ y + 10 x y, reduced to [0, 2 pi).
-    for (int y = 0; y < 40; y += 3)
-        for (int x = 0; x < 40; x += 5) {
-            double phi = double((30 * x) ^ y) + 10.0 * x * y;
-            phi = std::fmod(phi, kTwoPi);
-            EXPECT_NEAR(obscura::spiral_rotation(x, y), phi, 2e-3) << x << ", " << y;
+    // phi = 30 x ^ y + 10 x y, reduced to [0, 2 pi), at 4K coordinates too (10 x y up to 8e7, where a float
+    // reduction is off by radians).
+    for (int y = 0; y < 2200; y += 37)
+        for (int x = 0; x < 3900; x += 53) {
+            const long double phi = std::fmod((long double)((30 * x) ^ y) + 10.0L * x * y, 2.0L * 3.14159265358979323846L);
+            EXPECT_NEAR(obscura::spiral_rotation(x, y), double(phi), 1e-5) << x << ", " << y;
         }
 }
 

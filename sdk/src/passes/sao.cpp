@@ -17,10 +17,9 @@ SpiralTap spiral_tap(int i, int samples, int turns) {
 
 float spiral_rotation(int x, int y) {
     const uint32_t ux = uint32_t(x), uy = uint32_t(y);
-    float phi = float((30u * ux) ^ uy) + float(10u * ux * uy);
-    const float two_pi = 6.28318530718f;
-    phi -= two_pi * std::floor(phi * (1.0f / two_pi));
-    return phi;
+    const double n = double((30u * ux) ^ uy) + double(10u * ux * uy);
+    const double turns = n * (1.0 / 6.283185307179586);
+    return float((turns - std::floor(turns)) * 6.283185307179586);
 }
 
 Error SaoPass::prepare(const PassEnv& env) {

@@ -16,7 +16,8 @@ struct SpiralTap {
 };
 SpiralTap spiral_tap(int i, int samples, int turns);
 
-// Eq. 8: the per-pixel rotation phi = 30 x ^ y + 10 x y in radians, reduced to [0, 2 pi) (the shader's).
+// Eq. 8: the per-pixel rotation phi = 30 x ^ y + 10 x y in radians, reduced to [0, 2 pi) in double
+// precision, as the shader does.
 float spiral_rotation(int x, int y);
 
 class SaoPass {
