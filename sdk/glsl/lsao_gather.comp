@@ -73,8 +73,9 @@ float candidate_depth(ivec2 texel) {
 }
 #endif
 
-// Directions per batch of value loads, compiled in: min(K, 16). On the H100 at 1080p, K = 16 took 0.59 ms
-// in batches of 4, 0.27 in batches of 8 and 0.24 in one of 16; K = 32 0.89 in batches of 8, 0.46 of 16.
+// Directions per batch of value loads, compiled in: min(K, 16) on GPUs (the H100 at 1080p: K = 16 took
+// 0.59 ms in batches of 4, 0.27 in batches of 8 and 0.24 in one of 16; K = 32 0.89 in batches of 8, 0.46
+// of 16), 1 on CPU rasterisers (llvmpipe keeps a batch's arrays in memory: its gather took twice as long).
 #ifndef OBSCURA_LSAO_GATHER_BATCH
 #error "OBSCURA_LSAO_GATHER_BATCH must be defined"
 #endif
