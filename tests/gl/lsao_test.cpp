@@ -110,6 +110,23 @@ TEST_F(Lsao, AlignedPatternNeedsEightNDirections) {
     EXPECT_NE(std::string(obscura_get_last_error(ctx())).find("8n"), std::string::npos);
 }
 
+// The sweep writes its values as one storage block (and CPU rasterisers read them as a buffer texture):
+// a layout over GL's bounds is refused with a status and a message, allocates nothing, leaves no GL error,
+// and the context then prepares a layout that fits.
+TEST_F(Lsao, LayoutOverTheBufferLimitsIsInvalidSize) {
+    obscura_settings settings = lsao_settings(1.0f);
+    settings.lsao.pattern = 2;  // free: any K, any D_S
+    settings.lsao.directions = 64;
+    settings.lsao.step_length = 0.5f;
+    settings.lsao.line_spacing = 0.5f;
+    // 64 x 1280 x 960 x 4 = 315 M values: over llvmpipe's 2^27-byte storage blocks and 2^27-texel buffers.
+    EXPECT_EQ(obscura_prepare(ctx(), 1280, 960, &settings), OBSCURA_STATUS_INVALID_SIZE);
+    const std::string message = obscura_get_last_error(ctx());
+    EXPECT_NE(message.find("sweep values"), std::string::npos) << message;
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+    EXPECT_EQ(obscura_prepare(ctx(), 160, 90, &settings), OBSCURA_OK) << obscura_get_last_error(ctx());
+}
+
 // ---- The hull against the brute force, on the scene library ---------------------------------------------
 
 // The paper: the obscure hull's answer differs from the largest occluder's in rare configurations, costing

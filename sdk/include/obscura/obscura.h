@@ -311,8 +311,8 @@ typedef struct obscura_lsao_settings {
                              hull's top is nearly always a near point: at 0.1 the AO moved by < 1e-5 on every
                              built-in scene (docs/performance.md), [1e-4, 1]. Default 0.1 */
     int32_t warmup_stride; /* segments: the warm-up samples every n-th step except its last 16 steps, which are
-                             dense: far occluders need less detail. At 4 the H100's sweep takes 0.50 instead of
-                             0.86 ms at 1080p and the AO moves by 0.0003 (atrium) to 0.0013 (clutter) mean
+                             dense: far occluders need less detail. At 4 the H100's sweep takes 0.38 instead of
+                             0.68 ms at 1080p and the AO moves by 0.0003 (atrium) to 0.0016 (clutter) mean
                              against whole lines (docs/performance.md), [1, 64]. Default 4 */
     float depth_threshold; /* gather: values whose depth differs by more than this fraction are rejected,
                              [1e-4, 10]. Default 0.05 */

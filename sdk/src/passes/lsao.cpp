@@ -89,25 +89,32 @@ Error LsaoPass::prepare(const PassEnv& env, const obscura_lsao_settings& setting
 
 Error LsaoPass::ensure_layout(const PassEnv& env, const obscura_lsao_settings& settings, int width, int height) {
     // Every frame asks: compare what the layout depends on before building anything.
-    const LayoutKey key{width, height, settings.pattern, settings.directions, settings.step_length,
-                        settings.line_spacing};
+    const LayoutKey key{width,      height, settings.pattern, settings.directions, settings.step_length,
+                        settings.line_spacing, env.cpu_renderer};
     if (lines_.name() != 0 && key == key_) return Error();
     const std::vector<LsaoDirection> directions = lsao_directions(settings);
     release();
     layout_ = make_lsao_layout(directions, settings.line_spacing, width, height, settings.pattern == 1);
     key_ = key;
     const gl::Table& gl = env.gl;
-    // The gather reads the values as a buffer texture, whose size GL bounds (at least 65536 texels in 4.3;
-    // 2^27 on current desktop drivers and llvmpipe, about 11x what K = 16 needs at 3840x2160 + 20 %).
+    // The sweep writes the values as one storage block, whose size GL bounds (at least 16 MiB in 4.3; 2 GiB
+    // on NVIDIA's driver, 128 MiB on llvmpipe, where K = 16 at 1920x1080 + 10 % takes 24 MiB). CPU
+    // rasterisers' gathers also read them as a buffer texture, which GL bounds in texels (at least 65536;
+    // 2^27 on llvmpipe). GPUs read storage buffers and create no buffer textures.
+    const long long values = static_cast<long long>(layout_.values);
+    GLint64 max_block_bytes = 0;
+    gl.GetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block_bytes);
     GLint max_texels = 0;
     gl.GetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
-    if (layout_.values + 2 > int64_t(max_texels)) {
-        const long long values = static_cast<long long>(layout_.values);
+    const bool over_block = values * 2 + 4 > max_block_bytes;
+    if (over_block || (env.cpu_renderer && values + 2 > max_texels)) {
         release();
         return Error::make(OBSCURA_STATUS_INVALID_SIZE,
-                           "LSAO at %dx%d needs %lld sweep values, over GL_MAX_TEXTURE_BUFFER_SIZE (%d): use fewer "
-                           "directions or larger step_length / line_spacing",
-                           width, height, values, max_texels);
+                           "LSAO at %dx%d needs %lld sweep values, over %s (%lld): use fewer directions or larger "
+                           "step_length / line_spacing",
+                           width, height, values,
+                           over_block ? "GL_MAX_SHADER_STORAGE_BLOCK_SIZE bytes" : "GL_MAX_TEXTURE_BUFFER_SIZE texels",
+                           over_block ? static_cast<long long>(max_block_bytes) : static_cast<long long>(max_texels));
     }
     std::vector<GpuLine> lines(layout_.lines.size());
     for (size_t i = 0; i < lines.size(); ++i) {
@@ -125,12 +132,13 @@ Error LsaoPass::ensure_layout(const PassEnv& env, const obscura_lsao_settings& s
     lines_ = gl::Buffer::create(gl, GL_SHADER_STORAGE_BUFFER, lines.size() * sizeof(GpuLine));
     values_ = gl::Buffer::create(gl, GL_SHADER_STORAGE_BUFFER, uint64_t(layout_.values) * 2 + 4);
     stats_ = gl::Buffer::create(gl, GL_SHADER_STORAGE_BUFFER, 16);
-    if (lines_.name() && values_.name()) {
+    if (env.cpu_renderer && lines_.name() && values_.name()) {
         gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_LSAO_LINES));  // a unit the StateGuard restores
         lines_texture_ = gl::create_buffer_texture(gl, GL_RGBA32UI, lines_.name());
         values_texture_ = gl::create_buffer_texture(gl, GL_R16F, values_.name());
     }
-    if (!lines_texture_ || !values_texture_ || !stats_.name()) {
+    const bool textures_ok = !env.cpu_renderer || (lines_texture_ && values_texture_);
+    if (!lines_.name() || !values_.name() || !textures_ok || !stats_.name()) {
         release();
         return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating LSAO's line buffers (%lld values) failed",
                            static_cast<long long>(layout_.values));
@@ -199,7 +207,7 @@ void LsaoPass::run_sweeps(const PassEnv& env, const obscura_lsao_settings& setti
     gl.UseProgram(sweep_program_);
     env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
     env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
-    env.bind_texture(OBSCURA_UNIT_LSAO_LINES, GL_TEXTURE_BUFFER, lines_texture_.name());
+    if (lines_texture_) env.bind_texture(OBSCURA_UNIT_LSAO_LINES, GL_TEXTURE_BUFFER, lines_texture_.name());
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_LSAO_LINES, lines_.name());
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_LSAO_VALUES, values_.name());
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_LSAO_STATS, stats_.name());
@@ -223,8 +231,10 @@ void LsaoPass::run_gather(const PassEnv& env, const UniformRange& frame, const U
     gl.UseProgram(gather_program_);
     env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
     env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
-    env.bind_texture(OBSCURA_UNIT_LSAO_LINES, GL_TEXTURE_BUFFER, lines_texture_.name());
-    env.bind_texture(OBSCURA_UNIT_LSAO_VALUES, GL_TEXTURE_BUFFER, values_texture_.name());
+    if (lines_texture_) {  // CPU rasterisers
+        env.bind_texture(OBSCURA_UNIT_LSAO_LINES, GL_TEXTURE_BUFFER, lines_texture_.name());
+        env.bind_texture(OBSCURA_UNIT_LSAO_VALUES, GL_TEXTURE_BUFFER, values_texture_.name());
+    }
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_LSAO_LINES, lines_.name());
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_LSAO_VALUES, values_.name());
     gl.BindImageTexture(OBSCURA_IMAGE_OUT0, resources.ao.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);

@@ -78,9 +78,10 @@ private:
     struct LayoutKey {
         int width = 0, height = 0, pattern = 0, directions = 0;
         float step_length = 0.0f, line_spacing = 0.0f;
+        bool cpu_renderer = false;  // whether the buffer textures exist
         bool operator==(const LayoutKey& o) const {
             return width == o.width && height == o.height && pattern == o.pattern && directions == o.directions &&
-                   step_length == o.step_length && line_spacing == o.line_spacing;
+                   step_length == o.step_length && line_spacing == o.line_spacing && cpu_renderer == o.cpu_renderer;
         }
     };
     LsaoLayout layout_;
@@ -89,8 +90,8 @@ private:
     gl::Buffer lines_;            // 16-byte line records
     gl::Buffer values_;           // the sweeps' halves, written as a storage buffer
     gl::Buffer stats_;
-    gl::Object lines_texture_;    // RGBA32UI over lines_
-    gl::Object values_texture_;   // R16F over values_
+    gl::Object lines_texture_;    // RGBA32UI over lines_ (CPU rasterisers only)
+    gl::Object values_texture_;   // R16F over values_ (CPU rasterisers only)
 };
 
 }  // namespace obscura
