@@ -21,6 +21,7 @@
 #include "common/depth.glsl"
 #include "common/normal_encoding.glsl"
 #include "common/hash.glsl"
+#include "common/falloff.glsl"
 
 layout(local_size_x = OBSCURA_REFERENCE_GROUP_X, local_size_y = OBSCURA_REFERENCE_GROUP_Y) in;
 
@@ -37,21 +38,8 @@ const float kMiss = -1.0;
 
 // ---- Falloff ---------------------------------------------------------------------------------------
 float reference_falloff(float d) {
-    float r = reference.falloff.x;
-    int kind = reference.config.x;
-    if (kind == OBSCURA_FALLOFF_KIND_RHO0) {
-        float c = reference.falloff.y;
-        return max(0.0, r * (1.0 + c) / (r + d * d) - c);
-    }
-    if (kind == OBSCURA_FALLOFF_KIND_INVERSE_QUADRATIC) return r / (r + d * d);
-    if (kind == OBSCURA_FALLOFF_KIND_EXPONENTIAL) return exp(-d * inversesqrt(r));
-    // Table: 16 values over [0, radius], linear in between, 0 beyond.
-    float x = d / reference.falloff.z * float(15);
-    if (!(x < 15.0)) return 0.0;
-    int i = int(floor(x));
-    float a = reference.table[i >> 2][i & 3];
-    float b = reference.table[(i + 1) >> 2][(i + 1) & 3];
-    return mix(a, b, x - float(i));
+    vec4 table[4] = reference.table;
+    return obscura_falloff(reference.config.x, d, reference.falloff, table);
 }
 
 // ---- Projection ------------------------------------------------------------------------------------

@@ -61,7 +61,7 @@ OBSCURA_API const char* obscura_method_name(obscura_method method) {
 OBSCURA_API int obscura_method_available(obscura_method method) {
     obscura_method resolved = obscura::resolve_method(method);
     return resolved == OBSCURA_METHOD_HBAO || resolved == OBSCURA_METHOD_SAO || resolved == OBSCURA_METHOD_LSAO ||
-                   resolved == OBSCURA_METHOD_REFERENCE
+                   resolved == OBSCURA_METHOD_FFAO || resolved == OBSCURA_METHOD_REFERENCE
                ? 1
                : 0;
 }

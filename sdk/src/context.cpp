@@ -154,6 +154,7 @@ Error Context::initialize() {
         {reinterpret_cast<const void*>(gl_.BindImageTexture), "glBindImageTexture"},
         {reinterpret_cast<const void*>(gl_.MemoryBarrier), "glMemoryBarrier"},
         {reinterpret_cast<const void*>(gl_.TexStorage2D), "glTexStorage2D"},
+        {reinterpret_cast<const void*>(gl_.TexStorage3D), "glTexStorage3D"},
         {reinterpret_cast<const void*>(gl_.TexBuffer), "glTexBuffer"},
         {reinterpret_cast<const void*>(gl_.QueryCounter), "glQueryCounter"},
         {reinterpret_cast<const void*>(gl_.GetQueryObjectui64v), "glGetQueryObjectui64v"},
@@ -219,7 +220,9 @@ obscura_status Context::report(const Error& error) {
     return error.status();
 }
 
-uint64_t Context::memory_bytes() const { return resources_.bytes() + uniform_buffer_.bytes() + lsao_.bytes(); }
+uint64_t Context::memory_bytes() const {
+    return resources_.bytes() + uniform_buffer_.bytes() + lsao_.bytes() + ffao_.bytes();
+}
 
 Error Context::check_gl_context() {
     const GLubyte* version = gl_.GetString(GL_VERSION);
@@ -261,6 +264,7 @@ Error Context::ensure_resources(int width, int height) {
 void Context::release_resources() {
     resources_ = FrameResources();
     lsao_.release();
+    ffao_.release();
 }
 
 Error Context::ensure_reference_accumulator() {
@@ -302,6 +306,11 @@ Error Context::ensure_method_resources(const obscura_settings& settings) {
             return ensure_sao_resources(
                 ZPyramidPass::level_count(resources_.width, resources_.height, SaoPass::wanted_levels(settings.sao)));
         case OBSCURA_METHOD_LSAO: return lsao_.ensure_layout(env(), settings.lsao, resources_.width, resources_.height);
+        case OBSCURA_METHOD_FFAO: {
+            Error error = ffao_.prepare(env());
+            if (error) return error;
+            return ffao_.ensure_layout(env(), settings.ffao, resources_.width, resources_.height);
+        }
         default: return Error();
     }
 }
@@ -491,6 +500,7 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
     float radius = method == OBSCURA_METHOD_REFERENCE ? settings.reference.radius
                    : method == OBSCURA_METHOD_SAO     ? sao.radius
                    : method == OBSCURA_METHOD_LSAO    ? settings.lsao.radius
+                   : method == OBSCURA_METHOD_FFAO    ? settings.ffao.radius
                                                      : hbao.radius;
     float debug_depth_scale = 1.0f / (4.0f * radius * input.meters_to_view_units);
 
@@ -507,7 +517,7 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
     UniformRange frame_blur_x =
         uniforms_.push(frame_constants(input, composite_target, plan.blur_x_region, debug_depth_scale));
     UniformRange frame_blur_y = uniforms_.push(frame_constants(input, composite_target, rect, debug_depth_scale));
-    UniformRange method_pass, blur_x_pass, blur_y_pass;
+    UniformRange method_pass, blur_x_pass, blur_y_pass, table_pass;
     UniformRange pyramid_passes[4];
     switch (method) {
         case OBSCURA_METHOD_REFERENCE:
@@ -515,6 +525,10 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
             break;
         case OBSCURA_METHOD_LSAO:
             method_pass = uniforms_.push(lsao_.constants(settings.lsao, input, cpu_renderer_));
+            break;
+        case OBSCURA_METHOD_FFAO:
+            method_pass = uniforms_.push(ffao_.constants(settings.ffao, input));
+            table_pass = uniforms_.push(FfaoPass::table_constants(settings.ffao));
             break;
         case OBSCURA_METHOD_SAO:
             for (int d = 0; d < pyramid_dispatches && d < 4; ++d) {
@@ -559,6 +573,23 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
         if (!error) {
             lsao_.run_gather(pass_env, frame_ao, method_pass, plan.ao_region, resources_);
             error = after_pass("gather");
+        }
+    } else if (!error && method == OBSCURA_METHOD_FFAO) {
+        if (ffao_.table_stale(settings.ffao)) {
+            ffao_.run_table(pass_env, settings.ffao, table_pass);
+            error = after_pass("ffao_table");
+        }
+        if (!error) {
+            ffao_.run_scan(pass_env, frame_whole, method_pass, resources_);
+            error = after_pass("ffao_scan");
+        }
+        if (!error) {
+            ffao_.run_prefix(pass_env, frame_whole, method_pass);
+            error = after_pass("ffao_prefix");
+        }
+        if (!error) {
+            ffao_.run_obscurance(pass_env, frame_ao, method_pass, plan.ao_region, resources_);
+            error = after_pass("ffao_obscurance");
         }
     } else if (!error && method == OBSCURA_METHOD_SAO) {
         if (sao_levels > 1) {

@@ -12,6 +12,7 @@
 #include "passes/bilateral_blur.h"
 #include "passes/composite.h"
 #include "passes/depth_prepare.h"
+#include "passes/ffao.h"
 #include "passes/hbao.h"
 #include "passes/lsao.h"
 #include "passes/pass_common.h"
@@ -87,6 +88,7 @@ private:
     SaoPass sao_;
     SaoBlurPass sao_blur_;
     LsaoPass lsao_;
+    FfaoPass ffao_;
     BilateralBlurPass blur_;
     CompositePass composite_;
     FrameResources resources_;

@@ -167,6 +167,34 @@ const obscura_setting_info kLsaoSettings[] = {
 
 #undef OBSCURA_LSAO_FIELD
 
+#define OBSCURA_FFAO_FIELD(field) offsetof(obscura_settings, ffao) + offsetof(obscura_ffao_settings, field)
+
+// FFAO (Timonen, HPG 2013). Defaults are the paper's: K = 16x2, B0 = 10, an exponential falloff. The falloff
+// fields mirror the reference's, so obscura_reference_settings_for() gives its exact ground truth.
+const obscura_setting_info kFfaoSettings[] = {
+    {"radius", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 1e4, "m",
+     "where rho0 (with the default decay rate) and the falloff table reach zero", OBSCURA_FFAO_FIELD(radius)},
+    {"falloff", OBSCURA_SETTING_INT, 3, 1, 4, "",
+     "1: rho0 (LSAO eq. 3); 2: inverse quadratic r/(r+d^2); 3: exponential exp(-d/sqrt(r)); 4: table",
+     OBSCURA_FFAO_FIELD(falloff)},
+    {"falloff_c", OBSCURA_SETTING_FLOAT, 0.3, 1e-3, 0.999, "", "C of rho0(d) = max(0, r(1+C)/(r+d^2) - C)",
+     OBSCURA_FFAO_FIELD(falloff_c)},
+    {"decay_rate", OBSCURA_SETTING_FLOAT, 0.0, 1e-8, 1e8, "m^2", "r of the falloff; 0 derives C*radius^2",
+     OBSCURA_FFAO_FIELD(decay_rate)},
+    {"sectors", OBSCURA_SETTING_INT, 16, 4, 64, "", "K azimuthal sectors (even: one line orientation serves two)",
+     OBSCURA_FFAO_FIELD(sectors)},
+    {"segments", OBSCURA_SETTING_INT, 2, 1, 4, "", "parts of a sector averaged and evaluated separately (K x this)",
+     OBSCURA_FFAO_FIELD(segments)},
+    {"base_interval", OBSCURA_SETTING_INT, 10, 2, 64, "px",
+     "B0: scan steps per level-0 interval; the near field covers the first B0 to 2 B0 texels",
+     OBSCURA_FFAO_FIELD(base_interval)},
+    {"intensity", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "obscurance multiplier", OBSCURA_FFAO_FIELD(intensity)},
+    {"power", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "exponent applied to the visibility",
+     OBSCURA_FFAO_FIELD(power)},
+};
+
+#undef OBSCURA_FFAO_FIELD
+
 struct LsaoPreset {
     int directions;
     double step_length, line_spacing;
@@ -268,24 +296,36 @@ Error resolve_lsao(obscura_lsao_settings* lsao) {
 }
 
 // The falloff table is read only with OBSCURA_FALLOFF_TABLE, where it must describe a falloff.
-Error check_falloff_table(const obscura_reference_settings& reference) {
-    if (reference.falloff != OBSCURA_FALLOFF_TABLE) return Error();
+Error check_falloff_table(const char* method, int32_t falloff, const float (&table)[OBSCURA_FALLOFF_TABLE_SIZE]) {
+    if (falloff != OBSCURA_FALLOFF_TABLE) return Error();
     bool any_positive = false;
     for (int i = 0; i < OBSCURA_FALLOFF_TABLE_SIZE; ++i) {
-        float value = reference.falloff_table[i];
+        float value = table[i];
         if (!(value >= 0.0f && value <= 1.0f)) {
-            return Error::make(OBSCURA_STATUS_INVALID_SETTING, "reference.falloff_table[%d] = %g is outside [0, 1]", i,
+            return Error::make(OBSCURA_STATUS_INVALID_SETTING, "%s.falloff_table[%d] = %g is outside [0, 1]", method, i,
                                double(value));
         }
         any_positive = any_positive || value > 0.0f;
     }
     if (!any_positive) {
         return Error::make(OBSCURA_STATUS_INVALID_SETTING,
-                           "reference.falloff is TABLE but reference.falloff_table is all zero: fill it with rho(d) "
-                           "at d = i/%d * radius",
-                           OBSCURA_FALLOFF_TABLE_SIZE - 1);
+                           "%s.falloff is TABLE but %s.falloff_table is all zero: fill it with rho(d) at d = i/%d * "
+                           "radius",
+                           method, method, OBSCURA_FALLOFF_TABLE_SIZE - 1);
     }
     return Error();
+}
+
+// FFAO's derived values: the decay rate follows the radius; a line orientation serves two opposite sectors.
+Error resolve_ffao(obscura_ffao_settings* ffao) {
+    if (ffao->decay_rate == 0.0f) ffao->decay_rate = ffao->falloff_c * ffao->radius * ffao->radius;
+    if (ffao->sectors % 2 != 0) {
+        return Error::make(OBSCURA_STATUS_INVALID_SETTING,
+                           "ffao.sectors = %d: K must be even (each scanned line orientation serves two opposite "
+                           "sectors)",
+                           int(ffao->sectors));
+    }
+    return check_falloff_table("ffao", ffao->falloff, ffao->falloff_table);
 }
 
 }  // namespace
@@ -327,6 +367,9 @@ const obscura_setting_info* setting_infos(obscura_method method, uint32_t* count
         case OBSCURA_METHOD_LSAO:
             *count = uint32_t(sizeof kLsaoSettings / sizeof kLsaoSettings[0]);
             return kLsaoSettings;
+        case OBSCURA_METHOD_FFAO:
+            *count = uint32_t(sizeof kFfaoSettings / sizeof kFfaoSettings[0]);
+            return kFfaoSettings;
         default:
             *count = 0;
             return nullptr;
@@ -383,7 +426,8 @@ Error resolve_settings(const obscura_settings& in, obscura_settings* out) {
     if (sao.turns == 0) sao.turns = default_spiral_turns(sao.samples);
     Error error = resolve_lsao(&resolved.lsao);
     if (error) return error;
-    error = check_falloff_table(reference);
+    error = check_falloff_table("reference", reference.falloff, reference.falloff_table);
+    if (!error) error = resolve_ffao(&resolved.ffao);
     if (error) return error;
     *out = resolved;
     return Error();
@@ -414,6 +458,14 @@ Error reference_settings_for(const obscura_settings& method_settings, obscura_se
             reference.reference.radius = resolved.lsao.radius;
             reference.reference.falloff_c = resolved.lsao.falloff_c;
             reference.reference.decay_rate = resolved.lsao.decay_rate;
+            break;
+        case OBSCURA_METHOD_FFAO:
+            reference.reference.falloff = resolved.ffao.falloff;
+            reference.reference.radius = resolved.ffao.radius;
+            reference.reference.falloff_c = resolved.ffao.falloff_c;
+            reference.reference.decay_rate = resolved.ffao.decay_rate;
+            std::memcpy(reference.reference.falloff_table, resolved.ffao.falloff_table,
+                        sizeof reference.reference.falloff_table);
             break;
         case OBSCURA_METHOD_SAO:
             // The AlchemyAO estimator counts every occluder inside the ball of radius r at full weight: a step

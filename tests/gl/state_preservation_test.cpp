@@ -256,6 +256,8 @@ protected:
         glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, textures_ms_[1].get());
         glActiveTexture(GL_TEXTURE3);
         glBindTexture(GL_TEXTURE_3D, texture_3d_.get());
+        glActiveTexture(GL_TEXTURE4);  // where FFAO binds its 3D table
+        glBindTexture(GL_TEXTURE_3D, texture_3d_.get());
         glActiveTexture(GL_TEXTURE1);
         glBindTexture(GL_TEXTURE_2D_ARRAY, texture_array_.get());
         glActiveTexture(GL_TEXTURE5);
@@ -429,11 +431,12 @@ TEST_F(StatePreservation, RenderDebugViews) {
 }
 
 // Every method binds its own passes' resources: SAO six image units and a mipmapped sampler, LSAO storage
-// buffers, the reference its accumulator.
+// buffers, FFAO a 3D table with a linear sampler, the reference its accumulator.
 TEST_F(StatePreservation, EveryMethod) {
     set_sentinel_state();
     Snapshot before = capture();
-    for (obscura_method method : {OBSCURA_METHOD_HBAO, OBSCURA_METHOD_SAO, OBSCURA_METHOD_LSAO, OBSCURA_METHOD_REFERENCE}) {
+    for (obscura_method method : {OBSCURA_METHOD_HBAO, OBSCURA_METHOD_SAO, OBSCURA_METHOD_LSAO, OBSCURA_METHOD_FFAO,
+                                  OBSCURA_METHOD_REFERENCE}) {
         obscura_settings settings;
         ASSERT_EQ(obscura_default_settings(method, &settings), OBSCURA_OK);
         settings.reference.rays = 4;

@@ -394,12 +394,17 @@ TEST(SettingsSetGet, UnknownNames) {
     }
 }
 
-TEST(SettingsSetGet, MethodWithoutTableHasNoSettings) {
+TEST(SettingsSetGet, FfaoSectorsMustBeEven) {
     obscura_settings s = zero_settings();
     s.method = OBSCURA_METHOD_FFAO;
-    double v = 0;
-    EXPECT_EQ(obscura_set_setting(&s, "radius", 1.0), OBSCURA_STATUS_UNKNOWN_SETTING);
-    EXPECT_EQ(obscura_get_setting(&s, "radius", &v), OBSCURA_STATUS_UNKNOWN_SETTING);
+    ASSERT_EQ(obscura_set_setting(&s, "sectors", 18.0), OBSCURA_OK);
+    obscura_settings resolved;
+    EXPECT_EQ(obscura_resolve_settings(nullptr, &s, &resolved), OBSCURA_OK);
+    ASSERT_EQ(obscura_set_setting(&s, "sectors", 17.0), OBSCURA_OK);
+    EXPECT_EQ(obscura_resolve_settings(nullptr, &s, &resolved), OBSCURA_STATUS_INVALID_SETTING);
+    s.ffao.sectors = 0;
+    s.ffao.falloff = OBSCURA_FALLOFF_TABLE;  // an all-zero table describes no falloff
+    EXPECT_EQ(obscura_resolve_settings(nullptr, &s, &resolved), OBSCURA_STATUS_INVALID_SETTING);
 }
 
 TEST(SettingsSetGet, BadMethodAndNullArguments) {
@@ -506,12 +511,12 @@ TEST(SettingsTable, DefaultMethodSharesHbaoTable) {
     EXPECT_EQ(na, nb);
 }
 
-TEST(SettingsTable, UnavailableMethodsHaveEmptyTables) {
-    for (obscura_method m : {OBSCURA_METHOD_FFAO}) {
-        const obscura_setting_info* infos = reinterpret_cast<const obscura_setting_info*>(1);
-        uint32_t count = 99;
-        ASSERT_EQ(obscura_get_setting_infos(m, &infos, &count), OBSCURA_OK);
-        EXPECT_EQ(count, 0u);
+TEST(SettingsTable, EveryMethodHasATable) {
+    for (int m = OBSCURA_METHOD_HBAO; m < OBSCURA_METHOD_COUNT_; ++m) {
+        const obscura_setting_info* infos = nullptr;
+        uint32_t count = 0;
+        ASSERT_EQ(obscura_get_setting_infos(obscura_method(m), &infos, &count), OBSCURA_OK);
+        EXPECT_GT(count, 0u) << obscura_method_name(obscura_method(m));
     }
 }
 

@@ -84,12 +84,12 @@ TEST(MethodName, UnknownIsNull) {
     EXPECT_EQ(obscura_method_name(obscura_method(-1)), nullptr);
 }
 
-TEST(MethodAvailable, AllButFfao) {
+TEST(MethodAvailable, EveryMethod) {
     EXPECT_EQ(obscura_method_available(OBSCURA_METHOD_DEFAULT), 1);
     EXPECT_EQ(obscura_method_available(OBSCURA_METHOD_HBAO), 1);
     EXPECT_EQ(obscura_method_available(OBSCURA_METHOD_SAO), 1);
     EXPECT_EQ(obscura_method_available(OBSCURA_METHOD_LSAO), 1);
-    EXPECT_EQ(obscura_method_available(OBSCURA_METHOD_FFAO), 0);
+    EXPECT_EQ(obscura_method_available(OBSCURA_METHOD_FFAO), 1);
     EXPECT_EQ(obscura_method_available(OBSCURA_METHOD_REFERENCE), 1);
     EXPECT_EQ(obscura_method_available(obscura_method(99)), 0);
 }

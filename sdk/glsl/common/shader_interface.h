@@ -12,6 +12,7 @@
 #define OBSCURA_UNIT_SOURCE 3       // pass input (AO, blur intermediate)
 #define OBSCURA_UNIT_LSAO_LINES 4   // LSAO's line records (usamplerBuffer, RGBA32UI; CPU rasterisers)
 #define OBSCURA_UNIT_LSAO_VALUES 5  // LSAO's sweep values read by the gather (samplerBuffer, R16F; CPU rasterisers)
+#define OBSCURA_UNIT_FFAO_TABLE 4   // FFAO's estimator table L (sampler3D, R32F, linear filtering)
 #define OBSCURA_TEXTURE_UNIT_COUNT 6
 
 // Image units (imageStore / imageLoad).
@@ -32,6 +33,10 @@
 #define OBSCURA_SSBO_LSAO_VALUES 0  // the sweeps' results, eight halves per uvec4
 #define OBSCURA_SSBO_LSAO_STATS 1   // counters: steps, hull pops, points dropped from full hulls
 #define OBSCURA_SSBO_LSAO_LINES 2   // LSAO's line records (GPUs read them as a storage buffer)
+// FFAO reuses the same three bindings (a program belongs to one method).
+#define OBSCURA_SSBO_FFAO_PEAKS 0   // per (line, interval): sums of (m0, m1 back, m1 forward, valid), prefix-summed
+#define OBSCURA_SSBO_FFAO_COLUMNS 1 // per (orientation, level, interval): entry offset, first line, lines, block shift
+#define OBSCURA_SSBO_FFAO_LINES 2   // per scan line: origin xy (float bits), first step, steps
 #define OBSCURA_SSBO_COUNT 3
 
 // ---- Workgroup sizes (the dispatch math in C++ reads the same numbers) ------------------------
@@ -66,6 +71,20 @@
 #define OBSCURA_LSAO_VALUE_ALIGNMENT 8
 // The value a sweep writes where no earlier sample exists (outside every sin h, which is <= 1).
 #define OBSCURA_LSAO_NO_OCCLUDER 4.0
+
+// FFAO: one invocation per scan line (scan), per interval column (prefix sums) and per table column; the
+// obscurance pass in 8x8 pixel groups. The estimator table L(a, b, c, d) is an A x B x (C * D) 3D texture.
+#define OBSCURA_FFAO_SCAN_GROUP 64
+#define OBSCURA_FFAO_PREFIX_GROUP 64
+#define OBSCURA_FFAO_TABLE_GROUP 64
+#define OBSCURA_FFAO_GROUP_X 8
+#define OBSCURA_FFAO_GROUP_Y 8
+#define OBSCURA_FFAO_MAX_ORIENTATIONS 32
+#define OBSCURA_FFAO_MAX_LEVELS 16
+#define OBSCURA_FFAO_TABLE_A 32
+#define OBSCURA_FFAO_TABLE_B 32
+#define OBSCURA_FFAO_TABLE_C 16
+#define OBSCURA_FFAO_TABLE_D 16
 
 // ---- Conventions ---------------------------------------------------------------------------------
 // Linear view depth is a positive distance from the eye plane in view units; sky pixels (far-plane
@@ -140,12 +159,13 @@ OBSCURA_PASS_BLOCK_BEGIN(BlurConstants)
 OBSCURA_PASS_BLOCK_END(BlurConstants, blur)
 #endif
 
-#if defined(__cplusplus) || defined(OBSCURA_REFERENCE_PASS)
-// Falloff kinds (ReferenceConstants.config.x): the values of obscura_falloff.
+// Falloff kinds (common/falloff.glsl): the values of obscura_falloff.
 #define OBSCURA_FALLOFF_KIND_RHO0 1
 #define OBSCURA_FALLOFF_KIND_INVERSE_QUADRATIC 2
 #define OBSCURA_FALLOFF_KIND_EXPONENTIAL 3
 #define OBSCURA_FALLOFF_KIND_TABLE 4
+
+#if defined(__cplusplus) || defined(OBSCURA_REFERENCE_PASS)
 OBSCURA_PASS_BLOCK_BEGIN(ReferenceConstants)
   OBSCURA_VEC4(falloff);   // decay r (view units^2), C, radius (view units), longest ray (view units)
   OBSCURA_VEC4(params);    // thickness (view units, 0: infinite), 1 / total rays, unused, unused
@@ -200,6 +220,30 @@ OBSCURA_PASS_BLOCK_BEGIN(LsaoConstants)
   OBSCURA_VEC4(coverage[OBSCURA_LSAO_MAX_DIRECTIONS]);   // weight, perpendicular offset of line 0, first line, line count
   OBSCURA_VEC4(axes[OBSCURA_LSAO_MAX_DIRECTIONS]);       // view-space screen axis of the direction, 1 / |step|^2
 OBSCURA_PASS_BLOCK_END(LsaoConstants, lsao)
+#endif
+
+#if defined(__cplusplus) || defined(OBSCURA_FFAO_TABLE_PASS)
+// The table is built for the falloff's shape in units of its scale s (see FfaoConstants.shape.x).
+OBSCURA_PASS_BLOCK_BEGIN(FfaoTableConstants)
+  OBSCURA_VEC4(falloff);   // r, C, radius of the falloff in units of its scale, unused
+  OBSCURA_IVEC4(config);   // falloff kind, unused x3
+  OBSCURA_VEC4(table[4]);  // the 16 falloff-table values, 4 per vec4
+OBSCURA_PASS_BLOCK_END(FfaoTableConstants, ffao_table)
+#endif
+
+#if defined(__cplusplus) || defined(OBSCURA_FFAO_PASS)
+OBSCURA_PASS_BLOCK_BEGIN(FfaoConstants)
+  OBSCURA_VEC4(shape);     // falloff scale s (view units: the table's b axis is b / s), intensity, power, unused
+  OBSCURA_VEC4(view);      // view units per texel at depth 1 along x and y (2 / (m0 W), 2 / (m5 H)), unused x2
+  OBSCURA_IVEC4(config);   // K sectors, segments per sector, B0, pyramid levels
+  OBSCURA_VEC4(orientation[OBSCURA_FFAO_MAX_ORIENTATIONS]); // scan direction xy (texels), u and v of the grid origin
+  OBSCURA_IVEC4(lines[OBSCURA_FFAO_MAX_ORIENTATIONS]);      // first line record, line count, grid steps U, unused
+  OBSCURA_VEC4(axes[OBSCURA_FFAO_MAX_ORIENTATIONS]);        // view-space unit vector of the direction (z = 0): x, y
+  // First column record of (orientation k, level n) at index k * OBSCURA_FFAO_MAX_LEVELS + n, 4 per ivec4;
+  // column counts likewise.
+  OBSCURA_IVEC4(column_base[OBSCURA_FFAO_MAX_ORIENTATIONS * OBSCURA_FFAO_MAX_LEVELS / 4]);
+  OBSCURA_IVEC4(column_count[OBSCURA_FFAO_MAX_ORIENTATIONS * OBSCURA_FFAO_MAX_LEVELS / 4]);
+OBSCURA_PASS_BLOCK_END(FfaoConstants, ffao)
 #endif
 
 #endif  // OBSCURA_SHADER_INTERFACE_H

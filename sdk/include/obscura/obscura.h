@@ -19,7 +19,10 @@
  *                             spiral taps and the AlchemyAO estimator, 2x2 + separable bilateral reconstruction.
  *   OBSCURA_METHOD_LSAO       Timonen, "Line-Sweep Ambient Obscurance" (EGSR 2013): obscure-hull line sweeps in K
  *                             directions, sparse lines gathered per pixel; cost independent of the radius.
- *   OBSCURA_METHOD_FFAO       Timonen, "Screen-Space Far-Field Ambient Obscurance" (HPG 2013). [not yet available]
+ *   OBSCURA_METHOD_FFAO       Timonen, "Screen-Space Far-Field Ambient Obscurance" (HPG 2013): scans in K/2 line
+ *                             orientations keep depth peaks per interval in a 1D pyramid, prefix sums average them
+ *                             over each sector, and a precomputed table integrates the falloff over slabs; a
+ *                             near-field search covers the first 1-2 intervals. The whole depth buffer, any radius.
  *   OBSCURA_METHOD_REFERENCE  Screen-space ray-traced ground truth: eq. 1 of the FFAO paper evaluated by
  *                             cosine-weighted rays stepped through the whole depth buffer (its sec. 8).
  *   Methods not yet available return OBSCURA_STATUS_METHOD_NOT_AVAILABLE.
@@ -352,6 +355,27 @@ typedef struct obscura_reference_settings {
     float falloff_table[OBSCURA_FALLOFF_TABLE_SIZE]; /* TABLE only: values in [0, 1], not all 0 */
 } obscura_reference_settings;
 
+/* FFAO: Timonen, "Screen-Space Far-Field Ambient Obscurance" (HPG 2013). Parallel lines one texel apart in K/2
+   orientations are scanned once; every B0 steps each keeps the peaks (m0, m1) of the depth field as seen along
+   two receiver angles, in a 1D pyramid of intervals B0 * 2^n (sec. 6). Prefix sums across lines (sec. 7) let
+   every pixel average the peaks over each sector segment at every distance; the virtual points they give are
+   slabs whose falloff-weighted, cosine-weighted visibility comes from a table L(a, b, c, d) integrated once
+   per falloff shape (sec. 4, eq. 3). A direct search covers the pixel's first B0 to 2 B0 texels (sec. 9).
+   Converges to the REFERENCE with the same falloff. Every field: 0 selects the default given after it. */
+typedef struct obscura_ffao_settings {
+    float radius;         /* metres, [1e-3, 1e4]: where RHO0 (default decay rate) and TABLE reach 0. Default 1 */
+    int32_t falloff;      /* obscura_falloff, [1, 4]. Default 3 (EXPONENTIAL, the paper's) */
+    float falloff_c;      /* C of RHO0 and of the decay-rate default, [1e-3, 0.999]. Default 0.3 */
+    float decay_rate;     /* r in m^2, [1e-8, 1e8]. Default C*radius^2 */
+    int32_t sectors;      /* K azimuthal sectors, an even number (a line orientation serves two), [4, 64]. Default 16 */
+    int32_t segments;     /* evaluated parts of each sector, averaged separately (the paper's "x2"), [1, 4]. Default 2 */
+    int32_t base_interval; /* B0: scan steps per level-0 interval; the near field covers B0 to 2 B0 texels,
+                             [2, 64]. Default 10 */
+    float intensity;      /* obscurance multiplier, [1e-3, 16]. Default 1 */
+    float power;          /* visibility exponent, [1e-3, 16]. Default 1 */
+    float falloff_table[OBSCURA_FALLOFF_TABLE_SIZE]; /* TABLE only: rho at i/(N-1) * radius, values in [0, 1] */
+} obscura_ffao_settings;
+
 typedef struct obscura_settings {
     uint32_t struct_size;   /* sizeof(obscura_settings); required */
     obscura_method method;  /* which method renders. Default HBAO */
@@ -359,6 +383,7 @@ typedef struct obscura_settings {
     obscura_reference_settings reference;
     obscura_sao_settings sao;
     obscura_lsao_settings lsao;
+    obscura_ffao_settings ffao;
 } obscura_settings;
 
 /* Fills `out` with the defaults of `method` (struct_size set, every field explicit).
@@ -496,7 +521,8 @@ OBSCURA_API void obscura_release_resources(obscura_context* context);
 /* ---- Queries --------------------------------------------------------------------------------- */
 typedef struct obscura_timing {
     const char* label; /* "total" first, then one entry per pass: "depth_prepare", then "hbao", "reference",
-                          "z_pyramid" + "sao" or "line_sweep" + "gather", then "blur", "composite" */
+                          "z_pyramid" + "sao", "line_sweep" + "gather" or ["ffao_table" when the falloff's shape
+                          changed] + "ffao_scan" + "ffao_prefix" + "ffao_obscurance", then "blur", "composite" */
     double milliseconds;
 } obscura_timing;
 

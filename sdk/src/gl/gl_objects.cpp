@@ -91,6 +91,25 @@ Object create_sampler_nearest_clamp(const Table& gl) {
     return Object(&gl, ObjectKind::Sampler, name);
 }
 
+Object create_texture_3d(const Table& gl, GLenum internal_format, int width, int height, int depth) {
+    GLuint name = 0;
+    gl.GenTextures(1, &name);
+    gl.BindTexture(GL_TEXTURE_3D, name);
+    gl.TexStorage3D(GL_TEXTURE_3D, 1, internal_format, width, height, depth);
+    gl.BindTexture(GL_TEXTURE_3D, 0);
+    Object texture(&gl, ObjectKind::Texture, name);
+    if (gl.GetError() != GL_NO_ERROR) return Object();
+    return texture;
+}
+
+Object create_sampler_linear_clamp(const Table& gl) {
+    Object sampler = create_sampler_nearest_clamp(gl);
+    gl.SamplerParameteri(sampler.name(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    gl.SamplerParameteri(sampler.name(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl.SamplerParameteri(sampler.name(), GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    return sampler;
+}
+
 Object create_sampler_nearest_mipmap_clamp(const Table& gl) {
     Object sampler = create_sampler_nearest_clamp(gl);
     gl.SamplerParameteri(sampler.name(), GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);

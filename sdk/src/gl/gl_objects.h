@@ -80,7 +80,13 @@ private:
 // Binds on the active unit (the caller's StateGuard restores it); empty if GL reports an error.
 Object create_buffer_texture(const Table& gl, GLenum internal_format, GLuint buffer);
 
+// An immutable-storage 3D texture (one level); binds on the active unit (the caller's StateGuard restores it);
+// empty if GL reports an error.
+Object create_texture_3d(const Table& gl, GLenum internal_format, int width, int height, int depth);
+
 Object create_sampler_nearest_clamp(const Table& gl);
+// Linear filtering, clamped, no MIP levels (FFAO's estimator table).
+Object create_sampler_linear_clamp(const Table& gl);
 // The same, with nearest MIP selection: texelFetch of levels above 0 needs a mipmapped minification filter.
 Object create_sampler_nearest_mipmap_clamp(const Table& gl);
 Object create_query(const Table& gl);

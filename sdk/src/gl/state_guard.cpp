@@ -31,6 +31,7 @@ StateGuard::StateGuard(const Table& gl) : gl_(gl) {
         gl.GetIntegerv(GL_TEXTURE_BINDING_2D, &texture_2d_[unit]);
         gl.GetIntegerv(GL_TEXTURE_BINDING_2D_MULTISAMPLE, &texture_2d_ms_[unit]);
         gl.GetIntegerv(GL_TEXTURE_BINDING_BUFFER, &texture_buffer_[unit]);
+        gl.GetIntegerv(GL_TEXTURE_BINDING_3D, &texture_3d_[unit]);
         gl.GetIntegerv(GL_SAMPLER_BINDING, &sampler_[unit]);
     }
     gl.ActiveTexture(GLenum(active_texture_));
@@ -61,6 +62,7 @@ StateGuard::~StateGuard() {
         gl.BindTexture(GL_TEXTURE_2D, GLuint(texture_2d_[unit]));
         gl.BindTexture(GL_TEXTURE_2D_MULTISAMPLE, GLuint(texture_2d_ms_[unit]));
         gl.BindTexture(GL_TEXTURE_BUFFER, GLuint(texture_buffer_[unit]));
+        gl.BindTexture(GL_TEXTURE_3D, GLuint(texture_3d_[unit]));
         gl.BindSampler(GLuint(unit), GLuint(sampler_[unit]));
     }
     gl.ActiveTexture(GLenum(active_texture_));

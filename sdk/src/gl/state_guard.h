@@ -36,6 +36,7 @@ private:
     GLint texture_2d_[OBSCURA_TEXTURE_UNIT_COUNT] = {};
     GLint texture_2d_ms_[OBSCURA_TEXTURE_UNIT_COUNT] = {};
     GLint texture_buffer_[OBSCURA_TEXTURE_UNIT_COUNT] = {};
+    GLint texture_3d_[OBSCURA_TEXTURE_UNIT_COUNT] = {};
     GLint sampler_[OBSCURA_TEXTURE_UNIT_COUNT] = {};
     ImageUnit image_[OBSCURA_IMAGE_UNIT_COUNT] = {};
     GLint uniform_buffer_ = 0;

@@ -40,7 +40,7 @@ struct UniformRange {
 // Collects one frame's uniform blocks in CPU memory, uploads them in one call, hands out ranges.
 class UniformArena {
 public:
-    static constexpr size_t kCapacity = 8192;
+    static constexpr size_t kCapacity = 16384;
     void reset(GLint alignment) {
         used_ = 0;
         alignment_ = alignment > 0 ? size_t(alignment) : 256;

@@ -1,0 +1,191 @@
+// FFAO's obscurance kernel (Timonen, "Screen-Space Far-Field Ambient Obscurance", HPG 2013, sec. 4 and 9,
+// Algorithm 2). For every pixel and each of the K sectors (two per scanned orientation, one on each side):
+//   - the receiver's azimuthal plane is the plane through the eye that holds the scan direction's view-space
+//     vector A and the receiver p; in it, a point at x = q . A and view z maps to (x, z * zscale), exactly
+//     for points of the pixel's own screen line (zscale = 1 orthographically);
+//   - a near-field search reads the depth texels of the pixel's screen line up to the first far-field interval
+//     (B0 to 2 B0 texels, sec. 9), each a slab;
+//   - the far field walks the intervals outwards, one level up whenever the interval is aligned and no longer
+//     than its distance (about one virtual point per octave of distance), and for each of the sector's
+//     segments averages the peaks over the lines inside the segment at that distance (prefix sums, sec. 7),
+//     reconstructs the virtual point where the receiver angles through m0 and m1 meet (sec. 6) and adds it as a
+//     slab if it rises above every point before it;
+//   - a slab adds |n_k| (L(a_i, b_i, c_i, d) - L(a_{i-1}, b_i, c_i, d)) (eq. 3), L from the table.
+// The segments' shares are their azimuthal widths around the receiver's zenith (the w_k of eq. 2), so
+// perspective's uneven mapping of screen angles around off-centre pixels is accounted for.
+#define OBSCURA_FFAO_PASS 1
+#include "common/shader_interface.h"
+#include "common/depth.glsl"
+#include "common/normal_encoding.glsl"
+#include "common/ffao.glsl"
+
+layout(local_size_x = OBSCURA_FFAO_GROUP_X, local_size_y = OBSCURA_FFAO_GROUP_Y) in;
+
+layout(binding = OBSCURA_UNIT_LINEAR_DEPTH) uniform sampler2D u_depth;
+layout(binding = OBSCURA_UNIT_NORMALS) uniform sampler2D u_normals;
+layout(binding = OBSCURA_UNIT_FFAO_TABLE) uniform sampler3D u_table;
+layout(binding = OBSCURA_IMAGE_OUT0, r16f) uniform writeonly image2D u_ao;
+layout(std430, binding = OBSCURA_SSBO_FFAO_PEAKS) readonly buffer FfaoPeaks { vec4 ffao_peaks[]; };
+
+const float kPi = 3.14159265358979;
+
+// ---- The receiver's plane for the current sector ----------------------------------------------------------
+vec2 g_p;        // the receiver in the plane
+vec2 g_zenith;   // unit, towards the eye
+vec2 g_out;      // unit, perpendicular to the zenith, towards the sector
+float g_zscale;  // view z -> the plane's second coordinate
+float g_d;       // angle of the projected normal from the zenith towards the sector
+bool g_perspective;
+
+// Angle of v from the zenith towards the sector, in [0, pi] for points on the sector's side.
+float zenith_angle(vec2 v) { return atan(dot(v, g_out), dot(v, g_zenith)); }
+
+// L(a, b, c, d) from the table (its a axis is a - d, see ffao_table.comp): a, c in radians, beta = b / s.
+float table_l(float a, float beta, float c) {
+    float ta = clamp((a - g_d) / kPi + 0.5, 0.0, 1.0);
+    float tb = beta / (1.0 + beta);
+    float tc = clamp(c / (0.5 * kPi) - 1.0, 0.0, 1.0);
+    float td = clamp(g_d / kPi + 0.5, 0.0, 1.0);
+    float dz = floor(td * float(OBSCURA_FFAO_TABLE_D - 1) + 0.5);
+    vec3 coord = vec3((ta * float(OBSCURA_FFAO_TABLE_A - 1) + 0.5) / float(OBSCURA_FFAO_TABLE_A),
+                      (tb * float(OBSCURA_FFAO_TABLE_B - 1) + 0.5) / float(OBSCURA_FFAO_TABLE_B),
+                      (dz * float(OBSCURA_FFAO_TABLE_C) + tc * float(OBSCURA_FFAO_TABLE_C - 1) + 0.5) /
+                          float(OBSCURA_FFAO_TABLE_C * OBSCURA_FFAO_TABLE_D));
+    return textureLod(u_table, coord, 0.0).r;
+}
+
+// Eq. 3 for the slab topped by h (plane coordinates): adds its share to `ao` if h rises above `horizon` (the
+// smallest zenith angle so far) and lowers the horizon to it.
+void add_slab(vec2 h, inout float ao, inout float horizon) {
+    float a = max(zenith_angle(h - g_p), 0.0);
+    if (!(a < horizon)) return;
+    // The slab continues h along its view ray: away from the eye (the plane's origin), or straight down.
+    vec2 u = g_perspective ? normalize(h) : vec2(0.0, -1.0);
+    float b = g_perspective ? abs(g_p.x * u.y - g_p.y * u.x) : abs(dot(h - g_p, g_out));
+    // |angle|: a slab whose ray leans past the zenith's other side (h just behind p) mirrors, and atan(-0, -1)
+    // would read -pi for the orthographic pi.
+    float c = g_perspective ? abs(zenith_angle(u)) : kPi;
+    float beta = b / ffao.shape.x;
+    ao += table_l(a, beta, c) - table_l(horizon, beta, c);
+    horizon = a;
+}
+
+// Azimuth of screen direction `sd` around the zenith z3 of view point p3: its view-space vector made
+// perpendicular to z3, normalised.
+vec3 azimuth_vector(vec2 sd, vec3 z3) {
+    vec3 a = normalize(vec3(sd * ffao.view.xy, 0.0));
+    return normalize(a - z3 * dot(a, z3));
+}
+
+// Sum over the lines [la, lb] of column's entries (prefix sums restarting every block): (m0, m1 back,
+// m1 forward, valid lines).
+vec4 column_sum(FfaoColumn column, int la, int lb) {
+    int ea = max(la - column.first_line, 0);
+    int eb = min(lb - column.first_line, column.lines - 1);
+    int block = 1 << column.block_shift;
+    eb = min(eb, ea + block - 1);  // a run spans at most two blocks
+    if (eb < ea) return vec4(0.0);
+    vec4 sum = ffao_peaks[column.offset + eb];
+    int block_a = ea >> column.block_shift;
+    if ((ea & (block - 1)) != 0) sum -= ffao_peaks[column.offset + ea - 1];
+    if ((eb >> column.block_shift) != block_a) sum += ffao_peaks[column.offset + block_a * block + block - 1];
+    return sum;
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy) + work_rect.xy;
+    if (any(greaterThanEqual(gl_GlobalInvocationID.xy, uvec2(work_rect.zw)))) return;
+    float depth = texelFetch(u_depth, pixel, 0).r;
+    if (obscura_is_sky(depth)) {
+        imageStore(u_ao, pixel, vec4(1.0));
+        return;
+    }
+    g_perspective = obscura_is_perspective();
+    vec3 p = obscura_view_position(pixel, depth);
+    vec3 n = obscura_decode_normal(texelFetch(u_normals, pixel, 0).xy);
+    vec3 zenith3 = obscura_towards_eye(p);
+    vec2 centre = vec2(pixel) + 0.5;
+    ivec2 size = depth_size.xy;
+    int sectors = ffao.config.x, segments = ffao.config.y, b0 = ffao.config.z, levels = ffao.config.w;
+    float half_sector = kPi / float(sectors);
+    float ao_total = 0.0;
+    for (int k = 0; k < sectors / 2; ++k) {
+        vec2 dir = ffao.orientation[k].xy;
+        vec2 perp = vec2(-dir.y, dir.x);
+        vec3 axis = vec3(ffao.axes[k].xy, 0.0);
+        float x_p = dot(p, axis);
+        if (g_perspective) {
+            vec3 across = p - x_p * axis;
+            g_zscale = length(across) / depth;
+        } else {
+            g_zscale = 1.0;
+        }
+        g_p = vec2(x_p, p.z * g_zscale);
+        g_zenith = g_perspective ? normalize(-g_p) : vec2(0.0, 1.0);
+        // The normal in the plane: along A and along the plane's second axis (towards the eye side).
+        vec3 second = g_perspective ? -normalize(p - x_p * axis) : vec3(0.0, 0.0, 1.0);
+        vec2 nk = vec2(dot(n, axis), dot(n, second));
+        float n_length = length(nk);
+        float u_p = dot(centre, dir) - ffao.orientation[k].z;
+        float v_p = dot(centre, perp) - ffao.orientation[k].w - 0.5;  // in line indices
+        int i_p = int(floor(u_p / float(b0)));
+        int grid_steps = ffao.lines[k].z;
+        for (int side = -1; side <= 1; side += 2) {
+            // Outwards: the perpendicular of the zenith on the sector's side of the receiver.
+            vec2 o = vec2(g_zenith.y, -g_zenith.x);
+            g_out = dot(o, vec2(float(side), 0.0)) >= 0.0 ? o : -o;
+            g_d = atan(dot(nk, g_out), dot(nk, g_zenith));
+            // Near field: the pixel's own screen line up to the first far interval's near edge.
+            int far_start = side < 0 ? (i_p - 1) * b0 : (i_p + 2) * b0;
+            float near_length = abs(float(far_start) - u_p);
+            float near_ao = 0.0, near_horizon = kPi;
+            for (int t = 1; float(t) < near_length; ++t) {
+                vec2 q_screen = centre + float(side * t) * dir;
+                ivec2 texel = ivec2(floor(q_screen));
+                if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, size))) break;
+                float q_depth = texelFetch(u_depth, texel, 0).r;
+                if (obscura_is_sky(q_depth)) continue;
+                vec3 q = obscura_view_position(texel, q_depth);
+                add_slab(vec2(dot(q, axis), q.z * g_zscale), near_ao, near_horizon);
+            }
+            // Far field, per segment.
+            vec3 previous_boundary = azimuth_vector(float(side) * dir - tan(half_sector) * perp, zenith3);
+            for (int s = 0; s < segments; ++s) {
+                float alpha_lo = -half_sector + 2.0 * half_sector * float(s) / float(segments);
+                float alpha_hi = -half_sector + 2.0 * half_sector * float(s + 1) / float(segments);
+                float tan_lo = tan(alpha_lo), tan_hi = tan(alpha_hi);
+                vec3 boundary = azimuth_vector(float(side) * dir + tan_hi * perp, zenith3);
+                float width = acos(clamp(dot(previous_boundary, boundary), -1.0, 1.0));
+                previous_boundary = boundary;
+                float ao = near_ao, horizon = near_horizon;
+                int cursor = far_start;
+                for (int guard = 0; guard < 64; ++guard) {
+                    if (side < 0 ? cursor <= 0 : cursor >= grid_steps) break;
+                    float gap = abs(float(cursor) - u_p);
+                    int n_level = 0;
+                    while (n_level + 1 < levels && cursor % (b0 << (n_level + 1)) == 0 &&
+                           float(b0 << (n_level + 1)) <= gap) {
+                        ++n_level;
+                    }
+                    int length_n = b0 << n_level;
+                    int i = side < 0 ? cursor / length_n - 1 : cursor / length_n;
+                    float distance = gap + 0.5 * float(length_n);
+                    cursor += side * length_n;
+                    FfaoColumn column = ffao_column(k, n_level, i);
+                    if (column.lines == 0) continue;
+                    // The segment's lines at this distance (its boundaries run along side * dir + tan(alpha) perp).
+                    int la = int(floor(v_p + distance * tan_lo + 0.5));
+                    int lb = int(floor(v_p + distance * tan_hi + 0.5));
+                    vec4 sum = column_sum(column, la, lb);
+                    if (sum.w < 0.5) continue;
+                    vec3 peaks = sum.xyz / sum.w;
+                    float x_h = side < 0 ? peaks.x - peaks.y : peaks.z - peaks.x;
+                    add_slab(vec2(x_h, peaks.x * g_zscale), ao, horizon);
+                }
+                ao_total += width * n_length * ao;
+            }
+        }
+    }
+    float obscurance = clamp(ao_total / kPi * ffao.shape.y, 0.0, 1.0);
+    imageStore(u_ao, pixel, vec4(pow(1.0 - obscurance, ffao.shape.z)));
+}

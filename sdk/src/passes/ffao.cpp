@@ -1,0 +1,215 @@
+#include "passes/ffao.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace obscura {
+namespace {
+
+constexpr int kTableColumns = OBSCURA_FFAO_TABLE_B * OBSCURA_FFAO_TABLE_C * OBSCURA_FFAO_TABLE_D;
+constexpr uint64_t kTableBytes = uint64_t(OBSCURA_FFAO_TABLE_A) * kTableColumns * 4;
+
+// One 16-byte record per line and per column, as common/ffao.glsl reads them.
+struct GpuLine {
+    float origin[2];
+    int32_t first_step, steps;
+};
+static_assert(sizeof(GpuLine) == 16 && sizeof(FfaoColumn) == 16, "uvec4 records");
+
+}  // namespace
+
+Error FfaoPass::prepare(const PassEnv& env) {
+    if (obscurance_program_) return Error();
+    Error error = env.build("ffao_table.comp", "", &table_program_);
+    if (!error) error = env.build("ffao_scan.comp", "", &scan_program_);
+    if (!error) error = env.build("ffao_prefix.comp", "", &prefix_program_);
+    if (!error) error = env.build("ffao_obscurance.comp", "", &obscurance_program_);
+    if (error) return error;
+    env.gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_FFAO_TABLE));  // a unit the StateGuard restores
+    table_ = gl::create_texture_3d(env.gl, GL_R32F, OBSCURA_FFAO_TABLE_A, OBSCURA_FFAO_TABLE_B,
+                                   OBSCURA_FFAO_TABLE_C * OBSCURA_FFAO_TABLE_D);
+    table_sampler_ = gl::create_sampler_linear_clamp(env.gl);
+    table_valid_ = false;
+    if (!table_ || !table_sampler_) {
+        obscurance_program_ = gl::Object();  // try again next time
+        return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating FFAO's estimator table failed");
+    }
+    return Error();
+}
+
+Error FfaoPass::ensure_layout(const PassEnv& env, const obscura_ffao_settings& settings, int width, int height) {
+    const LayoutKey key{width, height, settings.sectors, settings.base_interval};
+    if (peaks_.name() != 0 && key == key_) return Error();
+    release();
+    layout_ = make_ffao_layout(settings.sectors, settings.base_interval, width, height);
+    const gl::Table& gl = env.gl;
+    GLint64 max_block_bytes = 0;
+    gl.GetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block_bytes);
+    const long long peak_bytes = static_cast<long long>(layout_.entries) * 16;
+    if (peak_bytes > max_block_bytes || layout_.entries > (int64_t(1) << 31) - 1) {
+        const long long entries = layout_.entries;
+        release();
+        return Error::make(OBSCURA_STATUS_INVALID_SIZE,
+                           "FFAO at %dx%d needs %lld interval entries (%lld bytes), over "
+                           "GL_MAX_SHADER_STORAGE_BLOCK_SIZE (%lld): use fewer sectors or a larger base_interval",
+                           width, height, entries, peak_bytes, static_cast<long long>(max_block_bytes));
+    }
+    std::vector<GpuLine> lines(layout_.lines.size());
+    for (size_t i = 0; i < lines.size(); ++i) {
+        const FfaoLine& l = layout_.lines[i];
+        lines[i] = GpuLine{{l.origin[0], l.origin[1]}, l.first_step, l.steps};
+    }
+    lines_ = gl::Buffer::create(gl, GL_SHADER_STORAGE_BUFFER, std::max<size_t>(lines.size(), 1) * sizeof(GpuLine));
+    columns_ = gl::Buffer::create(gl, GL_SHADER_STORAGE_BUFFER,
+                                  std::max<size_t>(layout_.columns.size(), 1) * sizeof(FfaoColumn));
+    peaks_ = gl::Buffer::create(gl, GL_SHADER_STORAGE_BUFFER, uint64_t(std::max<int64_t>(layout_.entries, 1)) * 16);
+    if (!lines_.name() || !columns_.name() || !peaks_.name()) {
+        release();
+        return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating FFAO's scan buffers (%lld bytes) failed",
+                           peak_bytes);
+    }
+    key_ = key;
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, lines_.name());
+    gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(lines.size() * sizeof(GpuLine)), lines.data());
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, columns_.name());
+    gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(layout_.columns.size() * sizeof(FfaoColumn)),
+                     layout_.columns.data());
+    return Error();
+}
+
+void FfaoPass::release() {
+    lines_ = gl::Buffer();
+    columns_ = gl::Buffer();
+    peaks_ = gl::Buffer();
+    layout_ = FfaoLayout();
+    key_ = LayoutKey();
+}
+
+uint64_t FfaoPass::bytes() const {
+    return lines_.bytes() + columns_.bytes() + peaks_.bytes() + (table_ ? kTableBytes : 0);
+}
+
+FfaoTableConstants FfaoPass::table_constants(const obscura_ffao_settings& settings) {
+    const FfaoFalloffShape shape = ffao_falloff_shape(settings);
+    FfaoTableConstants c = {};
+    c.falloff[0] = float(shape.r);
+    c.falloff[1] = float(shape.c);
+    c.falloff[2] = float(shape.radius);
+    c.config[0] = shape.kind;
+    for (int i = 0; i < OBSCURA_FALLOFF_TABLE_SIZE; ++i) c.table[i / 4][i % 4] = shape.table[i];
+    return c;
+}
+
+FfaoConstants FfaoPass::constants(const obscura_ffao_settings& settings, const FrameInput& input) const {
+    FfaoConstants c = {};
+    c.shape[0] = float(ffao_falloff_scale(settings) * input.meters_to_view_units);
+    c.shape[1] = settings.intensity;
+    c.shape[2] = settings.power;
+    // View-space displacement per texel at depth 1 (its direction is what the passes use).
+    c.view[0] = float(2.0 / (double(input.projection.m[0]) * input.width));
+    c.view[1] = float(2.0 / (double(input.projection.m[5]) * input.height));
+    c.config[0] = layout_.sectors;
+    c.config[1] = settings.segments;
+    c.config[2] = layout_.base_interval;
+    c.config[3] = layout_.levels;
+    for (size_t k = 0; k < layout_.orientations.size() && k < OBSCURA_FFAO_MAX_ORIENTATIONS; ++k) {
+        const FfaoOrientation& o = layout_.orientations[k];
+        c.orientation[k][0] = float(o.dir[0]);
+        c.orientation[k][1] = float(o.dir[1]);
+        c.orientation[k][2] = float(o.u_min);
+        c.orientation[k][3] = float(o.v_min);
+        c.lines[k][0] = o.first_line;
+        c.lines[k][1] = o.line_count;
+        c.lines[k][2] = o.steps;
+        const double ax = o.dir[0] * c.view[0], ay = o.dir[1] * c.view[1];
+        const double length = std::hypot(ax, ay);
+        c.axes[k][0] = float(ax / length);
+        c.axes[k][1] = float(ay / length);
+        for (int n = 0; n < layout_.levels; ++n) {
+            const size_t index = k * kFfaoMaxLevels + size_t(n);
+            c.column_base[index / 4][index % 4] = layout_.column_base[index];
+            c.column_count[index / 4][index % 4] = layout_.column_count[index];
+        }
+    }
+    return c;
+}
+
+void FfaoPass::run_table(const PassEnv& env, const obscura_ffao_settings& settings, const UniformRange& pass) {
+    const gl::Table& gl = env.gl;
+    gl.UseProgram(table_program_.name());
+    gl.BindImageTexture(OBSCURA_IMAGE_OUT0, table_.name(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+    env.bind_uniforms(OBSCURA_UBO_PASS, pass);
+    gl.DispatchCompute(GLuint((kTableColumns + OBSCURA_FFAO_TABLE_GROUP - 1) / OBSCURA_FFAO_TABLE_GROUP), 1, 1);
+    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    shape_ = ffao_falloff_shape(settings);
+    table_valid_ = true;
+}
+
+void FfaoPass::run_scan(const PassEnv& env, const UniformRange& frame, const UniformRange& pass,
+                        const FrameResources& resources) {
+    const gl::Table& gl = env.gl;
+    gl.UseProgram(scan_program_.name());
+    env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_PEAKS, peaks_.name());
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_COLUMNS, columns_.name());
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_LINES, lines_.name());
+    env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
+    env.bind_uniforms(OBSCURA_UBO_PASS, pass);
+    int most_lines = 1;
+    for (const FfaoOrientation& o : layout_.orientations) most_lines = std::max(most_lines, o.line_count);
+    gl.DispatchCompute(GLuint((most_lines + OBSCURA_FFAO_SCAN_GROUP - 1) / OBSCURA_FFAO_SCAN_GROUP), 1,
+                       GLuint(layout_.orientations.size()));
+    gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void FfaoPass::run_prefix(const PassEnv& env, const UniformRange& frame, const UniformRange& pass) {
+    const gl::Table& gl = env.gl;
+    gl.UseProgram(prefix_program_.name());
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_PEAKS, peaks_.name());
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_COLUMNS, columns_.name());
+    env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
+    env.bind_uniforms(OBSCURA_UBO_PASS, pass);
+    int most_columns = 1;
+    for (int32_t count : layout_.column_count) most_columns = std::max(most_columns, int(count));
+    gl.DispatchCompute(GLuint((most_columns + OBSCURA_FFAO_PREFIX_GROUP - 1) / OBSCURA_FFAO_PREFIX_GROUP), 1,
+                       GLuint(layout_.orientations.size() * size_t(layout_.levels)));
+    gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+void FfaoPass::run_obscurance(const PassEnv& env, const UniformRange& frame, const UniformRange& pass,
+                              const Region& region, FrameResources& resources) {
+    const gl::Table& gl = env.gl;
+    gl.UseProgram(obscurance_program_.name());
+    env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
+    env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
+    gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_FFAO_TABLE));
+    gl.BindTexture(GL_TEXTURE_3D, table_.name());
+    gl.BindSampler(OBSCURA_UNIT_FFAO_TABLE, table_sampler_.name());
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_PEAKS, peaks_.name());
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_COLUMNS, columns_.name());
+    gl.BindImageTexture(OBSCURA_IMAGE_OUT0, resources.ao.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
+    env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
+    env.bind_uniforms(OBSCURA_UBO_PASS, pass);
+    env.dispatch(region.width, region.height, OBSCURA_FFAO_GROUP_X, OBSCURA_FFAO_GROUP_Y);
+    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+std::vector<float> FfaoPass::read_table(const gl::Table& gl) const {
+    std::vector<float> texels(size_t(kTableBytes / 4));
+    gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_FFAO_TABLE));
+    gl.BindTexture(GL_TEXTURE_3D, table_.name());
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl.GetTexImage(GL_TEXTURE_3D, 0, GL_RED, GL_FLOAT, texels.data());
+    gl.BindTexture(GL_TEXTURE_3D, 0);
+    return texels;
+}
+
+std::vector<float> FfaoPass::read_peaks(const gl::Table& gl) const {
+    std::vector<float> values(size_t(layout_.entries) * 4);
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, peaks_.name());
+    gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(values.size() * 4), values.data());
+    return values;
+}
+
+}  // namespace obscura

@@ -1,0 +1,57 @@
+// FFAO (sdk/glsl/ffao_table.comp, ffao_scan.comp, ffao_prefix.comp, ffao_obscurance.comp): the estimator
+// table for the falloff's shape (rebuilt on the GPU only when the shape changes), the scan layout for the
+// current size in buffers, and the per-frame scan, prefix-sum and obscurance dispatches.
+#ifndef OBSCURA_FFAO_H
+#define OBSCURA_FFAO_H
+
+#include "frame_input.h"
+#include "passes/ffao_estimator.h"
+#include "passes/ffao_layout.h"
+#include "passes/pass_common.h"
+
+#include <vector>
+
+namespace obscura {
+
+class FfaoPass {
+public:
+    // Builds the programs and the table's texture and sampler on first use.
+    Error prepare(const PassEnv& env);
+    // Rebuilds the layout and its buffers when the size, K or B0 changed.
+    Error ensure_layout(const PassEnv& env, const obscura_ffao_settings& settings, int width, int height);
+    // Whether the table must be (re)built for these settings' falloff shape.
+    bool table_stale(const obscura_ffao_settings& settings) const { return !table_valid_ || !(shape_ == ffao_falloff_shape(settings)); }
+    static FfaoTableConstants table_constants(const obscura_ffao_settings& settings);
+    FfaoConstants constants(const obscura_ffao_settings& settings, const FrameInput& input) const;
+    void run_table(const PassEnv& env, const obscura_ffao_settings& settings, const UniformRange& pass);
+    void run_scan(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const FrameResources& resources);
+    void run_prefix(const PassEnv& env, const UniformRange& frame, const UniformRange& pass);
+    void run_obscurance(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
+                        FrameResources& resources);
+    const FfaoLayout& layout() const { return layout_; }
+    uint64_t bytes() const;
+    void release();  // the per-size buffers (the table stays)
+    // Tests: the table texels (A fastest, then B, then the shared C x D axis) and the peaks buffer (vec4s);
+    // both read back, so they wait for the GPU.
+    std::vector<float> read_table(const gl::Table& gl) const;
+    std::vector<float> read_peaks(const gl::Table& gl) const;
+
+private:
+    gl::Object table_program_, scan_program_, prefix_program_, obscurance_program_;
+    gl::Object table_, table_sampler_;
+    bool table_valid_ = false;
+    FfaoFalloffShape shape_;
+    struct LayoutKey {
+        int width = 0, height = 0, sectors = 0, base_interval = 0;
+        bool operator==(const LayoutKey& o) const {
+            return width == o.width && height == o.height && sectors == o.sectors && base_interval == o.base_interval;
+        }
+    };
+    LayoutKey key_;
+    FfaoLayout layout_;
+    gl::Buffer lines_, columns_, peaks_;
+};
+
+}  // namespace obscura
+
+#endif  // OBSCURA_FFAO_H

@@ -1,0 +1,246 @@
+// FFAO's passes (sdk/src/passes/ffao.*, sdk/glsl/ffao_*.comp) run directly on a synthetic depth buffer and
+// read back: the estimator table against direct numeric integration, the scan and the prefix sums against a
+// CPU scan of the same lines, and a plane facing the camera left unoccluded.
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "frame_input.h"
+#include "pass_test_support.h"
+#include "passes/ffao.h"
+#include "settings.h"
+
+namespace {
+
+namespace gl = obscura::gl;
+
+constexpr int kWidth = 160, kHeight = 96;
+constexpr double kPi = 3.14159265358979323846;
+
+class FfaoPasses : public obscura_pass_test::PassTest {
+protected:
+    void SetUp() override {
+        PassTest::SetUp();
+        frame_ = obscura_pass_test::perspective_linear_depth_frame(kWidth, kHeight, input_.projection.m);
+        input_.width = kWidth;
+        input_.height = kHeight;
+        input_.meters_to_view_units = 1.0f;
+    }
+
+    // A wavy wall 6 m away with a box in front of it, a pillar and a patch of sky; or a flat wall.
+    void upload_depth(bool flat) {
+        depth_.assign(size_t(kWidth) * kHeight, 6.0f);
+        if (!flat) {
+            for (int y = 0; y < kHeight; ++y)
+                for (int x = 0; x < kWidth; ++x) {
+                    float d = 6.0f + 0.8f * std::sin(x * 0.05f) * std::sin(y * 0.07f);
+                    if (x >= 50 && x < 100 && y >= 30 && y < 70) d = 4.5f;
+                    if (x >= 120 && x < 128) d = 3.0f;
+                    if (x < 12 && y > 80) d = OBSCURA_SKY_DEPTH;
+                    depth_[size_t(y) * kWidth + x] = d;
+                }
+        }
+        gl_.ActiveTexture(GL_TEXTURE0);
+        resources_.width = kWidth;
+        resources_.height = kHeight;
+        resources_.linear_depth = gl::Texture2D::create(gl_, GL_R32F, kWidth, kHeight);
+        resources_.normals = gl::Texture2D::create(gl_, GL_RG16_SNORM, kWidth, kHeight);
+        resources_.ao = gl::Texture2D::create(gl_, GL_R16F, kWidth, kHeight);
+        gl_.BindTexture(GL_TEXTURE_2D, resources_.linear_depth.name());
+        gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        gl_.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kWidth, kHeight, GL_RED, GL_FLOAT, depth_.data());
+        std::vector<int16_t> normals(size_t(kWidth) * kHeight * 2, 0);  // (0, 0) decodes to +z
+        gl_.BindTexture(GL_TEXTURE_2D, resources_.normals.name());
+        gl_.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kWidth, kHeight, GL_RG, GL_SHORT, normals.data());
+        gl_.BindTexture(GL_TEXTURE_2D, 0);
+    }
+
+    obscura_ffao_settings resolved(obscura_ffao_settings ffao) {
+        obscura_settings settings;
+        obscura_default_settings(OBSCURA_METHOD_FFAO, &settings);
+        settings.ffao = ffao;
+        obscura_settings out;
+        EXPECT_FALSE(obscura::resolve_settings(settings, &out));
+        return out.ffao;
+    }
+
+    static obscura_ffao_settings defaults() {
+        obscura_settings s;
+        obscura_default_settings(OBSCURA_METHOD_FFAO, &s);
+        return s.ffao;
+    }
+
+    // The table, the scan, the prefix sums and (optionally) the obscurance over the whole texture.
+    void run(const obscura_ffao_settings& ffao, bool obscurance) {
+        ASSERT_FALSE(pass_.prepare(env()));
+        ASSERT_FALSE(pass_.ensure_layout(env(), ffao, kWidth, kHeight));
+        GLint alignment = 256;
+        gl_.GetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);
+        arena_.reset(alignment);
+        obscura::UniformRange frame = arena_.push(frame_);
+        obscura::UniformRange pass = arena_.push(pass_.constants(ffao, input_));
+        obscura::UniformRange table = arena_.push(obscura::FfaoPass::table_constants(ffao));
+        arena_.upload(gl_, uniforms_.name());
+        if (pass_.table_stale(ffao)) pass_.run_table(env(), ffao, table);
+        pass_.run_scan(env(), frame, pass, resources_);
+        pass_.run_prefix(env(), frame, pass);
+        if (obscurance) pass_.run_obscurance(env(), frame, pass, obscura::Region{0, 0, kWidth, kHeight}, resources_);
+        gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
+    }
+
+    std::vector<float> read_ao() {
+        std::vector<float> ao(size_t(kWidth) * kHeight, -1.0f);
+        gl_.BindTexture(GL_TEXTURE_2D, resources_.ao.name());
+        gl_.PixelStorei(GL_PACK_ALIGNMENT, 4);
+        gl_.GetTexImage(GL_TEXTURE_2D, 0, GL_RED, GL_FLOAT, ao.data());
+        gl_.BindTexture(GL_TEXTURE_2D, 0);
+        return ao;
+    }
+
+    // depth.glsl's obscura_view_position for the linear-depth perspective frame, in float as the GPU does.
+    void view_position(int x, int y, float depth, float out[3]) const {
+        const float ndc_x = (float(x) + 0.5f) * (1.0f / kWidth) * 2.0f - 1.0f;
+        const float ndc_y = (float(y) + 0.5f) * (1.0f / kHeight) * 2.0f - 1.0f;
+        out[0] = ndc_x * depth / input_.projection.m[0];
+        out[1] = ndc_y * depth / input_.projection.m[5];
+        out[2] = -depth;
+    }
+
+    std::vector<float> depth_;
+    obscura::FrameResources resources_;
+    obscura::FrameInput input_;
+    FrameConstants frame_ = {};
+    obscura::FfaoPass pass_;
+};
+
+// The table against adaptive quadrature of the same integral, for the shapes of every falloff kind.
+TEST_F(FfaoPasses, TableMatchesNumericIntegration) {
+    upload_depth(true);
+    for (int kind = OBSCURA_FALLOFF_RHO0; kind <= OBSCURA_FALLOFF_TABLE; ++kind) {
+        obscura_ffao_settings settings = defaults();
+        settings.falloff = kind;
+        for (int i = 0; i < OBSCURA_FALLOFF_TABLE_SIZE; ++i) settings.falloff_table[i] = 1.0f - float(i) / 15.0f;
+        settings = resolved(settings);
+        run(settings, false);
+        const std::vector<float> table = pass_.read_table(gl_);
+        const obscura::FfaoFalloffShape shape = obscura::ffao_falloff_shape(settings);
+        const int na = OBSCURA_FFAO_TABLE_A, nb = OBSCURA_FFAO_TABLE_B, nc = OBSCURA_FFAO_TABLE_C;
+        double worst = 0.0, largest = 0.0;
+        int checked = 0;
+        for (size_t index = 0; index < table.size(); index += 37) {  // ~7000 entries of 262144
+            const int ia = int(index % na), ib = int(index / na % nb), z = int(index / (na * nb));
+            const int ic = z % nc, id = z / nc;
+            const double d = kPi * (double(id) / (OBSCURA_FFAO_TABLE_D - 1) - 0.5);
+            const double a = std::max(d + kPi * (double(ia) / (na - 1) - 0.5), 0.0);
+            const double t = double(ib) / (nb - 1);
+            const double beta = ib == nb - 1 ? 1e30 : t / (1.0 - t);
+            const double c = 0.5 * kPi * (1.0 + double(ic) / (nc - 1));
+            const double exact = obscura::ffao_slab_integral(shape, a, beta, c, d);
+            worst = std::max(worst, std::fabs(double(table[index]) - exact));
+            largest = std::max(largest, exact);
+            ++checked;
+        }
+        EXPECT_LT(worst, 2e-4) << "falloff kind " << kind << ", " << checked << " entries";
+        EXPECT_GT(largest, 0.4) << "kind " << kind;  // the table is not trivially zero
+    }
+}
+
+// The scan's peaks per (line, interval) and the prefix sums over lines against the same computed here.
+TEST_F(FfaoPasses, ScanAndPrefixSumsMatchACpuScan) {
+    upload_depth(false);
+    const obscura_ffao_settings settings = resolved(defaults());
+    run(settings, false);
+    const std::vector<float> gpu = pass_.read_peaks(gl_);
+    const obscura::FfaoLayout& layout = pass_.layout();
+    const FfaoConstants constants = pass_.constants(settings, input_);
+    std::vector<float> cpu(gpu.size(), 0.0f);
+    for (size_t k = 0; k < layout.orientations.size(); ++k) {
+        const obscura::FfaoOrientation& o = layout.orientations[k];
+        const float axis[2] = {constants.axes[k][0], constants.axes[k][1]};
+        for (int l = 0; l < o.line_count; ++l) {
+            const obscura::FfaoLine& line = layout.lines[size_t(o.first_line + l)];
+            for (int j = line.first_step; j < line.first_step + line.steps; ++j) {
+                float p[2];
+                obscura::ffao_step_position(line, o, j, p);
+                const int x = int(std::floor(p[0])), y = int(std::floor(p[1]));
+                if (x < 0 || y < 0 || x >= kWidth || y >= kHeight) continue;
+                const float depth = depth_[size_t(y) * kWidth + size_t(x)];
+                if (depth >= OBSCURA_SKY_THRESHOLD) continue;
+                float q[3];
+                view_position(x, y, depth, q);
+                const float along = q[0] * axis[0] + q[1] * axis[1];
+                const float peaks[3] = {q[2], q[2] - along, q[2] + along};
+                for (int n = 0; n < layout.levels; ++n) {
+                    const size_t base = size_t(k) * obscura::kFfaoMaxLevels + size_t(n);
+                    const obscura::FfaoColumn& column =
+                        layout.columns[size_t(layout.column_base[base] + j / (layout.base_interval << n))];
+                    float* entry = &cpu[size_t(column.offset + l - column.first_line) * 4];
+                    for (int m = 0; m < 3; ++m) entry[m] = entry[3] == 0.0f ? peaks[m] : std::max(entry[m], peaks[m]);
+                    entry[3] = 1.0f;
+                }
+            }
+        }
+    }
+    // Prefix sums over each column's lines, restarting every block.
+    for (const obscura::FfaoColumn& column : layout.columns) {
+        float sum[4] = {};
+        for (int e = 0; e < column.lines; ++e) {
+            if ((e & ((1 << column.block_shift) - 1)) == 0) std::fill(sum, sum + 4, 0.0f);
+            for (int m = 0; m < 4; ++m) {
+                sum[m] += cpu[size_t(column.offset + e) * 4 + size_t(m)];
+                cpu[size_t(column.offset + e) * 4 + size_t(m)] = sum[m];
+            }
+        }
+    }
+    int64_t mismatched = 0, counted = 0;
+    for (size_t i = 0; i < gpu.size(); i += 4) {
+        bool same = gpu[i + 3] == cpu[i + 3];
+        for (int m = 0; m < 3; ++m) {
+            same = same && std::fabs(gpu[i + m] - cpu[i + m]) <= 1e-4f * std::max(1.0f, std::fabs(cpu[i + m]));
+        }
+        if (!same) ++mismatched;
+        counted += cpu[i + 3] > 0.0f ? 1 : 0;
+    }
+    EXPECT_GT(counted, int64_t(gpu.size() / 8));  // most entries hold geometry
+    // A texel picked differently where a step lands exactly on a texel edge (fused multiply-adds) is all that
+    // may differ.
+    EXPECT_LE(double(mismatched), 1e-3 * double(gpu.size() / 4)) << mismatched << " of " << gpu.size() / 4;
+}
+
+// A wall facing the camera: every peak of every line lies in the receiver's own tangent plane, so nothing
+// rises above it.
+TEST_F(FfaoPasses, WallFacingTheCameraIsUnoccluded) {
+    upload_depth(true);
+    for (int falloff : {OBSCURA_FALLOFF_RHO0, OBSCURA_FALLOFF_EXPONENTIAL}) {
+        obscura_ffao_settings settings = defaults();
+        settings.falloff = falloff;
+        settings.radius = 3.0f;
+        settings.decay_rate = 0.0f;
+        run(resolved(settings), true);
+        const std::vector<float> ao = read_ao();
+        double worst = 0.0;
+        for (float v : ao) worst = std::max(worst, 1.0 - double(v));
+        EXPECT_LT(worst, 2e-3) << "falloff " << falloff;
+    }
+}
+
+// A box in front of the wall darkens the wall around it, and more with a larger radius; the box's own front
+// face, facing the camera with nothing in front, stays lit.
+TEST_F(FfaoPasses, OccluderDarkensItsSurroundingsMoreWithALargerRadius) {
+    upload_depth(false);
+    double previous = 0.0;
+    for (float radius : {0.5f, 1.0f, 2.0f}) {
+        obscura_ffao_settings settings = defaults();
+        settings.radius = radius;
+        settings.decay_rate = 0.0f;  // derived from the radius again
+        run(resolved(settings), true);
+        const std::vector<float> ao = read_ao();
+        const double beside_box = 1.0 - double(ao[size_t(50) * kWidth + 45]);  // 5 px left of the box
+        EXPECT_GT(beside_box, previous) << radius;
+        previous = beside_box;
+        EXPECT_GT(double(ao[size_t(50) * kWidth + 75]), 0.98) << radius;  // the box's front
+    }
+    EXPECT_GT(previous, 0.05);
+}
+
+}  // namespace
