@@ -18,6 +18,7 @@
 #include "common/depth.glsl"
 #include "common/normal_encoding.glsl"
 #include "common/ffao.glsl"
+#include "common/hash.glsl"
 
 layout(local_size_x = OBSCURA_FFAO_GROUP_X, local_size_y = OBSCURA_FFAO_GROUP_Y) in;
 
@@ -55,7 +56,9 @@ float table_l(float a, float beta, float c) {
 }
 
 // Eq. 3 for the slab topped by h (plane coordinates): adds its share to `ao` if h rises above `horizon` (the
-// smallest zenith angle so far) and lowers the horizon to it.
+// smallest zenith angle so far) and lowers the horizon to it. A finite thickness t (sec. 11) ends the slab t
+// deeper than h, as the reference's field ends: rays below its bottom pass under it, so the paper replaces
+// a_{i-1} with the larger of it and the bottom's angle.
 void add_slab(vec2 h, inout float ao, inout float horizon) {
     float a = max(zenith_angle(h - g_p), 0.0);
     if (!(a < horizon)) return;
@@ -66,7 +69,14 @@ void add_slab(vec2 h, inout float ao, inout float horizon) {
     // would read -pi for the orthographic pi.
     float c = g_perspective ? abs(zenith_angle(u)) : kPi;
     float beta = b / ffao.shape.x;
-    ao += table_l(a, beta, c) - table_l(horizon, beta, c);
+    float lowest = horizon;
+    float thickness = ffao.shape.w;
+    if (thickness > 0.0) {
+        float depth = -h.y / g_zscale;
+        vec2 bottom = g_perspective ? h * ((depth + thickness) / depth) : h - vec2(0.0, thickness);
+        lowest = min(horizon, max(zenith_angle(bottom - g_p), a));
+    }
+    ao += table_l(a, beta, c) - table_l(lowest, beta, c);
     horizon = a;
 }
 
@@ -78,8 +88,12 @@ vec3 azimuth_vector(vec2 sd, vec3 z3) {
 }
 
 // Sum over the lines [la, lb] of column's entries (prefix sums restarting every block): (m0, m1 back,
-// m1 forward, valid lines).
+// m1 forward, valid lines). Single lines (no prefix sums) read the entry of line la.
 vec4 column_sum(FfaoColumn column, int la, int lb) {
+    if (ffao.options.y != 0) {
+        int e = la - column.first_line;
+        return e >= 0 && e < column.lines ? ffao_peaks[column.offset + e] : vec4(0.0);
+    }
     int ea = max(la - column.first_line, 0);
     int eb = min(lb - column.first_line, column.lines - 1);
     int block = 1 << column.block_shift;
@@ -108,6 +122,10 @@ void main() {
     ivec2 size = depth_size.xy;
     int sectors = ffao.config.x, segments = ffao.config.y, b0 = ffao.config.z, levels = ffao.config.w;
     float half_sector = kPi / float(sectors);
+    // Jitter (sec. 11.1): every sector's lines move by the same fraction of the segment's width at each
+    // distance, per pixel.
+    float jitter = ffao.options.x != 0 ? obscura_pixel_noise(pixel).x - 0.5 : 0.0;
+    bool single_lines = ffao.options.y != 0;
     float ao_total = 0.0;
     for (int k = 0; k < sectors / 2; ++k) {
         vec2 dir = ffao.orientation[k].xy;
@@ -173,9 +191,11 @@ void main() {
                     cursor += side * length_n;
                     FfaoColumn column = ffao_column(k, n_level, i);
                     if (column.lines == 0) continue;
-                    // The segment's lines at this distance (its boundaries run along side * dir + tan(alpha) perp).
-                    int la = int(floor(v_p + distance * tan_lo + 0.5));
-                    int lb = int(floor(v_p + distance * tan_hi + 0.5));
+                    // The segment's lines at this distance (its boundaries run along side * dir + tan(alpha) perp),
+                    // or the one through its middle.
+                    float shift = v_p + jitter * distance * (tan_hi - tan_lo);
+                    int la = int(floor(shift + distance * (single_lines ? 0.5 * (tan_lo + tan_hi) : tan_lo) + 0.5));
+                    int lb = single_lines ? la : int(floor(shift + distance * tan_hi + 0.5));
                     vec4 sum = column_sum(column, la, lb);
                     if (sum.w < 0.5) continue;
                     vec3 peaks = sum.xyz / sum.w;

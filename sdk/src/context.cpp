@@ -583,7 +583,7 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
             ffao_.run_scan(pass_env, frame_whole, method_pass, resources_);
             error = after_pass("ffao_scan");
         }
-        if (!error) {
+        if (!error && !ffao_single_lines(settings.ffao)) {
             ffao_.run_prefix(pass_env, frame_whole, method_pass);
             error = after_pass("ffao_prefix");
         }

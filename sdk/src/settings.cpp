@@ -188,6 +188,11 @@ const obscura_setting_info kFfaoSettings[] = {
     {"base_interval", OBSCURA_SETTING_INT, 10, 2, 64, "px",
      "B0: scan steps per level-0 interval; the near field covers the first B0 to 2 B0 texels",
      OBSCURA_FFAO_FIELD(base_interval)},
+    {"thickness", OBSCURA_SETTING_FLOAT, 0.0, 0.0, 1e4, "m",
+     "solid behind every depth texel; 0: infinitely thick; > 0 reads single lines (no sector averages)",
+     OBSCURA_FFAO_FIELD(thickness)},
+    {"jitter", OBSCURA_SETTING_TOGGLE, 0, 0, 1, "", "offset each sector's lines per pixel: banding becomes noise",
+     OBSCURA_FFAO_FIELD(jitter)},
     {"intensity", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "obscurance multiplier", OBSCURA_FFAO_FIELD(intensity)},
     {"power", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "exponent applied to the visibility",
      OBSCURA_FFAO_FIELD(power)},
@@ -464,6 +469,7 @@ Error reference_settings_for(const obscura_settings& method_settings, obscura_se
             reference.reference.radius = resolved.ffao.radius;
             reference.reference.falloff_c = resolved.ffao.falloff_c;
             reference.reference.decay_rate = resolved.ffao.decay_rate;
+            reference.reference.thickness = resolved.ffao.thickness;
             std::memcpy(reference.reference.falloff_table, resolved.ffao.falloff_table,
                         sizeof reference.reference.falloff_table);
             break;

@@ -371,6 +371,10 @@ typedef struct obscura_ffao_settings {
     int32_t segments;     /* evaluated parts of each sector, averaged separately (the paper's "x2"), [1, 4]. Default 2 */
     int32_t base_interval; /* B0: scan steps per level-0 interval; the near field covers B0 to 2 B0 texels,
                              [2, 64]. Default 10 */
+    float thickness;      /* metres of solid behind every depth texel (sec. 11), [0, 1e4]; > 0 also reads single
+                             lines instead of sector averages (a finite field cannot be averaged). Default 0:
+                             infinitely thick */
+    obscura_toggle jitter; /* offset every sector's lines per pixel (sec. 11.1): banding becomes noise. Default off */
     float intensity;      /* obscurance multiplier, [1e-3, 16]. Default 1 */
     float power;          /* visibility exponent, [1e-3, 16]. Default 1 */
     float falloff_table[OBSCURA_FALLOFF_TABLE_SIZE]; /* TABLE only: rho at i/(N-1) * radius, values in [0, 1] */

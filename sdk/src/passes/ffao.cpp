@@ -106,6 +106,9 @@ FfaoConstants FfaoPass::constants(const obscura_ffao_settings& settings, const F
     c.shape[0] = float(ffao_falloff_scale(settings) * input.meters_to_view_units);
     c.shape[1] = settings.intensity;
     c.shape[2] = settings.power;
+    c.shape[3] = settings.thickness * input.meters_to_view_units;
+    c.options[0] = settings.jitter == OBSCURA_TOGGLE_ON ? 1 : 0;
+    c.options[1] = ffao_single_lines(settings) ? 1 : 0;
     // View-space displacement per texel at depth 1 (its direction is what the passes use).
     c.view[0] = float(2.0 / (double(input.projection.m[0]) * input.width));
     c.view[1] = float(2.0 / (double(input.projection.m[5]) * input.height));

@@ -13,6 +13,10 @@
 
 namespace obscura {
 
+// Whether the obscurance reads single lines rather than sector averages (a finite thickness: sec. 11), in
+// which case no prefix sums are built.
+inline bool ffao_single_lines(const obscura_ffao_settings& settings) { return settings.thickness > 0.0f; }
+
 class FfaoPass {
 public:
     // Builds the programs and the table's texture and sampler on first use.
