@@ -278,7 +278,7 @@ Error Context::ensure_reference_accumulator() {
     return Error();
 }
 
-Error Context::ensure_sao_resources(int levels) {
+Error Context::ensure_depth_pyramid(int levels) {
     gl_.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_SOURCE));  // a unit the StateGuard restores
     if (resources_.linear_depth.levels() < levels) {
         // Its contents are rewritten by the depth preparation every frame: replacing it loses nothing.
@@ -288,6 +288,13 @@ Error Context::ensure_sao_resources(int levels) {
                                resources_.width, resources_.height, levels);
         }
     }
+    return Error();
+}
+
+Error Context::ensure_sao_resources(int levels) {
+    Error error = ensure_depth_pyramid(levels);
+    if (error) return error;
+    gl_.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_SOURCE));  // a unit the StateGuard restores
     if (!resources_.packed_ao) resources_.packed_ao = gl::Texture2D::create(gl_, GL_RGBA8, resources_.width, resources_.height);
     if (!resources_.packed_temp) {
         resources_.packed_temp = gl::Texture2D::create(gl_, GL_RGBA8, resources_.width, resources_.height);
@@ -308,6 +315,10 @@ Error Context::ensure_method_resources(const obscura_settings& settings) {
         case OBSCURA_METHOD_LSAO: return lsao_.ensure_layout(env(), settings.lsao, resources_.width, resources_.height);
         case OBSCURA_METHOD_FFAO: {
             Error error = ffao_.prepare(env());
+            if (!error && ffao_uses_mipmap(settings.ffao)) {
+                error = ensure_depth_pyramid(
+                    ZPyramidPass::level_count(resources_.width, resources_.height, kFfaoMipmapLevels));
+            }
             if (error) return error;
             return ffao_.ensure_layout(env(), settings.ffao, resources_.width, resources_.height);
         }
@@ -455,9 +466,11 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
     if (error) return error;
     if (method == OBSCURA_METHOD_REFERENCE) error = reference_.prepare(pass_env);
     if (method == OBSCURA_METHOD_LSAO) error = lsao_.prepare(pass_env, settings.lsao);
-    if (method == OBSCURA_METHOD_SAO) {
+    if (method == OBSCURA_METHOD_SAO || (method == OBSCURA_METHOD_FFAO && ffao_uses_mipmap(settings.ffao))) {
         error = z_pyramid_.prepare(pass_env);
-        if (!error) error = sao_.prepare(pass_env);
+    }
+    if (!error && method == OBSCURA_METHOD_SAO) {
+        error = sao_.prepare(pass_env);
         if (!error) error = sao_blur_.prepare(pass_env);
     }
     if (error) return error;
@@ -504,11 +517,15 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
                                                      : hbao.radius;
     float debug_depth_scale = 1.0f / (4.0f * radius * input.meters_to_view_units);
 
-    // SAO: the z pyramid's levels (1: the hierarchy is off or the texture too small for a level 1).
-    const int sao_levels = method == OBSCURA_METHOD_SAO
-                               ? ZPyramidPass::level_count(input.width, input.height, SaoPass::wanted_levels(sao))
-                               : 1;
-    const int pyramid_dispatches = ZPyramidPass::dispatch_count(sao_levels);
+    // The z pyramid's levels (1: no hierarchy, or the texture is too small for a level 1): SAO's, or FFAO's
+    // mipmap baseline.
+    const bool ffao_mipmap = method == OBSCURA_METHOD_FFAO && ffao_uses_mipmap(settings.ffao);
+    const int pyramid_levels =
+        method == OBSCURA_METHOD_SAO ? ZPyramidPass::level_count(input.width, input.height, SaoPass::wanted_levels(sao))
+        : ffao_mipmap                ? ZPyramidPass::level_count(input.width, input.height, kFfaoMipmapLevels)
+                                     : 1;
+    const int pyramid_filter = method == OBSCURA_METHOD_SAO ? sao.mip_filter : ffao_mipmap_filter(settings.ffao);
+    const int pyramid_dispatches = ZPyramidPass::dispatch_count(pyramid_levels);
     static_assert(OBSCURA_DEBUG_VIEW_TAP_COUNT == OBSCURA_DEBUG_TAP_COUNT, "shader_interface.h mirrors the API");
 
     uniforms_.reset(uniform_alignment_);
@@ -527,14 +544,17 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
             method_pass = uniforms_.push(lsao_.constants(settings.lsao, input, cpu_renderer_));
             break;
         case OBSCURA_METHOD_FFAO:
-            method_pass = uniforms_.push(ffao_.constants(settings.ffao, input));
+            for (int d = 0; d < pyramid_dispatches && d < 4; ++d) {
+                pyramid_passes[d] = uniforms_.push(ZPyramidPass::constants(d, pyramid_levels, pyramid_filter));
+            }
+            method_pass = uniforms_.push(ffao_.constants(settings.ffao, input, pyramid_levels));
             table_pass = uniforms_.push(FfaoPass::table_constants(settings.ffao));
             break;
         case OBSCURA_METHOD_SAO:
             for (int d = 0; d < pyramid_dispatches && d < 4; ++d) {
-                pyramid_passes[d] = uniforms_.push(ZPyramidPass::constants(d, sao_levels, sao.mip_filter));
+                pyramid_passes[d] = uniforms_.push(ZPyramidPass::constants(d, pyramid_levels, pyramid_filter));
             }
-            method_pass = uniforms_.push(SaoPass::constants(sao, input, sao_levels - 1));
+            method_pass = uniforms_.push(SaoPass::constants(sao, input, pyramid_levels - 1));
             blur_x_pass = uniforms_.push(SaoBlurPass::constants(sao, 1, 0));
             blur_y_pass = uniforms_.push(SaoBlurPass::constants(sao, 0, 1));
             break;
@@ -579,20 +599,24 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
             ffao_.run_table(pass_env, settings.ffao, table_pass);
             error = after_pass("ffao_table");
         }
-        if (!error) {
+        if (!error && ffao_mipmap && pyramid_levels > 1) {
+            z_pyramid_.run(pass_env, pyramid_passes, pyramid_dispatches, resources_.linear_depth);
+            error = after_pass("z_pyramid");
+        }
+        if (!error && !ffao_mipmap) {
             ffao_.run_scan(pass_env, frame_whole, method_pass, resources_);
             error = after_pass("ffao_scan");
         }
-        if (!error && !ffao_single_lines(settings.ffao)) {
+        if (!error && !ffao_mipmap && !ffao_single_lines(settings.ffao)) {
             ffao_.run_prefix(pass_env, frame_whole, method_pass);
             error = after_pass("ffao_prefix");
         }
         if (!error) {
-            ffao_.run_obscurance(pass_env, frame_ao, method_pass, plan.ao_region, resources_);
+            ffao_.run_obscurance(pass_env, settings.ffao, frame_ao, method_pass, plan.ao_region, resources_);
             error = after_pass("ffao_obscurance");
         }
     } else if (!error && method == OBSCURA_METHOD_SAO) {
-        if (sao_levels > 1) {
+        if (pyramid_levels > 1) {
             z_pyramid_.run(pass_env, pyramid_passes, pyramid_dispatches, resources_.linear_depth);
             error = after_pass("z_pyramid");
         }

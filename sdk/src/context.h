@@ -60,6 +60,8 @@ private:
     Error ensure_reference_accumulator();
     // SAO's resources: `levels` MIP levels on the linear depth (the z pyramid) and the packed AO textures.
     Error ensure_sao_resources(int levels);
+    // MIP levels 0..levels-1 on the linear depth (SAO's z pyramid, FFAO's mipmap baseline).
+    Error ensure_depth_pyramid(int levels);
     // The method-specific resources a render with these resolved settings needs.
     Error ensure_method_resources(const obscura_settings& settings);
     Error record_frame(const FrameInput& input, const obscura_settings& settings, const OutputTarget& target);

@@ -84,7 +84,9 @@ protected:
         if (pass_.table_stale(ffao)) pass_.run_table(env(), ffao, table);
         pass_.run_scan(env(), frame, pass, resources_);
         pass_.run_prefix(env(), frame, pass);
-        if (obscurance) pass_.run_obscurance(env(), frame, pass, obscura::Region{0, 0, kWidth, kHeight}, resources_);
+        if (obscurance) {
+            pass_.run_obscurance(env(), ffao, frame, pass, obscura::Region{0, 0, kWidth, kHeight}, resources_);
+        }
         gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
     }
 

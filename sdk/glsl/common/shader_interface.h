@@ -181,6 +181,8 @@ OBSCURA_PASS_BLOCK_END(ReferenceConstants, reference)
 #define OBSCURA_MIP_FILTER_HARMONIC_MEAN 3
 #define OBSCURA_MIP_FILTER_MIN 4
 #define OBSCURA_MIP_FILTER_MAX 5
+// Internal (FFAO's mipmap method): the mean of the children that are not sky; sky only if all four are.
+#define OBSCURA_MIP_FILTER_MEAN_OF_GEOMETRY 6
 
 #if defined(__cplusplus) || defined(OBSCURA_Z_PYRAMID_PASS)
 OBSCURA_PASS_BLOCK_BEGIN(ZPyramidConstants)
@@ -237,7 +239,8 @@ OBSCURA_PASS_BLOCK_BEGIN(FfaoConstants)
                            // thickness (view units; 0: infinite)
   OBSCURA_VEC4(view);      // view units per texel at depth 1 along x and y (2 / (m0 W), 2 / (m5 H)), unused x2
   OBSCURA_IVEC4(config);   // K sectors, segments per sector, B0, pyramid levels
-  OBSCURA_IVEC4(options);  // jitter, single lines (no prefix sums: finite thickness), unused x2
+  OBSCURA_IVEC4(options);  // jitter, single lines (no prefix sums: finite thickness), deepest depth MIP level
+                           // (mipmap method), unused
   OBSCURA_VEC4(orientation[OBSCURA_FFAO_MAX_ORIENTATIONS]); // scan direction xy (texels), u and v of the grid origin
   OBSCURA_IVEC4(lines[OBSCURA_FFAO_MAX_ORIENTATIONS]);      // first line record, line count, grid steps U, unused
   OBSCURA_VEC4(axes[OBSCURA_FFAO_MAX_ORIENTATIONS]);        // view-space unit vector of the direction (z = 0): x, y

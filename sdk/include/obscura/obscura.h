@@ -371,6 +371,9 @@ typedef struct obscura_ffao_settings {
     int32_t segments;     /* evaluated parts of each sector, averaged separately (the paper's "x2"), [1, 4]. Default 2 */
     int32_t base_interval; /* B0: scan steps per level-0 interval; the near field covers B0 to 2 B0 texels,
                              [2, 64]. Default 10 */
+    int32_t geometry;     /* the far field's scene points: 1 the scanned peaks (sec. 6-7); 2 the paper's baseline
+                             (sec. 5), a depth MIP pyramid (mean, or max height with a thickness) sampled along
+                             each sector's centre at distances growing by 1.5, [1, 2]. Default 1 */
     float thickness;      /* metres of solid behind every depth texel (sec. 11), [0, 1e4]; > 0 also reads single
                              lines instead of sector averages (a finite field cannot be averaged). Default 0:
                              infinitely thick */

@@ -24,7 +24,8 @@ Error FfaoPass::prepare(const PassEnv& env) {
     Error error = env.build("ffao_table.comp", "", &table_program_);
     if (!error) error = env.build("ffao_scan.comp", "", &scan_program_);
     if (!error) error = env.build("ffao_prefix.comp", "", &prefix_program_);
-    if (!error) error = env.build("ffao_obscurance.comp", "", &obscurance_program_);
+    if (!error) error = env.build("ffao_obscurance.comp", "OBSCURA_FFAO_MIPMAP 0\n", &obscurance_program_);
+    if (!error) error = env.build("ffao_obscurance.comp", "OBSCURA_FFAO_MIPMAP 1\n", &mipmap_program_);
     if (error) return error;
     env.gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_FFAO_TABLE));  // a unit the StateGuard restores
     table_ = gl::create_texture_3d(env.gl, GL_R32F, OBSCURA_FFAO_TABLE_A, OBSCURA_FFAO_TABLE_B,
@@ -39,10 +40,14 @@ Error FfaoPass::prepare(const PassEnv& env) {
 }
 
 Error FfaoPass::ensure_layout(const PassEnv& env, const obscura_ffao_settings& settings, int width, int height) {
-    const LayoutKey key{width, height, settings.sectors, settings.base_interval};
-    if (peaks_.name() != 0 && key == key_) return Error();
+    const LayoutKey key{width, height, settings.sectors, settings.base_interval, !ffao_uses_mipmap(settings)};
+    if (layout_.width != 0 && key == key_) return Error();
     release();
     layout_ = make_ffao_layout(settings.sectors, settings.base_interval, width, height);
+    if (!key.buffers) {
+        key_ = key;
+        return Error();
+    }
     const gl::Table& gl = env.gl;
     GLint64 max_block_bytes = 0;
     gl.GetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block_bytes);
@@ -101,7 +106,8 @@ FfaoTableConstants FfaoPass::table_constants(const obscura_ffao_settings& settin
     return c;
 }
 
-FfaoConstants FfaoPass::constants(const obscura_ffao_settings& settings, const FrameInput& input) const {
+FfaoConstants FfaoPass::constants(const obscura_ffao_settings& settings, const FrameInput& input,
+                                  int mipmap_levels) const {
     FfaoConstants c = {};
     c.shape[0] = float(ffao_falloff_scale(settings) * input.meters_to_view_units);
     c.shape[1] = settings.intensity;
@@ -109,6 +115,7 @@ FfaoConstants FfaoPass::constants(const obscura_ffao_settings& settings, const F
     c.shape[3] = settings.thickness * input.meters_to_view_units;
     c.options[0] = settings.jitter == OBSCURA_TOGGLE_ON ? 1 : 0;
     c.options[1] = ffao_single_lines(settings) ? 1 : 0;
+    c.options[2] = mipmap_levels - 1;
     // View-space displacement per texel at depth 1 (its direction is what the passes use).
     c.view[0] = float(2.0 / (double(input.projection.m[0]) * input.width));
     c.view[1] = float(2.0 / (double(input.projection.m[5]) * input.height));
@@ -180,11 +187,16 @@ void FfaoPass::run_prefix(const PassEnv& env, const UniformRange& frame, const U
     gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
-void FfaoPass::run_obscurance(const PassEnv& env, const UniformRange& frame, const UniformRange& pass,
-                              const Region& region, FrameResources& resources) {
+void FfaoPass::run_obscurance(const PassEnv& env, const obscura_ffao_settings& settings, const UniformRange& frame,
+                              const UniformRange& pass, const Region& region, FrameResources& resources) {
     const gl::Table& gl = env.gl;
-    gl.UseProgram(obscurance_program_.name());
-    env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
+    const bool mipmap = ffao_uses_mipmap(settings);
+    gl.UseProgram(mipmap ? mipmap_program_.name() : obscurance_program_.name());
+    if (mipmap) {
+        env.bind_texture_mipmapped(OBSCURA_UNIT_LINEAR_DEPTH, resources.linear_depth.name());
+    } else {
+        env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
+    }
     env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
     gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_FFAO_TABLE));
     gl.BindTexture(GL_TEXTURE_3D, table_.name());

@@ -16,22 +16,31 @@ namespace obscura {
 // Whether the obscurance reads single lines rather than sector averages (a finite thickness: sec. 11), in
 // which case no prefix sums are built.
 inline bool ffao_single_lines(const obscura_ffao_settings& settings) { return settings.thickness > 0.0f; }
+// The paper's baseline (sec. 5): far-field points from a depth MIP pyramid instead of the scan.
+inline bool ffao_uses_mipmap(const obscura_ffao_settings& settings) { return settings.geometry == 2; }
+// The pyramid's filter for it: the mean of the geometry, or (finite thickness: no averaging) the nearest depth.
+inline int ffao_mipmap_filter(const obscura_ffao_settings& settings) {
+    return settings.thickness > 0.0f ? OBSCURA_MIP_FILTER_MIN : OBSCURA_MIP_FILTER_MEAN_OF_GEOMETRY;
+}
+constexpr int kFfaoMipmapLevels = 13;  // wanted levels (level_count caps them at the texture's size)
 
 class FfaoPass {
 public:
     // Builds the programs and the table's texture and sampler on first use.
     Error prepare(const PassEnv& env);
-    // Rebuilds the layout and its buffers when the size, K or B0 changed.
+    // Rebuilds the layout and its buffers when the size, K or B0 changed (the mipmap method keeps only the
+    // orientations: it allocates no scan buffers).
     Error ensure_layout(const PassEnv& env, const obscura_ffao_settings& settings, int width, int height);
     // Whether the table must be (re)built for these settings' falloff shape.
     bool table_stale(const obscura_ffao_settings& settings) const { return !table_valid_ || !(shape_ == ffao_falloff_shape(settings)); }
     static FfaoTableConstants table_constants(const obscura_ffao_settings& settings);
-    FfaoConstants constants(const obscura_ffao_settings& settings, const FrameInput& input) const;
+    // `mipmap_levels`: the depth pyramid's levels for the mipmap method (1 otherwise).
+    FfaoConstants constants(const obscura_ffao_settings& settings, const FrameInput& input, int mipmap_levels = 1) const;
     void run_table(const PassEnv& env, const obscura_ffao_settings& settings, const UniformRange& pass);
     void run_scan(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const FrameResources& resources);
     void run_prefix(const PassEnv& env, const UniformRange& frame, const UniformRange& pass);
-    void run_obscurance(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
-                        FrameResources& resources);
+    void run_obscurance(const PassEnv& env, const obscura_ffao_settings& settings, const UniformRange& frame,
+                        const UniformRange& pass, const Region& region, FrameResources& resources);
     const FfaoLayout& layout() const { return layout_; }
     uint64_t bytes() const;
     void release();  // the per-size buffers (the table stays)
@@ -41,14 +50,16 @@ public:
     std::vector<float> read_peaks(const gl::Table& gl) const;
 
 private:
-    gl::Object table_program_, scan_program_, prefix_program_, obscurance_program_;
+    gl::Object table_program_, scan_program_, prefix_program_, obscurance_program_, mipmap_program_;
     gl::Object table_, table_sampler_;
     bool table_valid_ = false;
     FfaoFalloffShape shape_;
     struct LayoutKey {
         int width = 0, height = 0, sectors = 0, base_interval = 0;
+        bool buffers = false;
         bool operator==(const LayoutKey& o) const {
-            return width == o.width && height == o.height && sectors == o.sectors && base_interval == o.base_interval;
+            return width == o.width && height == o.height && sectors == o.sectors && base_interval == o.base_interval &&
+                   buffers == o.buffers;
         }
     };
     LayoutKey key_;
