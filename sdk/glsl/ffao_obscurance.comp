@@ -25,7 +25,17 @@ layout(local_size_x = OBSCURA_FFAO_GROUP_X, local_size_y = OBSCURA_FFAO_GROUP_Y)
 layout(binding = OBSCURA_UNIT_LINEAR_DEPTH) uniform sampler2D u_depth;
 layout(binding = OBSCURA_UNIT_NORMALS) uniform sampler2D u_normals;
 layout(binding = OBSCURA_UNIT_FFAO_TABLE) uniform sampler3D u_table;
+#ifndef OBSCURA_FFAO_SAAO
+#error "OBSCURA_FFAO_SAAO must be defined"
+#endif
+#if OBSCURA_FFAO_SAAO
+// SAAO: the box-average pass's receiver (depth, octahedral normal, accepted-neighbour mask) in, the near and far
+// sums out.
+layout(binding = OBSCURA_UNIT_SOURCE) uniform sampler2D u_box;
+layout(binding = OBSCURA_IMAGE_OUT0, rg32f) uniform writeonly image2D u_terms;
+#else
 layout(binding = OBSCURA_IMAGE_OUT0, r16f) uniform writeonly image2D u_ao;
+#endif
 layout(std430, binding = OBSCURA_SSBO_FFAO_PEAKS) readonly buffer FfaoPeaks { vec4 ffao_peaks[]; };
 // The far field's source (compiled in): the scanned peaks (0) or the depth MIP pyramid (1, sec. 5).
 #ifndef OBSCURA_FFAO_MIPMAP
@@ -200,17 +210,11 @@ void mipmap_far_field(vec2 centre, vec2 d, float start, float tan_half, vec3 axi
 }
 #endif
 
-void main() {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy) + work_rect.xy;
-    if (any(greaterThanEqual(gl_GlobalInvocationID.xy, uvec2(work_rect.zw)))) return;
-    float depth = texelFetch(u_depth, pixel, 0).r;
-    if (obscura_is_sky(depth)) {
-        imageStore(u_ao, pixel, vec4(1.0));
-        return;
-    }
-    g_perspective = obscura_is_perspective();
-    vec3 p = obscura_view_position(pixel, depth);
-    vec3 n = obscura_decode_normal(texelFetch(u_normals, pixel, 0).xy);
+// One line orientation (both its sectors) for the receiver at p (view space, texel `pixel`, distance `depth`)
+// with normal n: adds the near field's share to `near_sum` and, if `far_field`, what the far field adds
+// beyond it to `far_sum` (sums of width |n_k| integral, over segments).
+void evaluate_orientation(int k, ivec2 pixel, vec3 p, vec3 n, float depth, bool far_field, inout float near_sum,
+                          inout float far_sum) {
     vec3 zenith3 = obscura_towards_eye(p);
     vec2 centre = vec2(pixel) + 0.5;
     ivec2 size = depth_size.xy;
@@ -220,95 +224,125 @@ void main() {
     // distance, per pixel.
     float jitter = ffao.options.x != 0 ? obscura_pixel_noise(pixel).x - 0.5 : 0.0;
     bool single_lines = ffao.options.y != 0;
-    float ao_total = 0.0;
-    for (int k = 0; k < sectors / 2; ++k) {
-        vec2 dir = ffao.orientation[k].xy;
-        vec2 perp = vec2(-dir.y, dir.x);
-        vec3 axis = vec3(ffao.axes[k].xy, 0.0);
-        float x_p = dot(p, axis);
-        if (g_perspective) {
-            vec3 across = p - x_p * axis;
-            g_zscale = length(across) / depth;
-        } else {
-            g_zscale = 1.0;
+    vec2 dir = ffao.orientation[k].xy;
+    vec2 perp = vec2(-dir.y, dir.x);
+    vec3 axis = vec3(ffao.axes[k].xy, 0.0);
+    float x_p = dot(p, axis);
+    g_zscale = g_perspective ? length(p - x_p * axis) / depth : 1.0;
+    g_p = vec2(x_p, p.z * g_zscale);
+    g_zenith = g_perspective ? normalize(-g_p) : vec2(0.0, 1.0);
+    // The normal in the plane: along A and along the plane's second axis (towards the eye side).
+    vec3 second = g_perspective ? -normalize(p - x_p * axis) : vec3(0.0, 0.0, 1.0);
+    vec2 nk = vec2(dot(n, axis), dot(n, second));
+    float n_length = length(nk);
+    float u_p = dot(centre, dir) - ffao.orientation[k].z;
+    float v_p = dot(centre, perp) - ffao.orientation[k].w - 0.5;  // in line indices
+    int i_p = int(floor(u_p / float(b0)));
+    int grid_steps = ffao.lines[k].z;
+    for (int side = -1; side <= 1; side += 2) {
+        // Outwards: the perpendicular of the zenith on the sector's side of the receiver.
+        vec2 o = vec2(g_zenith.y, -g_zenith.x);
+        g_out = dot(o, vec2(float(side), 0.0)) >= 0.0 ? o : -o;
+        g_d = atan(dot(nk, g_out), dot(nk, g_zenith));
+        // Near field: the pixel's own screen line up to the first far interval's near edge.
+        int far_start = side < 0 ? (i_p - 1) * b0 : (i_p + 2) * b0;
+        float near_length = abs(float(far_start) - u_p);
+        float near_ao = 0.0, near_horizon = kPi;
+        for (int t = 1; float(t) < near_length; ++t) {
+            vec2 q_screen = centre + float(side * t) * dir;
+            if (any(lessThan(q_screen, vec2(0.0))) || any(greaterThanEqual(q_screen, vec2(size)))) break;
+            vec3 q;
+            if (!line_point(q_screen, q)) continue;
+            add_slab(vec2(dot(q, axis), q.z * g_zscale), near_ao, near_horizon);
         }
-        g_p = vec2(x_p, p.z * g_zscale);
-        g_zenith = g_perspective ? normalize(-g_p) : vec2(0.0, 1.0);
-        // The normal in the plane: along A and along the plane's second axis (towards the eye side).
-        vec3 second = g_perspective ? -normalize(p - x_p * axis) : vec3(0.0, 0.0, 1.0);
-        vec2 nk = vec2(dot(n, axis), dot(n, second));
-        float n_length = length(nk);
-        float u_p = dot(centre, dir) - ffao.orientation[k].z;
-        float v_p = dot(centre, perp) - ffao.orientation[k].w - 0.5;  // in line indices
-        int i_p = int(floor(u_p / float(b0)));
-        int grid_steps = ffao.lines[k].z;
-        for (int side = -1; side <= 1; side += 2) {
-            // Outwards: the perpendicular of the zenith on the sector's side of the receiver.
-            vec2 o = vec2(g_zenith.y, -g_zenith.x);
-            g_out = dot(o, vec2(float(side), 0.0)) >= 0.0 ? o : -o;
-            g_d = atan(dot(nk, g_out), dot(nk, g_zenith));
-            // Near field: the pixel's own screen line up to the first far interval's near edge.
-            int far_start = side < 0 ? (i_p - 1) * b0 : (i_p + 2) * b0;
-            float near_length = abs(float(far_start) - u_p);
-            float near_ao = 0.0, near_horizon = kPi;
-            for (int t = 1; float(t) < near_length; ++t) {
-                vec2 q_screen = centre + float(side * t) * dir;
-                if (any(lessThan(q_screen, vec2(0.0))) || any(greaterThanEqual(q_screen, vec2(size)))) break;
-                vec3 q;
-                if (!line_point(q_screen, q)) continue;
-                add_slab(vec2(dot(q, axis), q.z * g_zscale), near_ao, near_horizon);
-            }
+        float sector_width = acos(clamp(dot(azimuth_vector(float(side) * dir - tan(half_sector) * perp, zenith3),
+                                            azimuth_vector(float(side) * dir + tan(half_sector) * perp, zenith3)),
+                                        -1.0, 1.0));
+        near_sum += sector_width * n_length * near_ao;
+        if (!far_field) continue;
 #if OBSCURA_FFAO_MIPMAP
-            {
-                float width = acos(clamp(dot(azimuth_vector(float(side) * dir - tan(half_sector) * perp, zenith3),
-                                             azimuth_vector(float(side) * dir + tan(half_sector) * perp, zenith3)),
-                                         -1.0, 1.0));
-                float ao = near_ao, horizon = near_horizon;
-                mipmap_far_field(centre, float(side) * dir, near_length, tan(half_sector), axis, ao, horizon);
-                ao_total += width * n_length * ao;
-            }
+        float ao = near_ao, horizon = near_horizon;
+        mipmap_far_field(centre, float(side) * dir, near_length, tan(half_sector), axis, ao, horizon);
+        far_sum += sector_width * n_length * (ao - near_ao);
 #else
-            // Far field, per segment.
-            vec3 previous_boundary = azimuth_vector(float(side) * dir - tan(half_sector) * perp, zenith3);
-            for (int s = 0; s < segments; ++s) {
-                float alpha_lo = -half_sector + 2.0 * half_sector * float(s) / float(segments);
-                float alpha_hi = -half_sector + 2.0 * half_sector * float(s + 1) / float(segments);
-                float tan_lo = tan(alpha_lo), tan_hi = tan(alpha_hi);
-                vec3 boundary = azimuth_vector(float(side) * dir + tan_hi * perp, zenith3);
-                float width = acos(clamp(dot(previous_boundary, boundary), -1.0, 1.0));
-                previous_boundary = boundary;
-                float ao = near_ao, horizon = near_horizon;
-                int cursor = far_start;
-                for (int guard = 0; guard < 64; ++guard) {
-                    if (side < 0 ? cursor <= 0 : cursor >= grid_steps) break;
-                    float gap = abs(float(cursor) - u_p);
-                    int n_level = 0;
-                    while (n_level + 1 < levels && cursor % (b0 << (n_level + 1)) == 0 &&
-                           float(b0 << (n_level + 1)) <= gap) {
-                        ++n_level;
-                    }
-                    int length_n = b0 << n_level;
-                    int i = side < 0 ? cursor / length_n - 1 : cursor / length_n;
-                    float distance = gap + 0.5 * float(length_n);
-                    cursor += side * length_n;
-                    FfaoColumn column = ffao_column(k, n_level, i);
-                    if (column.lines == 0) continue;
-                    // The segment's lines at this distance (its boundaries run along side * dir + tan(alpha) perp),
-                    // or the one through its middle.
-                    float shift = v_p + jitter * distance * (tan_hi - tan_lo);
-                    int la = int(floor(shift + distance * (single_lines ? 0.5 * (tan_lo + tan_hi) : tan_lo) + 0.5));
-                    int lb = single_lines ? la : int(floor(shift + distance * tan_hi + 0.5));
-                    vec4 sum = column_sum(column, la, lb);
-                    if (sum.w < 0.5) continue;
-                    vec3 peaks = sum.xyz / sum.w;
-                    float x_h = side < 0 ? peaks.x - peaks.y : peaks.z - peaks.x;
-                    add_slab(vec2(x_h, peaks.x * g_zscale), ao, horizon);
+        // Far field, per segment.
+        vec3 previous_boundary = azimuth_vector(float(side) * dir - tan(half_sector) * perp, zenith3);
+        for (int s = 0; s < segments; ++s) {
+            float alpha_lo = -half_sector + 2.0 * half_sector * float(s) / float(segments);
+            float alpha_hi = -half_sector + 2.0 * half_sector * float(s + 1) / float(segments);
+            float tan_lo = tan(alpha_lo), tan_hi = tan(alpha_hi);
+            vec3 boundary = azimuth_vector(float(side) * dir + tan_hi * perp, zenith3);
+            float width = acos(clamp(dot(previous_boundary, boundary), -1.0, 1.0));
+            previous_boundary = boundary;
+            float ao = near_ao, horizon = near_horizon;
+            int cursor = far_start;
+            for (int guard = 0; guard < 64; ++guard) {
+                if (side < 0 ? cursor <= 0 : cursor >= grid_steps) break;
+                float gap = abs(float(cursor) - u_p);
+                int n_level = 0;
+                while (n_level + 1 < levels && cursor % (b0 << (n_level + 1)) == 0 &&
+                       float(b0 << (n_level + 1)) <= gap) {
+                    ++n_level;
                 }
-                ao_total += width * n_length * ao;
+                int length_n = b0 << n_level;
+                int i = side < 0 ? cursor / length_n - 1 : cursor / length_n;
+                float distance = gap + 0.5 * float(length_n);
+                cursor += side * length_n;
+                FfaoColumn column = ffao_column(k, n_level, i);
+                if (column.lines == 0) continue;
+                // The segment's lines at this distance (its boundaries run along side * dir + tan(alpha) perp),
+                // or the one through its middle.
+                float shift = v_p + jitter * distance * (tan_hi - tan_lo);
+                int la = int(floor(shift + distance * (single_lines ? 0.5 * (tan_lo + tan_hi) : tan_lo) + 0.5));
+                int lb = single_lines ? la : int(floor(shift + distance * tan_hi + 0.5));
+                vec4 sum = column_sum(column, la, lb);
+                if (sum.w < 0.5) continue;
+                vec3 peaks = sum.xyz / sum.w;
+                float x_h = side < 0 ? peaks.x - peaks.y : peaks.z - peaks.x;
+                add_slab(vec2(x_h, peaks.x * g_zscale), ao, horizon);
             }
-#endif
+            far_sum += width * n_length * (ao - near_ao);
         }
+#endif
     }
-    float obscurance = clamp(ao_total / kPi * ffao.shape.y, 0.0, 1.0);
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy) + work_rect.xy;
+    if (any(greaterThanEqual(gl_GlobalInvocationID.xy, uvec2(work_rect.zw)))) return;
+    float depth = texelFetch(u_depth, pixel, 0).r;
+    g_perspective = obscura_is_perspective();
+    int orientations = ffao.config.x / 2;
+#if OBSCURA_FFAO_SAAO
+    // SAAO (sec. 10): the full near field at the pixel itself; the far field of every ninth orientation only
+    // (the pixel's place in its 3x3 group), at the group-averaged receiver of the box-average pass. The
+    // gather pass adds the accepted neighbours' far fields.
+    if (obscura_is_sky(depth)) {
+        imageStore(u_terms, pixel, vec4(0.0));
+        return;
+    }
+    vec3 p = obscura_view_position(pixel, depth);
+    vec3 n = obscura_decode_normal(texelFetch(u_normals, pixel, 0).xy);
+    float near_sum = 0.0, far_sum = 0.0, unused = 0.0;
+    for (int k = 0; k < orientations; ++k) evaluate_orientation(k, pixel, p, n, depth, false, near_sum, unused);
+    vec4 box = texelFetch(u_box, pixel, 0);
+    vec3 box_p = obscura_view_position(pixel, box.x);
+    vec3 box_n = obscura_decode_normal(box.yz);
+    int place = (pixel.x % 3) + 3 * (pixel.y % 3);
+    for (int k = place; k < orientations; k += 9) {
+        evaluate_orientation(k, pixel, box_p, box_n, box.x, true, unused, far_sum);
+    }
+    imageStore(u_terms, pixel, vec4(near_sum, far_sum, 0.0, 0.0));
+#else
+    if (obscura_is_sky(depth)) {
+        imageStore(u_ao, pixel, vec4(1.0));
+        return;
+    }
+    vec3 p = obscura_view_position(pixel, depth);
+    vec3 n = obscura_decode_normal(texelFetch(u_normals, pixel, 0).xy);
+    float near_sum = 0.0, far_sum = 0.0;
+    for (int k = 0; k < orientations; ++k) evaluate_orientation(k, pixel, p, n, depth, true, near_sum, far_sum);
+    float obscurance = clamp((near_sum + far_sum) / kPi * ffao.shape.y, 0.0, 1.0);
     imageStore(u_ao, pixel, vec4(pow(1.0 - obscurance, ffao.shape.z)));
+#endif
 }

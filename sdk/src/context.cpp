@@ -314,7 +314,7 @@ Error Context::ensure_method_resources(const obscura_settings& settings) {
                 ZPyramidPass::level_count(resources_.width, resources_.height, SaoPass::wanted_levels(settings.sao)));
         case OBSCURA_METHOD_LSAO: return lsao_.ensure_layout(env(), settings.lsao, resources_.width, resources_.height);
         case OBSCURA_METHOD_FFAO: {
-            Error error = ffao_.prepare(env());
+            Error error = ffao_.prepare(env(), settings.ffao);
             if (!error && ffao_uses_mipmap(settings.ffao)) {
                 error = ensure_depth_pyramid(
                     ZPyramidPass::level_count(resources_.width, resources_.height, kFfaoMipmapLevels));
@@ -489,6 +489,9 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
     } else if (method == OBSCURA_METHOD_SAO) {
         plan.blur = !raw_view && sao.blur == OBSCURA_TOGGLE_ON;
         plan.apron = plan.blur ? sao.blur_radius * sao.blur_stride : 0;
+    } else if (method == OBSCURA_METHOD_FFAO && ffao_uses_saao(settings.ffao)) {
+        plan.blur = !raw_view && settings.ffao.saao_blur == OBSCURA_TOGGLE_ON;
+        plan.apron = plan.blur ? 2 : 0;  // the 5x5 box
     }
     // AO is computed where the blur will read it: the output rect plus the apron on both axes.
     plan.ao_region = rect.expanded(plan.apron, plan.apron, input.width, input.height);
@@ -534,6 +537,13 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
     UniformRange frame_blur_x =
         uniforms_.push(frame_constants(input, composite_target, plan.blur_x_region, debug_depth_scale));
     UniformRange frame_blur_y = uniforms_.push(frame_constants(input, composite_target, rect, debug_depth_scale));
+    // FFAO's SAAO gather reads the 3x3 neighbours of its region: the box average and the obscurance cover one
+    // pixel more.
+    const Region saao_region = plan.ao_region.expanded(1, 1, input.width, input.height);
+    UniformRange frame_saao;
+    if (method == OBSCURA_METHOD_FFAO && ffao_uses_saao(settings.ffao)) {
+        frame_saao = uniforms_.push(frame_constants(input, composite_target, saao_region, debug_depth_scale));
+    }
     UniformRange method_pass, blur_x_pass, blur_y_pass, table_pass;
     UniformRange pyramid_passes[4];
     switch (method) {
@@ -611,9 +621,24 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
             ffao_.run_prefix(pass_env, frame_whole, method_pass);
             error = after_pass("ffao_prefix");
         }
+        const bool saao = ffao_uses_saao(settings.ffao);
+        if (!error && saao) {
+            ffao_.run_box_average(pass_env, frame_saao, method_pass, saao_region, resources_);
+            error = after_pass("ffao_box_average");
+        }
         if (!error) {
-            ffao_.run_obscurance(pass_env, settings.ffao, frame_ao, method_pass, plan.ao_region, resources_);
+            ffao_.run_obscurance(pass_env, settings.ffao, saao ? frame_saao : frame_ao, method_pass,
+                                 saao ? saao_region : plan.ao_region, resources_);
             error = after_pass("ffao_obscurance");
+        }
+        if (!error && saao) {
+            ffao_.run_gather(pass_env, frame_ao, method_pass, plan.ao_region, resources_);
+            error = after_pass("ffao_gather");
+        }
+        if (!error && plan.blur) {
+            ffao_.run_saao_blur(pass_env, frame_blur_y, method_pass, rect, resources_);
+            result = &resources_.ao_blurred;
+            error = after_pass("blur");
         }
     } else if (!error && method == OBSCURA_METHOD_SAO) {
         if (pyramid_levels > 1) {

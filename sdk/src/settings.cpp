@@ -196,6 +196,11 @@ const obscura_setting_info kFfaoSettings[] = {
      OBSCURA_FFAO_FIELD(thickness)},
     {"jitter", OBSCURA_SETTING_TOGGLE, 0, 0, 1, "", "offset each sector's lines per pixel: banding becomes noise",
      OBSCURA_FFAO_FIELD(jitter)},
+    {"saao", OBSCURA_SETTING_TOGGLE, 0, 0, 1, "",
+     "SAAO: each pixel of a 3x3 group evaluates 1/9 of the far field; a gather adds its accepted neighbours'",
+     OBSCURA_FFAO_FIELD(saao)},
+    {"saao_blur", OBSCURA_SETTING_TOGGLE, 1, 0, 1, "", "SAAO: 5x5 box blur over values within 7 % of the pixel's",
+     OBSCURA_FFAO_FIELD(saao_blur)},
     {"intensity", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "obscurance multiplier", OBSCURA_FFAO_FIELD(intensity)},
     {"power", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "exponent applied to the visibility",
      OBSCURA_FFAO_FIELD(power)},
@@ -324,9 +329,19 @@ Error check_falloff_table(const char* method, int32_t falloff, const float (&tab
     return Error();
 }
 
-// FFAO's derived values: the decay rate follows the radius; a line orientation serves two opposite sectors.
-Error resolve_ffao(obscura_ffao_settings* ffao) {
+// FFAO's derived values: the decay rate follows the radius; a line orientation serves two opposite sectors;
+// SAAO spreads the orientations over 3x3 pixels (`sectors_given`: whether the host set K).
+Error resolve_ffao(obscura_ffao_settings* ffao, bool sectors_given) {
     if (ffao->decay_rate == 0.0f) ffao->decay_rate = ffao->falloff_c * ffao->radius * ffao->radius;
+    if (ffao->saao == OBSCURA_TOGGLE_ON) {
+        if (!sectors_given) ffao->sectors = 18;
+        if (ffao->sectors % 18 != 0) {
+            return Error::make(OBSCURA_STATUS_INVALID_SETTING,
+                               "ffao.sectors = %d with saao: K must be a multiple of 18 (the 9 pixels of a 3x3 group "
+                               "share the K/2 line orientations); the paper uses 18",
+                               int(ffao->sectors));
+        }
+    }
     if (ffao->sectors % 2 != 0) {
         return Error::make(OBSCURA_STATUS_INVALID_SETTING,
                            "ffao.sectors = %d: K must be even (each scanned line orientation serves two opposite "
@@ -435,7 +450,7 @@ Error resolve_settings(const obscura_settings& in, obscura_settings* out) {
     Error error = resolve_lsao(&resolved.lsao);
     if (error) return error;
     error = check_falloff_table("reference", reference.falloff, reference.falloff_table);
-    if (!error) error = resolve_ffao(&resolved.ffao);
+    if (!error) error = resolve_ffao(&resolved.ffao, in.ffao.sectors != 0);
     if (error) return error;
     *out = resolved;
     return Error();

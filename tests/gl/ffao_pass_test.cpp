@@ -72,7 +72,7 @@ protected:
 
     // The table, the scan, the prefix sums and (optionally) the obscurance over the whole texture.
     void run(const obscura_ffao_settings& ffao, bool obscurance) {
-        ASSERT_FALSE(pass_.prepare(env()));
+        ASSERT_FALSE(pass_.prepare(env(), ffao));
         ASSERT_FALSE(pass_.ensure_layout(env(), ffao, kWidth, kHeight));
         GLint alignment = 256;
         gl_.GetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);

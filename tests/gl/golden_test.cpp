@@ -113,6 +113,11 @@ const std::vector<GoldenCase>& golden_cases() {
         {"sao_objects_r2", library_scene("objects"), "sao:radius=2"},
         {"lsao_atrium", library_scene("atrium"), "lsao"},
         {"lsao_clutter_k32", library_scene("clutter"), "lsao:preset=4"},
+        {"ffao_atrium", library_scene("atrium"), "ffao"},
+        // (These specs start from obscura_default_settings, whose fields are explicit: K and r are given.)
+        {"ffao_atrium_saao", library_scene("atrium"), "ffao:saao=on:sectors=18"},
+        {"ffao_terrain_r4", library_scene("terrain"), "ffao:radius=4:decay_rate=4.8"},
+        {"ffao_terrain_r4_saao", library_scene("terrain"), "ffao:radius=4:decay_rate=4.8:saao=on:sectors=18"},
         {"reference_analytic_16_rays", library_scene("analytic"), "reference:rays=16"},
         {"reference_objects_16_rays", library_scene("objects"), "reference:rays=16"},
     };

@@ -378,6 +378,11 @@ typedef struct obscura_ffao_settings {
                              lines instead of sector averages (a finite field cannot be averaged). Default 0:
                              infinitely thick */
     obscura_toggle jitter; /* offset every sector's lines per pixel (sec. 11.1): banding becomes noise. Default off */
+    obscura_toggle saao;  /* SAAO interleaving (sec. 10): in every 3x3 pixel group each pixel evaluates the far field
+                             of K/9 of the sectors (x2 segments) at its group's edge-aware averaged depth and normal;
+                             a gather adds the accepted neighbours' far fields to each pixel's full near field.
+                             Needs K a multiple of 18; sectors left 0 become 18 (the paper's 18x2). Default off */
+    obscura_toggle saao_blur; /* SAAO: the paper's 5x5 box blur over values within 7 % of the pixel's. Default on */
     float intensity;      /* obscurance multiplier, [1e-3, 16]. Default 1 */
     float power;          /* visibility exponent, [1e-3, 16]. Default 1 */
     float falloff_table[OBSCURA_FALLOFF_TABLE_SIZE]; /* TABLE only: rho at i/(N-1) * radius, values in [0, 1] */

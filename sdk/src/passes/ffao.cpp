@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 namespace obscura {
@@ -19,31 +20,63 @@ static_assert(sizeof(GpuLine) == 16 && sizeof(FfaoColumn) == 16, "uvec4 records"
 
 }  // namespace
 
-Error FfaoPass::prepare(const PassEnv& env) {
-    if (obscurance_program_) return Error();
-    Error error = env.build("ffao_table.comp", "", &table_program_);
-    if (!error) error = env.build("ffao_scan.comp", "", &scan_program_);
-    if (!error) error = env.build("ffao_prefix.comp", "", &prefix_program_);
-    if (!error) error = env.build("ffao_obscurance.comp", "OBSCURA_FFAO_MIPMAP 0\n", &obscurance_program_);
-    if (!error) error = env.build("ffao_obscurance.comp", "OBSCURA_FFAO_MIPMAP 1\n", &mipmap_program_);
-    if (error) return error;
-    env.gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_FFAO_TABLE));  // a unit the StateGuard restores
-    table_ = gl::create_texture_3d(env.gl, GL_R32F, OBSCURA_FFAO_TABLE_A, OBSCURA_FFAO_TABLE_B,
-                                   OBSCURA_FFAO_TABLE_C * OBSCURA_FFAO_TABLE_D);
-    table_sampler_ = gl::create_sampler_linear_clamp(env.gl);
-    table_valid_ = false;
-    if (!table_ || !table_sampler_) {
-        obscurance_program_ = gl::Object();  // try again next time
-        return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating FFAO's estimator table failed");
+Error FfaoPass::prepare(const PassEnv& env, const obscura_ffao_settings& settings) {
+    Error error;
+    if (!table_program_) {
+        error = env.build("ffao_table.comp", "", &table_program_);
+        if (!error) error = env.build("ffao_scan.comp", "", &scan_program_);
+        if (!error) error = env.build("ffao_prefix.comp", "", &prefix_program_);
+        if (error) {
+            table_program_ = gl::Object();
+            return error;
+        }
+    }
+    const int mipmap = ffao_uses_mipmap(settings) ? 1 : 0, saao = ffao_uses_saao(settings) ? 1 : 0;
+    if (!obscurance_programs_[mipmap][saao]) {
+        char defines[96];
+        std::snprintf(defines, sizeof defines, "OBSCURA_FFAO_MIPMAP %d\nOBSCURA_FFAO_SAAO %d\n", mipmap, saao);
+        error = env.build("ffao_obscurance.comp", defines, &obscurance_programs_[mipmap][saao]);
+        if (error) return error;
+    }
+    if (saao && !box_program_) {
+        error = env.build("ffao_box_average.comp", "", &box_program_);
+        if (!error) error = env.build("ffao_gather.comp", "", &gather_program_);
+        if (!error) error = env.build("ffao_saao_blur.comp", "", &blur_program_);
+        if (error) {
+            box_program_ = gl::Object();
+            return error;
+        }
+    }
+    if (!table_) {
+        env.gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_FFAO_TABLE));  // a unit the StateGuard restores
+        table_ = gl::create_texture_3d(env.gl, GL_R32F, OBSCURA_FFAO_TABLE_A, OBSCURA_FFAO_TABLE_B,
+                                       OBSCURA_FFAO_TABLE_C * OBSCURA_FFAO_TABLE_D);
+        table_sampler_ = gl::create_sampler_linear_clamp(env.gl);
+        table_valid_ = false;
+        if (!table_ || !table_sampler_) {
+            table_ = gl::Object();
+            return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating FFAO's estimator table failed");
+        }
     }
     return Error();
 }
 
 Error FfaoPass::ensure_layout(const PassEnv& env, const obscura_ffao_settings& settings, int width, int height) {
-    const LayoutKey key{width, height, settings.sectors, settings.base_interval, !ffao_uses_mipmap(settings)};
+    const LayoutKey key{width, height, settings.sectors, settings.base_interval, !ffao_uses_mipmap(settings),
+                        ffao_uses_saao(settings)};
     if (layout_.width != 0 && key == key_) return Error();
     release();
     layout_ = make_ffao_layout(settings.sectors, settings.base_interval, width, height);
+    if (key.saao) {
+        env.gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_SOURCE));  // a unit the StateGuard restores
+        box_ = gl::Texture2D::create(env.gl, GL_RGBA32F, width, height);
+        terms_ = gl::Texture2D::create(env.gl, GL_RG32F, width, height);
+        if (!box_ || !terms_) {
+            release();
+            return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating FFAO's %dx%d SAAO textures failed", width,
+                               height);
+        }
+    }
     if (!key.buffers) {
         key_ = key;
         return Error();
@@ -87,12 +120,15 @@ void FfaoPass::release() {
     lines_ = gl::Buffer();
     columns_ = gl::Buffer();
     peaks_ = gl::Buffer();
+    box_ = gl::Texture2D();
+    terms_ = gl::Texture2D();
     layout_ = FfaoLayout();
     key_ = LayoutKey();
 }
 
 uint64_t FfaoPass::bytes() const {
-    return lines_.bytes() + columns_.bytes() + peaks_.bytes() + (table_ ? kTableBytes : 0);
+    return lines_.bytes() + columns_.bytes() + peaks_.bytes() + box_.bytes() + terms_.bytes() +
+           (table_ ? kTableBytes : 0);
 }
 
 FfaoTableConstants FfaoPass::table_constants(const obscura_ffao_settings& settings) {
@@ -190,8 +226,8 @@ void FfaoPass::run_prefix(const PassEnv& env, const UniformRange& frame, const U
 void FfaoPass::run_obscurance(const PassEnv& env, const obscura_ffao_settings& settings, const UniformRange& frame,
                               const UniformRange& pass, const Region& region, FrameResources& resources) {
     const gl::Table& gl = env.gl;
-    const bool mipmap = ffao_uses_mipmap(settings);
-    gl.UseProgram(mipmap ? mipmap_program_.name() : obscurance_program_.name());
+    const bool mipmap = ffao_uses_mipmap(settings), saao = ffao_uses_saao(settings);
+    gl.UseProgram(obscurance_programs_[mipmap ? 1 : 0][saao ? 1 : 0].name());
     if (mipmap) {
         env.bind_texture_mipmapped(OBSCURA_UNIT_LINEAR_DEPTH, resources.linear_depth.name());
     } else {
@@ -203,7 +239,52 @@ void FfaoPass::run_obscurance(const PassEnv& env, const obscura_ffao_settings& s
     gl.BindSampler(OBSCURA_UNIT_FFAO_TABLE, table_sampler_.name());
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_PEAKS, peaks_.name());
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_COLUMNS, columns_.name());
+    if (saao) {
+        env.bind_texture(OBSCURA_UNIT_SOURCE, GL_TEXTURE_2D, box_.name());
+        gl.BindImageTexture(OBSCURA_IMAGE_OUT0, terms_.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+    } else {
+        gl.BindImageTexture(OBSCURA_IMAGE_OUT0, resources.ao.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
+    }
+    env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
+    env.bind_uniforms(OBSCURA_UBO_PASS, pass);
+    env.dispatch(region.width, region.height, OBSCURA_FFAO_GROUP_X, OBSCURA_FFAO_GROUP_Y);
+    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+void FfaoPass::run_box_average(const PassEnv& env, const UniformRange& frame, const UniformRange& pass,
+                               const Region& region, const FrameResources& resources) {
+    const gl::Table& gl = env.gl;
+    gl.UseProgram(box_program_.name());
+    env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
+    env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
+    gl.BindImageTexture(OBSCURA_IMAGE_OUT0, box_.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
+    env.bind_uniforms(OBSCURA_UBO_PASS, pass);
+    env.dispatch(region.width, region.height, OBSCURA_FFAO_GROUP_X, OBSCURA_FFAO_GROUP_Y);
+    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+void FfaoPass::run_gather(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
+                          FrameResources& resources) {
+    const gl::Table& gl = env.gl;
+    gl.UseProgram(gather_program_.name());
+    env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
+    env.bind_texture(OBSCURA_UNIT_SOURCE, GL_TEXTURE_2D, box_.name());
+    env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, terms_.name());
     gl.BindImageTexture(OBSCURA_IMAGE_OUT0, resources.ao.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
+    env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
+    env.bind_uniforms(OBSCURA_UBO_PASS, pass);
+    env.dispatch(region.width, region.height, OBSCURA_FFAO_GROUP_X, OBSCURA_FFAO_GROUP_Y);
+    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+void FfaoPass::run_saao_blur(const PassEnv& env, const UniformRange& frame, const UniformRange& pass,
+                             const Region& region, FrameResources& resources) {
+    const gl::Table& gl = env.gl;
+    gl.UseProgram(blur_program_.name());
+    env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
+    env.bind_texture(OBSCURA_UNIT_SOURCE, GL_TEXTURE_2D, resources.ao.name());
+    gl.BindImageTexture(OBSCURA_IMAGE_OUT0, resources.ao_blurred.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
     env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
     env.bind_uniforms(OBSCURA_UBO_PASS, pass);
     env.dispatch(region.width, region.height, OBSCURA_FFAO_GROUP_X, OBSCURA_FFAO_GROUP_Y);

@@ -18,6 +18,7 @@ namespace obscura {
 inline bool ffao_single_lines(const obscura_ffao_settings& settings) { return settings.thickness > 0.0f; }
 // The paper's baseline (sec. 5): far-field points from a depth MIP pyramid instead of the scan.
 inline bool ffao_uses_mipmap(const obscura_ffao_settings& settings) { return settings.geometry == 2; }
+inline bool ffao_uses_saao(const obscura_ffao_settings& settings) { return settings.saao == OBSCURA_TOGGLE_ON; }
 // The pyramid's filter for it: the mean of the geometry, or (finite thickness: no averaging) the nearest depth.
 inline int ffao_mipmap_filter(const obscura_ffao_settings& settings) {
     return settings.thickness > 0.0f ? OBSCURA_MIP_FILTER_MIN : OBSCURA_MIP_FILTER_MEAN_OF_GEOMETRY;
@@ -26,8 +27,8 @@ constexpr int kFfaoMipmapLevels = 13;  // wanted levels (level_count caps them a
 
 class FfaoPass {
 public:
-    // Builds the programs and the table's texture and sampler on first use.
-    Error prepare(const PassEnv& env);
+    // Builds the programs these settings run and the table's texture and sampler on first use.
+    Error prepare(const PassEnv& env, const obscura_ffao_settings& settings);
     // Rebuilds the layout and its buffers when the size, K or B0 changed (the mipmap method keeps only the
     // orientations: it allocates no scan buffers).
     Error ensure_layout(const PassEnv& env, const obscura_ffao_settings& settings, int width, int height);
@@ -39,8 +40,17 @@ public:
     void run_table(const PassEnv& env, const obscura_ffao_settings& settings, const UniformRange& pass);
     void run_scan(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const FrameResources& resources);
     void run_prefix(const PassEnv& env, const UniformRange& frame, const UniformRange& pass);
+    // Without SAAO: visibility into resources.ao over `region`. With SAAO: the near and far sums over `region`
+    // (the gather's region grown by a pixel), after the box average over the same region.
     void run_obscurance(const PassEnv& env, const obscura_ffao_settings& settings, const UniformRange& frame,
                         const UniformRange& pass, const Region& region, FrameResources& resources);
+    void run_box_average(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
+                         const FrameResources& resources);
+    // SAAO: visibility into resources.ao over `region`; then optionally the blur into resources.ao_blurred.
+    void run_gather(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
+                    FrameResources& resources);
+    void run_saao_blur(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
+                       FrameResources& resources);
     const FfaoLayout& layout() const { return layout_; }
     uint64_t bytes() const;
     void release();  // the per-size buffers (the table stays)
@@ -50,16 +60,18 @@ public:
     std::vector<float> read_peaks(const gl::Table& gl) const;
 
 private:
-    gl::Object table_program_, scan_program_, prefix_program_, obscurance_program_, mipmap_program_;
+    gl::Object table_program_, scan_program_, prefix_program_, box_program_, gather_program_, blur_program_;
+    gl::Object obscurance_programs_[2][2];  // [mipmap geometry][SAAO], built on first use
+    gl::Texture2D box_, terms_;             // SAAO: averaged receivers, (near, far) sums
     gl::Object table_, table_sampler_;
     bool table_valid_ = false;
     FfaoFalloffShape shape_;
     struct LayoutKey {
         int width = 0, height = 0, sectors = 0, base_interval = 0;
-        bool buffers = false;
+        bool buffers = false, saao = false;
         bool operator==(const LayoutKey& o) const {
             return width == o.width && height == o.height && sectors == o.sectors && base_interval == o.base_interval &&
-                   buffers == o.buffers;
+                   buffers == o.buffers && saao == o.saao;
         }
     };
     LayoutKey key_;
