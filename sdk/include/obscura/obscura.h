@@ -25,7 +25,8 @@
  *                             near-field search covers the first 1-2 intervals. The whole depth buffer, any radius.
  *   OBSCURA_METHOD_REFERENCE  Screen-space ray-traced ground truth: eq. 1 of the FFAO paper evaluated by
  *                             cosine-weighted rays stepped through the whole depth buffer (its sec. 8).
- *   Methods not yet available return OBSCURA_STATUS_METHOD_NOT_AVAILABLE.
+ *   All five are available in this version; obscura_method_available() and OBSCURA_STATUS_METHOD_NOT_AVAILABLE
+ *   remain for methods a build or a later version does not have.
  *
  * INTEGRATION
  *   1. obscura_context_desc desc = {0};
