@@ -223,6 +223,16 @@ void FfaoPass::run_prefix(const PassEnv& env, const UniformRange& frame, const U
     gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
+// The per-pixel passes' common end: their constants, one invocation per pixel of `region`, and a barrier
+// for the next pass's texel fetches.
+void FfaoPass::dispatch_pixels(const PassEnv& env, const UniformRange& frame, const UniformRange& pass,
+                               const Region& region) {
+    env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
+    env.bind_uniforms(OBSCURA_UBO_PASS, pass);
+    env.dispatch(region.width, region.height, OBSCURA_FFAO_GROUP_X, OBSCURA_FFAO_GROUP_Y);
+    env.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
 void FfaoPass::run_obscurance(const PassEnv& env, const obscura_ffao_settings& settings, const UniformRange& frame,
                               const UniformRange& pass, const Region& region, FrameResources& resources) {
     const gl::Table& gl = env.gl;
@@ -245,10 +255,7 @@ void FfaoPass::run_obscurance(const PassEnv& env, const obscura_ffao_settings& s
     } else {
         gl.BindImageTexture(OBSCURA_IMAGE_OUT0, resources.ao.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
     }
-    env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
-    env.bind_uniforms(OBSCURA_UBO_PASS, pass);
-    env.dispatch(region.width, region.height, OBSCURA_FFAO_GROUP_X, OBSCURA_FFAO_GROUP_Y);
-    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    dispatch_pixels(env, frame, pass, region);
 }
 
 void FfaoPass::run_box_average(const PassEnv& env, const UniformRange& frame, const UniformRange& pass,
@@ -258,10 +265,7 @@ void FfaoPass::run_box_average(const PassEnv& env, const UniformRange& frame, co
     env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
     env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
     gl.BindImageTexture(OBSCURA_IMAGE_OUT0, box_.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
-    env.bind_uniforms(OBSCURA_UBO_PASS, pass);
-    env.dispatch(region.width, region.height, OBSCURA_FFAO_GROUP_X, OBSCURA_FFAO_GROUP_Y);
-    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    dispatch_pixels(env, frame, pass, region);
 }
 
 void FfaoPass::run_gather(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
@@ -272,10 +276,7 @@ void FfaoPass::run_gather(const PassEnv& env, const UniformRange& frame, const U
     env.bind_texture(OBSCURA_UNIT_SOURCE, GL_TEXTURE_2D, box_.name());
     env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, terms_.name());
     gl.BindImageTexture(OBSCURA_IMAGE_OUT0, resources.ao.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
-    env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
-    env.bind_uniforms(OBSCURA_UBO_PASS, pass);
-    env.dispatch(region.width, region.height, OBSCURA_FFAO_GROUP_X, OBSCURA_FFAO_GROUP_Y);
-    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    dispatch_pixels(env, frame, pass, region);
 }
 
 void FfaoPass::run_saao_blur(const PassEnv& env, const UniformRange& frame, const UniformRange& pass,
@@ -285,10 +286,7 @@ void FfaoPass::run_saao_blur(const PassEnv& env, const UniformRange& frame, cons
     env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
     env.bind_texture(OBSCURA_UNIT_SOURCE, GL_TEXTURE_2D, resources.ao.name());
     gl.BindImageTexture(OBSCURA_IMAGE_OUT0, resources.ao_blurred.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
-    env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
-    env.bind_uniforms(OBSCURA_UBO_PASS, pass);
-    env.dispatch(region.width, region.height, OBSCURA_FFAO_GROUP_X, OBSCURA_FFAO_GROUP_Y);
-    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    dispatch_pixels(env, frame, pass, region);
 }
 
 std::vector<float> FfaoPass::read_table(const gl::Table& gl) const {

@@ -60,6 +60,8 @@ public:
     std::vector<float> read_peaks(const gl::Table& gl) const;
 
 private:
+    static void dispatch_pixels(const PassEnv& env, const UniformRange& frame, const UniformRange& pass,
+                                const Region& region);
     gl::Object table_program_, scan_program_, prefix_program_, box_program_, gather_program_, blur_program_;
     gl::Object obscurance_programs_[2][2];  // [mipmap geometry][SAAO], built on first use
     gl::Texture2D box_, terms_;             // SAAO: averaged receivers, (near, far) sums
