@@ -17,8 +17,10 @@ const float kPi = 3.14159265358979;
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy) + work_rect.xy;
     if (any(greaterThanEqual(gl_GlobalInvocationID.xy, uvec2(work_rect.zw)))) return;
-    if (obscura_is_sky(texelFetch(u_depth, pixel, 0).r)) {
-        imageStore(u_ao, pixel, vec4(1.0));
+    // The tap-count debug view counts depth texels per pixel; FFAO's cost is per line and interval: 0.
+    bool count_taps = target_params.w == OBSCURA_DEBUG_VIEW_TAP_COUNT;
+    if (obscura_is_sky(texelFetch(u_depth, pixel, 0).r) || count_taps) {
+        imageStore(u_ao, pixel, vec4(count_taps ? 0.0 : 1.0));
         return;
     }
     uint mask = floatBitsToUint(texelFetch(u_box, pixel, 0).w);

@@ -334,8 +334,10 @@ void main() {
     }
     imageStore(u_terms, pixel, vec4(near_sum, far_sum, 0.0, 0.0));
 #else
-    if (obscura_is_sky(depth)) {
-        imageStore(u_ao, pixel, vec4(1.0));
+    // The tap-count debug view counts depth texels per pixel; FFAO's cost is per line and interval: 0.
+    bool count_taps = target_params.w == OBSCURA_DEBUG_VIEW_TAP_COUNT;
+    if (obscura_is_sky(depth) || count_taps) {
+        imageStore(u_ao, pixel, vec4(count_taps ? 0.0 : 1.0));
         return;
     }
     vec3 p = obscura_view_position(pixel, depth);

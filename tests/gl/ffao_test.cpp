@@ -1,5 +1,6 @@
 // FFAO through the public API on the built-in scenes (320x180): SAAO's interleaved far field against every
 // pixel evaluating every sector, and the settings SAAO needs.
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -53,6 +54,24 @@ TEST_F(Ffao, SaaoMatchesEvaluatingEverySectorAtEveryPixel) {
         EXPECT_LT(sum / double(a.size()), 0.01) << scene;
         EXPECT_GT(differing / double(a.size()), 0.05) << scene << ": SAAO should not be the plain path";
         RecordProperty(std::string("mean_abs_saao_vs_plain_") + scene, std::to_string(sum / double(a.size())));
+    }
+}
+
+// The tap-count debug view counts depth texels per pixel; FFAO's work is per line and interval, so it shows 0
+// (as LSAO's), with and without SAAO.
+TEST_F(Ffao, TapCountViewIsZero) {
+    const obscura::samples::Scene scene = obscura::samples::load_scene("analytic");
+    obscura::samples::SceneRenderOptions options;
+    options.width = 160;
+    options.height = 90;
+    options.camera = scene.viewpoints[0].camera;
+    obscura::samples::RenderedScene rendered(obscura::samples::render_scene(scene.mesh, options));
+    for (bool saao : {false, true}) {
+        obscura_settings settings = ffao_settings();
+        settings.ffao.saao = saao ? OBSCURA_TOGGLE_ON : OBSCURA_TOGGLE_OFF;
+        const std::vector<float> v = render_visibility(ctx(), rendered->make_input(), settings, OBSCURA_DEBUG_TAP_COUNT);
+        ASSERT_FALSE(v.empty());
+        EXPECT_EQ(*std::max_element(v.begin(), v.end()), 0.0f) << (saao ? "saao" : "plain");
     }
 }
 
