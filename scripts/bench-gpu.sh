@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs the GPU checks of docs/performance.md on a machine with an NVIDIA GPU and EGL (the lent H100).
-# Usage: scripts/bench-gpu.sh BUILD_DIR OUT_DIR [tests] [bench] [lsao]
+# Usage: scripts/bench-gpu.sh BUILD_DIR OUT_DIR [tests] [bench] [lsao] [lsao-error] [ffao]
 #   BUILD_DIR holds bin/obscura (and tests/obscura_*_tests for "tests") built on an x86-64 Debian machine
 #   with -DOBSCURA_SAMPLES_WITH_OSMESA=OFF (no Mesa needed there), and lib/ with the shared libraries the
 #   GPU machine lacks (libtinyobjloader). scripts/stage-gpu-build.sh prepares it.
@@ -11,6 +11,8 @@
 #   bench: every method at 1920x1080 + 10 % guard band per side (2304x1296 texels), and the LSAO scaling runs.
 #   lsao:  the LSAO sweep variants (segments, warm-up strides and tolerances, hull sizes) at 1920x1080.
 #   lsao-error: the AO error each sweep variant costs against whole lines and the exact sweep, per scene.
+#   ffao:  FFAO at 1920x1080: the default 16x2, SAAO 18x2 (the issue's H100 target, <= 0.6 ms), the mipmap
+#          baseline, B0 = 5 / 10 / 20 (Table 3), the radius, the sizes of Table 1, per kernel (Tables 2, 4).
 # The clock is the SDK's GL timer queries (bench reports "clock": "gpu-timer" in its JSON).
 set -uo pipefail
 build="$(cd "${1:?build dir}" && pwd)"
@@ -54,6 +56,15 @@ for what in "$@"; do
         bench --scene atrium --sizes 1920x1080 --methods lsao:radius=0.1,lsao:radius=1,lsao:radius=10 \
               --json "$out/lsao_radius.json"
       } 2>&1 | tee "$out/bench.txt"
+      ;;
+    ffao)
+      {
+        bench --scene atrium --sizes 1920x1080 \
+              --methods ffao,ffao:saao=on,ffao:saao=on:saao_blur=off,ffao:sectors=18,ffao:segments=1,ffao:geometry=2,ffao:base_interval=5,ffao:base_interval=20,ffao:radius=0.1,ffao:radius=10,ffao:thickness=0.3,hbao:directions=16:steps=48,lsao \
+              --json "$out/ffao_1080.json"
+        bench --scene atrium --sizes 1280x720,2560x1600,3840x2160 --methods ffao,ffao:saao=on \
+              --json "$out/ffao_sizes.json"
+      } 2>&1 | grep -E '^[a-z].* @ |total|ffao_|z_pyramid|blur|GPU memory' | tee "$out/ffao.txt"
       ;;
     lsao)
       # Sweep parallelism: whole lines vs segments of several lengths and warm-up tolerances.
