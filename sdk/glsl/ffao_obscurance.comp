@@ -69,30 +69,40 @@ float table_l(float a, float beta, float c) {
     return textureLod(u_table, coord, 0.0).r;
 }
 
-// Eq. 3 for the slab topped by h (plane coordinates): adds its share to `ao` if h rises above `horizon` (the
-// smallest zenith angle so far) and lowers the horizon to it. A finite thickness t (sec. 11) ends the slab t
-// deeper than h, as the reference's field ends: rays below its bottom pass under it, so the paper replaces
-// a_{i-1} with the larger of it and the bottom's angle.
-void add_slab(vec2 h, inout float ao, inout float horizon) {
-    float a = max(zenith_angle(h - g_p), 0.0);
-    if (!(a < horizon)) return;
+// Eq. 3 for the slab topped by h (plane coordinates): adds its share to `ao` if h rises above the horizon so
+// far and lowers the horizon to it. `horizon` holds that angle (from the zenith towards the sector) and its
+// cosine: most points stay below it, and for those the test is a dot product instead of an arctangent (the
+// cosine falls as the angle grows on [0, pi]; points behind the zenith count as angle 0). A finite thickness
+// t (sec. 11) ends the slab t deeper than h, as the reference's field ends: rays below its bottom pass under
+// it, so the paper replaces a_{i-1} with the larger of it and the bottom's angle.
+void add_slab(vec2 h, inout float ao, inout vec2 horizon) {
+    vec2 v = h - g_p;
+    float length_sq = dot(v, v);
+    if (!(length_sq > 0.0)) return;
+    bool behind = dot(v, g_out) < 0.0;
+    float cosine = behind ? 1.0 : dot(v, g_zenith) * inversesqrt(length_sq);
+    if (!(cosine > horizon.y)) return;
+    float a = behind ? 0.0 : max(zenith_angle(v), 0.0);
     // The slab continues h along its view ray: away from the eye (the plane's origin), or straight down.
     vec2 u = g_perspective ? normalize(h) : vec2(0.0, -1.0);
-    float b = g_perspective ? abs(g_p.x * u.y - g_p.y * u.x) : abs(dot(h - g_p, g_out));
+    float b = g_perspective ? abs(g_p.x * u.y - g_p.y * u.x) : abs(dot(v, g_out));
     // |angle|: a slab whose ray leans past the zenith's other side (h just behind p) mirrors, and atan(-0, -1)
     // would read -pi for the orthographic pi.
     float c = g_perspective ? abs(zenith_angle(u)) : kPi;
     float beta = b / ffao.shape.x;
-    float lowest = horizon;
+    float lowest = horizon.x;
     float thickness = ffao.shape.w;
     if (thickness > 0.0) {
         float depth = -h.y / g_zscale;
         vec2 bottom = g_perspective ? h * ((depth + thickness) / depth) : h - vec2(0.0, thickness);
-        lowest = min(horizon, max(zenith_angle(bottom - g_p), a));
+        lowest = min(horizon.x, max(zenith_angle(bottom - g_p), a));
     }
     ao += table_l(a, beta, c) - table_l(lowest, beta, c);
-    horizon = a;
+    horizon = vec2(a, cosine);
 }
+
+// No horizon yet: straight down (angle pi, cosine -1).
+const vec2 kNoHorizon = vec2(3.14159265358979, -1.0);
 
 // Azimuth of screen direction `sd` around the zenith z3 of view point p3: its view-space vector made
 // perpendicular to z3, normalised.
@@ -184,7 +194,7 @@ float trilinear_geometry(vec2 q, float level) {
 // Samples along the sector's centre line from the near field's end, each step 1.5 times the last, at the level
 // whose texels match the sector's width there, and once more at the depth texture's edge.
 void mipmap_far_field(vec2 centre, vec2 d, float start, float tan_half, vec3 axis, inout float ao,
-                      inout float horizon) {
+                      inout vec2 horizon) {
     vec2 size = vec2(depth_size.xy);
     float edge = 1e30;
     for (int i = 0; i < 2; ++i) {
@@ -247,7 +257,8 @@ void evaluate_orientation(int k, ivec2 pixel, vec3 p, vec3 n, float depth, bool 
         // Near field: the pixel's own screen line up to the first far interval's near edge.
         int far_start = side < 0 ? (i_p - 1) * b0 : (i_p + 2) * b0;
         float near_length = abs(float(far_start) - u_p);
-        float near_ao = 0.0, near_horizon = kPi;
+        float near_ao = 0.0;
+        vec2 near_horizon = kNoHorizon;
         for (int t = 1; float(t) < near_length; ++t) {
             vec2 q_screen = centre + float(side * t) * dir;
             if (any(lessThan(q_screen, vec2(0.0))) || any(greaterThanEqual(q_screen, vec2(size)))) break;
@@ -261,7 +272,8 @@ void evaluate_orientation(int k, ivec2 pixel, vec3 p, vec3 n, float depth, bool 
         near_sum += sector_width * n_length * near_ao;
         if (!far_field) continue;
 #if OBSCURA_FFAO_MIPMAP
-        float ao = near_ao, horizon = near_horizon;
+        float ao = near_ao;
+        vec2 horizon = near_horizon;
         mipmap_far_field(centre, float(side) * dir, near_length, tan(half_sector), axis, ao, horizon);
         far_sum += sector_width * n_length * (ao - near_ao);
 #else
@@ -274,7 +286,8 @@ void evaluate_orientation(int k, ivec2 pixel, vec3 p, vec3 n, float depth, bool 
             vec3 boundary = azimuth_vector(float(side) * dir + tan_hi * perp, zenith3);
             float width = acos(clamp(dot(previous_boundary, boundary), -1.0, 1.0));
             previous_boundary = boundary;
-            float ao = near_ao, horizon = near_horizon;
+            float ao = near_ao;
+            vec2 horizon = near_horizon;
             int cursor = far_start;
             for (int guard = 0; guard < 64; ++guard) {
                 if (side < 0 ? cursor <= 0 : cursor >= grid_steps) break;
