@@ -43,18 +43,8 @@ protected:
                 }
         }
         gl_.ActiveTexture(GL_TEXTURE0);
-        resources_.width = kWidth;
-        resources_.height = kHeight;
-        resources_.linear_depth = gl::Texture2D::create(gl_, GL_R32F, kWidth, kHeight);
-        resources_.normals = gl::Texture2D::create(gl_, GL_RG16_SNORM, kWidth, kHeight);
+        obscura_pass_test::upload_linear_depth(gl_, depth_, kWidth, kHeight, &resources_);
         resources_.ao = gl::Texture2D::create(gl_, GL_R16F, kWidth, kHeight);
-        gl_.BindTexture(GL_TEXTURE_2D, resources_.linear_depth.name());
-        gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
-        gl_.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kWidth, kHeight, GL_RED, GL_FLOAT, depth_.data());
-        std::vector<int16_t> normals(size_t(kWidth) * kHeight * 2, 0);  // (0, 0) decodes to +z
-        gl_.BindTexture(GL_TEXTURE_2D, resources_.normals.name());
-        gl_.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kWidth, kHeight, GL_RG, GL_SHORT, normals.data());
-        gl_.BindTexture(GL_TEXTURE_2D, 0);
     }
 
     obscura_ffao_settings resolved(obscura_ffao_settings ffao) {

@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 #include "gl/gl_api.h"
 #include "gl/gl_objects.h"
@@ -50,6 +52,23 @@ inline FrameConstants perspective_linear_depth_frame(int width, int height, floa
     frame.work_rect[2] = width;
     frame.work_rect[3] = height;
     return frame;
+}
+
+// The frame resources a pass reads, for a width x height linear-depth image: R32F depth uploaded from
+// `depth` (row-major, bottom row first) and RG16_SNORM normals all (0, 0), which decode to +z.
+inline void upload_linear_depth(const obscura::gl::Table& gl, const std::vector<float>& depth, int width, int height,
+                                obscura::FrameResources* resources) {
+    resources->width = width;
+    resources->height = height;
+    resources->linear_depth = obscura::gl::Texture2D::create(gl, GL_R32F, width, height);
+    resources->normals = obscura::gl::Texture2D::create(gl, GL_RG16_SNORM, width, height);
+    gl.BindTexture(GL_TEXTURE_2D, resources->linear_depth.name());
+    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    gl.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, GL_RED, GL_FLOAT, depth.data());
+    const std::vector<int16_t> normals(size_t(width) * size_t(height) * 2, 0);
+    gl.BindTexture(GL_TEXTURE_2D, resources->normals.name());
+    gl.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, GL_RG, GL_SHORT, normals.data());
+    gl.BindTexture(GL_TEXTURE_2D, 0);
 }
 
 class PassTest : public ::testing::Test {
