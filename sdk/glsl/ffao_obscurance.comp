@@ -36,7 +36,16 @@ layout(binding = OBSCURA_IMAGE_OUT0, rg32f) uniform writeonly image2D u_terms;
 #else
 layout(binding = OBSCURA_IMAGE_OUT0, r16f) uniform writeonly image2D u_ao;
 #endif
+#ifndef OBSCURA_FFAO_BUFFER_TEXTURES
+#error "OBSCURA_FFAO_BUFFER_TEXTURES must be defined"
+#endif
+#if OBSCURA_FFAO_BUFFER_TEXTURES
+layout(binding = OBSCURA_UNIT_FFAO_PEAKS) uniform samplerBuffer u_ffao_peaks;
+vec4 ffao_peak(int index) { return texelFetch(u_ffao_peaks, index); }
+#else
 layout(std430, binding = OBSCURA_SSBO_FFAO_PEAKS) readonly buffer FfaoPeaks { vec4 ffao_peaks[]; };
+vec4 ffao_peak(int index) { return ffao_peaks[index]; }
+#endif
 // The far field's source (compiled in): the scanned peaks (0) or the depth MIP pyramid (1, sec. 5).
 #ifndef OBSCURA_FFAO_MIPMAP
 #error "OBSCURA_FFAO_MIPMAP must be defined"
@@ -75,13 +84,17 @@ float table_l(float a, float beta, float c) {
 // cosine falls as the angle grows on [0, pi]; points behind the zenith count as angle 0). A finite thickness
 // t (sec. 11) ends the slab t deeper than h, as the reference's field ends: rays below its bottom pass under
 // it, so the paper replaces a_{i-1} with the larger of it and the bottom's angle.
-void add_slab(vec2 h, inout float ao, inout vec2 horizon) {
+// slab_cosine is the test, raise_horizon the slab's share for a point known to rise.
+float slab_cosine(vec2 h) {
     vec2 v = h - g_p;
     float length_sq = dot(v, v);
-    if (!(length_sq > 0.0)) return;
+    if (!(length_sq > 0.0)) return -2.0;  // h = p: below every horizon
+    return dot(v, g_out) < 0.0 ? 1.0 : dot(v, g_zenith) * inversesqrt(length_sq);
+}
+
+void raise_horizon(vec2 h, float cosine, inout float ao, inout vec2 horizon) {
+    vec2 v = h - g_p;
     bool behind = dot(v, g_out) < 0.0;
-    float cosine = behind ? 1.0 : dot(v, g_zenith) * inversesqrt(length_sq);
-    if (!(cosine > horizon.y)) return;
     float a = behind ? 0.0 : max(zenith_angle(v), 0.0);
     // The slab continues h along its view ray: away from the eye (the plane's origin), or straight down.
     vec2 u = g_perspective ? normalize(h) : vec2(0.0, -1.0);
@@ -101,6 +114,11 @@ void add_slab(vec2 h, inout float ao, inout vec2 horizon) {
     horizon = vec2(a, cosine);
 }
 
+void add_slab(vec2 h, inout float ao, inout vec2 horizon) {
+    float cosine = slab_cosine(h);
+    if (cosine > horizon.y) raise_horizon(h, cosine, ao, horizon);
+}
+
 // No horizon yet: straight down (angle pi, cosine -1).
 const vec2 kNoHorizon = vec2(3.14159265358979, -1.0);
 
@@ -116,17 +134,17 @@ vec3 azimuth_vector(vec2 sd, vec3 z3) {
 vec4 column_sum(FfaoColumn column, int la, int lb) {
     if (ffao.options.y != 0) {
         int e = la - column.first_line;
-        return e >= 0 && e < column.lines ? ffao_peaks[column.offset + e] : vec4(0.0);
+        return e >= 0 && e < column.lines ? ffao_peak(column.offset + e) : vec4(0.0);
     }
     int ea = max(la - column.first_line, 0);
     int eb = min(lb - column.first_line, column.lines - 1);
     int block = 1 << column.block_shift;
     eb = min(eb, ea + block - 1);  // a run spans at most two blocks
     if (eb < ea) return vec4(0.0);
-    vec4 sum = ffao_peaks[column.offset + eb];
+    vec4 sum = ffao_peak(column.offset + eb);
     int block_a = ea >> column.block_shift;
-    if ((ea & (block - 1)) != 0) sum -= ffao_peaks[column.offset + ea - 1];
-    if ((eb >> column.block_shift) != block_a) sum += ffao_peaks[column.offset + block_a * block + block - 1];
+    if ((ea & (block - 1)) != 0) sum -= ffao_peak(column.offset + ea - 1);
+    if ((eb >> column.block_shift) != block_a) sum += ffao_peak(column.offset + block_a * block + block - 1);
     return sum;
 }
 
@@ -140,13 +158,13 @@ bool line_point(vec2 q, out vec3 position) {
     ivec2 hi = depth_size.xy - 1;
     ivec2 texel = clamp(ivec2(floor(q)), ivec2(0), hi);
     if (ffao.shape.w <= 0.0) {
+        // One gather fetches the quad, clamped at the edges like the sampler. It is addressed at the quad's
+        // shared corner, half a texel from any rounding boundary, so it cannot pick a neighbouring quad. Its
+        // components are the texels (0,1), (1,1), (1,0), (0,0); reordered to (0,0), (1,0), (0,1), (1,1).
         vec2 f = q - 0.5;
-        ivec2 base = ivec2(floor(f));
-        vec2 t = f - vec2(base);
-        vec4 d = vec4(texelFetch(u_depth, clamp(base, ivec2(0), hi), 0).r,
-                      texelFetch(u_depth, clamp(base + ivec2(1, 0), ivec2(0), hi), 0).r,
-                      texelFetch(u_depth, clamp(base + ivec2(0, 1), ivec2(0), hi), 0).r,
-                      texelFetch(u_depth, clamp(base + ivec2(1, 1), ivec2(0), hi), 0).r);
+        vec2 base = floor(f);
+        vec2 t = f - base;
+        vec4 d = textureGather(u_depth, (base + 1.0) / vec2(depth_size.xy), 0).wzxy;
         if (all(lessThan(d, vec4(OBSCURA_SKY_THRESHOLD)))) {
             bool perspective = obscura_is_perspective();
             vec4 k = perspective ? 1.0 / d : d;
@@ -257,14 +275,37 @@ void evaluate_orientation(int k, ivec2 pixel, vec3 p, vec3 n, float depth, bool 
         // Near field: the pixel's own screen line up to the first far interval's near edge.
         int far_start = side < 0 ? (i_p - 1) * b0 : (i_p + 2) * b0;
         float near_length = abs(float(far_start) - u_p);
+        // It runs in batches of 32 steps: a light loop marks the steps whose points rise above the horizon so
+        // far, a second evaluates only those slabs (a few per batch). SIMD hardware then pays the table
+        // lookups once per rising point of its slowest lane instead of once per step: CPU rasterisers execute
+        // every branch under a mask, and a GPU's warp diverges on the rises.
         float near_ao = 0.0;
         vec2 near_horizon = kNoHorizon;
-        for (int t = 1; float(t) < near_length; ++t) {
-            vec2 q_screen = centre + float(side * t) * dir;
-            if (any(lessThan(q_screen, vec2(0.0))) || any(greaterThanEqual(q_screen, vec2(size)))) break;
-            vec3 q;
-            if (!line_point(q_screen, q)) continue;
-            add_slab(vec2(dot(q, axis), q.z * g_zscale), near_ao, near_horizon);
+        int near_steps = int(ceil(near_length)) - 1;  // t = 1 ... near_steps have t < near_length
+        for (int first = 1; first <= near_steps; first += 32) {
+            int batch = min(32, near_steps + 1 - first);
+            uint rising = 0u;
+            float top = near_horizon.y;
+            for (int j = 0; j < batch; ++j) {
+                vec2 q_screen = centre + float(side * (first + j)) * dir;
+                vec3 q;
+                if (all(greaterThanEqual(q_screen, vec2(0.0))) && all(lessThan(q_screen, vec2(size))) &&
+                    line_point(q_screen, q)) {
+                    float cosine = slab_cosine(vec2(dot(q, axis), q.z * g_zscale));
+                    if (cosine > top) {
+                        top = cosine;
+                        rising |= 1u << uint(j);
+                    }
+                }
+            }
+            while (rising != 0u) {
+                int j = findLSB(rising);
+                rising &= rising - 1u;
+                vec3 q;
+                line_point(centre + float(side * (first + j)) * dir, q);
+                vec2 h = vec2(dot(q, axis), q.z * g_zscale);
+                raise_horizon(h, slab_cosine(h), near_ao, near_horizon);
+            }
         }
         float sector_width = acos(clamp(dot(azimuth_vector(float(side) * dir - tan(half_sector) * perp, zenith3),
                                             azimuth_vector(float(side) * dir + tan(half_sector) * perp, zenith3)),

@@ -279,3 +279,35 @@ TEST_F(FfaoPasses, ThinOccludersCastLessAndJitterKeepsTheMean) {
 }
 
 }  // namespace
+
+namespace {
+
+// The obscurance pass reads the peaks and column records as buffer textures on CPU rasterisers and as storage
+// buffers on GPUs (compiled in): the same loads, so the same AO to the bit, with and without prefix sums.
+TEST_F(FfaoPasses, StorageBufferAndBufferTexturePathsAgree) {
+    upload_depth(false);
+    for (float thickness : {0.0f, 0.2f}) {
+        obscura_ffao_settings settings = defaults();
+        settings.radius = 2.0f;
+        settings.decay_rate = 0.0f;
+        settings.thickness = thickness;
+        std::vector<float> ao[2];
+        for (bool cpu : {true, false}) {
+            cpu_renderer_ = cpu;
+            pass_ = obscura::FfaoPass();  // its programs depend on cpu_renderer_
+            run(resolved(settings), true);
+            ao[cpu ? 1 : 0] = read_ao();
+        }
+        int different = 0;
+        double darkest = 1.0;
+        for (size_t i = 0; i < ao[0].size(); ++i) {
+            different += ao[0][i] != ao[1][i];
+            darkest = std::min(darkest, double(ao[1][i]));
+        }
+        EXPECT_EQ(different, 0) << "thickness " << thickness;
+        EXPECT_LT(darkest, 0.8) << "thickness " << thickness;  // there is occlusion to compare
+    }
+    cpu_renderer_ = true;
+}
+
+}  // namespace

@@ -13,7 +13,16 @@ struct FfaoColumn {
     int block_shift; // prefix sums restart every 2^block_shift entries
 };
 
+// A program that defines OBSCURA_FFAO_BUFFER_TEXTURES 1 (the obscurance pass on CPU rasterisers) reads the
+// records and peaks as buffer textures: those rasterisers fetch texels with vector gathers but load storage
+// buffers one invocation at a time. GPUs read them as storage buffers, through their caches.
+#if defined(OBSCURA_FFAO_BUFFER_TEXTURES) && OBSCURA_FFAO_BUFFER_TEXTURES
+layout(binding = OBSCURA_UNIT_FFAO_COLUMNS) uniform usamplerBuffer u_ffao_columns;
+uvec4 ffao_column_record(int index) { return texelFetch(u_ffao_columns, index); }
+#else
 layout(std430, binding = OBSCURA_SSBO_FFAO_COLUMNS) readonly buffer FfaoColumns { uvec4 ffao_columns[]; };
+uvec4 ffao_column_record(int index) { return ffao_columns[index]; }
+#endif
 
 int ffao_levels() { return ffao.config.w; }
 int ffao_base_interval() { return ffao.config.z; }
@@ -28,7 +37,7 @@ FfaoColumn ffao_column(int k, int n, int i) {
     FfaoColumn column = FfaoColumn(0, 0, 0, 0);
     if (i < 0 || i >= ffao_column_count(k, n)) return column;
     int index = k * OBSCURA_FFAO_MAX_LEVELS + n;
-    uvec4 record = ffao_columns[ffao.column_base[index >> 2][index & 3] + i];
+    uvec4 record = ffao_column_record(ffao.column_base[index >> 2][index & 3] + i);
     column.offset = int(record.x);
     column.first_line = int(record.y);
     column.lines = int(record.z);

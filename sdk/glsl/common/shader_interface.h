@@ -13,7 +13,9 @@
 #define OBSCURA_UNIT_LSAO_LINES 4   // LSAO's line records (usamplerBuffer, RGBA32UI; CPU rasterisers)
 #define OBSCURA_UNIT_LSAO_VALUES 5  // LSAO's sweep values read by the gather (samplerBuffer, R16F; CPU rasterisers)
 #define OBSCURA_UNIT_FFAO_TABLE 4   // FFAO's estimator table L (sampler3D, R32F, linear filtering)
-#define OBSCURA_TEXTURE_UNIT_COUNT 6
+#define OBSCURA_UNIT_FFAO_PEAKS 5   // FFAO's peaks read by the obscurance pass (samplerBuffer, RGBA32F; CPU rasterisers)
+#define OBSCURA_UNIT_FFAO_COLUMNS 6 // FFAO's column records read by the obscurance pass (usamplerBuffer; CPU rasterisers)
+#define OBSCURA_TEXTURE_UNIT_COUNT 7
 
 // Image units (imageStore / imageLoad).
 #define OBSCURA_IMAGE_OUT0 0

@@ -33,8 +33,10 @@ Error FfaoPass::prepare(const PassEnv& env, const obscura_ffao_settings& setting
     }
     const int mipmap = ffao_uses_mipmap(settings) ? 1 : 0, saao = ffao_uses_saao(settings) ? 1 : 0;
     if (!obscurance_programs_[mipmap][saao]) {
-        char defines[96];
-        std::snprintf(defines, sizeof defines, "OBSCURA_FFAO_MIPMAP %d\nOBSCURA_FFAO_SAAO %d\n", mipmap, saao);
+        char defines[128];
+        std::snprintf(defines, sizeof defines,
+                      "OBSCURA_FFAO_MIPMAP %d\nOBSCURA_FFAO_SAAO %d\nOBSCURA_FFAO_BUFFER_TEXTURES %d\n", mipmap, saao,
+                      env.cpu_renderer ? 1 : 0);
         error = env.build("ffao_obscurance.comp", defines, &obscurance_programs_[mipmap][saao]);
         if (error) return error;
     }
@@ -84,14 +86,20 @@ Error FfaoPass::ensure_layout(const PassEnv& env, const obscura_ffao_settings& s
     const gl::Table& gl = env.gl;
     GLint64 max_block_bytes = 0;
     gl.GetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block_bytes);
+    // CPU rasterisers' obscurance pass also reads the peaks as a buffer texture, which GL bounds in texels.
+    GLint max_texels = 0;
+    gl.GetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
     const long long peak_bytes = static_cast<long long>(layout_.entries) * 16;
-    if (peak_bytes > max_block_bytes || layout_.entries > (int64_t(1) << 31) - 1) {
+    const bool over_texels = env.cpu_renderer && layout_.entries > max_texels;
+    if (peak_bytes > max_block_bytes || layout_.entries > (int64_t(1) << 31) - 1 || over_texels) {
         const long long entries = layout_.entries;
         release();
         return Error::make(OBSCURA_STATUS_INVALID_SIZE,
-                           "FFAO at %dx%d needs %lld interval entries (%lld bytes), over "
-                           "GL_MAX_SHADER_STORAGE_BLOCK_SIZE (%lld): use fewer sectors or a larger base_interval",
-                           width, height, entries, peak_bytes, static_cast<long long>(max_block_bytes));
+                           "FFAO at %dx%d needs %lld interval entries (%lld bytes), over %s (%lld): use fewer "
+                           "sectors or a larger base_interval",
+                           width, height, entries, peak_bytes,
+                           over_texels ? "GL_MAX_TEXTURE_BUFFER_SIZE texels" : "GL_MAX_SHADER_STORAGE_BLOCK_SIZE",
+                           over_texels ? static_cast<long long>(max_texels) : static_cast<long long>(max_block_bytes));
     }
     std::vector<GpuLine> lines(layout_.lines.size());
     for (size_t i = 0; i < lines.size(); ++i) {
@@ -102,7 +110,13 @@ Error FfaoPass::ensure_layout(const PassEnv& env, const obscura_ffao_settings& s
     columns_ = gl::Buffer::create(gl, GL_SHADER_STORAGE_BUFFER,
                                   std::max<size_t>(layout_.columns.size(), 1) * sizeof(FfaoColumn));
     peaks_ = gl::Buffer::create(gl, GL_SHADER_STORAGE_BUFFER, uint64_t(std::max<int64_t>(layout_.entries, 1)) * 16);
-    if (!lines_.name() || !columns_.name() || !peaks_.name()) {
+    if (env.cpu_renderer && columns_.name() && peaks_.name()) {
+        gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_FFAO_PEAKS));  // a unit the StateGuard restores
+        peaks_texture_ = gl::create_buffer_texture(gl, GL_RGBA32F, peaks_.name());
+        columns_texture_ = gl::create_buffer_texture(gl, GL_RGBA32UI, columns_.name());
+    }
+    const bool textures_ok = !env.cpu_renderer || (peaks_texture_ && columns_texture_);
+    if (!lines_.name() || !columns_.name() || !peaks_.name() || !textures_ok) {
         release();
         return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating FFAO's scan buffers (%lld bytes) failed",
                            peak_bytes);
@@ -117,6 +131,8 @@ Error FfaoPass::ensure_layout(const PassEnv& env, const obscura_ffao_settings& s
 }
 
 void FfaoPass::release() {
+    peaks_texture_ = gl::Object();
+    columns_texture_ = gl::Object();
     lines_ = gl::Buffer();
     columns_ = gl::Buffer();
     peaks_ = gl::Buffer();
@@ -206,7 +222,7 @@ void FfaoPass::run_scan(const PassEnv& env, const UniformRange& frame, const Uni
     for (const FfaoOrientation& o : layout_.orientations) most_lines = std::max(most_lines, o.line_count);
     gl.DispatchCompute(GLuint((most_lines + OBSCURA_FFAO_SCAN_GROUP - 1) / OBSCURA_FFAO_SCAN_GROUP), 1,
                        GLuint(layout_.orientations.size()));
-    gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
 void FfaoPass::run_prefix(const PassEnv& env, const UniformRange& frame, const UniformRange& pass) {
@@ -220,7 +236,7 @@ void FfaoPass::run_prefix(const PassEnv& env, const UniformRange& frame, const U
     for (int32_t count : layout_.column_count) most_columns = std::max(most_columns, int(count));
     gl.DispatchCompute(GLuint((most_columns + OBSCURA_FFAO_PREFIX_GROUP - 1) / OBSCURA_FFAO_PREFIX_GROUP), 1,
                        GLuint(layout_.orientations.size() * size_t(layout_.levels)));
-    gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
 // The per-pixel passes' common end: their constants, one invocation per pixel of `region`, and a barrier
@@ -249,6 +265,10 @@ void FfaoPass::run_obscurance(const PassEnv& env, const obscura_ffao_settings& s
     gl.BindSampler(OBSCURA_UNIT_FFAO_TABLE, table_sampler_.name());
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_PEAKS, peaks_.name());
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_COLUMNS, columns_.name());
+    if (peaks_texture_) {  // CPU rasterisers
+        env.bind_texture(OBSCURA_UNIT_FFAO_PEAKS, GL_TEXTURE_BUFFER, peaks_texture_.name());
+        env.bind_texture(OBSCURA_UNIT_FFAO_COLUMNS, GL_TEXTURE_BUFFER, columns_texture_.name());
+    }
     if (saao) {
         env.bind_texture(OBSCURA_UNIT_SOURCE, GL_TEXTURE_2D, box_.name());
         gl.BindImageTexture(OBSCURA_IMAGE_OUT0, terms_.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);

@@ -66,6 +66,7 @@ private:
     gl::Object obscurance_programs_[2][2];  // [mipmap geometry][SAAO], built on first use
     gl::Texture2D box_, terms_;             // SAAO: averaged receivers, (near, far) sums
     gl::Object table_, table_sampler_;
+    gl::Object peaks_texture_, columns_texture_;  // buffer textures over peaks_ and columns_ (CPU rasterisers only)
     bool table_valid_ = false;
     FfaoFalloffShape shape_;
     struct LayoutKey {
