@@ -12,6 +12,8 @@ required=(
   glmark2-data                           # the "bunny" scene's model (optional at run time)
   libgtest-dev                           # test suite
   libglew-dev libepoxy-dev               # tests that act as a host using GLEW / libepoxy
+  libglfw3-dev libimgui-dev              # obscura-viewer (window, Dear ImGui and its backend sources)
+  xvfb xauth                             # the viewer's tests run it in a virtual X server
 )
 # python3-glad is only needed to regenerate third_party/glad*, never to build.
 

@@ -13,6 +13,7 @@
 
 #include "headless_gl.h"
 #include "host_gl_objects.h"
+#include "host_gl_program.h"
 
 namespace obscura::samples {
 namespace {
@@ -143,46 +144,7 @@ private:
     GLint clip_origin_ = 0, clip_depth_mode_ = 0;
 };
 
-GLuint compile_shader(GLenum stage, const char* source) {
-    const GLuint shader = glCreateShader(stage);
-    glShaderSource(shader, 1, &source, nullptr);
-    glCompileShader(shader);
-    GLint compiled = GL_FALSE;
-    glGetShaderiv(shader, GL_COMPILE_STATUS, &compiled);
-    if (!compiled) {
-        char log[2048] = {};
-        glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-        glDeleteShader(shader);
-        throw std::runtime_error(std::string("scene shader failed to compile: ") + log);
-    }
-    return shader;
-}
-
-HostProgram link_scene_program() {
-    HostProgram program = HostProgram::create();
-    const GLuint vertex = compile_shader(GL_VERTEX_SHADER, kVertexShader);
-    GLuint fragment = 0;
-    try {
-        fragment = compile_shader(GL_FRAGMENT_SHADER, kFragmentShader);
-    } catch (...) {
-        glDeleteShader(vertex);
-        throw;
-    }
-    glAttachShader(program.get(), vertex);
-    glAttachShader(program.get(), fragment);
-    glLinkProgram(program.get());
-    // Attached shaders are deleted with the program; flag them now.
-    glDeleteShader(vertex);
-    glDeleteShader(fragment);
-    GLint linked = GL_FALSE;
-    glGetProgramiv(program.get(), GL_LINK_STATUS, &linked);
-    if (!linked) {
-        char log[2048] = {};
-        glGetProgramInfoLog(program.get(), sizeof log, nullptr, log);
-        throw std::runtime_error(std::string("scene program failed to link: ") + log);
-    }
-    return program;
-}
+HostProgram link_scene_program() { return link_host_program(kVertexShader, kFragmentShader, "scene"); }
 
 HostTexture create_depth_texture(const SceneRenderOptions& options, int width, int height) {
     HostTexture texture = HostTexture::create();

@@ -1,0 +1,92 @@
+// obscura-viewer: tune every setting of every method on a real scene and see the cost and the error at once.
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+#include "viewer_app.h"
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: obscura-viewer [--scene NAME|FILE.obj|FILE.pfm] [--viewpoint NAME] [--method SPEC]\n"
+    "                      [--settings FILE.json] [--view ao|lit|lit-no-ao|split|error] [--compare SPEC|reference]\n"
+    "                      [--size WxH] [--normals] [--reference-rays N] [--screenshot OUT.png --frames N]\n"
+    "SPEC is NAME[:KEY=VALUE...] as in `obscura --list-settings`, e.g. hbao:directions=16:steps=48.\n"
+    "--screenshot with --frames N renders N frames, saves the window (panel included) and exits.\n"
+    "Mouse: drag to orbit (fly: to look), wheel to dolly; fly mode moves with W A S D Q E.\n";
+
+int usage_error(const std::string& message) {
+    std::fprintf(stderr, "obscura-viewer: %s\n%s", message.c_str(), kUsage);
+    return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    using obscura::viewer::ViewMode;
+    obscura::viewer::ViewerOptions options;
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg == "--help" || arg == "-h") {
+            std::printf("%s", kUsage);
+            return 0;
+        }
+        if (arg == "--normals") {
+            options.use_normals = true;
+            continue;
+        }
+        if (i + 1 >= argc) return usage_error("missing value for " + arg);
+        const std::string value = argv[++i];
+        if (arg == "--scene") {
+            options.scene = value;
+        } else if (arg == "--viewpoint") {
+            options.viewpoint = value;
+        } else if (arg == "--method") {
+            options.method = value;
+        } else if (arg == "--settings") {
+            options.settings_file = value;
+        } else if (arg == "--compare") {
+            options.compare = value;
+        } else if (arg == "--screenshot") {
+            options.screenshot = value;
+        } else if (arg == "--frames" || arg == "--reference-rays") {
+            char* rest = nullptr;
+            const long n = std::strtol(value.c_str(), &rest, 10);
+            if (*rest != 0 || n < 1 || n > 100000) return usage_error(arg + " needs a count in [1, 100000]");
+            (arg == "--frames" ? options.frames : options.reference_rays) = int(n);
+        } else if (arg == "--size") {
+            int w = 0, h = 0;
+            char tail = 0;
+            if (std::sscanf(value.c_str(), "%dx%d%c", &w, &h, &tail) != 2 || w < 64 || h < 64 || w > 8192 || h > 8192) {
+                return usage_error("--size needs WxH, each in [64, 8192]");
+            }
+            options.width = w;
+            options.height = h;
+        } else if (arg == "--view") {
+            const ViewMode modes[] = {ViewMode::AoOnly, ViewMode::LitWithAo, ViewMode::LitWithoutAo, ViewMode::Split,
+                                      ViewMode::ErrorMap};
+            bool found = false;
+            for (ViewMode mode : modes) {
+                if (value == obscura::viewer::view_mode_name(mode)) {
+                    options.view = mode;
+                    found = true;
+                }
+            }
+            if (!found) return usage_error("--view takes ao, lit, lit-no-ao, split or error");
+        } else {
+            return usage_error("unknown argument '" + arg + "'");
+        }
+    }
+    if (options.frames > 0 && options.screenshot.empty()) return usage_error("--frames goes with --screenshot");
+    try {
+        obscura::viewer::settings_from_spec(options.method);
+        if (!options.compare.empty() && options.compare != "reference") {
+            obscura::viewer::settings_from_spec(options.compare);
+        }
+    } catch (const std::invalid_argument& error) {
+        return usage_error(error.what());
+    }
+    return obscura::viewer::run_viewer(options);
+}

@@ -1,0 +1,356 @@
+#include "settings_document.h"
+
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <utility>
+
+#include "json_reader.h"
+#include "json_writer.h"
+
+namespace obscura::viewer {
+namespace {
+
+using samples::JsonValue;
+
+struct SettingTable {
+    const obscura_setting_info* infos = nullptr;
+    uint32_t count = 0;
+
+    const obscura_setting_info* begin() const { return infos; }
+    const obscura_setting_info* end() const { return infos + count; }
+    const obscura_setting_info* find(std::string_view name) const {
+        for (const obscura_setting_info& info : *this) {
+            if (name == info.name) return &info;
+        }
+        return nullptr;
+    }
+};
+
+SettingTable setting_table(obscura_method method) {
+    SettingTable table;
+    const obscura_status status = obscura_get_setting_infos(method, &table.infos, &table.count);
+    if (status != OBSCURA_OK) {
+        throw SettingsDocumentError(std::string("obscura_get_setting_infos failed: ") + obscura_status_string(status));
+    }
+    return table;
+}
+
+// settings.method as the SDK reads it (DEFAULT is HBAO). The field is read as the int a C host may have
+// stored, so a value outside the enumerators is reported, not loaded through the enum type.
+obscura_method method_of(const obscura_settings& settings) {
+    static_assert(sizeof(obscura_method) == sizeof(int32_t), "the API's C enums are int-sized");
+    int32_t value;
+    std::memcpy(&value, &settings.method, sizeof value);
+    if (value == OBSCURA_METHOD_DEFAULT) return OBSCURA_METHOD_HBAO;
+    if (value < 0 || value >= int32_t(OBSCURA_METHOD_COUNT_) || !obscura_method_name(obscura_method(value))) {
+        throw SettingsDocumentError("settings.method = " + std::to_string(value) + " is not an obscura_method");
+    }
+    return obscura_method(value);
+}
+
+double effective_value(const obscura_settings& settings, const char* name) {
+    double value = 0.0;
+    const obscura_status status = obscura_get_setting(&settings, name, &value);
+    if (status != OBSCURA_OK) {
+        throw SettingsDocumentError(std::string("obscura_get_setting(\"") + name +
+                                    "\") failed: " + obscura_status_string(status));
+    }
+    return value;
+}
+
+// A float setting's value, finite (NaN and infinities cannot be written as JSON or C).
+float finite_float(obscura_method method, const obscura_setting_info& info, double value) {
+    const float f = float(value);
+    if (!std::isfinite(f)) {
+        throw SettingsDocumentError(std::string(obscura_method_name(method)) + "." + info.name +
+                                    " is not a finite number");
+    }
+    return f;
+}
+
+// The shortest decimal form that reads back to the same float, e.g. "0.3" for 0.3f, "1" for 1.0f.
+std::string shortest_float(float value) {
+    char digits[32];
+    const std::to_chars_result result = std::to_chars(digits, digits + sizeof digits, value);
+    return std::string(digits, size_t(result.ptr - digits));
+}
+
+// The shortest double form of a number (messages): "0.001", "10000", "1e+08".
+std::string shortest_double(double value) {
+    char digits[32];
+    const std::to_chars_result result = std::to_chars(digits, digits + sizeof digits, value);
+    return std::string(digits, size_t(result.ptr - digits));
+}
+
+// The double whose JSON form (JsonWriter: shortest double) is the float's shortest form: 0.3f is written
+// "0.3", not "0.30000001192092896", and still loads as exactly 0.3f. Falls back to the float's exact value
+// should the decimal not round back to it through double.
+double float_as_json_number(float value) {
+    const std::string text = shortest_float(value);
+    double parsed = 0.0;
+    const std::from_chars_result result = std::from_chars(text.data(), text.data() + text.size(), parsed);
+    if (result.ec != std::errc() || float(parsed) != value) return double(value);
+    return parsed;
+}
+
+// A C float literal that reads back to `value`: "1.5f", "1.0f", "1e-08f", "-0.85f".
+std::string c_float_literal(float value) {
+    std::string text = shortest_float(value);
+    if (text.find_first_of(".e") == std::string::npos) text += ".0";
+    return text + "f";
+}
+
+// How a JSON value reads in a message: `the string "big"`, `the number 2.5`, `an array` ...
+std::string describe(const JsonValue& value) {
+    switch (value.type()) {
+        case JsonValue::Type::string: return "the string " + samples::JsonWriter::quote(value.as_string());
+        case JsonValue::Type::number: return "the number " + shortest_double(value.as_number());
+        case JsonValue::Type::boolean: return value.as_bool() ? "true" : "false";
+        default: return JsonValue::type_name(value.type());
+    }
+}
+
+std::string quoted(std::string_view text) { return samples::JsonWriter::quote(text); }
+
+std::string key_names(const SettingTable& table) {
+    std::string names;
+    for (const obscura_setting_info& info : table) {
+        if (!names.empty()) names += ", ";
+        names += info.name;
+    }
+    return names;
+}
+
+// The value of one entry of "settings", as obscura_set_setting takes it (toggles: 0 off, 1 on).
+double setting_value(obscura_method method, const obscura_setting_info& info, const JsonValue& value) {
+    const std::string what = std::string("setting ") + quoted(info.name) + " of " + obscura_method_name(method);
+    if (info.type == OBSCURA_SETTING_TOGGLE) {
+        if (value.is_bool()) return value.as_bool() ? 1.0 : 0.0;
+        if (value.is_string() && value.as_string() == "on") return 1.0;
+        if (value.is_string() && value.as_string() == "off") return 0.0;
+        throw SettingsDocumentError(what + " is a toggle: expected \"on\", \"off\", true or false, not " +
+                                    describe(value));
+    }
+    if (!value.is_number()) {
+        throw SettingsDocumentError(what + " must be a number, not " + describe(value));
+    }
+    const double number = value.as_number();
+    if (info.type == OBSCURA_SETTING_INT && number != std::floor(number)) {
+        throw SettingsDocumentError(what + " must be a whole number, not " + shortest_double(number));
+    }
+    // 0 means "default" to the SDK where the range excludes it (derived values such as decay_rate).
+    const bool zero_is_default = number == 0.0 && info.min_value > 0.0;
+    if (!zero_is_default && (number < info.min_value || number > info.max_value)) {
+        std::string range = "[" + shortest_double(info.min_value) + ", " + shortest_double(info.max_value) + "]";
+        if (info.unit && info.unit[0]) range += std::string(" ") + info.unit;
+        throw SettingsDocumentError(what + " = " + shortest_double(number) + " is outside its range " + range);
+    }
+    return number;
+}
+
+}  // namespace
+
+bool method_from_name(std::string_view name, obscura_method* method) {
+    for (int m = OBSCURA_METHOD_DEFAULT + 1; m < int(OBSCURA_METHOD_COUNT_); ++m) {
+        const char* candidate = obscura_method_name(obscura_method(m));
+        if (candidate && name == candidate) {
+            if (method) *method = obscura_method(m);
+            return true;
+        }
+    }
+    return false;
+}
+
+std::string method_names() {
+    std::string names;
+    for (int m = OBSCURA_METHOD_DEFAULT + 1; m < int(OBSCURA_METHOD_COUNT_); ++m) {
+        const char* name = obscura_method_name(obscura_method(m));
+        if (!name) continue;
+        if (!names.empty()) names += ", ";
+        names += name;
+    }
+    return names;
+}
+
+std::string settings_to_json(const obscura_settings& settings) {
+    const obscura_method method = method_of(settings);
+    const SettingTable table = setting_table(method);
+    samples::JsonWriter json;
+    json.begin_object()
+        .field("format", kSettingsFormat)
+        .field("version", kSettingsVersion)
+        .field("method", obscura_method_name(method));
+    json.key("settings").begin_object();
+    for (const obscura_setting_info& info : table) {
+        const double value = effective_value(settings, info.name);
+        switch (info.type) {
+            case OBSCURA_SETTING_FLOAT:
+                json.field(info.name, float_as_json_number(finite_float(method, info, value)));
+                break;
+            case OBSCURA_SETTING_INT: json.field(info.name, static_cast<long long>(std::llround(value))); break;
+            case OBSCURA_SETTING_TOGGLE: json.field(info.name, value != 0.0 ? "on" : "off"); break;
+        }
+    }
+    json.end_object().end_object();
+    return json.str() + "\n";
+}
+
+obscura_settings settings_from_json(std::string_view text) {
+    JsonValue document;
+    try {
+        document = samples::parse_json(text);
+    } catch (const samples::JsonParseError& error) {
+        throw SettingsDocumentError(std::string("malformed settings document: ") + error.what());
+    }
+    if (!document.is_object()) {
+        throw SettingsDocumentError(std::string("a settings document is a JSON object, not ") + describe(document));
+    }
+    for (const JsonValue::Member& member : document.members()) {
+        const std::string& key = member.first;
+        if (key != "format" && key != "version" && key != "method" && key != "settings") {
+            throw SettingsDocumentError("unknown key " + quoted(key) +
+                                        " in the settings document; expected format, version, method, settings");
+        }
+    }
+
+    if (const JsonValue* format = document.find("format")) {
+        if (!format->is_string() || format->as_string() != kSettingsFormat) {
+            throw SettingsDocumentError(std::string("\"format\" is ") + describe(*format) + "; expected \"" +
+                                        kSettingsFormat + "\"");
+        }
+    }
+    if (const JsonValue* version = document.find("version")) {
+        if (!version->is_number() || version->as_number() < 1.0 ||
+            version->as_number() != std::floor(version->as_number())) {
+            throw SettingsDocumentError("\"version\" must be a positive whole number, not " + describe(*version));
+        }
+        if (version->as_number() > kSettingsVersion) {
+            throw SettingsDocumentError("\"version\" " + shortest_double(version->as_number()) +
+                                        " is newer than this viewer reads (" + std::to_string(kSettingsVersion) +
+                                        ")");
+        }
+    }
+
+    const JsonValue* method_value = document.find("method");
+    if (!method_value) {
+        throw SettingsDocumentError("the settings document has no \"method\"; expected one of: " + method_names());
+    }
+    obscura_method method = OBSCURA_METHOD_DEFAULT;
+    if (!method_value->is_string()) {
+        throw SettingsDocumentError("\"method\" must be a method name, not " + describe(*method_value) +
+                                    "; expected one of: " + method_names());
+    }
+    if (!method_from_name(method_value->as_string(), &method)) {
+        throw SettingsDocumentError("unknown method " + quoted(method_value->as_string()) +
+                                    "; expected one of: " + method_names());
+    }
+
+    obscura_settings settings;
+    const obscura_status status = obscura_default_settings(method, &settings);
+    if (status != OBSCURA_OK) {
+        throw SettingsDocumentError(std::string("obscura_default_settings failed: ") + obscura_status_string(status));
+    }
+    const JsonValue* values = document.find("settings");
+    if (!values) return settings;  // every setting keeps its default
+    if (!values->is_object()) {
+        throw SettingsDocumentError("\"settings\" must be an object of setting names and values, not " +
+                                    describe(*values));
+    }
+    const SettingTable table = setting_table(method);
+    for (const JsonValue::Member& member : values->members()) {
+        const obscura_setting_info* info = table.find(member.first);
+        if (!info) {
+            throw SettingsDocumentError("unknown setting " + quoted(member.first) + " for " +
+                                        obscura_method_name(method) + "; its settings are: " + key_names(table));
+        }
+        const double value = setting_value(method, *info, member.second);
+        const obscura_status set_status = obscura_set_setting(&settings, info->name, value);
+        if (set_status != OBSCURA_OK) {
+            throw SettingsDocumentError(std::string("setting ") + quoted(info->name) + " of " +
+                                        obscura_method_name(method) + " = " + shortest_double(value) +
+                                        " was rejected: " + obscura_status_string(set_status));
+        }
+    }
+    return settings;
+}
+
+std::string settings_to_c(const obscura_settings& settings) {
+    const obscura_method method = method_of(settings);
+    const std::string name = obscura_method_name(method);
+    // The enum constant and the member of obscura_settings are both named after the method:
+    // OBSCURA_METHOD_HBAO / settings.hbao ... OBSCURA_METHOD_REFERENCE / settings.reference.
+    std::string constant = "OBSCURA_METHOD_";
+    for (const char c : name) constant += (c >= 'a' && c <= 'z') ? char(c - 'a' + 'A') : c;
+
+    obscura_settings defaults;
+    const obscura_status status = obscura_default_settings(method, &defaults);
+    if (status != OBSCURA_OK) {
+        throw SettingsDocumentError(std::string("obscura_default_settings failed: ") + obscura_status_string(status));
+    }
+
+    std::string code = "obscura_settings settings;\nobscura_default_settings(" + constant + ", &settings);\n";
+    // Every metadata key is the name of its C field (sdk/src/settings.cpp declares each entry with the field
+    // its offset is taken from, under the same name; settings_document_test checks all of them against
+    // offsetof), so the assignment is settings.<method>.<key>.
+    for (const obscura_setting_info& info : setting_table(method)) {
+        const double value = effective_value(settings, info.name);
+        if (value == effective_value(defaults, info.name)) continue;
+        std::string literal;
+        switch (info.type) {
+            case OBSCURA_SETTING_FLOAT: literal = c_float_literal(finite_float(method, info, value)); break;
+            case OBSCURA_SETTING_INT: literal = std::to_string(std::llround(value)); break;
+            case OBSCURA_SETTING_TOGGLE: literal = value != 0.0 ? "OBSCURA_TOGGLE_ON" : "OBSCURA_TOGGLE_OFF"; break;
+        }
+        code += "settings." + name + "." + info.name + " = " + literal + ";\n";
+    }
+    return code;
+}
+
+bool write_text_file(const std::string& path, std::string_view text, std::string* error) {
+    // Written beside the target and renamed over it, so a failed save leaves the old file whole.
+    const std::string temporary = path + ".tmp";
+    {
+        std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
+        if (!file) {
+            if (error) *error = "cannot open '" + temporary + "' for writing: " + std::strerror(errno);
+            return false;
+        }
+        file.write(text.data(), std::streamsize(text.size()));
+        file.flush();
+        if (!file) {
+            if (error) *error = "cannot write '" + temporary + "': " + std::strerror(errno);
+            file.close();
+            std::remove(temporary.c_str());
+            return false;
+        }
+    }
+    if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+        if (error) *error = "cannot replace '" + path + "': " + std::strerror(errno);
+        std::remove(temporary.c_str());
+        return false;
+    }
+    return true;
+}
+
+bool read_text_file(const std::string& path, std::string* text, std::string* error) {
+    std::ifstream file(path, std::ios::binary);
+    if (!file) {
+        if (error) *error = "cannot open '" + path + "': " + std::strerror(errno);
+        return false;
+    }
+    std::string contents((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    if (file.bad()) {
+        if (error) *error = "cannot read '" + path + "'";
+        return false;
+    }
+    if (text) *text = std::move(contents);
+    return true;
+}
+
+}  // namespace obscura::viewer

@@ -1,0 +1,67 @@
+// Settings documents of the viewer: save and load an obscura_settings as JSON, and copy it as C.
+// Everything is driven by the SDK's settings metadata (obscura_get_setting_infos, obscura_get_setting,
+// obscura_set_setting), so a setting added to the SDK appears here with no change.
+//
+//     std::string json = settings_to_json(settings);        // {"format": "obscura-settings", "version": 1,
+//                                                           //  "method": "hbao", "settings": {"radius": 1.5, ...}}
+//     obscura_settings loaded = settings_from_json(json);   // SettingsDocumentError with a readable message
+//     std::string c = settings_to_c(settings);              // obscura_default_settings(...) + changed fields
+//
+// Values are the effective ones obscura_get_setting reports (derived defaults such as decay_rate written
+// out); floats in the shortest form that reads back to the same float, toggles as "on"/"off". Only the
+// metadata's settings are covered: the falloff tables of REFERENCE and FFAO (no metadata entry) are
+// neither saved nor loaded. settings_from_json checks each value against its metadata range, not the
+// constraints between settings (e.g. FFAO's sectors with saao), which obscura_resolve_settings and
+// obscura_render report.
+#ifndef OBSCURA_VIEWER_SETTINGS_DOCUMENT_H
+#define OBSCURA_VIEWER_SETTINGS_DOCUMENT_H
+
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+#include "obscura/obscura.h"
+
+namespace obscura::viewer {
+
+// The "format" and the highest "version" of the documents written and read here.
+inline constexpr const char* kSettingsFormat = "obscura-settings";
+inline constexpr int kSettingsVersion = 1;
+
+// A document that cannot be loaded (or settings that cannot be written); what() says why, naming the key.
+class SettingsDocumentError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+// The JSON document of `settings`: every setting of settings.method (DEFAULT: HBAO) in metadata order.
+// Throws SettingsDocumentError if the method is not an obscura_method.
+std::string settings_to_json(const obscura_settings& settings);
+
+// Parses a document written by settings_to_json (or by hand): starts from obscura_default_settings of its
+// "method" and applies each key of "settings" through obscura_set_setting; missing keys keep their default.
+// "format" and "version" are checked when present. Throws SettingsDocumentError: malformed JSON, a missing or
+// unknown method, an unknown key, a value of the wrong type or outside its range, a toggle other than
+// "on"/"off"/true/false. 0 is accepted where the SDK reads it as "default" (ranges that exclude 0).
+obscura_settings settings_from_json(std::string_view text);
+
+// C that rebuilds `settings`: obscura_default_settings(OBSCURA_METHOD_X, &settings) followed by one assignment
+// per setting whose effective value differs from the method's default, one statement per line.
+// Throws SettingsDocumentError if the method is not an obscura_method.
+std::string settings_to_c(const obscura_settings& settings);
+
+// The method whose obscura_method_name() is `name` ("hbao", "sao" ...); false when there is none.
+bool method_from_name(std::string_view name, obscura_method* method);
+
+// "hbao, sao, lsao, ffao, reference": the names of every method, for messages.
+std::string method_names();
+
+// Writes `text` to `path` (binary, replacing the file); on failure returns false and sets *error (if given).
+bool write_text_file(const std::string& path, std::string_view text, std::string* error);
+
+// Reads the whole file at `path` into *text; on failure returns false and sets *error (if given).
+bool read_text_file(const std::string& path, std::string* text, std::string* error);
+
+}  // namespace obscura::viewer
+
+#endif  // OBSCURA_VIEWER_SETTINGS_DOCUMENT_H

@@ -1,0 +1,576 @@
+#include "viewer_app.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <deque>
+#include <stdexcept>
+#include <vector>
+
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+
+#include "settings_document.h"
+#include "viewer_camera.h"
+
+namespace obscura::viewer {
+namespace {
+
+constexpr float kPanelWidth = 390.0f;
+constexpr size_t kHistory = 240;
+
+obscura_gl_function glfw_proc(const char* name) { return reinterpret_cast<obscura_gl_function>(glfwGetProcAddress(name)); }
+
+std::vector<obscura_method> methods() {
+    std::vector<obscura_method> out;
+    for (int m = OBSCURA_METHOD_HBAO; m < OBSCURA_METHOD_COUNT_; ++m) out.push_back(obscura_method(m));
+    return out;
+}
+
+std::vector<obscura_setting_info> infos_of(obscura_method method) {
+    const obscura_setting_info* infos = nullptr;
+    uint32_t count = 0;
+    if (obscura_get_setting_infos(method, &infos, &count) != OBSCURA_STATUS_OK) return {};
+    return std::vector<obscura_setting_info>(infos, infos + count);
+}
+
+// Settings that reproduce configurations of the papers (spec keys over the method's defaults). LSAO's own
+// `preset` setting selects the configurations of its paper's Table 2.
+struct Preset {
+    obscura_method method;
+    const char* label;
+    const char* spec;
+};
+const Preset kPresets[] = {
+    {OBSCURA_METHOD_HBAO, "defaults (K=8, N=12)", "hbao"},
+    {OBSCURA_METHOD_HBAO, "K=16, N=48: the docs' quality baseline", "hbao:directions=16:steps=48"},
+    {OBSCURA_METHOD_SAO, "paper: s=9, tau=7, q'=8 (defaults)", "sao"},
+    {OBSCURA_METHOD_LSAO, "paper Table 2, K=8", "lsao:preset=1"},
+    {OBSCURA_METHOD_LSAO, "paper Table 2, K=16 (defaults)", "lsao:preset=2"},
+    {OBSCURA_METHOD_LSAO, "paper Table 2, K=24", "lsao:preset=3"},
+    {OBSCURA_METHOD_LSAO, "paper Table 2, K=32", "lsao:preset=4"},
+    {OBSCURA_METHOD_FFAO, "paper: K=16x2, B0=10 (defaults)", "ffao"},
+    {OBSCURA_METHOD_FFAO, "paper: K=8x2", "ffao:sectors=8"},
+    {OBSCURA_METHOD_FFAO, "paper: SAAO, K=18x2", "ffao:saao=on:sectors=18"},
+    {OBSCURA_METHOD_FFAO, "paper sec. 5: mipmap baseline", "ffao:geometry=2"},
+    {OBSCURA_METHOD_REFERENCE, "256 rays (defaults)", "reference"},
+};
+
+// One method's panel state: its settings and the text boxes of save/load and copy-as-C.
+struct MethodPanel {
+    obscura_settings settings{};
+    std::array<char, 256> path{};
+    std::string c_code;
+    std::string message;
+};
+
+struct TimingState {
+    std::vector<std::pair<std::string, float>> passes;  // latest, "total" first
+    std::deque<float> total_history, frame_history;
+    uint64_t frame_index = 0;
+    uint64_t memory_bytes = 0;
+};
+
+class ViewerApp {
+public:
+    explicit ViewerApp(const ViewerOptions& options) : options_(options) {}
+    int run();
+
+private:
+    void open_scene(const std::string& name);
+    void handle_input();
+    void build_panel();
+    bool method_panel(const char* id, MethodPanel& panel);
+    void timings_panel();
+    void reference_panel();
+    void update_timings();
+    std::string view_key() const;
+    bool save_screenshot(const std::string& path);
+
+    ViewerOptions options_;
+    GLFWwindow* window_ = nullptr;
+    std::unique_ptr<ViewerRenderer> renderer_;
+    ViewerScene scene_;
+    ViewerCamera camera_;
+    MethodPanel panels_[2];
+    ViewMode view_ = ViewMode::LitWithAo;
+    float split_ = 0.5f;
+    bool split_reference_ = true;
+    int reference_rays_ = 64;
+    bool use_normals_ = false;
+    ReferenceJob job_;
+    TimingState timings_;
+    std::string status_;
+    std::string pending_drop_;
+    std::array<char, 256> screenshot_path_{};
+    bool screenshot_requested_ = false;
+    double last_cursor_[2] = {0.0, 0.0};
+};
+
+void ViewerApp::open_scene(const std::string& name) {
+    try {
+        ViewerScene scene = load_viewer_scene(name);
+        if (scene.mesh) {
+            const samples::NamedCamera& view = samples::find_viewpoint(
+                *scene.mesh, scene_.name.empty() ? options_.viewpoint : std::string("default"));
+            camera_.reset(view.camera);
+        }
+        scene_ = std::move(scene);
+        job_.cancel();
+        status_ = "opened " + name;
+    } catch (const std::exception& error) {
+        status_ = std::string("cannot open ") + name + ": " + error.what();
+        std::fprintf(stderr, "obscura-viewer: %s\n", status_.c_str());
+        if (scene_.name.empty()) throw;
+    }
+}
+
+void ViewerApp::handle_input() {
+    ImGuiIO& io = ImGui::GetIO();
+    double x = 0.0, y = 0.0;
+    glfwGetCursorPos(window_, &x, &y);
+    const float dx = float(x - last_cursor_[0]), dy = float(y - last_cursor_[1]);
+    last_cursor_[0] = x;
+    last_cursor_[1] = y;
+    if (!scene_.mesh) return;
+    if (!io.WantCaptureMouse) {
+        const bool turn = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS ||
+                          glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+        if (turn && (dx != 0.0f || dy != 0.0f)) camera_.rotate(0.25f * dx, -0.25f * dy);
+        if (io.MouseWheel != 0.0f) {
+            if (camera_.mode == ViewerCamera::Mode::Orbit) {
+                camera_.dolly(io.MouseWheel);
+            } else {
+                camera_.move(0.1f * camera_.distance() * io.MouseWheel, 0.0f, 0.0f);
+            }
+        }
+    }
+    if (!io.WantCaptureKeyboard && camera_.mode == ViewerCamera::Mode::Fly) {
+        const float speed = 0.5f * std::max(camera_.distance(), 0.5f) * io.DeltaTime;
+        auto down = [&](int key) { return glfwGetKey(window_, key) == GLFW_PRESS ? 1.0f : 0.0f; };
+        camera_.move(speed * (down(GLFW_KEY_W) - down(GLFW_KEY_S)), speed * (down(GLFW_KEY_D) - down(GLFW_KEY_A)),
+                     speed * (down(GLFW_KEY_E) - down(GLFW_KEY_Q)));
+    }
+}
+
+// A setting's control: a slider over its declared range, logarithmic over wide positive ranges, a drag box
+// where the range is wide and starts at 0, a checkbox for toggles; the tooltip carries the metadata.
+bool setting_control(obscura_settings& settings, const obscura_setting_info& info) {
+    double value = 0.0;
+    if (obscura_get_setting(&settings, info.name, &value) != OBSCURA_STATUS_OK) return false;
+    bool changed = false;
+    if (info.type == OBSCURA_SETTING_TOGGLE) {
+        bool on = value != 0.0;
+        changed = ImGui::Checkbox(info.name, &on);
+        value = on ? 1.0 : 0.0;
+    } else if (info.type == OBSCURA_SETTING_INT) {
+        int v = int(value);
+        const int lo = int(info.min_value), hi = int(info.max_value);
+        changed = hi - lo <= 4096 ? ImGui::SliderInt(info.name, &v, lo, hi, "%d", ImGuiSliderFlags_AlwaysClamp)
+                                  : ImGui::DragInt(info.name, &v, 1.0f, lo, hi, "%d", ImGuiSliderFlags_AlwaysClamp);
+        value = v;
+    } else {
+        const double lo = info.min_value, hi = info.max_value;
+        const ImGuiSliderFlags flags = ImGuiSliderFlags_AlwaysClamp;
+        if (hi - lo <= 100.0) {
+            changed = ImGui::SliderScalar(info.name, ImGuiDataType_Double, &value, &lo, &hi, "%.4g", flags);
+        } else if (lo > 0.0) {
+            changed = ImGui::SliderScalar(info.name, ImGuiDataType_Double, &value, &lo, &hi, "%.4g",
+                                          flags | ImGuiSliderFlags_Logarithmic);
+        } else {
+            changed = ImGui::DragScalar(info.name, ImGuiDataType_Double, &value,
+                                        float(std::max(std::abs(value) * 0.01, 1e-3)), &lo, &hi, "%.4g", flags);
+        }
+    }
+    if (ImGui::IsItemHovered()) {
+        ImGui::SetTooltip("%s\nrange [%g, %g] %s, default %g", info.description, info.min_value, info.max_value,
+                          info.unit, info.default_value);
+    }
+    return changed && obscura_set_setting(&settings, info.name, value) == OBSCURA_STATUS_OK;
+}
+
+bool ViewerApp::method_panel(const char* id, MethodPanel& panel) {
+    ImGui::PushID(id);
+    bool changed = false;
+    obscura_settings& settings = panel.settings;
+    if (ImGui::BeginCombo("method", obscura_method_name(settings.method))) {
+        for (obscura_method m : methods()) {
+            const bool available = obscura_method_available(m) != 0;
+            if (ImGui::Selectable(obscura_method_name(m), m == settings.method,
+                                  available ? 0 : ImGuiSelectableFlags_Disabled)) {
+                obscura_default_settings(m, &settings);
+                changed = true;
+            }
+        }
+        ImGui::EndCombo();
+    }
+    if (ImGui::BeginCombo("preset", "choose...")) {
+        for (const Preset& preset : kPresets) {
+            if (preset.method != settings.method) continue;
+            if (ImGui::Selectable(preset.label)) {
+                settings = settings_from_spec(preset.spec);
+                changed = true;
+            }
+        }
+        ImGui::EndCombo();
+    }
+    for (const obscura_setting_info& info : infos_of(settings.method)) changed |= setting_control(settings, info);
+    if (ImGui::Button("Reset to defaults")) {
+        obscura_default_settings(settings.method, &settings);
+        changed = true;
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Copy as C")) {
+        panel.c_code = settings_to_c(settings);
+        glfwSetClipboardString(window_, panel.c_code.c_str());
+        panel.message = "copied to the clipboard";
+    }
+    if (panel.path[0] == 0) std::snprintf(panel.path.data(), panel.path.size(), "obscura-%s.json", id);
+    ImGui::InputText("file", panel.path.data(), panel.path.size());
+    if (ImGui::Button("Save JSON")) {
+        std::string error;
+        panel.message = write_text_file(panel.path.data(), settings_to_json(settings), &error)
+                            ? std::string("saved ") + panel.path.data()
+                            : error;
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Load JSON")) {
+        std::string text, error;
+        try {
+            if (!read_text_file(panel.path.data(), &text, &error)) throw std::runtime_error(error);
+            settings = settings_from_json(text);
+            changed = true;
+            panel.message = std::string("loaded ") + panel.path.data();
+        } catch (const std::exception& failure) {
+            panel.message = failure.what();
+        }
+    }
+    if (!panel.message.empty()) ImGui::TextWrapped("%s", panel.message.c_str());
+    if (!panel.c_code.empty()) {
+        ImGui::InputTextMultiline("##c", panel.c_code.data(), panel.c_code.size() + 1, ImVec2(-1.0f, 90.0f),
+                                  ImGuiInputTextFlags_ReadOnly);
+    }
+    ImGui::PopID();
+    return changed;
+}
+
+void ViewerApp::update_timings() {
+    std::array<obscura_timing, 32> rows{};
+    uint32_t count = 0;
+    uint64_t frame = 0;
+    obscura_get_timings(renderer_->context(), rows.data(), uint32_t(rows.size()), &count, &frame);
+    if (frame != 0 && frame != timings_.frame_index) {
+        timings_.frame_index = frame;
+        timings_.passes.clear();
+        for (uint32_t i = 0; i < std::min<uint32_t>(count, uint32_t(rows.size())); ++i) {
+            timings_.passes.emplace_back(rows[i].label, float(rows[i].milliseconds));
+        }
+        if (!timings_.passes.empty()) timings_.total_history.push_back(timings_.passes.front().second);
+        if (timings_.total_history.size() > kHistory) timings_.total_history.pop_front();
+    }
+    timings_.frame_history.push_back(1000.0f * ImGui::GetIO().DeltaTime);
+    if (timings_.frame_history.size() > kHistory) timings_.frame_history.pop_front();
+    obscura_get_memory_usage(renderer_->context(), &timings_.memory_bytes);
+}
+
+void ViewerApp::timings_panel() {
+    if (!ImGui::CollapsingHeader("Performance", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    ImGui::TextWrapped("%s", renderer_->renderer_name().c_str());
+    float longest = 1e-3f;
+    for (const auto& pass : timings_.passes) longest = std::max(longest, pass.second);
+    for (const auto& pass : timings_.passes) {
+        char label[96];
+        std::snprintf(label, sizeof label, "%s %.3f ms", pass.first.c_str(), pass.second);
+        ImGui::ProgressBar(pass.second / longest, ImVec2(-1.0f, 0.0f), label);
+    }
+    const std::vector<float> totals(timings_.total_history.begin(), timings_.total_history.end());
+    const std::vector<float> frames(timings_.frame_history.begin(), timings_.frame_history.end());
+    if (!totals.empty()) {
+        ImGui::PlotLines("AO ms", totals.data(), int(totals.size()), 0, nullptr, 0.0f, FLT_MAX, ImVec2(-1.0f, 50.0f));
+    }
+    if (!frames.empty()) {
+        char overlay[64];
+        std::snprintf(overlay, sizeof overlay, "%.1f ms", frames.back());
+        ImGui::PlotLines("frame ms", frames.data(), int(frames.size()), 0, overlay, 0.0f, FLT_MAX,
+                         ImVec2(-1.0f, 50.0f));
+    }
+    ImGui::Text("GPU memory: %.2f MiB", double(timings_.memory_bytes) / (1024.0 * 1024.0));
+}
+
+void ViewerApp::reference_panel() {
+    if (!ImGui::CollapsingHeader("Error against the reference", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    ImGui::SliderInt("rays", &reference_rays_, ReferenceJob::kChunkRays, 1024);
+    if (ImGui::Button(job_.active() ? "Restart" : "Compute")) {
+        job_.start(view_key(), panels_[0].settings, reference_rays_);
+        if (view_ != ViewMode::Split) view_ = ViewMode::ErrorMap;
+    }
+    if (job_.active()) {
+        char label[64];
+        std::snprintf(label, sizeof label, "%d / %d rays", job_.traced_rays(),
+                      int(std::lround(job_.traced_rays() / std::max(job_.progress(), 1e-6f))));
+        ImGui::ProgressBar(job_.progress(), ImVec2(-1.0f, 0.0f), label);
+    }
+    if (job_.metrics) {
+        ImGui::Text("mean_abs %.4f  within_5pct %.3f  PSNR %.1f dB", job_.metrics->mean_abs, job_.metrics->within_5pct,
+                    job_.metrics->psnr);
+    }
+}
+
+void ViewerApp::build_panel() {
+    // A side panel: the scene has the rest of the window.
+    ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f), ImGuiCond_Always);
+    ImGui::SetNextWindowSize(ImVec2(kPanelWidth, ImGui::GetIO().DisplaySize.y), ImGuiCond_Always);
+    ImGui::Begin("Obscura", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+    if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) {
+        if (ImGui::BeginCombo("scene", scene_.name.c_str())) {
+            for (const samples::SceneInfo& info : samples::list_scenes()) {
+                if (ImGui::Selectable(info.name.c_str(), info.name == scene_.name,
+                                      info.available ? 0 : ImGuiSelectableFlags_Disabled)) {
+                    pending_drop_ = info.name;
+                }
+            }
+            ImGui::EndCombo();
+        }
+        if (scene_.mesh && ImGui::BeginCombo("viewpoint", "choose...")) {
+            for (const samples::NamedCamera& view : scene_.mesh->viewpoints) {
+                if (ImGui::Selectable(view.name.c_str())) camera_.reset(view.camera);
+            }
+            ImGui::EndCombo();
+        }
+        ImGui::TextDisabled("drop an .obj or a .pfm depth file on the window");
+        int mode = int(camera_.mode);
+        ImGui::RadioButton("orbit", &mode, 0);
+        ImGui::SameLine();
+        ImGui::RadioButton("fly (WASD QE)", &mode, 1);
+        camera_.mode = ViewerCamera::Mode(mode);
+        ImGui::Checkbox("pass the scene's normals", &use_normals_);
+    }
+    if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
+        int view = int(view_);
+        const char* names[] = {"AO only", "lit with AO", "lit without AO", "split screen", "error heat map"};
+        ImGui::Combo("view", &view, names, 5);
+        view_ = ViewMode(view);
+        if (view_ == ViewMode::Split) {
+            ImGui::SliderFloat("split", &split_, 0.0f, 1.0f);
+            ImGui::Checkbox("right: the reference", &split_reference_);
+        }
+    }
+    if (ImGui::CollapsingHeader("Method", ImGuiTreeNodeFlags_DefaultOpen)) method_panel("a", panels_[0]);
+    if (view_ == ViewMode::Split && !split_reference_ && ImGui::CollapsingHeader("Right side", ImGuiTreeNodeFlags_DefaultOpen)) {
+        method_panel("b", panels_[1]);
+    }
+    reference_panel();
+    timings_panel();
+    if (ImGui::CollapsingHeader("Screenshot")) {
+        if (screenshot_path_[0] == 0) std::snprintf(screenshot_path_.data(), screenshot_path_.size(), "obscura-viewer.png");
+        ImGui::InputText("png", screenshot_path_.data(), screenshot_path_.size());
+        if (ImGui::Button("Save PNG")) screenshot_requested_ = true;
+    }
+    if (!status_.empty()) ImGui::TextWrapped("%s", status_.c_str());
+    ImGui::End();
+}
+
+std::string ViewerApp::view_key() const {
+    const samples::Camera c = camera_.camera();
+    char key[256];
+    std::snprintf(key, sizeof key, "%s|%g,%g,%g|%g,%g,%g|%dx%d|%d|", scene_.name.c_str(), c.eye.x, c.eye.y, c.eye.z,
+                  c.target.x, c.target.y, c.target.z, renderer_ ? renderer_->width() : 0,
+                  renderer_ ? renderer_->height() : 0, use_normals_ ? 1 : 0);
+    return key + settings_to_json(panels_[0].settings);
+}
+
+bool ViewerApp::save_screenshot(const std::string& path) {
+    int width = 0, height = 0;
+    glfwGetFramebufferSize(window_, &width, &height);
+    samples::FloatImage image;
+    image.width = width;
+    image.height = height;
+    image.channels = 3;
+    image.pixels.resize(size_t(width) * height * 3);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadBuffer(GL_BACK);
+    glReadPixels(0, 0, width, height, GL_RGB, GL_FLOAT, image.pixels.data());
+    try {
+        samples::write_png(path, image);
+    } catch (const std::exception& error) {
+        status_ = error.what();
+        std::fprintf(stderr, "obscura-viewer: %s\n", error.what());
+        return false;
+    }
+    status_ = "saved " + path;
+    return true;
+}
+
+int ViewerApp::run() {
+    glfwSetErrorCallback([](int code, const char* text) { std::fprintf(stderr, "glfw error %d: %s\n", code, text); });
+    if (!glfwInit()) {
+        std::fprintf(stderr, "obscura-viewer: glfwInit failed (no display?)\n");
+        return 1;
+    }
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    window_ = glfwCreateWindow(options_.width, options_.height, "Obscura viewer", nullptr, nullptr);
+    if (!window_) {
+        std::fprintf(stderr, "obscura-viewer: cannot create a GL 4.3 core window\n");
+        glfwTerminate();
+        return 1;
+    }
+    glfwMakeContextCurrent(window_);
+    glfwSwapInterval(options_.frames > 0 ? 0 : 1);
+    // The app's own loader (what an engine has); the SDK loads its private table from the same function.
+    if (!gladLoadGL(reinterpret_cast<GLADloadfunc>(glfwGetProcAddress))) {
+        std::fprintf(stderr, "obscura-viewer: loading GL functions failed\n");
+        glfwDestroyWindow(window_);
+        glfwTerminate();
+        return 1;
+    }
+    glfwSetWindowUserPointer(window_, this);
+    glfwSetDropCallback(window_, [](GLFWwindow* window, int count, const char** paths) {
+        if (count > 0) static_cast<ViewerApp*>(glfwGetWindowUserPointer(window))->pending_drop_ = paths[0];
+    });
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini beside the user's files
+    ImGui::StyleColorsDark();
+    ImGui_ImplGlfw_InitForOpenGL(window_, true);
+    ImGui_ImplOpenGL3_Init("#version 430 core");
+    int exit_code = 0;
+    try {
+        const GLubyte* name = glGetString(GL_RENDERER);
+        const std::string renderer = name ? reinterpret_cast<const char*>(name) : "";
+        const bool software = renderer.find("llvmpipe") != std::string::npos ||
+                              renderer.find("softpipe") != std::string::npos;
+        renderer_ = std::make_unique<ViewerRenderer>(glfw_proc, software);
+        use_normals_ = options_.use_normals;
+        reference_rays_ = options_.reference_rays;
+        view_ = options_.view;
+        open_scene(options_.scene);
+        panels_[0].settings = settings_from_spec(options_.method);
+        if (!options_.settings_file.empty()) {
+            std::string text, error;
+            if (!read_text_file(options_.settings_file, &text, &error)) throw std::runtime_error(error);
+            panels_[0].settings = settings_from_json(text);
+        }
+        split_reference_ = options_.compare.empty() || options_.compare == "reference";
+        panels_[1].settings = settings_from_spec(split_reference_ ? "hbao" : options_.compare);
+        if (!options_.screenshot.empty()) {
+            std::snprintf(screenshot_path_.data(), screenshot_path_.size(), "%s", options_.screenshot.c_str());
+        }
+        int frame = 0;
+        while (!glfwWindowShouldClose(window_)) {
+            glfwPollEvents();
+            if (!pending_drop_.empty()) {
+                open_scene(pending_drop_);
+                pending_drop_.clear();
+            }
+            ImGui_ImplOpenGL3_NewFrame();
+            ImGui_ImplGlfw_NewFrame();
+            ImGui::NewFrame();
+            handle_input();
+            build_panel();
+            int window_width = 0, height = 0;
+            glfwGetFramebufferSize(window_, &window_width, &height);
+            const int scene_x = std::min(int(kPanelWidth), std::max(window_width - 16, 0));
+            const int width = window_width - scene_x;
+            glBindFramebuffer(GL_FRAMEBUFFER, 0);
+            glViewport(0, 0, window_width, height);
+            glClearColor(0.1f, 0.1f, 0.12f, 1.0f);
+            glClear(GL_COLOR_BUFFER_BIT);
+            if (width > 0 && height > 0) {
+                renderer_->render_scene(scene_, camera_.camera(), width, height, glfw_proc);
+                bool ok = renderer_->render_ao(0, panels_[0].settings, use_normals_);
+                if (ok && view_ == ViewMode::Split && !split_reference_) {
+                    ok = renderer_->render_ao(1, panels_[1].settings, use_normals_);
+                }
+                if (!ok) status_ = renderer_->last_error();
+                const bool wants_reference =
+                    view_ == ViewMode::ErrorMap || (view_ == ViewMode::Split && split_reference_);
+                if (wants_reference && ok) {
+                    const std::string key = view_key();
+                    if (!job_.active() || job_.key() != key) job_.start(key, panels_[0].settings, reference_rays_);
+                    if (!job_.done() && !renderer_->step_reference(job_, use_normals_)) status_ = renderer_->last_error();
+                }
+                update_timings();
+                glBindFramebuffer(GL_FRAMEBUFFER, 0);
+                glViewport(scene_x, 0, width, height);
+                renderer_->composite(view_, split_, split_reference_, job_);
+                glViewport(0, 0, window_width, height);
+            }
+            ImGui::Render();
+            ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+            ++frame;
+            const bool last = options_.frames > 0 && frame >= options_.frames;
+            if (screenshot_requested_ || (last && !options_.screenshot.empty())) {
+                if (!save_screenshot(screenshot_path_.data()) && last) exit_code = 1;
+                screenshot_requested_ = false;
+            }
+            glfwSwapBuffers(window_);
+            if (last) break;
+        }
+        const GLenum error = glGetError();
+        if (error != GL_NO_ERROR) {
+            std::fprintf(stderr, "obscura-viewer: GL error 0x%04x left pending\n", error);
+            exit_code = 1;
+        }
+        if (!renderer_->last_error().empty()) {
+            std::fprintf(stderr, "obscura-viewer: %s\n", renderer_->last_error().c_str());
+            exit_code = 1;
+        }
+    } catch (const std::exception& error) {
+        std::fprintf(stderr, "obscura-viewer: %s\n", error.what());
+        exit_code = 1;
+    }
+    renderer_.reset();
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+    glfwDestroyWindow(window_);
+    glfwTerminate();
+    return exit_code;
+}
+
+}  // namespace
+
+obscura_settings settings_from_spec(const std::string& spec) {
+    const size_t colon = spec.find(':');
+    const std::string name = spec.substr(0, colon);
+    obscura_settings settings{};
+    obscura_method method = OBSCURA_METHOD_DEFAULT;
+    if (!method_from_name(name, &method)) {
+        throw std::invalid_argument("unknown method '" + name + "' (methods: " + method_names() + ")");
+    }
+    obscura_default_settings(method, &settings);
+    size_t start = colon;
+    while (start != std::string::npos) {
+        const size_t end = spec.find(':', start + 1);
+        const std::string item = spec.substr(start + 1, end == std::string::npos ? std::string::npos : end - start - 1);
+        start = end;
+        const size_t equals = item.find('=');
+        if (equals == std::string::npos) throw std::invalid_argument("'" + item + "' in '" + spec + "' is not KEY=VALUE");
+        const std::string key = item.substr(0, equals), text = item.substr(equals + 1);
+        double value = 0.0;
+        if (text == "on" || text == "off") {
+            value = text == "on" ? 1.0 : 0.0;
+        } else {
+            char* rest = nullptr;
+            value = std::strtod(text.c_str(), &rest);
+            if (text.empty() || *rest != 0) throw std::invalid_argument("'" + text + "' for " + key + " is not a number");
+        }
+        const obscura_status status = obscura_set_setting(&settings, key.c_str(), value);
+        if (status != OBSCURA_STATUS_OK) {
+            throw std::invalid_argument("'" + item + "': " + obscura_status_string(status) + " (obscura --list-settings " +
+                                        name + " lists the keys and ranges)");
+        }
+    }
+    return settings;
+}
+
+int run_viewer(const ViewerOptions& options) { return ViewerApp(options).run(); }
+
+}  // namespace obscura::viewer

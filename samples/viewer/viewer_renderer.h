@@ -1,0 +1,126 @@
+// ViewerRenderer: what the viewer draws each frame, with host GL and one Obscura context.
+//
+//   1. the scene (a library mesh through the camera, or a captured depth file) rasterised into a depth texture
+//      with a guard band and a view-space normal texture, as an engine's G-buffer pass would;
+//   2. AO of one or two method settings into R16F targets of the visible size (obscura_render);
+//   3. a composite into the window: AO only, lit with or without AO on the ambient term, a split screen, or the
+//      error heat map against the reference.
+// ReferenceJob accumulates the ray-traced reference for a frozen view a chunk of rays per frame, so the window
+// stays responsive, and then measures the method against it.
+#ifndef OBSCURA_VIEWER_RENDERER_H
+#define OBSCURA_VIEWER_RENDERER_H
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <obscura/obscura.h>
+
+#include "demo_scene.h"
+#include "depth_file.h"
+#include "host_gl_objects.h"
+#include "image_io.h"
+#include "metrics.h"
+#include "scene_library.h"
+
+namespace obscura::viewer {
+
+// A library scene or OBJ file (mesh) or a captured depth buffer (PFM, its own fixed size and camera).
+struct ViewerScene {
+    std::string name;
+    std::optional<samples::Scene> mesh;
+    std::optional<samples::DepthFileOptions> depth_file;
+};
+// A built-in name, an .obj or a .pfm path (linear depth, 60 degrees vertical field of view). Throws
+// std::invalid_argument / std::runtime_error with the loader's message.
+ViewerScene load_viewer_scene(const std::string& name_or_path);
+
+enum class ViewMode { AoOnly, LitWithAo, LitWithoutAo, Split, ErrorMap };
+const char* view_mode_name(ViewMode mode);  // "ao", "lit", "lit-no-ao", "split", "error"
+
+// An R16F or R32F texture of the visible size that obscura_render writes.
+struct AoTexture {
+    samples::HostTexture texture;
+    int width = 0, height = 0;
+    GLenum format = 0;
+    void ensure(int w, int h, GLenum internal_format);
+};
+
+// The reference for one view, accumulated in chunks of rays (one chunk per step()), then the error of the
+// method's AO image against it.
+class ReferenceJob {
+public:
+    // Chunk size in rays: small enough that a step stays interactive on llvmpipe at window sizes.
+    static constexpr int kChunkRays = 8;
+
+    bool active() const { return total_rays_ > 0; }
+    bool done() const { return active() && traced_rays_ >= total_rays_; }
+    float progress() const { return active() ? float(traced_rays_) / float(total_rays_) : 0.0f; }
+    int traced_rays() const { return traced_rays_; }
+    // The view it belongs to: the renderer restarts it when this no longer matches.
+    const std::string& key() const { return key_; }
+
+    void start(const std::string& key, const obscura_settings& method, int rays);
+    void cancel() { *this = ReferenceJob(); }
+
+    obscura_settings reference{};      // the settings of one chunk (first_ray moves on)
+    samples::FloatImage sum;           // accumulated visibility x rays
+    samples::FloatImage method_image;  // the method's AO at the time the reference completed
+    std::optional<samples::ErrorMetrics> metrics;
+
+private:
+    friend class ViewerRenderer;
+    std::string key_;
+    int total_rays_ = 0;
+    int traced_rays_ = 0;
+};
+
+class ViewerRenderer {
+public:
+    // Needs the window's GL 4.3 core context current and the host loader loaded. `software`: the renderer is
+    // a CPU rasteriser (its timer queries read 0, so passes are timed by glFinish). Throws std::runtime_error.
+    ViewerRenderer(obscura_get_proc_address_fn get_proc_address, bool software);
+    ~ViewerRenderer();
+    ViewerRenderer(const ViewerRenderer&) = delete;
+    ViewerRenderer& operator=(const ViewerRenderer&) = delete;
+
+    // Rasterises the scene at width x height visible pixels (mesh scenes; a depth file keeps its size).
+    // Throws std::runtime_error.
+    void render_scene(const ViewerScene& scene, const samples::Camera& camera, int width, int height,
+                      obscura_get_proc_address_fn get_proc_address);
+    // AO of `settings` for the current scene into slot 0 or 1. False on failure, with last_error() set.
+    bool render_ao(int slot, const obscura_settings& settings, bool use_scene_normals);
+    // One step of `job` (a chunk of reference rays) for the current scene, given slot 0 holds the method's
+    // AO. False on failure (last_error()).
+    bool step_reference(ReferenceJob& job, bool use_scene_normals);
+    // Draws `mode` into the current framebuffer's viewport. Split: slot 0 left of `split` (0..1 of the
+    // width), slot 1 or the reference (split_reference) to the right.
+    void composite(ViewMode mode, float split, bool split_reference, const ReferenceJob& job);
+
+    // The size of the visible image of the current scene.
+    int width() const { return visible_width_; }
+    int height() const { return visible_height_; }
+    obscura_context* context() const { return context_; }
+    const std::string& last_error() const { return last_error_; }
+    const std::string& renderer_name() const { return renderer_name_; }
+
+private:
+    void upload_reference(const ReferenceJob& job);
+    obscura_context* context_ = nullptr;
+    std::optional<samples::RenderedScene> scene_;
+    std::string scene_key_;  // a depth file is loaded once
+    int visible_width_ = 0, visible_height_ = 0;
+    AoTexture ao_[2];
+    AoTexture chunk_;                // one chunk of reference rays
+    samples::HostTexture reference_; // the accumulated reference (R32F), for the split view
+    samples::HostTexture heat_;      // the error heat map (RGB8)
+    samples::HostProgram composite_;
+    samples::HostVertexArray empty_vao_;
+    std::string last_error_;
+    std::string renderer_name_;
+};
+
+}  // namespace obscura::viewer
+
+#endif  // OBSCURA_VIEWER_RENDERER_H

@@ -1,0 +1,400 @@
+// The viewer's settings documents (samples/viewer/settings_document.h): JSON save/load round trips for
+// every method of the metadata, the load errors, and copy-as-C. No GL.
+#include <cstddef>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <initializer_list>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "json_reader.h"
+#include "obscura/obscura.h"
+#include "settings_document.h"
+
+namespace {
+
+using obscura::viewer::SettingsDocumentError;
+using obscura::viewer::settings_from_json;
+using obscura::viewer::settings_to_c;
+using obscura::viewer::settings_to_json;
+
+std::vector<obscura_method> all_methods() {
+    std::vector<obscura_method> methods;
+    for (int m = OBSCURA_METHOD_DEFAULT + 1; m < int(OBSCURA_METHOD_COUNT_); ++m) {
+        if (obscura_method_name(obscura_method(m))) methods.push_back(obscura_method(m));
+    }
+    return methods;
+}
+
+std::vector<obscura_setting_info> infos_of(obscura_method method) {
+    const obscura_setting_info* infos = nullptr;
+    uint32_t count = 0;
+    EXPECT_EQ(obscura_get_setting_infos(method, &infos, &count), OBSCURA_OK);
+    return std::vector<obscura_setting_info>(infos, infos + count);
+}
+
+obscura_settings defaults_of(obscura_method method) {
+    obscura_settings settings;
+    EXPECT_EQ(obscura_default_settings(method, &settings), OBSCURA_OK);
+    return settings;
+}
+
+double get(const obscura_settings& settings, const char* name) {
+    double value = -12345.0;
+    EXPECT_EQ(obscura_get_setting(&settings, name, &value), OBSCURA_OK) << name;
+    return value;
+}
+
+// An in-range value other than the default: ints take min or max (whichever differs), floats the middle
+// between the default and the max (or the min when the default is the max), toggles flip.
+double non_default_value(const obscura_setting_info& info, double default_value) {
+    switch (info.type) {
+        case OBSCURA_SETTING_INT: return default_value != info.min_value ? info.min_value : info.max_value;
+        case OBSCURA_SETTING_TOGGLE: return default_value != 0.0 ? 0.0 : 1.0;
+        case OBSCURA_SETTING_FLOAT:
+        default:
+            return default_value < info.max_value ? default_value + (info.max_value - default_value) * 0.5
+                                                  : info.min_value + (default_value - info.min_value) * 0.5;
+    }
+}
+
+// Every setting of `method` moved off its default.
+obscura_settings changed_settings(obscura_method method) {
+    obscura_settings settings = defaults_of(method);
+    for (const obscura_setting_info& info : infos_of(method)) {
+        const double default_value = get(settings, info.name);
+        const double value = non_default_value(info, default_value);
+        EXPECT_EQ(obscura_set_setting(&settings, info.name, value), OBSCURA_OK) << info.name << " = " << value;
+        EXPECT_NE(get(settings, info.name), default_value) << info.name;
+    }
+    return settings;
+}
+
+void expect_same_settings(obscura_method method, const obscura_settings& expected, const obscura_settings& actual) {
+    EXPECT_EQ(actual.method, method);
+    for (const obscura_setting_info& info : infos_of(method)) {
+        EXPECT_EQ(get(actual, info.name), get(expected, info.name)) << obscura_method_name(method) << "." << info.name;
+    }
+}
+
+// settings_from_json(text) throws a SettingsDocumentError whose message contains every one of `parts`.
+void expect_load_error(const std::string& text, std::initializer_list<const char*> parts) {
+    try {
+        settings_from_json(text);
+        ADD_FAILURE() << "no error for: " << text;
+    } catch (const SettingsDocumentError& error) {
+        const std::string message = error.what();
+        for (const char* part : parts) {
+            EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
+        }
+    }
+}
+
+std::string hbao_document(const std::string& settings_members) {
+    return R"({"format": "obscura-settings", "version": 1, "method": "hbao", "settings": {)" + settings_members + "}}";
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+    std::vector<std::string> lines;
+    std::istringstream stream(text);
+    for (std::string line; std::getline(stream, line);) lines.push_back(line);
+    return lines;
+}
+
+// ---- JSON ----------------------------------------------------------------------------------------
+
+TEST(SettingsDocument, MetadataCoversEveryMethod) {
+    EXPECT_EQ(all_methods().size(), size_t(OBSCURA_METHOD_COUNT_) - 1);
+    for (obscura_method method : all_methods()) EXPECT_FALSE(infos_of(method).empty()) << obscura_method_name(method);
+}
+
+TEST(SettingsDocument, JsonHasEverySettingInMetadataOrder) {
+    for (obscura_method method : all_methods()) {
+        const std::string text = settings_to_json(defaults_of(method));
+        const obscura::samples::JsonValue document = obscura::samples::parse_json(text);
+        EXPECT_EQ(document.find("format")->as_string(), "obscura-settings");
+        EXPECT_EQ(document.find("version")->as_number(), 1.0);
+        EXPECT_EQ(document.find("method")->as_string(), obscura_method_name(method));
+        const obscura::samples::JsonValue::Object& members = document.find("settings")->members();
+        const std::vector<obscura_setting_info> infos = infos_of(method);
+        ASSERT_EQ(members.size(), infos.size()) << text;
+        for (size_t i = 0; i < infos.size(); ++i) {
+            EXPECT_EQ(members[i].first, infos[i].name);
+            const double value = get(defaults_of(method), infos[i].name);
+            if (infos[i].type == OBSCURA_SETTING_TOGGLE) {
+                EXPECT_EQ(members[i].second.as_string(), value != 0.0 ? "on" : "off") << infos[i].name;
+            } else {
+                EXPECT_EQ(float(members[i].second.as_number()), float(value)) << infos[i].name;
+            }
+        }
+    }
+    // Floats in their shortest form, ints as integers, toggles as words.
+    obscura_settings hbao = defaults_of(OBSCURA_METHOD_HBAO);
+    ASSERT_EQ(obscura_set_setting(&hbao, "radius", 1.5), OBSCURA_OK);
+    ASSERT_EQ(obscura_set_setting(&hbao, "falloff_c", 0.3), OBSCURA_OK);
+    ASSERT_EQ(obscura_set_setting(&hbao, "blur", 0), OBSCURA_OK);
+    const std::string text = settings_to_json(hbao);
+    EXPECT_NE(text.find("\"method\": \"hbao\""), std::string::npos) << text;
+    EXPECT_NE(text.find("\"radius\": 1.5,"), std::string::npos) << text;
+    EXPECT_NE(text.find("\"falloff_c\": 0.3,"), std::string::npos) << text;
+    EXPECT_NE(text.find("\"directions\": 8,"), std::string::npos) << text;
+    EXPECT_NE(text.find("\"blur\": \"off\","), std::string::npos) << text;
+}
+
+TEST(SettingsDocument, DefaultsRoundTripForEveryMethod) {
+    for (obscura_method method : all_methods()) {
+        const obscura_settings defaults = defaults_of(method);
+        expect_same_settings(method, defaults, settings_from_json(settings_to_json(defaults)));
+    }
+}
+
+TEST(SettingsDocument, ChangedSettingsRoundTripForEveryMethod) {
+    for (obscura_method method : all_methods()) {
+        SCOPED_TRACE(obscura_method_name(method));
+        const obscura_settings changed = changed_settings(method);
+        const std::string text = settings_to_json(changed);
+        const obscura_settings loaded = settings_from_json(text);
+        expect_same_settings(method, changed, loaded);
+        // And no key still equals its default (the round trip did not fall back to defaults).
+        const obscura_settings defaults = defaults_of(method);
+        for (const obscura_setting_info& info : infos_of(method)) {
+            EXPECT_NE(get(loaded, info.name), get(defaults, info.name)) << info.name;
+        }
+        EXPECT_EQ(settings_to_json(loaded), text);
+    }
+}
+
+TEST(SettingsDocument, FloatsThatAreNotDecimalRoundTrip) {
+    // Float values whose shortest decimal differs from the double's: 0.999f is above 0.999 as a double, yet the
+    // document holds 0.999 and the range check [1e-3, 0.999] passes.
+    obscura_settings hbao = defaults_of(OBSCURA_METHOD_HBAO);
+    ASSERT_EQ(obscura_set_setting(&hbao, "falloff_c", 0.999), OBSCURA_OK);
+    ASSERT_EQ(obscura_set_setting(&hbao, "radius", 0.1), OBSCURA_OK);
+    ASSERT_EQ(obscura_set_setting(&hbao, "decay_rate", 1e-8), OBSCURA_OK);
+    const obscura_settings loaded = settings_from_json(settings_to_json(hbao));
+    expect_same_settings(OBSCURA_METHOD_HBAO, hbao, loaded);
+    EXPECT_EQ(get(loaded, "falloff_c"), double(0.999f));
+}
+
+TEST(SettingsDocument, MissingKeysKeepTheirDefaultsAndTogglesTakeBooleans) {
+    const obscura_settings loaded = settings_from_json(R"({"method": "sao", "settings": {"samples": 16, "mip": false,
+        "blur": true, "quad_filter": "off"}})");
+    const obscura_settings defaults = defaults_of(OBSCURA_METHOD_SAO);
+    EXPECT_EQ(loaded.method, OBSCURA_METHOD_SAO);
+    for (const obscura_setting_info& info : infos_of(OBSCURA_METHOD_SAO)) {
+        const std::string name = info.name;
+        double expected = get(defaults, info.name);
+        if (name == "samples") expected = 16.0;
+        if (name == "mip" || name == "quad_filter") expected = 0.0;
+        if (name == "blur") expected = 1.0;
+        EXPECT_EQ(get(loaded, info.name), expected) << name;
+    }
+    // A document with a method only is the method's defaults.
+    expect_same_settings(OBSCURA_METHOD_LSAO, defaults_of(OBSCURA_METHOD_LSAO),
+                         settings_from_json(R"({"method": "lsao"})"));
+    // 0 is "default" where the range excludes it (hbao decay_rate derives C * radius^2).
+    const obscura_settings derived = settings_from_json(hbao_document(R"("radius": 2, "decay_rate": 0)"));
+    EXPECT_EQ(get(derived, "decay_rate"), double(0.3f * 2.0f * 2.0f));
+}
+
+TEST(SettingsDocument, LoadErrorsNameTheProblem) {
+    // Malformed JSON: the reader's message, with its position.
+    expect_load_error("{\"method\": \"hbao\",}", {"malformed", "1:"});
+    expect_load_error("[1, 2]", {"object"});
+    // Method.
+    expect_load_error(R"({"settings": {}})", {"\"method\"", "hbao", "sao", "lsao", "ffao", "reference"});
+    expect_load_error(R"({"method": "ssao"})", {"method", "ssao", "hbao, sao, lsao, ffao, reference"});
+    expect_load_error(R"({"method": 1})", {"method", "hbao"});
+    // Unknown key: named, with the method's keys listed.
+    expect_load_error(hbao_document(R"("radiuss": 1)"), {"\"radiuss\"", "hbao", "radius, falloff_c", "blur_sharpness"});
+    expect_load_error(R"({"method": "hbao", "colour": 1})", {"\"colour\""});
+    // Wrong JSON type.
+    expect_load_error(hbao_document(R"("radius": "big")"), {"\"radius\"", "number", "\"big\""});
+    expect_load_error(hbao_document(R"("directions": [8])"), {"\"directions\"", "number"});
+    expect_load_error(hbao_document(R"("directions": 2.5)"), {"\"directions\"", "whole", "2.5"});
+    expect_load_error(R"({"method": "hbao", "settings": [1]})", {"\"settings\"", "object"});
+    // Out of range: key, value and the metadata's range.
+    expect_load_error(hbao_document(R"("radius": 20000)"), {"\"radius\"", "20000", "[0.001, 10000] m"});
+    expect_load_error(hbao_document(R"("directions": 33)"), {"\"directions\"", "33", "[1, 32]"});
+    expect_load_error(hbao_document(R"("bias": -0.1)"), {"\"bias\"", "-0.1", "[0, 0.5]"});
+    expect_load_error(R"({"method": "lsao", "settings": {"segment_steps": -2}})",
+                      {"\"segment_steps\"", "-2", "[-1, 4096]"});
+    // Toggles.
+    expect_load_error(hbao_document(R"("blur": "yes")"), {"\"blur\"", "toggle", "\"yes\""});
+    expect_load_error(hbao_document(R"("blur": 1)"), {"\"blur\"", "toggle"});
+    expect_load_error(hbao_document(R"("blur": null)"), {"\"blur\"", "toggle"});
+    // Format and version.
+    expect_load_error(R"({"format": "other", "method": "hbao"})", {"\"format\"", "\"other\"", "obscura-settings"});
+    expect_load_error(R"({"version": 2, "method": "hbao"})", {"\"version\"", "2", "newer"});
+    expect_load_error(R"({"version": "1", "method": "hbao"})", {"\"version\""});
+    expect_load_error(R"({"version": 0, "method": "hbao"})", {"\"version\""});
+    // And the error is a std::runtime_error.
+    EXPECT_THROW(settings_from_json("{"), std::runtime_error);
+}
+
+// ---- C -------------------------------------------------------------------------------------------
+
+TEST(SettingsDocument, CForDefaultsHasNoAssignments) {
+    for (obscura_method method : all_methods()) {
+        std::string upper = obscura_method_name(method);
+        for (char& c : upper) c = char(c - 'a' + 'A');
+        EXPECT_EQ(settings_to_c(defaults_of(method)),
+                  "obscura_settings settings;\nobscura_default_settings(OBSCURA_METHOD_" + upper + ", &settings);\n");
+    }
+    // DEFAULT is HBAO.
+    obscura_settings zero;
+    std::memset(&zero, 0, sizeof zero);
+    zero.struct_size = sizeof zero;
+    EXPECT_EQ(settings_to_c(zero),
+              "obscura_settings settings;\nobscura_default_settings(OBSCURA_METHOD_HBAO, &settings);\n");
+}
+
+TEST(SettingsDocument, CListsExactlyTheChangedSettings) {
+    obscura_settings hbao = defaults_of(OBSCURA_METHOD_HBAO);
+    ASSERT_EQ(obscura_set_setting(&hbao, "radius", 1.5), OBSCURA_OK);
+    ASSERT_EQ(obscura_set_setting(&hbao, "intensity", 2.0), OBSCURA_OK);
+    ASSERT_EQ(obscura_set_setting(&hbao, "falloff_c", 0.1), OBSCURA_OK);
+    ASSERT_EQ(obscura_set_setting(&hbao, "decay_rate", 1e-8), OBSCURA_OK);
+    ASSERT_EQ(obscura_set_setting(&hbao, "steps", 16), OBSCURA_OK);
+    ASSERT_EQ(obscura_set_setting(&hbao, "blur", 0), OBSCURA_OK);
+    EXPECT_EQ(settings_to_c(hbao),
+              "obscura_settings settings;\n"
+              "obscura_default_settings(OBSCURA_METHOD_HBAO, &settings);\n"
+              "settings.hbao.radius = 1.5f;\n"
+              "settings.hbao.falloff_c = 0.1f;\n"
+              "settings.hbao.decay_rate = 1e-08f;\n"
+              "settings.hbao.steps = 16;\n"
+              "settings.hbao.intensity = 2.0f;\n"
+              "settings.hbao.blur = OBSCURA_TOGGLE_OFF;\n");
+
+    obscura_settings lsao = defaults_of(OBSCURA_METHOD_LSAO);
+    ASSERT_EQ(obscura_set_setting(&lsao, "tangent", -1.0), OBSCURA_OK);
+    ASSERT_EQ(obscura_set_setting(&lsao, "segment_steps", -1), OBSCURA_OK);
+    ASSERT_EQ(obscura_set_setting(&lsao, "normal_test", 1), OBSCURA_OK);
+    EXPECT_EQ(settings_to_c(lsao),
+              "obscura_settings settings;\n"
+              "obscura_default_settings(OBSCURA_METHOD_LSAO, &settings);\n"
+              "settings.lsao.tangent = -1.0f;\n"
+              "settings.lsao.segment_steps = -1;\n"
+              "settings.lsao.normal_test = OBSCURA_TOGGLE_ON;\n");
+}
+
+// Reads the C back as a compiler would (literal by literal) and checks it rebuilds every method's changed
+// settings exactly.
+TEST(SettingsDocument, CRebuildsTheSettingsOfEveryMethod) {
+    for (obscura_method method : all_methods()) {
+        SCOPED_TRACE(obscura_method_name(method));
+        const obscura_settings changed = changed_settings(method);
+        const std::vector<std::string> lines = lines_of(settings_to_c(changed));
+        const std::vector<obscura_setting_info> infos = infos_of(method);
+        ASSERT_EQ(lines.size(), 2 + infos.size());
+        obscura_settings rebuilt = defaults_of(method);
+        const std::string prefix = std::string("settings.") + obscura_method_name(method) + ".";
+        for (size_t i = 2; i < lines.size(); ++i) {
+            const std::string& line = lines[i];
+            ASSERT_EQ(line.compare(0, prefix.size(), prefix), 0) << line;
+            const size_t equals = line.find(" = ");
+            ASSERT_NE(equals, std::string::npos) << line;
+            ASSERT_EQ(line.back(), ';') << line;
+            const std::string key = line.substr(prefix.size(), equals - prefix.size());
+            EXPECT_EQ(key, infos[i - 2].name);  // metadata order
+            const std::string literal = line.substr(equals + 3, line.size() - equals - 4);
+            double value = 0.0;
+            if (literal == "OBSCURA_TOGGLE_ON") value = 1.0;
+            else if (literal == "OBSCURA_TOGGLE_OFF") value = 0.0;
+            else if (literal.back() == 'f') {
+                ASSERT_NE(literal.find_first_of(".e"), std::string::npos) << "not a C float literal: " << literal;
+                value = std::strtof(literal.c_str(), nullptr);
+            } else {
+                char* end = nullptr;
+                value = double(std::strtol(literal.c_str(), &end, 10));
+                EXPECT_EQ(*end, '\0') << literal;
+            }
+            ASSERT_EQ(obscura_set_setting(&rebuilt, key.c_str(), value), OBSCURA_OK) << line;
+        }
+        expect_same_settings(method, changed, rebuilt);
+    }
+}
+
+// settings_to_c writes settings.<method>.<key>: every metadata key must be its C field's name, and every
+// method name the member of obscura_settings. The table names each field in C; a setting added to the SDK
+// must be added here too.
+TEST(SettingsDocument, MetadataKeysAreTheCFieldNames) {
+    struct Field {
+        const char* method;
+        const char* name;
+        size_t offset;
+    };
+#define OBSCURA_TEST_FIELD(method, field) {#method, #field, offsetof(obscura_settings, method.field)}
+    const Field fields[] = {
+        OBSCURA_TEST_FIELD(hbao, radius), OBSCURA_TEST_FIELD(hbao, falloff_c), OBSCURA_TEST_FIELD(hbao, decay_rate),
+        OBSCURA_TEST_FIELD(hbao, directions), OBSCURA_TEST_FIELD(hbao, steps), OBSCURA_TEST_FIELD(hbao, estimator),
+        OBSCURA_TEST_FIELD(hbao, bias), OBSCURA_TEST_FIELD(hbao, intensity), OBSCURA_TEST_FIELD(hbao, power),
+        OBSCURA_TEST_FIELD(hbao, max_radius_pixels), OBSCURA_TEST_FIELD(hbao, blur),
+        OBSCURA_TEST_FIELD(hbao, blur_radius), OBSCURA_TEST_FIELD(hbao, blur_sharpness),
+        OBSCURA_TEST_FIELD(reference, radius), OBSCURA_TEST_FIELD(reference, falloff),
+        OBSCURA_TEST_FIELD(reference, falloff_c), OBSCURA_TEST_FIELD(reference, decay_rate),
+        OBSCURA_TEST_FIELD(reference, thickness), OBSCURA_TEST_FIELD(reference, rays),
+        OBSCURA_TEST_FIELD(reference, rays_per_dispatch), OBSCURA_TEST_FIELD(reference, first_ray),
+        OBSCURA_TEST_FIELD(sao, radius), OBSCURA_TEST_FIELD(sao, samples), OBSCURA_TEST_FIELD(sao, turns),
+        OBSCURA_TEST_FIELD(sao, mip), OBSCURA_TEST_FIELD(sao, mip_filter), OBSCURA_TEST_FIELD(sao, log_q),
+        OBSCURA_TEST_FIELD(sao, intensity), OBSCURA_TEST_FIELD(sao, bias), OBSCURA_TEST_FIELD(sao, contrast),
+        OBSCURA_TEST_FIELD(sao, epsilon), OBSCURA_TEST_FIELD(sao, max_radius_pixels),
+        OBSCURA_TEST_FIELD(sao, quad_filter), OBSCURA_TEST_FIELD(sao, blur), OBSCURA_TEST_FIELD(sao, blur_radius),
+        OBSCURA_TEST_FIELD(sao, blur_stride), OBSCURA_TEST_FIELD(sao, blur_sharpness),
+        OBSCURA_TEST_FIELD(sao, blur_depth_range),
+        OBSCURA_TEST_FIELD(lsao, radius), OBSCURA_TEST_FIELD(lsao, falloff), OBSCURA_TEST_FIELD(lsao, falloff_c),
+        OBSCURA_TEST_FIELD(lsao, decay_rate), OBSCURA_TEST_FIELD(lsao, preset), OBSCURA_TEST_FIELD(lsao, pattern),
+        OBSCURA_TEST_FIELD(lsao, directions), OBSCURA_TEST_FIELD(lsao, step_length),
+        OBSCURA_TEST_FIELD(lsao, line_spacing), OBSCURA_TEST_FIELD(lsao, tangent),
+        OBSCURA_TEST_FIELD(lsao, tangent_strategy), OBSCURA_TEST_FIELD(lsao, hull_capacity),
+        OBSCURA_TEST_FIELD(lsao, exact), OBSCURA_TEST_FIELD(lsao, segment_steps),
+        OBSCURA_TEST_FIELD(lsao, warmup_tolerance), OBSCURA_TEST_FIELD(lsao, warmup_stride),
+        OBSCURA_TEST_FIELD(lsao, depth_threshold), OBSCURA_TEST_FIELD(lsao, normal_test),
+        OBSCURA_TEST_FIELD(lsao, normal_threshold), OBSCURA_TEST_FIELD(lsao, intensity),
+        OBSCURA_TEST_FIELD(lsao, power),
+        OBSCURA_TEST_FIELD(ffao, radius), OBSCURA_TEST_FIELD(ffao, falloff), OBSCURA_TEST_FIELD(ffao, falloff_c),
+        OBSCURA_TEST_FIELD(ffao, decay_rate), OBSCURA_TEST_FIELD(ffao, sectors), OBSCURA_TEST_FIELD(ffao, segments),
+        OBSCURA_TEST_FIELD(ffao, base_interval), OBSCURA_TEST_FIELD(ffao, geometry),
+        OBSCURA_TEST_FIELD(ffao, thickness), OBSCURA_TEST_FIELD(ffao, jitter), OBSCURA_TEST_FIELD(ffao, saao),
+        OBSCURA_TEST_FIELD(ffao, saao_blur), OBSCURA_TEST_FIELD(ffao, intensity), OBSCURA_TEST_FIELD(ffao, power),
+    };
+#undef OBSCURA_TEST_FIELD
+    for (obscura_method method : all_methods()) {
+        for (const obscura_setting_info& info : infos_of(method)) {
+            const Field* match = nullptr;
+            for (const Field& field : fields) {
+                if (std::strcmp(field.method, obscura_method_name(method)) == 0 &&
+                    std::strcmp(field.name, info.name) == 0) {
+                    match = &field;
+                }
+            }
+            ASSERT_NE(match, nullptr) << obscura_method_name(method) << "." << info.name
+                                      << ": not a field of this table; check its C name and add it";
+            EXPECT_EQ(info.offset, match->offset) << obscura_method_name(method) << "." << info.name;
+        }
+    }
+}
+
+// ---- Files ---------------------------------------------------------------------------------------
+
+TEST(SettingsDocument, TextFilesRoundTrip) {
+    const std::string path = ::testing::TempDir() + "obscura_settings_document_test.json";
+    const std::string text = settings_to_json(changed_settings(OBSCURA_METHOD_FFAO));
+    std::string error;
+    ASSERT_TRUE(obscura::viewer::write_text_file(path, text, &error)) << error;
+    std::string read;
+    ASSERT_TRUE(obscura::viewer::read_text_file(path, &read, &error)) << error;
+    EXPECT_EQ(read, text);
+    std::remove(path.c_str());
+    EXPECT_FALSE(obscura::viewer::read_text_file(path, &read, &error));
+    EXPECT_NE(error.find(path), std::string::npos) << error;
+    EXPECT_FALSE(obscura::viewer::write_text_file("/nonexistent-dir/x.json", text, &error));
+    EXPECT_NE(error.find("/nonexistent-dir/x.json"), std::string::npos) << error;
+}
+
+}  // namespace
