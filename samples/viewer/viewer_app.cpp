@@ -123,9 +123,9 @@ void ViewerApp::open_scene(const std::string& name) {
         job_.cancel();
         status_ = "opened " + name;
     } catch (const std::exception& error) {
+        if (scene_.name.empty()) throw;  // nothing to show: the caller reports it and exits
         status_ = std::string("cannot open ") + name + ": " + error.what();
         std::fprintf(stderr, "obscura-viewer: %s\n", status_.c_str());
-        if (scene_.name.empty()) throw;
     }
 }
 

@@ -196,12 +196,15 @@ void ViewerRenderer::render_scene(const ViewerScene& scene, const samples::Camer
 
 bool ViewerRenderer::render_ao(int slot, const obscura_settings& settings, bool use_scene_normals) {
     if (!scene_) return false;
-    AoTexture& target = ao_[slot];
-    target.ensure(visible_width_, visible_height_, GL_R16F);
+    ao_[slot].ensure(visible_width_, visible_height_, GL_R16F);
+    return render_into(ao_[slot].texture.get(), settings, use_scene_normals);
+}
+
+bool ViewerRenderer::render_into(GLuint texture, const obscura_settings& settings, bool use_scene_normals) {
     const obscura_input input = scene_->frame().make_input(use_scene_normals);
     obscura_output output = {};
     output.struct_size = sizeof output;
-    output.texture = target.texture.get();
+    output.texture = texture;
     const obscura_status status = obscura_render(context_, &input, &settings, &output);
     if (status != OBSCURA_STATUS_OK) {
         last_error_ = std::string(obscura_status_string(status)) + ": " + obscura_get_last_error(context_);
@@ -216,13 +219,7 @@ bool ViewerRenderer::step_reference(ReferenceJob& job, bool use_scene_normals) {
     obscura_settings chunk = job.reference;
     chunk.reference.rays = ReferenceJob::kChunkRays;
     chunk.reference.first_ray = job.traced_rays_;
-    const obscura_input input = scene_->frame().make_input(use_scene_normals);
-    obscura_output output = {};
-    output.struct_size = sizeof output;
-    output.texture = chunk_.texture.get();
-    const obscura_status status = obscura_render(context_, &input, &chunk, &output);
-    if (status != OBSCURA_STATUS_OK) {
-        last_error_ = std::string(obscura_status_string(status)) + ": " + obscura_get_last_error(context_);
+    if (!render_into(chunk_.texture.get(), chunk, use_scene_normals)) {
         job.cancel();
         return false;
     }

@@ -106,7 +106,8 @@ public:
     const std::string& renderer_name() const { return renderer_name_; }
 
 private:
-    void upload_reference(const ReferenceJob& job);
+    // obscura_render of the current scene into `texture`; false with last_error() set on failure.
+    bool render_into(GLuint texture, const obscura_settings& settings, bool use_scene_normals);
     obscura_context* context_ = nullptr;
     std::optional<samples::RenderedScene> scene_;
     std::string scene_key_;  // a depth file is loaded once
