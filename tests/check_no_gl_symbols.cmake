@@ -1,4 +1,4 @@
-# cmake -DNM=<nm> -DLIBRARY=<libobscura.a> [-DSHARED=ON] -P check_no_gl_symbols.cmake
+# cmake -DNM=<nm> -DLIBRARY=<libobscura.a> [-DSHARED=ON [-DHEADER=<obscura.h>]] -P check_no_gl_symbols.cmake
 #
 # The SDK loads GL into a private table (glad --mx, entry points static), so a host may link its own
 # glad, GLEW or epoxy beside it. Fails when the archive
@@ -44,6 +44,27 @@ if(SHARED)
   if(violations)
     string(REPLACE ";" "\n  " text "${violations}")
     message(FATAL_ERROR "${LIBRARY} exports symbols outside the C API:\n  ${text}")
+  endif()
+  # With the header: the exported names are exactly the functions it declares with OBSCURA_API.
+  if(HEADER)
+    file(STRINGS "${HEADER}" declarations REGEX "^OBSCURA_API ")
+    set(declared "")
+    foreach(declaration IN LISTS declarations)
+      if(declaration MATCHES "(obscura_[a-z0-9_]+)\\(")
+        list(APPEND declared "${CMAKE_MATCH_1}")
+      endif()
+    endforeach()
+    set(exported_names "")
+    foreach(line IN LISTS dynamic)
+      if(line MATCHES "^[0-9a-fA-F]+ [A-Za-z] (obscura_.+)$")
+        list(APPEND exported_names "${CMAKE_MATCH_1}")
+      endif()
+    endforeach()
+    list(SORT declared)
+    list(SORT exported_names)
+    if(NOT declared STREQUAL exported_names)
+      message(FATAL_ERROR "exported: ${exported_names}\ndeclared in ${HEADER}: ${declared}")
+    endif()
   endif()
   message(STATUS "OK: ${exported} obscura_* symbols exported, nothing else")
   return()
