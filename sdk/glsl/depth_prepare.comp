@@ -71,11 +71,16 @@ float depth_or_sky(ivec2 p) {
 }
 #endif
 
+// A side with one texel before sky or the texture's edge cannot show that it continues the centre's surface.
+// It loses to a side that is planar with the centre (continuation error below this) and wins over one that is
+// not: next to a hole of sky, a floor texel keeps the floor's normal instead of taking the box's beyond it.
+const float kOneTexelError = 1.0e-3;
+
 // How far the surface on one side, continued linearly from its two texels (in 1/w, affine on planes),
-// misses the centre's depth; a large value when that side cannot say (sky, outside).
+// misses the centre's depth; kOneTexelError and up when only one texel is there, a huge value for none.
 float continuation_error(float center, float near, float far) {
     if (obscura_is_sky(near)) return 3.0e38;
-    if (obscura_is_sky(far)) return 1.0e38 + abs(near - center) * 1.0e-8;  // only one texel: rank by the step
+    if (obscura_is_sky(far)) return kOneTexelError * (1.0 + abs(near - center) / center);  // rank by the step
     float k_center = 1.0 / obscura_clip_w(center);
     float k_near = 1.0 / obscura_clip_w(near), k_far = 1.0 / obscura_clip_w(far);
     return abs(2.0 * k_near - k_far - k_center) / k_center;

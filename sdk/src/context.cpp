@@ -49,8 +49,35 @@ FrameConstants frame_constants(const FrameInput& input, const OutputTarget& targ
     return c;
 }
 
+// GL 4.5 / KHR_robustness tokens; the SDK's loader is generated for GL 4.3.
+constexpr GLenum kGlContextLost = 0x0507;
+constexpr GLenum kGlGuiltyContextReset = 0x8253;
+constexpr GLenum kGlInnocentContextReset = 0x8254;
+constexpr GLenum kGlUnknownContextReset = 0x8255;
+
+const char* reset_name(GLenum status) {
+    switch (status) {
+        case kGlGuiltyContextReset: return "GL_GUILTY_CONTEXT_RESET: a command of this context caused the reset";
+        case kGlInnocentContextReset: return "GL_INNOCENT_CONTEXT_RESET: another context caused the reset";
+        case kGlUnknownContextReset: return "GL_UNKNOWN_CONTEXT_RESET";
+        case kGlContextLost: return "glGetError returned GL_CONTEXT_LOST";
+        default: return "unknown reset status";
+    }
+}
+
+bool has_extension(const gl::Table& gl, const char* name) {
+    GLint count = 0;
+    gl.GetIntegerv(GL_NUM_EXTENSIONS, &count);
+    for (GLint i = 0; i < count; ++i) {
+        const char* extension = reinterpret_cast<const char*>(gl.GetStringi(GL_EXTENSIONS, GLuint(i)));
+        if (extension && std::strcmp(extension, name) == 0) return true;
+    }
+    return false;
+}
+
 const char* gl_error_name(GLenum error) {
     switch (error) {
+        case kGlContextLost: return "GL_CONTEXT_LOST";
         case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
         case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
         case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
@@ -109,8 +136,11 @@ Error Context::create(const obscura_context_desc& desc, Context** out) {
 
 void Context::destroy(Context* context) {
     if (!context) return;
-    // Deleting GL names with another context current would delete that context's objects: leak instead.
-    if (context->gl_.GetString && context->identity_framebuffer_ && context->check_gl_context()) {
+    // A lost GL context took the objects with it; deleting names there would at best do nothing.
+    if (context->lost_reason_) {
+        context->disarm_gl_deletes();
+    } else if (context->gl_.GetString && context->identity_framebuffer_ && context->check_gl_context()) {
+        // Deleting GL names with another context current would delete that context's objects: leak instead.
         if (context->log_) {
             context->log_(OBSCURA_LOG_WARNING, OBSCURA_STATUS_WRONG_GL_CONTEXT,
                           "obscura_destroy_context: the context's GL context is not current; its GL objects are "
@@ -147,6 +177,16 @@ Error Context::initialize() {
                            version % 10000, reinterpret_cast<const char*>(get_string(GL_VERSION)));
     }
     cpu_renderer_ = is_cpu_renderer(reinterpret_cast<const char*>(get_string(GL_RENDERER)));
+    // Context loss: only robust contexts report a reset, through GL 4.5's query or its extension forms. A
+    // loader may hand out stubs for any name, so the name is looked up only where the context has it.
+    const char* reset_query = version >= 40005                                ? "glGetGraphicsResetStatus"
+                              : has_extension(gl_, "GL_KHR_robustness")     ? "glGetGraphicsResetStatusKHR"
+                              : has_extension(gl_, "GL_ARB_robustness")     ? "glGetGraphicsResetStatusARB"
+                                                                            : nullptr;
+    if (reset_query) {
+        get_reset_status_ = reinterpret_cast<ResetStatusFn>(obscura_gl_lookup(&loader_, reset_query));
+    }
+    if (Error lost = check_context_lost()) return lost;
     // Every function the SDK calls must have loaded (a host loader may return NULL for some).
     struct Required { const void* fn; const char* name; };
     const Required required[] = {
@@ -346,10 +386,30 @@ Error Context::prepare(int width, int height, const obscura_settings& settings) 
     return error;
 }
 
+Error Context::check_context_lost() {
+    if (!lost_reason_ && get_reset_status_) lost_reason_ = get_reset_status_();
+    if (!lost_reason_) return Error();
+    return Error::make(OBSCURA_STATUS_CONTEXT_LOST,
+                       "the OpenGL context was lost (%s); destroy this obscura context and create a new one on a "
+                       "new GL context",
+                       reset_name(lost_reason_));
+}
+
+Error Context::gl_error_status(GLenum error, const char* where) {
+    if (error == kGlContextLost) {
+        lost_reason_ = kGlContextLost;
+        return check_context_lost();
+    }
+    return Error::make(OBSCURA_STATUS_GL_ERROR, "%s (0x%04X) raised %s", gl_error_name(error), unsigned(error), where);
+}
+
 Error Context::check_host_state(const char* call) {
-    Error error = check_gl_context();
+    Error error = check_context_lost();
+    if (error) return error;
+    error = check_gl_context();
     if (error) return error;
     GLenum pending = take_gl_error(gl_);
+    if (pending == kGlContextLost) return gl_error_status(pending, call);
     if (pending != GL_NO_ERROR) {
         return Error::make(OBSCURA_STATUS_HOST_GL_ERROR,
                            "the host left %s (0x%04X) pending before %s; it was consumed and nothing was done",
@@ -388,15 +448,13 @@ Error Context::render(const obscura_input& input, const obscura_settings& settin
         }
         // A failed validation may leave a probing error (wrong texture target) behind: drain it.
         GLenum gl_error = take_gl_error(gl_);
-        if (!error && gl_error != GL_NO_ERROR) {
-            error = Error::make(OBSCURA_STATUS_GL_ERROR, "%s (0x%04X) raised while rendering", gl_error_name(gl_error),
-                                unsigned(gl_error));
+        if (gl_error == kGlContextLost || (!error && gl_error != GL_NO_ERROR)) {
+            error = gl_error_status(gl_error, "while rendering");
         }
     }
     GLenum restore_error = take_gl_error(gl_);
-    if (!error && restore_error != GL_NO_ERROR) {
-        error = Error::make(OBSCURA_STATUS_GL_ERROR, "%s (0x%04X) raised while restoring the host's GL state",
-                            gl_error_name(restore_error), unsigned(restore_error));
+    if (restore_error == kGlContextLost || (!error && restore_error != GL_NO_ERROR)) {
+        error = gl_error_status(restore_error, "while restoring the host's GL state");
     }
     return error;
 }
@@ -582,6 +640,7 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
         if (!validate) return Error();
         GLenum e = take_gl_error(gl_);
         if (e == GL_NO_ERROR) return Error();
+        if (e == kGlContextLost) return gl_error_status(e, label);
         return Error::make(OBSCURA_STATUS_GL_ERROR, "%s raised in pass %s", gl_error_name(e), label);
     };
 

@@ -48,7 +48,12 @@ private:
     Error initialize();
     PassEnv env() const;
     Error check_gl_context();
-    // check_gl_context, then HOST_GL_ERROR if the host left an error pending (consumed and reported).
+    // CONTEXT_LOST once the GL context has reported a reset (sticky: a lost context never comes back).
+    Error check_context_lost();
+    // Turns a GL error raised inside the SDK into a status: CONTEXT_LOST for GL_CONTEXT_LOST, else GL_ERROR.
+    Error gl_error_status(GLenum error, const char* where);
+    // check_context_lost, check_gl_context, then HOST_GL_ERROR if the host left an error pending (consumed and
+    // reported), or CONTEXT_LOST if that error is GL_CONTEXT_LOST.
     Error check_host_state(const char* call);
     // The framebuffer a blit reaches the host's target through: 0 (default) or ours with the host's
     // colour attachment 0 attached, so only that attachment is read and written.
@@ -81,6 +86,10 @@ private:
     gl::Object sampler_;
     gl::Object sampler_mipmap_;
     bool cpu_renderer_ = false;  // GL_RENDERER names a CPU rasteriser (is_cpu_renderer)
+    // glGetGraphicsResetStatus (GL 4.5) or its KHR/ARB_robustness form; null when the context has neither.
+    using ResetStatusFn = GLenum(GLAD_API_PTR*)(void);
+    ResetStatusFn get_reset_status_ = nullptr;
+    GLenum lost_reason_ = 0;  // the reset status (or GL_CONTEXT_LOST) that marked the context lost; 0: alive
     gl::Buffer uniform_buffer_;
     UniformArena uniforms_;
     DepthPreparePass depth_prepare_;

@@ -8,6 +8,10 @@ bool obscura_is_sky(float view_depth) { return !(view_depth < OBSCURA_SKY_THRESH
 // isnan() and !(x > 0.0) into x <= 0.0), so only the exponent field reliably tells NaN and inf apart.
 bool obscura_is_finite(float x) { return (floatBitsToUint(x) & 0x7f800000u) != 0x7f800000u; }
 
+// Zero or denormal, on the bits: CPU rasterisers and GPUs flush denormals in some operations and not in others
+// (llvmpipe compared a denormal depth > 0 and then divided by zero), so depths that small count as zero.
+bool obscura_is_zero_or_denormal(float x) { return (floatBitsToUint(x) & 0x7f800000u) == 0u; }
+
 // Window depth written through the host projection -> positive view distance, or OBSCURA_SKY_DEPTH.
 float obscura_linearize_window_depth(float window_depth) {
     if (!obscura_is_finite(window_depth) || window_depth == depth_params.x) return OBSCURA_SKY_DEPTH;
@@ -16,13 +20,17 @@ float obscura_linearize_window_depth(float window_depth) {
     // reversed-Z, finite and infinite far planes.
     float z = (proj_depth.y - z_ndc * proj_depth.w) / (z_ndc * proj_depth.z - proj_depth.x);
     float distance = -z;
-    if (!obscura_is_finite(distance) || !(distance > 0.0) || !(distance < OBSCURA_SKY_THRESHOLD)) return OBSCURA_SKY_DEPTH;
+    if (!obscura_is_finite(distance) || obscura_is_zero_or_denormal(distance) || !(distance > 0.0) ||
+        !(distance < OBSCURA_SKY_THRESHOLD)) {
+        return OBSCURA_SKY_DEPTH;
+    }
     return distance;
 }
 
 // Linear depth given by the host: anything non-positive or non-finite is sky.
 float obscura_sanitize_linear_depth(float view_depth) {
-    if (!obscura_is_finite(view_depth) || !(view_depth > 0.0) || !(view_depth < OBSCURA_SKY_THRESHOLD)) {
+    if (!obscura_is_finite(view_depth) || obscura_is_zero_or_denormal(view_depth) || !(view_depth > 0.0) ||
+        !(view_depth < OBSCURA_SKY_THRESHOLD)) {
         return OBSCURA_SKY_DEPTH;
     }
     return view_depth;

@@ -50,8 +50,9 @@
  *     orthographic, standard or reversed-Z, finite or infinite far plane, [-1,1] or [0,1] clip depth
  *     (glClipControl). The projection is decoded from the matrix itself; its near/far layout is
  *     validated ("looks transposed" is reported as such).
- *   - Pixels at the far-plane clear value (1, or 0 with reversed-Z), NaN or inf are "sky": they
- *     receive visibility 1 and occlude nothing.
+ *   - Pixels at the far-plane clear value (1, or 0 with reversed-Z), NaN or inf, and linear depths that are
+ *     zero, negative or denormal, are "sky": they receive visibility 1, occlude nothing and do not enter
+ *     their neighbours' normals or filters. Every input depth gives finite AO in [0, 1].
  *   - Guard band: the depth texture covers more than the visible image. Occluders are read from the
  *     whole depth texture; AO is written only for `output_rect`. The papers use 10-20 % per side.
  *   - Units: view units are the units of the host's view space; settings distances are metres and
@@ -133,7 +134,8 @@ OBSCURA_API uint32_t obscura_version(void);
     X(HOST_GL_ERROR, 20, "the host left a GL error pending before the call; nothing was rendered")    \
     X(GL_ERROR, 21, "a GL error was raised inside the SDK; the message names the pass")               \
     X(UNKNOWN_SETTING, 22, "no setting of that name exists for the method")                           \
-    X(INTERNAL_ERROR, 23, "an unexpected internal failure; please report it")
+    X(INTERNAL_ERROR, 23, "an unexpected internal failure; please report it")                         \
+    X(CONTEXT_LOST, 24, "the GL context was lost (GPU reset); destroy the obscura context, recreate both")
 
 #define OBSCURA_STATUS_ENUM_ENTRY_(name, value, desc) OBSCURA_STATUS_##name = value,
 typedef enum obscura_status {
@@ -197,7 +199,7 @@ typedef struct obscura_context_desc {
 /* Creates a context for the GL context current on this thread and compiles the shaders.
    Returns OK, NULL_ARGUMENT, INVALID_STRUCT_SIZE, VERSION_MISMATCH, NO_GL_CONTEXT,
    GL_VERSION_UNSUPPORTED, MISSING_GL_FUNCTION, HOST_GL_ERROR, SHADER_COMPILE_FAILED, OUT_OF_MEMORY,
-   GL_ERROR, INTERNAL_ERROR. On failure the message goes to desc->log (there is no context to ask). */
+   GL_ERROR, CONTEXT_LOST, INTERNAL_ERROR. On failure the message goes to desc->log (there is no context to ask). */
 OBSCURA_API obscura_status obscura_create_context(const obscura_context_desc* desc, obscura_context** out_context);
 
 /* Destroys the context and every GL object it owns. The same GL context must be current: with another one
@@ -516,7 +518,11 @@ typedef struct obscura_output {
    Returns OK or NULL_ARGUMENT, INVALID_STRUCT_SIZE, WRONG_GL_CONTEXT, HOST_GL_ERROR, INVALID_SIZE,
    INVALID_RECT, INVALID_TEXTURE, UNSUPPORTED_FORMAT, INVALID_PROJECTION, PROJECTION_TRANSPOSED,
    INVALID_SETTING, INVALID_ENUM, METHOD_NOT_AVAILABLE, INVALID_FRAMEBUFFER, SHADER_COMPILE_FAILED (a
-   variant built on first use), OUT_OF_MEMORY, GL_ERROR. */
+   variant built on first use), OUT_OF_MEMORY, GL_ERROR, CONTEXT_LOST.
+   Host errors and context loss: a GL error the host left pending is consumed and reported as HOST_GL_ERROR
+   before anything is done (never blamed on a pass). A reset reported by glGetGraphicsResetStatus (GL 4.5,
+   KHR/ARB_robustness; only robust contexts report one) or GL_CONTEXT_LOST from glGetError makes this and
+   every later call on the context return CONTEXT_LOST. */
 OBSCURA_API obscura_status obscura_render(obscura_context* context, const obscura_input* input,
                                           const obscura_settings* settings, const obscura_output* output);
 
@@ -524,7 +530,7 @@ OBSCURA_API obscura_status obscura_render(obscura_context* context, const obscur
    Shader variants that depend on the input and output (MSAA or linear depth, the target's format) are
    still compiled on the first render that needs them. Optional. Returns OK, NULL_ARGUMENT,
    INVALID_STRUCT_SIZE, INVALID_SETTING, INVALID_ENUM, METHOD_NOT_AVAILABLE, INVALID_SIZE,
-   WRONG_GL_CONTEXT, HOST_GL_ERROR, OUT_OF_MEMORY. */
+   WRONG_GL_CONTEXT, HOST_GL_ERROR, OUT_OF_MEMORY, CONTEXT_LOST. */
 OBSCURA_API obscura_status obscura_prepare(obscura_context* context, int32_t depth_width, int32_t depth_height,
                                            const obscura_settings* settings);
 
