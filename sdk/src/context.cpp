@@ -305,6 +305,7 @@ void Context::release_resources() {
     resources_ = FrameResources();
     lsao_.release();
     ffao_.release();
+    ffao_.release_table();
 }
 
 Error Context::ensure_reference_accumulator() {
@@ -320,7 +321,7 @@ Error Context::ensure_reference_accumulator() {
 
 Error Context::ensure_depth_pyramid(int levels) {
     gl_.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_SOURCE));  // a unit the StateGuard restores
-    if (resources_.linear_depth.levels() < levels) {
+    if (resources_.linear_depth.levels() != levels) {
         // Its contents are rewritten by the depth preparation every frame: replacing it loses nothing.
         resources_.linear_depth = gl::Texture2D::create(gl_, GL_R32F, resources_.width, resources_.height, levels);
         if (!resources_.linear_depth) {
@@ -347,7 +348,26 @@ Error Context::ensure_sao_resources(int levels) {
 }
 
 Error Context::ensure_method_resources(const obscura_settings& settings) {
-    switch (settings.method) {
+    // The context holds what the latest configuration needs and nothing else: switching methods frees the
+    // others' resources (re-created when they come back), so the memory report depends on the configuration
+    // only, never on the history of the session.
+    const obscura_method method = settings.method;
+    if (method != OBSCURA_METHOD_REFERENCE) resources_.reference = gl::Texture2D();
+    if (method != OBSCURA_METHOD_SAO) {
+        resources_.packed_ao = gl::Texture2D();
+        resources_.packed_temp = gl::Texture2D();
+    }
+    if (method != OBSCURA_METHOD_LSAO) lsao_.release();
+    if (method != OBSCURA_METHOD_FFAO) {
+        ffao_.release();
+        ffao_.release_table();
+    }
+    const bool pyramid = method == OBSCURA_METHOD_SAO || (method == OBSCURA_METHOD_FFAO && ffao_uses_mipmap(settings.ffao));
+    if (!pyramid) {
+        Error error = ensure_depth_pyramid(1);
+        if (error) return error;
+    }
+    switch (method) {
         case OBSCURA_METHOD_REFERENCE: return ensure_reference_accumulator();
         case OBSCURA_METHOD_SAO:
             return ensure_sao_resources(
@@ -570,6 +590,8 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
             gl_.BindFramebuffer(GL_FRAMEBUFFER, resources_.staging_framebuffer.name());
             gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, resources_.staging.name(), 0);
         }
+    } else if (resources_.staging) {
+        resources_.staging = gl::Texture2D();  // a texture target again: the blit's staging is not needed
     }
     float radius = method == OBSCURA_METHOD_REFERENCE ? settings.reference.radius
                    : method == OBSCURA_METHOD_SAO     ? sao.radius

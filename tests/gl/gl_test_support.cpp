@@ -376,4 +376,42 @@ Stats stats(const std::vector<float>& values, const std::vector<bool>& mask) {
     return s;
 }
 
+// Counts live GL objects of each type by asking glIs* for every name in [1, kNameRange]. GL names are
+// small integers chosen by the implementation (Mesa reuses the lowest free ones), and glIs* is true
+// exactly for names that denote an existing object of that type (textures, buffers, framebuffers,
+// renderbuffers, vertex arrays and queries once first bound or used; samplers, programs, shaders once
+// generated). Counting per type before and after create/render/destroy cycles shows whether the SDK
+// leaves any object behind; Contexts.ObjectScanSeesLiveContexts confirms the scan does see the SDK's objects
+// while a context is alive, so the comparison is not vacuous. (Queries generated but never used are invisible
+// to glIsQuery; the SDK's timer queries are used by every render.) The range is wide because a long
+// test process (the whole suite in one binary, as on a GPU run) pushes query names past a few thousand.
+constexpr GLuint kNameRange = 1u << 16;
+
+std::map<std::string, int> count_gl_objects() {
+    std::map<std::string, int> counts;
+    const std::pair<const char*, GLboolean (*)(GLuint)> kinds[] = {
+        {"texture", [](GLuint n) { return glIsTexture(n); }},
+        {"buffer", [](GLuint n) { return glIsBuffer(n); }},
+        {"program", [](GLuint n) { return glIsProgram(n); }},
+        {"shader", [](GLuint n) { return glIsShader(n); }},
+        {"sampler", [](GLuint n) { return glIsSampler(n); }},
+        {"query", [](GLuint n) { return glIsQuery(n); }},
+        {"framebuffer", [](GLuint n) { return glIsFramebuffer(n); }},
+        {"renderbuffer", [](GLuint n) { return glIsRenderbuffer(n); }},
+        {"vertex array", [](GLuint n) { return glIsVertexArray(n); }},
+    };
+    for (const auto& [name, is] : kinds) {
+        int count = 0;
+        for (GLuint n = 1; n <= kNameRange; ++n) count += is(n) ? 1 : 0;
+        counts[name] = count;
+    }
+    return counts;
+}
+
+std::string describe(const std::map<std::string, int>& counts) {
+    std::string text;
+    for (const auto& [name, count] : counts) text += name + "=" + std::to_string(count) + " ";
+    return text;
+}
+
 }  // namespace obscura_test

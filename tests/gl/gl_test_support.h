@@ -6,6 +6,7 @@
 
 #include <cstring>
 #include <memory>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -111,6 +112,11 @@ void standard_projection(float aspect, float out[16]);
 std::vector<float> render_to_new_texture(obscura_context* context, const obscura_input& input,
                                          const obscura_settings& settings, GLenum format, int channels,
                                          obscura_debug_view debug_view = OBSCURA_DEBUG_NONE);
+
+// Live GL objects of the current context per type ("texture", "buffer", "program", ...), found by asking glIs*
+// for every name up to 65536 (see the .cpp), and a one-line description of such counts.
+std::map<std::string, int> count_gl_objects();
+std::string describe(const std::map<std::string, int>& counts);
 
 // Statistics over a float image with a mask.
 struct Stats {

@@ -142,6 +142,12 @@ void FfaoPass::release() {
     key_ = LayoutKey();
 }
 
+void FfaoPass::release_table() {
+    table_ = gl::Object();
+    table_sampler_ = gl::Object();
+    table_valid_ = false;
+}
+
 uint64_t FfaoPass::bytes() const {
     return lines_.bytes() + columns_.bytes() + peaks_.bytes() + box_.bytes() + terms_.bytes() +
            (table_ ? kTableBytes : 0);

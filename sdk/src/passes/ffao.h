@@ -54,6 +54,7 @@ public:
     const FfaoLayout& layout() const { return layout_; }
     uint64_t bytes() const;
     void release();  // the per-size buffers (the table stays)
+    void release_table();  // the estimator table too: rebuilt on the next frame that needs it
     // Tests: the table texels (A fastest, then B, then the shared C x D axis) and the peaks buffer (vec4s);
     // both read back, so they wait for the GPU.
     std::vector<float> read_table(const gl::Table& gl) const;
