@@ -534,7 +534,7 @@ OBSCURA_API obscura_status obscura_render(obscura_context* context, const obscur
 OBSCURA_API obscura_status obscura_prepare(obscura_context* context, int32_t depth_width, int32_t depth_height,
                                            const obscura_settings* settings);
 
-/* Frees the per-size resources (they are recreated on the next render). */
+/* Frees the per-size resources and FFAO's table (they are recreated on the next render); programs stay. */
 OBSCURA_API void obscura_release_resources(obscura_context* context);
 
 /* ---- Queries --------------------------------------------------------------------------------- */
@@ -554,7 +554,9 @@ typedef struct obscura_timing {
 OBSCURA_API obscura_status obscura_get_timings(obscura_context* context, obscura_timing* out, uint32_t capacity,
                                                uint32_t* out_count, uint64_t* out_frame_index);
 
-/* Sets *out_bytes to the GPU memory the context has allocated (textures and buffers). Returns OK, NULL_ARGUMENT. */
+/* Sets *out_bytes to the GPU memory the context has allocated (textures and buffers). The context holds what its
+   latest configuration (size, method, settings, output kind) needs and nothing else, so the same configuration
+   always reports the same bytes. Returns OK, NULL_ARGUMENT. */
 OBSCURA_API obscura_status obscura_get_memory_usage(const obscura_context* context, uint64_t* out_bytes);
 
 #ifdef __cplusplus
