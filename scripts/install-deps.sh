@@ -14,6 +14,8 @@ required=(
   libglew-dev libepoxy-dev               # tests that act as a host using GLEW / libepoxy
   libglfw3-dev libimgui-dev              # obscura-viewer (window, Dear ImGui and its backend sources)
   xvfb xauth                             # the viewer's tests run it in a virtual X server
+  clang libclang-rt-14-dev               # the libFuzzer targets (tests/fuzz); libclang-rt-14-dev holds libFuzzer's
+                                         # runtime, only a recommendation of clang (skipped by --no-install-recommends)
 )
 # python3-glad is only needed to regenerate third_party/glad*, never to build.
 

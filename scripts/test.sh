@@ -2,6 +2,8 @@
 # Installs the dependencies, builds everything and runs the test suite twice: a Release build, then a
 # Debug build with AddressSanitizer + UndefinedBehaviorSanitizer (OBSCURA_SANITIZE=ON; set
 # OBSCURA_SKIP_SANITIZE=1 to skip it). Extra arguments go to both ctest runs (e.g. -R Hbao).
+# Then the libFuzzer targets (tests/fuzz, Clang, OBSCURA_FUZZ=ON) fuzz the settings and the render API for
+# OBSCURA_FUZZ_SECONDS each (default 60, both at once): set OBSCURA_SKIP_FUZZ=1 to skip them.
 # Tests run on Mesa's software renderer (llvmpipe) unless OBSCURA_GPU=1 is set, in which case the
 # machine's GPU driver is used.
 set -euo pipefail
@@ -25,4 +27,16 @@ if [[ "${OBSCURA_SKIP_SANITIZE:-0}" != 1 ]]; then
     -DOBSCURA_SANITIZE=ON -DOBSCURA_BUILD_SAMPLES=OFF -DOBSCURA_BUILD_TESTS=ON
   cmake --build "$asan_dir" --parallel "$jobs"
   (cd "$asan_dir" && ctest --output-on-failure -j "$jobs" "$@")
+fi
+
+if [[ "${OBSCURA_SKIP_FUZZ:-0}" != 1 ]]; then
+  # Only the fuzz targets and their ctest entries (no GoogleTest suite in this tree); a crash input lands in
+  # tests/fuzz/artifacts/<target>/ of the build tree (docs/testing.md, "Fuzzing").
+  echo "== libFuzzer targets (Clang, ASan + UBSan): ${OBSCURA_FUZZ_SECONDS:-60} s each"
+  fuzz_dir="${OBSCURA_FUZZ_BUILD_DIR:-$root/build-fuzz}"
+  CC=clang CXX=clang++ cmake -S "$root" -B "$fuzz_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DOBSCURA_WARNINGS_AS_ERRORS=ON -DOBSCURA_FUZZ=ON -DOBSCURA_BUILD_SAMPLES=OFF -DOBSCURA_BUILD_TESTS=OFF \
+    -DOBSCURA_FUZZ_SECONDS="${OBSCURA_FUZZ_SECONDS:-60}"
+  cmake --build "$fuzz_dir" --parallel "$jobs"
+  (cd "$fuzz_dir" && ctest --output-on-failure -L fuzz -j 2)
 fi

@@ -106,6 +106,25 @@ int main(void) {
     desc.header_version = 10000u + OBSCURA_VERSION;
     CHECK(obscura_create_context(&desc, &context) == OBSCURA_STATUS_VERSION_MISMATCH);
 
+    /* Any int a C host passes for an enum: answered, never undefined (found by the settings fuzzer under
+       UBSan's enum check, which the sanitizer builds run this program with). */
+    {
+        const int raw[] = {-1, 100, (int)OBSCURA_STATUS_COUNT_, (int)OBSCURA_METHOD_COUNT_};
+        size_t i;
+        for (i = 0; i < sizeof raw / sizeof raw[0]; ++i) {
+            obscura_settings s;
+            const obscura_setting_info* infos = NULL;
+            uint32_t count = 0;
+            const int method_ok = raw[i] >= 0 && raw[i] < (int)OBSCURA_METHOD_COUNT_;
+            CHECK(strncmp(obscura_status_string((obscura_status)raw[i]), "OBSCURA_STATUS_", 15) == 0);
+            CHECK((obscura_method_name((obscura_method)raw[i]) != NULL) == method_ok);
+            CHECK(obscura_method_available((obscura_method)raw[i]) == method_ok);
+            CHECK((obscura_default_settings((obscura_method)raw[i], &s) == OBSCURA_STATUS_INVALID_ENUM) == !method_ok);
+            CHECK((obscura_get_setting_infos((obscura_method)raw[i], &infos, &count) == OBSCURA_STATUS_INVALID_ENUM) ==
+                  !method_ok);
+        }
+    }
+
     if (failures) {
         fprintf(stderr, "%d check(s) failed\n", failures);
         return 1;

@@ -19,6 +19,24 @@ const char* const kMethodNames[] = {"default", "hbao", "sao", "lsao", "ffao", "r
 
 Context* as_context(obscura_context* context) { return static_cast<Context*>(context); }
 
+// An enum argument as the int the host passed. A C host may pass any int where the API takes an enum, and
+// loading a value outside the enumerators through the C++ enum type is undefined (-fsanitize=enum reports
+// it), so the argument's bytes are read instead, as settings.cpp and frame_input.cpp read enum fields.
+template <class Enum>
+int32_t enum_argument(const Enum& argument) {
+    static_assert(sizeof(Enum) == sizeof(int32_t), "the API's C enums are int-sized");
+    int32_t value;
+    std::memcpy(&value, &argument, sizeof value);
+    return value;
+}
+
+// The method argument resolved (DEFAULT -> HBAO), or OBSCURA_METHOD_COUNT_ for a value the API does not know.
+obscura_method method_argument(const obscura_method& method) {
+    const int32_t value = enum_argument(method);
+    if (value < 0 || value >= int32_t(OBSCURA_METHOD_COUNT_)) return OBSCURA_METHOD_COUNT_;
+    return obscura::resolve_method(obscura_method(value));
+}
+
 // Runs `body` (returning Error) and maps its result and any exception to a status on `context`.
 template <class Body>
 obscura_status guarded(Context* context, Body&& body) {
@@ -49,17 +67,19 @@ extern "C" {
 OBSCURA_API uint32_t obscura_version(void) { return OBSCURA_VERSION; }
 
 OBSCURA_API const char* obscura_status_string(obscura_status status) {
-    if (int(status) < 0 || int(status) >= int(OBSCURA_STATUS_COUNT_)) return "OBSCURA_STATUS_?: unknown status code";
-    return kStatusStrings[status];
+    const int32_t value = enum_argument(status);
+    if (value < 0 || value >= int32_t(OBSCURA_STATUS_COUNT_)) return "OBSCURA_STATUS_?: unknown status code";
+    return kStatusStrings[value];
 }
 
 OBSCURA_API const char* obscura_method_name(obscura_method method) {
-    if (int(method) < 0 || int(method) >= int(OBSCURA_METHOD_COUNT_)) return nullptr;
-    return kMethodNames[obscura::resolve_method(method)];
+    const obscura_method resolved = method_argument(method);
+    if (resolved == OBSCURA_METHOD_COUNT_) return nullptr;
+    return kMethodNames[resolved];
 }
 
 OBSCURA_API int obscura_method_available(obscura_method method) {
-    obscura_method resolved = obscura::resolve_method(method);
+    const obscura_method resolved = method_argument(method);
     return resolved == OBSCURA_METHOD_HBAO || resolved == OBSCURA_METHOD_SAO || resolved == OBSCURA_METHOD_LSAO ||
                    resolved == OBSCURA_METHOD_FFAO || resolved == OBSCURA_METHOD_REFERENCE
                ? 1
@@ -113,11 +133,12 @@ OBSCURA_API const char* obscura_get_last_error(const obscura_context* context) {
 
 OBSCURA_API obscura_status obscura_default_settings(obscura_method method, obscura_settings* out) {
     if (!out) return OBSCURA_STATUS_NULL_ARGUMENT;
-    if (obscura::resolve_method(method) == OBSCURA_METHOD_COUNT_) return OBSCURA_STATUS_INVALID_ENUM;
+    const obscura_method resolved = method_argument(method);
+    if (resolved == OBSCURA_METHOD_COUNT_) return OBSCURA_STATUS_INVALID_ENUM;
     obscura_settings zero;
     std::memset(&zero, 0, sizeof zero);
     zero.struct_size = sizeof zero;
-    zero.method = obscura::resolve_method(method);
+    zero.method = resolved;
     return obscura::resolve_settings(zero, out).status();
 }
 
@@ -144,8 +165,9 @@ OBSCURA_API obscura_status obscura_reference_settings_for(const obscura_settings
 OBSCURA_API obscura_status obscura_get_setting_infos(obscura_method method, const obscura_setting_info** out_infos,
                                                      uint32_t* out_count) {
     if (!out_infos || !out_count) return OBSCURA_STATUS_NULL_ARGUMENT;
-    if (obscura::resolve_method(method) == OBSCURA_METHOD_COUNT_) return OBSCURA_STATUS_INVALID_ENUM;
-    *out_infos = obscura::setting_infos(method, out_count);
+    const obscura_method resolved = method_argument(method);
+    if (resolved == OBSCURA_METHOD_COUNT_) return OBSCURA_STATUS_INVALID_ENUM;
+    *out_infos = obscura::setting_infos(resolved, out_count);
     return OBSCURA_OK;
 }
 
@@ -186,7 +208,7 @@ OBSCURA_API obscura_status obscura_prepare(obscura_context* context, int32_t dep
 }
 
 OBSCURA_API void obscura_release_resources(obscura_context* context) {
-    if (context) as_context(context)->release_resources();
+    if (context) as_context(context)->release_resources_from_host();
 }
 
 OBSCURA_API obscura_status obscura_get_timings(obscura_context* context, obscura_timing* out, uint32_t capacity,

@@ -308,6 +308,17 @@ void Context::release_resources() {
     ffao_.release_table();
 }
 
+void Context::release_resources_from_host() {
+    if (lost_reason_ || check_gl_context()) {
+        if (log_ && !lost_reason_) {
+            log_(OBSCURA_LOG_WARNING, OBSCURA_STATUS_WRONG_GL_CONTEXT,
+                 "obscura_release_resources: the context's GL context is not current; nothing was freed", log_user_data_);
+        }
+        return;
+    }
+    release_resources();
+}
+
 Error Context::ensure_reference_accumulator() {
     if (resources_.reference) return Error();
     gl_.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_SOURCE));  // a unit the StateGuard restores

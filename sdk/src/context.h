@@ -33,6 +33,9 @@ public:
     Error render(const obscura_input& input, const obscura_settings& settings, const obscura_output& output);
     Error prepare(int width, int height, const obscura_settings& settings);
     void release_resources();
+    // obscura_release_resources: release_resources, unless another GL context is current (a warning, nothing freed:
+    // our names would denote that context's objects there).
+    void release_resources_from_host();
     uint32_t timings(obscura_timing* out, uint32_t capacity, uint64_t* frame_index) {
         return timer_.latest(out, capacity, frame_index);
     }

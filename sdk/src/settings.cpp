@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstring>
+#include <limits>
 
 namespace obscura {
 namespace {
@@ -18,7 +19,7 @@ const obscura_setting_info kHbaoSettings[] = {
      "distance where the falloff reaches zero; the steps cover it", OBSCURA_HBAO_FIELD(radius)},
     {"falloff_c", OBSCURA_SETTING_FLOAT, 0.3, 1e-3, 0.999, "",
      "C of rho0(d) = max(0, r(1+C)/(r+d^2) - C): how far the falloff is sunk", OBSCURA_HBAO_FIELD(falloff_c)},
-    {"decay_rate", OBSCURA_SETTING_FLOAT, 0.0, 1e-8, 1e8, "m^2",
+    {"decay_rate", OBSCURA_SETTING_FLOAT, 0.0, 1e-10, 1e8, "m^2",
      "r of rho0; 0 derives C*radius^2 so rho0 reaches zero at the radius", OBSCURA_HBAO_FIELD(decay_rate)},
     {"directions", OBSCURA_SETTING_INT, 8, 1, 32, "", "K azimuthal directions per pixel",
      OBSCURA_HBAO_FIELD(directions)},
@@ -55,7 +56,7 @@ const obscura_setting_info kReferenceSettings[] = {
      OBSCURA_REFERENCE_FIELD(falloff)},
     {"falloff_c", OBSCURA_SETTING_FLOAT, 0.3, 1e-3, 0.999, "", "C of rho0(d) = max(0, r(1+C)/(r+d^2) - C)",
      OBSCURA_REFERENCE_FIELD(falloff_c)},
-    {"decay_rate", OBSCURA_SETTING_FLOAT, 0.0, 1e-8, 1e8, "m^2",
+    {"decay_rate", OBSCURA_SETTING_FLOAT, 0.0, 1e-10, 1e8, "m^2",
      "r of the falloff; 0 derives C*radius^2 (rho0 then reaches zero at the radius)",
      OBSCURA_REFERENCE_FIELD(decay_rate)},
     {"thickness", OBSCURA_SETTING_FLOAT, 0.0, 0.0, 1e4, "m",
@@ -125,7 +126,7 @@ const obscura_setting_info kLsaoSettings[] = {
      OBSCURA_LSAO_FIELD(falloff)},
     {"falloff_c", OBSCURA_SETTING_FLOAT, 0.3, 1e-3, 0.999, "", "C: rho0's sink and the decay-rate default",
      OBSCURA_LSAO_FIELD(falloff_c)},
-    {"decay_rate", OBSCURA_SETTING_FLOAT, 0.0, 1e-8, 1e8, "m^2", "r of the falloff; 0 derives C*radius^2",
+    {"decay_rate", OBSCURA_SETTING_FLOAT, 0.0, 1e-10, 1e8, "m^2", "r of the falloff; 0 derives C*radius^2",
      OBSCURA_LSAO_FIELD(decay_rate)},
     {"preset", OBSCURA_SETTING_INT, 2, 1, 6, "",
      "K/D_S/D_L: 1 8/1.41/1.41, 2 16/2.43/1.64, 3 24/3.56/1.69, 4 32/4.69/1.70, 5 8/2.83/2.12, 6 16/4.87/2.46",
@@ -179,7 +180,7 @@ const obscura_setting_info kFfaoSettings[] = {
      OBSCURA_FFAO_FIELD(falloff)},
     {"falloff_c", OBSCURA_SETTING_FLOAT, 0.3, 1e-3, 0.999, "", "C of rho0(d) = max(0, r(1+C)/(r+d^2) - C)",
      OBSCURA_FFAO_FIELD(falloff_c)},
-    {"decay_rate", OBSCURA_SETTING_FLOAT, 0.0, 1e-8, 1e8, "m^2", "r of the falloff; 0 derives C*radius^2",
+    {"decay_rate", OBSCURA_SETTING_FLOAT, 0.0, 1e-10, 1e8, "m^2", "r of the falloff; 0 derives C*radius^2",
      OBSCURA_FFAO_FIELD(decay_rate)},
     {"sectors", OBSCURA_SETTING_INT, 16, 4, 64, "", "K azimuthal sectors (even: one line orientation serves two)",
      OBSCURA_FFAO_FIELD(sectors)},
@@ -267,7 +268,16 @@ Error check_value(const obscura_setting_info& info, obscura_method method, doubl
         return Error::make(OBSCURA_STATUS_INVALID_SETTING, "%s.%s is %g; it must be finite", obscura_method_name(method),
                            info.name, value);
     }
-    if (value < info.min_value || value > info.max_value) {
+    // Float settings live in floats: compare the value a float field holds (or will hold) with the range's edges
+    // as floats hold them. Compared as doubles, the documented edges themselves were refused once stored:
+    // float(1e-8) is below 1e-8 and float(0.999) above 0.999, so set_setting accepted them and resolve did not.
+    // (A double beyond the float range stays as it is: converting it would be undefined, and it is out of range.)
+    const bool as_float = info.type == OBSCURA_SETTING_FLOAT;
+    const bool fits_float = std::fabs(value) <= double(std::numeric_limits<float>::max());
+    const double stored = as_float && fits_float ? double(float(value)) : value;
+    const double min_value = as_float ? double(float(info.min_value)) : info.min_value;
+    const double max_value = as_float ? double(float(info.max_value)) : info.max_value;
+    if (stored < min_value || stored > max_value) {
         return Error::make(OBSCURA_STATUS_INVALID_SETTING, "%s.%s = %g is outside [%g, %g]%s%s",
                            obscura_method_name(method), info.name, value, info.min_value, info.max_value,
                            info.unit[0] ? " " : "", info.unit);

@@ -630,3 +630,51 @@ TEST(ReferenceSettings, RangesAreChecked) {
     EXPECT_EQ(obscura_get_setting(&s, "decay_rate", &value), OBSCURA_OK);
     EXPECT_NEAR(value, 0.3, 1e-7);  // derived: C * radius^2
 }
+
+// Found by the settings fuzzer: range checks compared the double argument while the field stores a float, so
+// float(1e-8) < 1e-8 and float(0.999) > 0.999 were accepted by obscura_set_setting and refused by resolving:
+// 14 documented limits could not be used. Every float setting's minimum and maximum must now set and resolve,
+// and the next float beyond the maximum must be refused.
+TEST(SettingsRanges, EveryFloatSettingsLimitsSetAndResolve) {
+    const obscura_method methods[] = {OBSCURA_METHOD_HBAO, OBSCURA_METHOD_SAO, OBSCURA_METHOD_LSAO, OBSCURA_METHOD_FFAO,
+                                      OBSCURA_METHOD_REFERENCE};
+    int checked = 0;
+    for (obscura_method method : methods) {
+        const obscura_setting_info* infos = nullptr;
+        uint32_t count = 0;
+        ASSERT_EQ(obscura_get_setting_infos(method, &infos, &count), OBSCURA_OK);
+        for (uint32_t i = 0; i < count; ++i) {
+            if (infos[i].type != OBSCURA_SETTING_FLOAT) continue;
+            for (double limit : {infos[i].min_value, infos[i].max_value}) {
+                obscura_settings s;
+                ASSERT_EQ(obscura_default_settings(method, &s), OBSCURA_OK);
+                ASSERT_EQ(obscura_set_setting(&s, infos[i].name, limit), OBSCURA_OK)
+                    << obscura_method_name(method) << "." << infos[i].name << " = " << limit;
+                obscura_settings resolved;
+                EXPECT_EQ(obscura_resolve_settings(nullptr, &s, &resolved), OBSCURA_OK)
+                    << obscura_method_name(method) << "." << infos[i].name << " = " << limit;
+                ++checked;
+            }
+            obscura_settings s;
+            ASSERT_EQ(obscura_default_settings(method, &s), OBSCURA_OK);
+            const double beyond = double(std::nextafter(float(infos[i].max_value), std::numeric_limits<float>::max()));
+            EXPECT_EQ(obscura_set_setting(&s, infos[i].name, beyond), OBSCURA_STATUS_INVALID_SETTING)
+                << obscura_method_name(method) << "." << infos[i].name << " = " << beyond;
+        }
+    }
+    EXPECT_GT(checked, 60);
+}
+
+// Found by the settings fuzzer: with radius and C at their minimums (1e-3) the derived decay rate is 1e-9; the
+// resolved settings must resolve again and give a reference (decay_rate's minimum was 1e-8).
+TEST(SettingsRanges, SmallestDerivedDecayRateResolvesAgain) {
+    obscura_settings s;
+    ASSERT_EQ(obscura_default_settings(OBSCURA_METHOD_HBAO, &s), OBSCURA_OK);
+    s.hbao.radius = 1e-3f;
+    s.hbao.falloff_c = 1e-3f;
+    s.hbao.decay_rate = 0.0f;
+    obscura_settings resolved, again, reference;
+    ASSERT_EQ(obscura_resolve_settings(nullptr, &s, &resolved), OBSCURA_OK);
+    EXPECT_EQ(obscura_resolve_settings(nullptr, &resolved, &again), OBSCURA_OK);
+    EXPECT_EQ(obscura_reference_settings_for(&s, &reference), OBSCURA_OK);
+}

@@ -236,7 +236,7 @@ typedef enum obscura_toggle {
 typedef struct obscura_hbao_settings {
     float radius;         /* metres, [1e-3, 1e4]: distance where the falloff rho0 reaches 0; steps cover it. Default 1 */
     float falloff_c;      /* C of rho0(d) = max(0, r(1+C)/(r+d^2) - C), [1e-3, 0.999]. Default 0.3 */
-    float decay_rate;     /* r of rho0 in m^2, [1e-8, 1e8]. Default C*radius^2, so rho0 reaches 0 at radius */
+    float decay_rate;     /* r of rho0 in m^2, [1e-10, 1e8]. Default C*radius^2, so rho0 reaches 0 at radius */
     int32_t directions;   /* K azimuthal directions, [1, 32]. Default 8 */
     int32_t steps;        /* N steps per direction, [1, 128]. Default 12 */
     int32_t estimator;    /* 1: horizon-split integration (Bavoil 2008); 2: largest falloff-weighted occluder
@@ -291,7 +291,7 @@ typedef struct obscura_lsao_settings {
     float radius;         /* metres, [1e-3, 1e4]: falloff scale, the decay rate defaults to C*radius^2. Default 1 */
     int32_t falloff;      /* 1: rho0 (HBAO's, LSAO eq. 3), 2: r/(r+d^2) (LSAO eq. 2), [1, 2]. Default 2 */
     float falloff_c;      /* C, [1e-3, 0.999]: rho0's sink, and the decay-rate default. Default 0.3 */
-    float decay_rate;     /* r in m^2, [1e-8, 1e8]. Default C*radius^2 */
+    float decay_rate;     /* r in m^2, [1e-10, 1e8]. Default C*radius^2 */
     int32_t preset;       /* K, D_S, D_L of the paper: 1: 8, 1.41, 1.41; 2: 16, 2.43, 1.64; 3: 24, 3.56, 1.69;
                              4: 32, 4.69, 1.70 (Table 2); 5: 8, 2.83, 2.12 (Figure 1); 6: 16, 4.87, 2.46
                              (Figure 13), [1, 6]. Default 2 */
@@ -350,7 +350,7 @@ typedef struct obscura_reference_settings {
     float radius;         /* metres, [1e-3, 1e4]: where RHO0 (with the default decay rate) and TABLE reach 0. Default 1 */
     int32_t falloff;      /* obscura_falloff, [1, 4]. Default 1 (RHO0) */
     float falloff_c;      /* C of RHO0, [1e-3, 0.999]. Default 0.3 */
-    float decay_rate;     /* r in m^2, [1e-8, 1e8]. Default C*radius^2 (RHO0 then reaches 0 at the radius) */
+    float decay_rate;     /* r in m^2, [1e-10, 1e8]. Default C*radius^2 (RHO0 then reaches 0 at the radius) */
     float thickness;      /* metres of solid behind every depth texel, [0, 1e4]. Default 0: infinitely thick */
     int32_t rays;         /* rays per pixel, [1, 65536]. Default 256 */
     int32_t rays_per_dispatch; /* [1, 1024]. Default 16 */
@@ -369,7 +369,7 @@ typedef struct obscura_ffao_settings {
     float radius;         /* metres, [1e-3, 1e4]: where RHO0 (default decay rate) and TABLE reach 0. Default 1 */
     int32_t falloff;      /* obscura_falloff, [1, 4]. Default 3 (EXPONENTIAL, the paper's) */
     float falloff_c;      /* C of RHO0 and of the decay-rate default, [1e-3, 0.999]. Default 0.3 */
-    float decay_rate;     /* r in m^2, [1e-8, 1e8]. Default C*radius^2 */
+    float decay_rate;     /* r in m^2, [1e-10, 1e8]. Default C*radius^2 */
     int32_t sectors;      /* K azimuthal sectors, an even number (a line orientation serves two), [4, 64]. Default 16 */
     int32_t segments;     /* evaluated parts of each sector, averaged separately (the paper's "x2"), [1, 4]. Default 2 */
     int32_t base_interval; /* B0: scan steps per level-0 interval; the near field covers B0 to 2 B0 texels,
@@ -534,7 +534,8 @@ OBSCURA_API obscura_status obscura_render(obscura_context* context, const obscur
 OBSCURA_API obscura_status obscura_prepare(obscura_context* context, int32_t depth_width, int32_t depth_height,
                                            const obscura_settings* settings);
 
-/* Frees the per-size resources and FFAO's table (they are recreated on the next render); programs stay. */
+/* Frees the per-size resources and FFAO's table (they are recreated on the next render); programs stay. With
+   another GL context current it frees nothing and logs a warning. */
 OBSCURA_API void obscura_release_resources(obscura_context* context);
 
 /* ---- Queries --------------------------------------------------------------------------------- */
