@@ -4,6 +4,7 @@
 #include <new>
 
 #include "context.h"
+#include "host_enum.h"
 #include "settings.h"
 
 using obscura::Context;
@@ -19,20 +20,10 @@ const char* const kMethodNames[] = {"default", "hbao", "sao", "lsao", "ffao", "r
 
 Context* as_context(obscura_context* context) { return static_cast<Context*>(context); }
 
-// An enum argument as the int the host passed. A C host may pass any int where the API takes an enum, and
-// loading a value outside the enumerators through the C++ enum type is undefined (-fsanitize=enum reports
-// it), so the argument's bytes are read instead, as settings.cpp and frame_input.cpp read enum fields.
-template <class Enum>
-int32_t enum_argument(const Enum& argument) {
-    static_assert(sizeof(Enum) == sizeof(int32_t), "the API's C enums are int-sized");
-    int32_t value;
-    std::memcpy(&value, &argument, sizeof value);
-    return value;
-}
 
 // The method argument resolved (DEFAULT -> HBAO), or OBSCURA_METHOD_COUNT_ for a value the API does not know.
 obscura_method method_argument(const obscura_method& method) {
-    const int32_t value = enum_argument(method);
+    const int32_t value = obscura::stored_enum(method);
     if (value < 0 || value >= int32_t(OBSCURA_METHOD_COUNT_)) return OBSCURA_METHOD_COUNT_;
     return obscura::resolve_method(obscura_method(value));
 }
@@ -67,7 +58,7 @@ extern "C" {
 OBSCURA_API uint32_t obscura_version(void) { return OBSCURA_VERSION; }
 
 OBSCURA_API const char* obscura_status_string(obscura_status status) {
-    const int32_t value = enum_argument(status);
+    const int32_t value = obscura::stored_enum(status);
     if (value < 0 || value >= int32_t(OBSCURA_STATUS_COUNT_)) return "OBSCURA_STATUS_?: unknown status code";
     return kStatusStrings[value];
 }

@@ -4,19 +4,11 @@
 #include <cstring>
 
 #include "common/shader_interface.h"
+#include "host_enum.h"
 
 namespace obscura {
 namespace {
 
-// An enum field of a host struct as the int the host stored. A C host may store any value; loading one
-// outside the enumerators through the enum type is undefined in C++ (and -fsanitize=enum reports it).
-template <class Enum>
-int32_t stored_enum(const Enum& field) {
-    static_assert(sizeof(Enum) == sizeof(int32_t), "the API's C enums are int-sized");
-    int32_t value;
-    std::memcpy(&value, &field, sizeof value);
-    return value;
-}
 
 // Binds `texture` to `target` on the current unit and reports whether GL accepted it: the only way in
 // GL 4.3 to learn a texture's target (binding a name to the wrong target raises INVALID_OPERATION).

@@ -1,6 +1,7 @@
 #include "settings.h"
 
 #include "common/shader_interface.h"
+#include "host_enum.h"
 
 #include <cmath>
 #include <cstddef>
@@ -226,14 +227,8 @@ const T* field_at(const obscura_settings* settings, size_t offset) {
     return reinterpret_cast<const T*>(reinterpret_cast<const unsigned char*>(settings) + offset);
 }
 
-// The method field as the int the host stored: a C host may store any value, and loading one outside
-// the enumerators through the enum type is undefined in C++ (and -fsanitize=enum reports it).
-int32_t stored_method(const obscura_settings& settings) {
-    static_assert(sizeof(obscura_method) == sizeof(int32_t), "the API's C enums are int-sized");
-    int32_t value;
-    std::memcpy(&value, &settings.method, sizeof value);
-    return value;
-}
+// The method field as the int the host stored (host_enum.h).
+int32_t stored_method(const obscura_settings& settings) { return stored_enum(settings.method); }
 
 obscura_method resolve_method_value(int32_t value) {
     if (value == OBSCURA_METHOD_DEFAULT) return OBSCURA_METHOD_HBAO;
