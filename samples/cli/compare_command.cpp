@@ -26,6 +26,7 @@ struct CompareConfig {
     int reference_rays = kDefaultReferenceRays;
     std::filesystem::path out_dir = "compare-output";
     std::optional<std::string> json_path;
+    std::optional<std::string> strip_path;
     std::optional<double> orbit_degrees;
     int frames = 1;
     bool sync_timing = false;
@@ -52,6 +53,7 @@ CompareConfig take_compare_config(ArgumentList& arguments) {
     }
     if (auto dir = arguments.take_value("--out-dir")) config.out_dir = *dir;
     config.json_path = arguments.take_value("--json");
+    config.strip_path = arguments.take_value("--strip");
     const std::optional<std::string> orbit = arguments.take_value("--orbit");
     const std::optional<std::string> frames = arguments.take_value("--frames");
     config.sync_timing = arguments.take_flag("--sync-timing");
@@ -187,6 +189,10 @@ int run_compare(ArgumentList& arguments) {
     std::string names;
     for (const std::string& name : written) names += (names.empty() ? "" : ", ") + name;
     std::printf("wrote %s/: %s\n", config.out_dir.string().c_str(), names.c_str());
+    if (config.strip_path) {
+        samples::write_png(*config.strip_path, compare_strip(result));
+        std::printf("wrote %s\n", config.strip_path->c_str());
+    }
     if (config.json_path) {
         write_compare_json(result, *config.json_path);
         std::printf("wrote %s\n", config.json_path->c_str());

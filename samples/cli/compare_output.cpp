@@ -17,6 +17,31 @@ std::string reference_file(size_t reference_index) {
     return "reference_" + std::to_string(reference_index + 1) + ".png";
 }
 
+constexpr int kStripMaxColumns = 4;
+
+// A method's label in the strip: its spec, less "NAME:" when every spec of the run names the same method
+// (a 320-pixel tile holds 26 characters of the sheet's font).
+std::string strip_label(const CompareResult& result, size_t method_index) {
+    const MethodSpec& spec = result.methods[method_index].spec;
+    for (const ComparedMethod& other : result.methods) {
+        if (other.spec.method() != spec.method()) return spec.text;
+    }
+    const size_t colon = spec.text.find(':');
+    return colon == std::string::npos ? spec.text : spec.text.substr(colon + 1);
+}
+
+// The first channel of a sheet whose tiles and labels are all gray: a third of the PNG's bytes.
+samples::FloatImage first_channel(const samples::FloatImage& image) {
+    samples::FloatImage gray;
+    gray.width = image.width;
+    gray.height = image.height;
+    gray.channels = 1;
+    const size_t count = size_t(image.width) * size_t(image.height);
+    gray.pixels.resize(count);
+    for (size_t i = 0; i < count; ++i) gray.pixels[i] = image.pixels[i * size_t(image.channels)];
+    return gray;
+}
+
 }  // namespace
 
 std::string method_file_stem(const CompareResult& result, size_t method_index) {
@@ -52,6 +77,32 @@ std::vector<std::string> write_compare_images(const CompareResult& result, const
     for (size_t k = 0; k < result.references.size(); ++k) write(reference_file(k), result.references[k].frames.front());
     write("contact_sheet.png", samples::contact_sheet(sheet, labels, 3));
     return written;
+}
+
+samples::FloatImage compare_strip(const CompareResult& result) {
+    std::vector<samples::FloatImage> images;
+    std::vector<std::string> labels;
+    for (size_t i = 0; i < result.methods.size(); ++i) {
+        images.push_back(result.methods[i].frames.front());
+        labels.push_back(strip_label(result, i));
+    }
+    // One reference is reference_1.png; several differ in what the labels of their methods say (their
+    // descriptions would not fit a tile), so each is labelled with the first method measured against it.
+    for (size_t k = 0; result.references.size() > 1 && k < result.references.size(); ++k) {
+        for (size_t i = 0; i < result.methods.size(); ++i) {
+            if (result.methods[i].reference == k) {
+                images.push_back(result.references[k].frames.front());
+                labels.push_back("ref: " + strip_label(result, i));
+                break;
+            }
+        }
+    }
+    bool gray = true;
+    for (const samples::FloatImage& image : images) gray = gray && image.channels == 1;
+    const int count = int(images.size());
+    const int rows = (count + kStripMaxColumns - 1) / kStripMaxColumns;
+    const samples::FloatImage sheet = samples::contact_sheet(images, labels, (count + rows - 1) / rows);
+    return gray ? first_channel(sheet) : sheet;
 }
 
 void print_compare_table(const CompareResult& result) {

@@ -49,6 +49,11 @@ std::string method_file_stem(const CompareResult& result, size_t method_index);
 // Writes <stem>.png and <stem>_error.png per method, reference_<k>.png per reference (first frame of
 // each) and contact_sheet.png into `directory` (created if needed). Returns the file names written.
 std::vector<std::string> write_compare_images(const CompareResult& result, const std::filesystem::path& directory);
+// The --strip sheet, for documentation: each method's AO (first frame) labelled with its settings (the
+// spec without the method's name when every spec names the same method), then, when the methods were
+// measured against more than one reference, each reference labelled "ref: " and the label of the first
+// method measured against it; at most four images per row, the rows balanced. Gray when every image is.
+samples::FloatImage compare_strip(const CompareResult& result);
 // One line per method: spec, times, errors (and flicker with --orbit).
 void print_compare_table(const CompareResult& result);
 void write_compare_json(const CompareResult& result, const std::string& path);

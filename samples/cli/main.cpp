@@ -16,8 +16,8 @@ const char* const kUsage = R"(usage:
   obscura render [--method SPEC] [--set KEY=VALUE]... --out AO.png [--pfm AO.pfm] [--json OUT.json]
                  [--debug-view none|depth|normals|ao-before-blur|tap-count] [--sync-timing] [SCENE]
   obscura compare [--methods SPEC,SPEC,...] [--set KEY=VALUE]... [--reference-rays 256]
-                  [--out-dir compare-output] [--json REPORT.json] [--orbit DEG --frames N]
-                  [--sync-timing] [SCENE]
+                  [--out-dir compare-output] [--json REPORT.json] [--strip STRIP.png]
+                  [--orbit DEG --frames N] [--sync-timing] [SCENE]
   obscura bench [--methods SPEC,SPEC,...] [--set KEY=VALUE]... [--sizes 1280x720,1920x1080,...]
                 [--frames 50] [--warmup 5] [--clock auto|gpu-timer|wall] [--json BENCH.json]
                 [--csv BENCH.csv] [SCENE without --size]
@@ -52,6 +52,8 @@ compare renders each method and the ray-traced reference with the same falloff a
   PSNR. --out-dir gets <n>_<method>.png, <n>_<method>_error.png (white 0, black >= 0.2),
   reference_<k>.png and contact_sheet.png. --orbit DEG --frames N: N frames along an orbit of DEG degrees
   in total (images of the first); errors are averaged over them and flicker measures the temporal error.
+  --strip writes one sheet of the methods' AO labelled with their settings, then the references if
+  there are several (falloffs differ).
 bench times warm frames, median and min, in total and per pass. Clock: GL timer queries on a GPU
   ("gpu-timer"), wall time around render + glFinish on llvmpipe/softpipe, whose timer queries read 0
   ("wall"; passes then by glFinish + CPU clock).

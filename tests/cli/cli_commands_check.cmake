@@ -10,6 +10,7 @@
 #   compare      report.json: methods[0] errors in range, settings, times
 #   orbit        report.json: methods[0] has a flicker in range
 #   bench        bench.json: two results (160x90, 96x54), clock "wall" (either clock with GPU=ON)
+#   strip        strip.png: 8-bit gray, 3 x 2 tiles of 160x90 with labels (7 + 4 px) and 4-pixel gaps
 #   unavailable  runs `render --method M` for a method --list-methods calls "not available" (if any)
 #                and expects exit 1 with one line naming it
 foreach(required PROGRAM EXPECT_EXIT WORK_DIR)
@@ -177,6 +178,26 @@ elseif(CHECK STREQUAL "compare" OR CHECK STREQUAL "orbit")
     endif()
     expect_string(hbao:blur=off methods 1 method)
     expect_type(BOOLEAN methods 1 settings blur)
+  endif()
+elseif(CHECK STREQUAL "strip")
+  # The PNG's IHDR: width and height (4 bytes each, big-endian), bit depth, colour type (0: gray).
+  file(READ "${WORK_DIR}/strip.png" header LIMIT 26 HEX)
+  string(SUBSTRING "${header}" 32 20 ihdr)
+  set(expected_width 496)   # 3 * 160 + 4 * 4
+  set(expected_height 214)  # 2 * (90 + 11) + 3 * 4
+  math(EXPR width_hex "${expected_width}" OUTPUT_FORMAT HEXADECIMAL)
+  math(EXPR height_hex "${expected_height}" OUTPUT_FORMAT HEXADECIMAL)
+  string(REGEX REPLACE "^0x" "" width_hex "${width_hex}")
+  string(REGEX REPLACE "^0x" "" height_hex "${height_hex}")
+  string(LENGTH "${width_hex}" width_digits)
+  string(LENGTH "${height_hex}" height_digits)
+  math(EXPR width_pad "8 - ${width_digits}")
+  math(EXPR height_pad "8 - ${height_digits}")
+  string(REPEAT "0" ${width_pad} width_zeros)
+  string(REPEAT "0" ${height_pad} height_zeros)
+  string(TOLOWER "${width_zeros}${width_hex}${height_zeros}${height_hex}0800" expected_ihdr)
+  if(NOT ihdr STREQUAL expected_ihdr)
+    problem("strip.png IHDR ${ihdr}, expected ${expected_ihdr} (${expected_width}x${expected_height}, 8-bit gray)")
   endif()
 elseif(CHECK STREQUAL "bench")
   read_json(bench.json)

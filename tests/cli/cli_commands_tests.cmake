@@ -60,6 +60,10 @@ obscura_cli_command_test(compare_analytic 0
   GL CHECK compare
   EXPECT_FILES "out/1_hbao.png|out/1_hbao_error.png|out/2_hbao.png|out/2_hbao_error.png|out/reference_1.png|out/contact_sheet.png"
   EXPECT_STDOUT "mean_abs +within_5pct +psnr")
+# --strip: three methods, two of them sharing a reference (radius 1), so 3 + 2 labelled tiles in 2 rows of 3.
+obscura_cli_command_test(compare_strip 0
+  "compare|${scene}|--methods|hbao:radius=0.5,hbao:radius=1,hbao:blur=off|--reference-rays|16|--strip|strip.png"
+  GL CHECK strip EXPECT_FILES "strip.png" EXPECT_STDOUT "wrote strip.png")
 obscura_cli_command_test(compare_orbit_flicker 0
   "compare|${scene}|--methods|hbao|--reference-rays|16|--orbit|4|--frames|2|--json|report.json"
   GL CHECK orbit EXPECT_FILES "compare-output/1_hbao.png|compare-output/contact_sheet.png" EXPECT_STDOUT "flicker")
