@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "fuzz_support.h"
+#include "host_gl_error.h"
 #include "headless_gl.h"
 #include "host_gl.h"
 
@@ -400,17 +401,7 @@ Sentinels install_sentinels() {
     return read_state();
 }
 
-const char* gl_error_name(GLenum error) {
-    switch (error) {
-        case GL_NO_ERROR: return "GL_NO_ERROR";
-        case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
-        case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
-        case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
-        case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
-        case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
-        default: return "unknown GL error";
-    }
-}
+using obscura::samples::gl_error_name;
 
 // ---- Statistics (OBSCURA_FUZZ_STATS=1 prints them at exit: how often each call reached which status) ---------------
 

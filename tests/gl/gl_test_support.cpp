@@ -1,4 +1,5 @@
 #include "gl_test_support.h"
+#include "host_gl_error.h"
 
 #include <cmath>
 #include <cstring>
@@ -29,17 +30,7 @@ ContextPtr create_context(uint32_t flags) {
     return ContextPtr(context);
 }
 
-const char* gl_error_name(GLenum error) {
-    switch (error) {
-        case GL_NO_ERROR: return "GL_NO_ERROR";
-        case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
-        case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
-        case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
-        case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
-        case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
-        default: return "unknown GL error";
-    }
-}
+const char* gl_error_name(GLenum error) { return obscura::samples::gl_error_name(error); }
 
 GLenum take_gl_error() {
     GLenum first = glGetError();
