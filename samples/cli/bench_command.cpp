@@ -75,6 +75,7 @@ struct BenchResult {
     TimingRow total;
     std::vector<TimingRow> passes;  // "total" excluded
     uint64_t memory_bytes = 0;
+    std::string error;  // non-empty: this configuration failed (status and message); no timings
 };
 
 BenchResult make_result(const SceneSource& source, const samples::SceneFrame& frame, const MethodSpec& method,
@@ -94,6 +95,10 @@ BenchResult make_result(const SceneSource& source, const samples::SceneFrame& fr
 }
 
 void print_result(const BenchResult& result) {
+    if (!result.error.empty()) {
+        std::printf("  failed: %s\n", result.error.c_str());
+        return;
+    }
     TextTable table({"  pass", "median ms", "min ms"});
     table.add_row({"  total", format_fixed(result.total.median_ms, 3), format_fixed(result.total.min_ms, 3)});
     for (const TimingRow& row : result.passes) {
@@ -115,6 +120,10 @@ void write_json(const std::string& path, const std::string& device, Clock clock,
         json.field("scene", result.scene).field("width", result.width).field("height", result.height);
         json.field("method", result.method->text);
         write_settings_json(json, result.method->settings);
+        if (!result.error.empty()) {
+            json.field("error", result.error).end_object();
+            continue;
+        }
         json.key("total_ms").begin_object();
         json.field("median", result.total.median_ms).field("min", result.total.min_ms).end_object();
         json.key("passes").begin_object();
@@ -139,15 +148,21 @@ std::string csv_quote(const std::string& text) {
 void write_csv(const std::string& path, const std::string& device, Clock clock, const std::vector<BenchResult>& results) {
     std::ofstream file(path);
     if (!file) throw std::runtime_error("cannot open '" + path + "' for writing");
-    file << "scene,method,width,height,clock,pass,median_ms,min_ms,samples,memory_bytes,device\n";
+    file << "scene,method,width,height,clock,pass,median_ms,min_ms,samples,memory_bytes,device,error\n";
     for (const BenchResult& result : results) {
+        if (!result.error.empty()) {  // one row, pass "failed", no numbers
+            file << csv_quote(result.scene) << ',' << csv_quote(result.method->text) << ',' << result.width << ','
+                 << result.height << ',' << clock_name(clock) << ",\"failed\",,,0,0," << csv_quote(device) << ','
+                 << csv_quote(result.error) << '\n';
+            continue;
+        }
         std::vector<const TimingRow*> rows = {&result.total};
         for (const TimingRow& row : result.passes) rows.push_back(&row);
         for (const TimingRow* row : rows) {
             file << csv_quote(result.scene) << ',' << csv_quote(result.method->text) << ',' << result.width << ','
                  << result.height << ',' << clock_name(clock) << ',' << csv_quote(row->label) << ',' << row->median_ms
                  << ',' << row->min_ms << ',' << row->samples << ',' << result.memory_bytes << ',' << csv_quote(device)
-                 << '\n';
+                 << ",\"\"\n";
         }
     }
     if (!file) throw std::runtime_error("cannot write '" + path + "'");
@@ -173,6 +188,7 @@ int run_bench(ArgumentList& arguments) {
                 config.frames, config.warmup);
 
     std::vector<BenchResult> results;
+    size_t failures = 0;
     for (const ImageSize& size : config.sizes) {
         const samples::RenderedScene scene = source.render(source.camera(), size);
         std::printf("\nscene: %s\n", source.describe(scene.frame()).c_str());
@@ -183,9 +199,22 @@ int run_bench(ArgumentList& arguments) {
             request.settings = &method.settings;
             request.target = &target;
             request.use_normals = source.use_normals();
-            warm_up(session, request);
-            const TimingSummary summary = time_frames(session, request, config.warmup, config.frames);
-            results.push_back(make_result(source, scene.frame(), method, summary, clock));
+            // A configuration the SDK refuses (FFAO at 4K over a software renderer's storage-block limit,
+            // say) is reported and the rest still run: one refusal must not lose a long run's numbers.
+            try {
+                warm_up(session, request);
+                const TimingSummary summary = time_frames(session, request, config.warmup, config.frames);
+                results.push_back(make_result(source, scene.frame(), method, summary, clock));
+            } catch (const ApiError& error) {
+                BenchResult failed;
+                failed.scene = source.name();
+                failed.width = scene->output_rect.width;
+                failed.height = scene->output_rect.height;
+                failed.method = &method;
+                failed.error = error.what();
+                results.push_back(failed);
+                ++failures;
+            }
             std::printf("%s @ %dx%d, clock %s\n", method.text.c_str(), results.back().width, results.back().height,
                         clock_name(clock));
             print_result(results.back());
@@ -198,6 +227,10 @@ int run_bench(ArgumentList& arguments) {
     if (config.csv_path) {
         write_csv(*config.csv_path, gl.renderer(), clock, results);
         std::printf("wrote %s\n", config.csv_path->c_str());
+    }
+    if (failures > 0) {
+        std::fprintf(stderr, "obscura bench: %zu of %zu configurations failed (see above)\n", failures, results.size());
+        return 1;
     }
     return 0;
 }

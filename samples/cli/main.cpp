@@ -56,7 +56,8 @@ compare renders each method and the ray-traced reference with the same falloff a
   there are several (falloffs differ).
 bench times warm frames, median and min, in total and per pass. Clock: GL timer queries on a GPU
   ("gpu-timer"), wall time around render + glFinish on llvmpipe/softpipe, whose timer queries read 0
-  ("wall"; passes then by glFinish + CPU clock).
+  ("wall"; passes then by glFinish + CPU clock). A configuration the SDK refuses is reported (JSON
+  "error", CSV pass "failed") and the others still run; the exit status is then 1.
 demo runs compare on the atrium at 640x360 with every available method into demo-output/.
 --sync-timing times passes with glFinish (automatic on llvmpipe/softpipe, whose timer queries read 0).
 diff compares luminance in [0, 1] without GL: it passes when the mean absolute error is <= mean and

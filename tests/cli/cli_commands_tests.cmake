@@ -70,6 +70,9 @@ obscura_cli_command_test(compare_orbit_flicker 0
 obscura_cli_command_test(bench_two_sizes 0
   "bench|--scene|analytic|--sizes|160x90,96x54|--methods|hbao|--frames|2|--warmup|1|--json|bench.json|--csv|bench.csv"
   GL CHECK bench EXPECT_FILES "bench.csv" EXPECT_STDOUT "clock: ")
+obscura_cli_command_test(bench_refused_configuration 1
+  "bench|--scene|analytic|--sizes|2560x1440|--methods|ffao:sectors=64:base_interval=2,hbao:directions=4:steps=4|--frames|1|--warmup|0|--json|bench.json|--csv|bench.csv"
+  GL CHECK bench_refused EXPECT_FILES "bench.csv")
 obscura_cli_command_test(demo 0 "demo|--reference-rays|1|--out-dir|demo"
   GL EXPECT_FILES "demo/1_hbao.png|demo/reference_1.png|demo/contact_sheet.png" EXPECT_STDOUT "scene: atrium[^\n]*640x360")
 
