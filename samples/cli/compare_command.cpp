@@ -173,6 +173,13 @@ int run_compare(ArgumentList& arguments) {
     result.reference_rays = config.reference_rays;
     result.frames = config.frames;
     result.orbit_degrees = config.orbit_degrees;
+    // Resolved through the session first: obscura_reference_settings_for has no context to tell why it
+    // refuses settings (an all-zero falloff table, say), and this call's log and last error do.
+    for (const MethodSpec& spec : config.methods) {
+        obscura_settings resolved{};
+        session.check(obscura_resolve_settings(session.get(), &spec.settings, &resolved),
+                      "obscura_resolve_settings(" + spec.text + ")");
+    }
     plan_references(result, config.methods);
     render_references(session, frames, source.use_normals(), result);
     for (ComparedMethod& method : result.methods) {

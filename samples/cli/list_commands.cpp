@@ -21,11 +21,16 @@ const char* type_name(obscura_setting_type type) {
     return "?";
 }
 
+// A value of a setting as its type reads: whole numbers for ints (%g would print 16777216 as 1.67772e+07).
+std::string format_value(const obscura_setting_info& info, double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, info.type == OBSCURA_SETTING_FLOAT ? "%g" : "%.0f", value);
+    return text;
+}
+
 std::string format_default(const obscura_setting_info& info) {
     if (info.type == OBSCURA_SETTING_TOGGLE) return info.default_value != 0.0 ? "on" : "off";
-    char text[32];
-    std::snprintf(text, sizeof text, "%g", info.default_value);
-    return text;
+    return format_value(info, info.default_value);
 }
 
 void print_method_settings(obscura_method method) {
@@ -38,8 +43,9 @@ void print_method_settings(obscura_method method) {
     std::printf("  %-18s %-7s %-9s %-9s %-9s %-5s %s\n", "name", "type", "default", "min", "max", "unit",
                 "description");
     for (const obscura_setting_info& info : infos) {
-        std::printf("  %-18s %-7s %-9s %-9g %-9g %-5s %s\n", info.name, type_name(info.type),
-                    format_default(info).c_str(), info.min_value, info.max_value, info.unit ? info.unit : "",
+        std::printf("  %-18s %-7s %-9s %-9s %-9s %-5s %s\n", info.name, type_name(info.type),
+                    format_default(info).c_str(), format_value(info, info.min_value).c_str(),
+                    format_value(info, info.max_value).c_str(), info.unit ? info.unit : "",
                     info.description ? info.description : "");
     }
     std::printf("\n");

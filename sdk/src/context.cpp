@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <new>
+#include <optional>
 
 #include "gl/state_guard.h"
 #include "settings.h"
@@ -207,6 +208,8 @@ Error Context::initialize() {
         {reinterpret_cast<const void*>(gl_.GetTexLevelParameteriv), "glGetTexLevelParameteriv"},
         {reinterpret_cast<const void*>(gl_.FramebufferTexture2D), "glFramebufferTexture2D"},
         {reinterpret_cast<const void*>(gl_.FramebufferTexture), "glFramebufferTexture"},
+        {reinterpret_cast<const void*>(gl_.DrawBuffers), "glDrawBuffers"},
+        {reinterpret_cast<const void*>(gl_.ReadBuffer), "glReadBuffer"},
         {reinterpret_cast<const void*>(gl_.FramebufferRenderbuffer), "glFramebufferRenderbuffer"},
         {reinterpret_cast<const void*>(gl_.ObjectLabel), "glObjectLabel"},
         {reinterpret_cast<const void*>(gl_.GetObjectLabel), "glGetObjectLabel"},
@@ -492,15 +495,26 @@ Error Context::render(const obscura_input& input, const obscura_settings& settin
 
 GLuint Context::blit_framebuffer(const OutputTarget& target) {
     if (target.framebuffer == 0) return 0;  // the default framebuffer: its own draw/read buffer
+    // A layer of an array, 3D or cube-map-array texture: the host's framebuffer itself (narrowed to
+    // attachment 0 by the caller), because the layer cannot be read back everywhere (Mesa 22 reports
+    // GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LAYER 0 for a cube-map-array layer it renders to correctly).
+    if (target.attachment_by_layer) return target.framebuffer;
     if (!target_framebuffer_) target_framebuffer_ = gl::create_framebuffer(gl_);
     gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, target_framebuffer_.name());
     if (target.attachment_type == GL_RENDERBUFFER) {
         gl_.FramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
         gl_.FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, target.attachment_name);
     } else {
+        // Attach the very image the host attached: glFramebufferTexture would attach a whole cube level
+        // as a layered image, and a blit into that writes face 0 only.
         gl_.FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, 0);
-        gl_.FramebufferTexture(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, target.attachment_name,
-                               target.attachment_level);
+        if (target.attachment_face != GL_NONE) {
+            gl_.FramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, target.attachment_face,
+                                     target.attachment_name, target.attachment_level);
+        } else {
+            gl_.FramebufferTexture(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, target.attachment_name,
+                                   target.attachment_level);
+        }
     }
     return target_framebuffer_.name();
 }
@@ -768,7 +782,9 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
             composite_.run(pass_env, frame_blur_y, input.output_rect, source, resources_, target.texture, target.format);
         } else {
             gl::BlitStateGuard blit_state(gl_);
-            GLuint host = blit_framebuffer(target);
+            const GLuint host = blit_framebuffer(target);
+            std::optional<gl::AttachmentZeroScope> attachment_zero;
+            if (host != 0 && host == target.framebuffer) attachment_zero.emplace(gl_, host);
             // Multiply needs the framebuffer's colour first: blit it into the staging texture.
             if (target.blend == OBSCURA_BLEND_MULTIPLY) {
                 gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, host);

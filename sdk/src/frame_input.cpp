@@ -19,6 +19,60 @@ bool texture_has_target(const gl::Table& gl, GLuint texture, GLenum target) {
     return ok;
 }
 
+GLenum binding_query(GLenum target) {
+    switch (target) {
+        case GL_TEXTURE_2D: return GL_TEXTURE_BINDING_2D;
+        case GL_TEXTURE_2D_ARRAY: return GL_TEXTURE_BINDING_2D_ARRAY;
+        case GL_TEXTURE_3D: return GL_TEXTURE_BINDING_3D;
+        case GL_TEXTURE_CUBE_MAP: return GL_TEXTURE_BINDING_CUBE_MAP;
+        case GL_TEXTURE_CUBE_MAP_ARRAY: return GL_TEXTURE_BINDING_CUBE_MAP_ARRAY;
+        case GL_TEXTURE_RECTANGLE: return GL_TEXTURE_BINDING_RECTANGLE;
+        case GL_TEXTURE_1D: return GL_TEXTURE_BINDING_1D;
+        case GL_TEXTURE_1D_ARRAY: return GL_TEXTURE_BINDING_1D_ARRAY;
+        case GL_TEXTURE_2D_MULTISAMPLE: return GL_TEXTURE_BINDING_2D_MULTISAMPLE;
+        default: return GL_TEXTURE_BINDING_2D_MULTISAMPLE_ARRAY;
+    }
+}
+
+// Binds `texture` to `target` on the active unit for the probe's lifetime and then puts back the host's
+// binding: the state guard restores only the targets the passes use, and a probe may touch any.
+class ScopedTextureProbe {
+public:
+    ScopedTextureProbe(const gl::Table& gl, GLuint texture, GLenum target) : gl_(gl), target_(target) {
+        gl.GetIntegerv(binding_query(target), &previous_);
+        gl.BindTexture(target, texture);
+        bound_ = gl.GetError() == GL_NO_ERROR;
+    }
+    ~ScopedTextureProbe() { gl_.BindTexture(target_, GLuint(previous_)); }
+    ScopedTextureProbe(const ScopedTextureProbe&) = delete;
+    ScopedTextureProbe& operator=(const ScopedTextureProbe&) = delete;
+    bool bound() const { return bound_; }
+
+private:
+    const gl::Table& gl_;
+    GLenum target_;
+    GLint previous_ = 0;
+    bool bound_ = false;
+};
+
+// The target of an attached texture (GL_NONE if none binds), probed in the order hosts most often use.
+GLenum attached_texture_target(const gl::Table& gl, GLuint texture, GLenum cube_face) {
+    // Mesa reports a face for a cube-map-array layer too: only a cube map proper is attached by face.
+    if (cube_face != GL_NONE && ScopedTextureProbe(gl, texture, GL_TEXTURE_CUBE_MAP).bound()) return GL_TEXTURE_CUBE_MAP;
+    for (GLenum target : {GL_TEXTURE_2D, GL_TEXTURE_2D_ARRAY, GL_TEXTURE_3D, GL_TEXTURE_CUBE_MAP_ARRAY,
+                          GL_TEXTURE_RECTANGLE, GL_TEXTURE_1D, GL_TEXTURE_1D_ARRAY, GL_TEXTURE_2D_MULTISAMPLE,
+                          GL_TEXTURE_2D_MULTISAMPLE_ARRAY}) {
+        if (ScopedTextureProbe(gl, texture, target).bound()) return target;
+    }
+    return GL_NONE;
+}
+
+// Whether an image of a texture of `target` is attached by layer (glFramebufferTextureLayer).
+bool is_layered_target(GLenum target) {
+    return target == GL_TEXTURE_2D_ARRAY || target == GL_TEXTURE_3D || target == GL_TEXTURE_CUBE_MAP_ARRAY ||
+           target == GL_TEXTURE_1D_ARRAY || target == GL_TEXTURE_2D_MULTISAMPLE_ARRAY;
+}
+
 bool is_hardware_depth_format(GLenum format) {
     switch (format) {
         case GL_DEPTH_COMPONENT16: case GL_DEPTH_COMPONENT24: case GL_DEPTH_COMPONENT32:
@@ -268,6 +322,13 @@ Error validate_output(const gl::Table& gl, const obscura_output& output, const o
                                    output.framebuffer);
             }
             GLint width = -1, height = -1;
+            GLenum texture_target = GL_NONE;
+            GLint cube_face = GL_NONE;
+            if (type == GL_TEXTURE) {
+                gl.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
+                                                       GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_CUBE_MAP_FACE, &cube_face);
+                texture_target = attached_texture_target(gl, GLuint(name), GLenum(cube_face));
+            }
             if (type == GL_RENDERBUFFER) {
                 GLint renderbuffer = 0, previous = 0;
                 gl.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
@@ -277,10 +338,13 @@ Error validate_output(const gl::Table& gl, const obscura_output& output, const o
                 gl.GetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_WIDTH, &width);
                 gl.GetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_HEIGHT, &height);
                 gl.BindRenderbuffer(GL_RENDERBUFFER, GLuint(previous));
-            } else if (type == GL_TEXTURE && !layered && texture_has_target(gl, GLuint(name), GL_TEXTURE_2D)) {
-                gl.GetTexLevelParameteriv(GL_TEXTURE_2D, level, GL_TEXTURE_WIDTH, &width);
-                gl.GetTexLevelParameteriv(GL_TEXTURE_2D, level, GL_TEXTURE_HEIGHT, &height);
-                gl.BindTexture(GL_TEXTURE_2D, 0);
+            } else if (type == GL_TEXTURE && !layered && texture_target != GL_NONE) {
+                // The attached image's size: a cube map's per face, a 1D array layer's is one row.
+                const ScopedTextureProbe bound(gl, GLuint(name), texture_target);
+                const GLenum level_target = texture_target == GL_TEXTURE_CUBE_MAP ? GLenum(cube_face) : texture_target;
+                gl.GetTexLevelParameteriv(level_target, level, GL_TEXTURE_WIDTH, &width);
+                gl.GetTexLevelParameteriv(level_target, level, GL_TEXTURE_HEIGHT, &height);
+                if (texture_target == GL_TEXTURE_1D_ARRAY) height = 1;
             }
             if (layered) {
                 return Error::make(OBSCURA_STATUS_INVALID_FRAMEBUFFER,
@@ -304,6 +368,9 @@ Error validate_output(const gl::Table& gl, const obscura_output& output, const o
                 target.attachment_name = GLuint(renderbuffer);
             }
             target.attachment_level = level;
+            target.attachment_face = texture_target == GL_TEXTURE_CUBE_MAP ? GLenum(cube_face) : GL_NONE;
+            target.attachment_by_layer = is_layered_target(texture_target);
+
             target.attachment_float = component_type == GL_FLOAT;
             *out = target;
             return Error();

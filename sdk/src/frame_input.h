@@ -40,6 +40,11 @@ struct OutputTarget {
     GLenum attachment_type = GL_NONE;  // GL_RENDERBUFFER or GL_TEXTURE (0 for the default framebuffer)
     GLuint attachment_name = 0;
     GLint attachment_level = 0;
+    // Which image of that texture level the host attached: a cube map face (GL_TEXTURE_CUBE_MAP_POSITIVE_X...),
+    // or a layer of an array / 3D / cube-map-array texture (attachment_by_layer: the blit then goes to the
+    // host's framebuffer itself, since drivers do not all report the layer).
+    GLenum attachment_face = GL_NONE;
+    bool attachment_by_layer = false;
     bool attachment_float = false;     // float attachment: stage in RGBA16F so MULTIPLY keeps HDR values
     int x = 0, y = 0;
     obscura_blend_mode blend = OBSCURA_BLEND_OVERWRITE;

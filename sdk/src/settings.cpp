@@ -524,13 +524,12 @@ Error get_setting(const obscura_settings& settings, const char* name, double* va
     double stored = stored_value(settings, *info);
     if (info->type == OBSCURA_SETTING_TOGGLE) {
         *value = stored == 0.0 ? info->default_value : (stored > 0.0 ? 1.0 : 0.0);
-    } else if (stored == 0.0) {
-        // Derived defaults are reported as the value that would be used.
+    } else {
+        // Reported as it will be used: derived defaults for zero fields, and what resolve makes of a set
+        // value (LSAO rounds segment_steps up to a multiple of 8). Settings that do not resolve read as stored.
         obscura_settings resolved;
         if (resolve_settings(settings, &resolved).ok()) stored = stored_value(resolved, *info);
         *value = stored != 0.0 ? stored : info->default_value;
-    } else {
-        *value = stored;
     }
     return Error();
 }

@@ -14,14 +14,15 @@ if(DEFINED ENV{OBSCURA_GPU})
   set(OBSCURA_CLI_COMMANDS_GPU ON)
 endif()
 
-# obscura_cli_command_test(NAME EXPECT_EXIT ARGS [GL] [CHECK name] [EXPECT_STDOUT regex] [EXPECT_FILES f|g])
+# obscura_cli_command_test(NAME EXPECT_EXIT ARGS [GL] [CHECK name] [EXPECT_STDOUT regex] [EXPECT_STDERR regex]
+#                          [EXPECT_FILES f|g])
 # ARGS: the command line after `obscura`, items separated by '|'. GL: the command creates a GL context
 # (llvmpipe environment, label gl).
 function(obscura_cli_command_test name expect_exit arguments)
-  cmake_parse_arguments(PARSE_ARGV 3 TEST "GL" "CHECK;EXPECT_STDOUT;EXPECT_FILES" "")
+  cmake_parse_arguments(PARSE_ARGV 3 TEST "GL" "CHECK;EXPECT_STDOUT;EXPECT_STDERR;EXPECT_FILES" "")
   set(options -DPROGRAM=$<TARGET_FILE:obscura_cli> "-DARGS=${arguments}" -DEXPECT_EXIT=${expect_exit}
               "-DWORK_DIR=${CMAKE_CURRENT_BINARY_DIR}/cli_commands/${name}" -DGPU=${OBSCURA_CLI_COMMANDS_GPU})
-  foreach(option CHECK EXPECT_STDOUT EXPECT_FILES)
+  foreach(option CHECK EXPECT_STDOUT EXPECT_STDERR EXPECT_FILES)
     if(DEFINED TEST_${option})
       list(APPEND options "-D${option}=${TEST_${option}}")
     endif()
@@ -73,6 +74,10 @@ obscura_cli_command_test(bench_two_sizes 0
 obscura_cli_command_test(bench_refused_configuration 1
   "bench|--scene|analytic|--sizes|2560x1440|--methods|ffao:sectors=64:base_interval=2,hbao:directions=4:steps=4|--frames|1|--warmup|0|--json|bench.json|--csv|bench.csv"
   GL CHECK bench_refused EXPECT_FILES "bench.csv")
+# A method the SDK refuses is named with the SDK's reason (obscura_reference_settings_for alone gives none).
+obscura_cli_command_test(compare_refused_settings_say_why 1
+  "compare|--scene|analytic|--size|160x90|--reference-rays|1|--methods|hbao,ffao:falloff=4"
+  GL EXPECT_STDERR "obscura: error: obscura_resolve_settings[(]ffao:falloff=4[)] failed: OBSCURA_STATUS_INVALID_SETTING: [^\n]*ffao.falloff is TABLE but ffao.falloff_table is all zero")
 obscura_cli_command_test(demo 0 "demo|--reference-rays|1|--out-dir|demo"
   GL EXPECT_FILES "demo/1_hbao.png|demo/reference_1.png|demo/contact_sheet.png" EXPECT_STDOUT "scene: atrium[^\n]*640x360")
 

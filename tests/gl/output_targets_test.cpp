@@ -328,6 +328,165 @@ TEST_F(OutputTargets, FramebufferMipLevelAttachmentUsesBlit) {
     EXPECT_TRUE(std::all_of(level0.begin(), level0.end(), [](uint8_t b) { return b == 0; }));
 }
 
+// ---- One image of an array, 3D, cube or cube-array texture --------------------------------------------
+
+struct LayerCase {
+    GLenum target;
+    int images;        // layers, slices or faces of level 0 (a cube map array: 6 per cube)
+    int image;         // the one attached
+    const char* name;
+};
+
+class OutputLayers : public OutputTargets, public ::testing::WithParamInterface<LayerCase> {};
+
+GLenum cube_face(int index) { return GLenum(GL_TEXTURE_CUBE_MAP_POSITIVE_X + index); }
+
+// Every image of level 0, one after another, RGBA8 of kSide x kSide each.
+std::vector<uint8_t> read_all_images(GLenum target, GLuint texture, int side, int images) {
+    std::vector<uint8_t> bytes(size_t(side) * side * 4 * images, 1);
+    glBindTexture(target, texture);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    if (target == GL_TEXTURE_CUBE_MAP) {
+        for (int face = 0; face < images; ++face)
+            glGetTexImage(cube_face(face), 0, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data() + size_t(side) * side * 4 * face);
+    } else {
+        glGetTexImage(target, 0, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
+    }
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glBindTexture(target, 0);
+    return bytes;
+}
+
+TEST_P(OutputLayers, BlitWritesTheAttachedImageOnly) {
+    // The host attached one image of a texture that has several; the blit must reach that image, not
+    // layer 0 (what glFramebufferTexture's layered attachment of the whole level would write).
+    const LayerCase& param = GetParam();
+    constexpr int kSide = kWidth;  // square: cube faces must be
+    Frame frame = corner_frame();
+    obscura_settings settings = make_settings(1.0f);
+    HostTexture direct = make_texture(GL_RGBA8, kWidth, kHeight);
+    obscura_output direct_output = make_output(direct.get());
+    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &direct_output), OBSCURA_OK);
+    const std::vector<uint8_t> expected = read_texture_rgba8(direct.get(), kWidth, kHeight);
+
+    HostTexture texture = HostTexture::create();
+    glBindTexture(param.target, texture.get());
+    const std::vector<uint8_t> zeros(size_t(kSide) * kSide * 4 * param.images, 0);
+    if (param.target == GL_TEXTURE_CUBE_MAP) {
+        glTexStorage2D(param.target, 1, GL_RGBA8, kSide, kSide);
+        for (int face = 0; face < param.images; ++face)
+            glTexSubImage2D(cube_face(face), 0, 0, 0, kSide, kSide, GL_RGBA, GL_UNSIGNED_BYTE, zeros.data());
+    } else {
+        glTexStorage3D(param.target, 1, GL_RGBA8, kSide, kSide, param.images);
+        glTexSubImage3D(param.target, 0, 0, 0, 0, kSide, kSide, param.images, GL_RGBA, GL_UNSIGNED_BYTE, zeros.data());
+    }
+    glBindTexture(param.target, 0);
+    HostFramebuffer framebuffer = HostFramebuffer::create();
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.get());
+    if (param.target == GL_TEXTURE_CUBE_MAP) {
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, cube_face(param.image), texture.get(), 0);
+    } else {
+        glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, texture.get(), 0, param.image);
+    }
+    // Unusual draw and read buffers of the host's framebuffer, which must survive the blit.
+    const GLenum host_draw_buffers[2] = {GL_NONE, GL_COLOR_ATTACHMENT0};
+    glDrawBuffers(2, host_draw_buffers);
+    glReadBuffer(GL_NONE);
+    ASSERT_EQ(glCheckFramebufferStatus(GL_FRAMEBUFFER), GLenum(GL_FRAMEBUFFER_COMPLETE));
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+
+    // Host bindings on targets the passes never use, which the output probe must leave as they were.
+    const GLenum kHostTargets[] = {GL_TEXTURE_2D_ARRAY, GL_TEXTURE_CUBE_MAP, GL_TEXTURE_CUBE_MAP_ARRAY,
+                                   GL_TEXTURE_RECTANGLE, GL_TEXTURE_1D, GL_TEXTURE_1D_ARRAY,
+                                   GL_TEXTURE_2D_MULTISAMPLE_ARRAY};
+    const GLenum kHostBindings[] = {GL_TEXTURE_BINDING_2D_ARRAY, GL_TEXTURE_BINDING_CUBE_MAP,
+                                    GL_TEXTURE_BINDING_CUBE_MAP_ARRAY, GL_TEXTURE_BINDING_RECTANGLE,
+                                    GL_TEXTURE_BINDING_1D, GL_TEXTURE_BINDING_1D_ARRAY,
+                                    GL_TEXTURE_BINDING_2D_MULTISAMPLE_ARRAY};
+    constexpr int kUnits = 16;
+    std::vector<HostTexture> sentinels;
+    for (size_t t = 0; t < std::size(kHostTargets); ++t) sentinels.push_back(HostTexture::create());
+    for (int unit = 0; unit < kUnits; ++unit) {
+        glActiveTexture(GLenum(GL_TEXTURE0 + unit));
+        for (size_t t = 0; t < std::size(kHostTargets); ++t) glBindTexture(kHostTargets[t], sentinels[t].get());
+    }
+    glActiveTexture(GL_TEXTURE0);
+
+    obscura_output output = make_output(0);
+    output.framebuffer = framebuffer.get();
+    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    EXPECT_EQ(take_gl_error(), GLenum(GL_NO_ERROR));
+
+    int moved = 0;
+    for (int unit = 0; unit < kUnits; ++unit) {
+        glActiveTexture(GLenum(GL_TEXTURE0 + unit));
+        for (size_t t = 0; t < std::size(kHostTargets); ++t) {
+            GLint bound = 0;
+            glGetIntegerv(kHostBindings[t], &bound);
+            moved += GLuint(bound) != sentinels[t].get();
+            glBindTexture(kHostTargets[t], 0);
+        }
+    }
+    glActiveTexture(GL_TEXTURE0);
+    EXPECT_EQ(moved, 0) << "host texture bindings changed by the output probe";
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.get());
+    GLint draw0 = -1, draw1 = -1, read = -1;
+    glGetIntegerv(GL_DRAW_BUFFER0, &draw0);
+    glGetIntegerv(GL_DRAW_BUFFER1, &draw1);
+    glGetIntegerv(GL_READ_BUFFER, &read);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    EXPECT_EQ(draw0, GL_NONE);
+    EXPECT_EQ(draw1, GL_COLOR_ATTACHMENT0);
+    EXPECT_EQ(read, GL_NONE);
+
+    const std::vector<uint8_t> images = read_all_images(param.target, texture.get(), kSide, param.images);
+    const size_t image_bytes = size_t(kSide) * kSide * 4;
+    int wrong = 0, touched = 0;
+    for (int image = 0; image < param.images; ++image) {
+        for (int y = 0; y < kSide; ++y) {
+            for (int x = 0; x < kSide; ++x) {
+                const size_t at = image_bytes * image + (size_t(y) * kSide + x) * 4;
+                const bool written = image == param.image && y < kHeight;
+                for (int c = 0; c < 4; ++c) {
+                    const uint8_t want = written ? expected[(size_t(y) * kWidth + x) * 4 + c] : 0;
+                    if (written) wrong += images[at + c] != want;
+                    else touched += images[at + c] != 0;
+                }
+            }
+        }
+    }
+    EXPECT_EQ(wrong, 0) << "the attached " << param.name << " does not hold the AO";
+    EXPECT_EQ(touched, 0) << "bytes outside the result (other images or rows above it) changed";
+
+    // MULTIPLY reads the attached image back first: v * v in the colour channels.
+    output.blend = OBSCURA_BLEND_MULTIPLY;
+    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    const std::vector<uint8_t> squared = read_all_images(param.target, texture.get(), kSide, param.images);
+    int off = 0;
+    for (int y = 0; y < kHeight; ++y) {
+        for (int x = 0; x < kWidth; ++x) {
+            const int v = expected[(size_t(y) * kWidth + x) * 4];
+            const int want = unorm8((v / 255.0) * (v / 255.0));
+            off += std::abs(int(squared[image_bytes * param.image + (size_t(y) * kSide + x) * 4]) - want) > 2;
+        }
+    }
+    EXPECT_EQ(off, 0) << "MULTIPLY into the " << param.name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Images, OutputLayers,
+                         ::testing::Values(LayerCase{GL_TEXTURE_2D_ARRAY, 3, 1, "array layer 1"},
+                                           LayerCase{GL_TEXTURE_3D, 4, 2, "3D slice 2"},
+                                           LayerCase{GL_TEXTURE_CUBE_MAP, 6, 4, "cube face +Z"},
+                                           LayerCase{GL_TEXTURE_CUBE_MAP_ARRAY, 12, 7, "cube array layer-face 7"}),
+                         [](const ::testing::TestParamInfo<LayerCase>& test) {
+                             switch (test.param.target) {
+                                 case GL_TEXTURE_2D_ARRAY: return std::string("Array");
+                                 case GL_TEXTURE_3D: return std::string("Slice3D");
+                                 case GL_TEXTURE_CUBE_MAP: return std::string("CubeFace");
+                                 default: return std::string("CubeArray");
+                             }
+                         });
+
 TEST_F(OutputTargets, DefaultFramebufferWithoutSurface) {
     // Surfaceless EGL has no default framebuffer. When it is complete (a windowed or pbuffer context)
     // the blit path is exercised by the renderbuffer tests above; here only its absence is checked.

@@ -349,6 +349,25 @@ TEST(SettingsSetGet, GetOfDerivedDecayRate) {
     EXPECT_NEAR(v, 0.3 * 4.0, 1e-6);
 }
 
+TEST(SettingsSetGet, GetReportsTheValueResolveUses) {
+    // LSAO's segments hold a multiple of 8 steps (the aligned patterns): 9 is used as 16 and reads so;
+    // the struct keeps what the host stored.
+    obscura_settings s = zero_settings();
+    s.method = OBSCURA_METHOD_LSAO;
+    ASSERT_EQ(obscura_set_setting(&s, "segment_steps", 9.0), OBSCURA_OK);
+    EXPECT_EQ(s.lsao.segment_steps, 9);
+    double v = 0;
+    ASSERT_EQ(obscura_get_setting(&s, "segment_steps", &v), OBSCURA_OK);
+    EXPECT_EQ(v, 16.0);
+    obscura_settings resolved{};
+    ASSERT_EQ(obscura_resolve_settings(nullptr, &s, &resolved), OBSCURA_OK);
+    EXPECT_EQ(resolved.lsao.segment_steps, 16);
+    // A value resolve leaves alone reads as stored.
+    ASSERT_EQ(obscura_set_setting(&s, "segment_steps", 24.0), OBSCURA_OK);
+    ASSERT_EQ(obscura_get_setting(&s, "segment_steps", &v), OBSCURA_OK);
+    EXPECT_EQ(v, 24.0);
+}
+
 TEST(SettingsSetGet, SettingZeroMeansDefault) {
     obscura_settings s = zero_settings();
     ASSERT_EQ(obscura_set_setting(&s, "radius", 3.0), OBSCURA_OK);

@@ -101,4 +101,28 @@ BlitStateGuard::~BlitStateGuard() {
     if (rasterizer_discard_) gl_.Enable(GL_RASTERIZER_DISCARD);
 }
 
+AttachmentZeroScope::AttachmentZeroScope(const Table& gl, GLuint framebuffer) : gl_(gl), framebuffer_(framebuffer) {
+    GLint max_draw_buffers = 1;
+    gl.GetIntegerv(GL_MAX_DRAW_BUFFERS, &max_draw_buffers);
+    draw_buffer_count_ = max_draw_buffers < 1 ? 1 : (max_draw_buffers > kMaxDrawBuffers ? kMaxDrawBuffers : max_draw_buffers);
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
+    for (int i = 0; i < draw_buffer_count_; ++i) {
+        GLint buffer = GL_NONE;
+        gl.GetIntegerv(GLenum(GL_DRAW_BUFFER0 + i), &buffer);
+        draw_buffers_[i] = GLenum(buffer);
+    }
+    gl.GetIntegerv(GL_READ_BUFFER, &read_buffer_);
+    const GLenum attachment_zero = GL_COLOR_ATTACHMENT0;
+    gl.DrawBuffers(1, &attachment_zero);
+    gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+}
+
+AttachmentZeroScope::~AttachmentZeroScope() {
+    gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer_);
+    gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_);
+    gl_.DrawBuffers(draw_buffer_count_, draw_buffers_);
+    gl_.ReadBuffer(GLenum(read_buffer_));
+}
+
 }  // namespace obscura::gl

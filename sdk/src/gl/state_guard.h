@@ -64,6 +64,25 @@ private:
     GLboolean rasterizer_discard_ = GL_FALSE;
 };
 
+// Narrows a host framebuffer object to its colour attachment 0 for a blit (draw buffers and read
+// buffer), and puts the host's buffers back. Binds the framebuffer to both targets: the StateGuard
+// restores those bindings.
+class AttachmentZeroScope {
+public:
+    AttachmentZeroScope(const Table& gl, GLuint framebuffer);
+    ~AttachmentZeroScope();
+    AttachmentZeroScope(const AttachmentZeroScope&) = delete;
+    AttachmentZeroScope& operator=(const AttachmentZeroScope&) = delete;
+
+private:
+    static constexpr int kMaxDrawBuffers = 32;
+    const Table& gl_;
+    GLuint framebuffer_;
+    int draw_buffer_count_ = 1;
+    GLenum draw_buffers_[kMaxDrawBuffers] = {};
+    GLint read_buffer_ = GL_NONE;
+};
+
 }  // namespace obscura::gl
 
 #endif  // OBSCURA_STATE_GUARD_H
