@@ -9,6 +9,7 @@ required=(
   libosmesa6-dev libgl1-mesa-dri         # OSMesa backend, llvmpipe software rendering
   libglm-dev libstb-dev                  # demo scene matrices, PNG writing
   libtinyobjloader-dev                   # OBJ scenes (samples/common/scene_library)
+  libembree-dev                          # the geometry truth: rays against the scene's triangles (samples/common)
   glmark2-data                           # the "bunny" scene's model (optional at run time)
   libgtest-dev                           # test suite
   libglew-dev libepoxy-dev               # tests that act as a host using GLEW / libepoxy

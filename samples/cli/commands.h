@@ -15,6 +15,7 @@ int run_compare(ArgumentList& arguments);
 int run_bench(ArgumentList& arguments);
 int run_demo(ArgumentList& arguments);  // compare with the demo's scene, size and methods
 int run_diff(ArgumentList& arguments);  // no GL; reports its own bad input (exit 2) on one line
+int run_truth(ArgumentList& arguments);  // the geometry truth of a scene view, and its linear depth
 
 }  // namespace obscura::cli
 

@@ -87,6 +87,7 @@ int main(int argc, char** argv) {
         if (command == "bench") return run_bench(rest);
         if (command == "demo") return run_demo(rest);
         if (command == "diff") return run_diff(rest);
+        if (command == "truth") return run_truth(rest);
         throw UsageError("unknown command '" + command + "'");
     } catch (const UsageError& error) {
         std::fprintf(stderr, "obscura: %s (see 'obscura --help')\n", error.what());

@@ -50,6 +50,10 @@ public:
     // The visible size asked for (rasterised scenes; a depth file's comes from the file).
     ImageSize size() const { return {options_.raster.width, options_.raster.height}; }
     bool use_normals() const { return options_.use_normals; }
+    // The scene's mesh and viewpoints; nullptr for a depth file (it has no triangles).
+    const samples::Scene* scene() const { return is_depth_file() ? nullptr : &scene_; }
+    // The guard band per side (scenes: --guard-band; depth files: what the file includes).
+    float guard_band() const { return is_depth_file() ? options_.depth_file->guard_band : options_.raster.guard_band; }
 
     // The depth (and normals) for obscura_render, with the current GL context: the scene rasterised at
     // `size` through `camera`, or the depth file uploaded (then both are ignored).

@@ -169,7 +169,10 @@ ErrorMetrics compare_images(const FloatImage& image, const FloatImage& reference
     }
     ErrorMetrics metrics;
     metrics.threshold = threshold;
+    metrics.pixels_total = pixel_count;
     double sum = 0.0;
+    double sum_signed = 0.0;
+    size_t finite = 0;
     double sum_squares = 0.0;
     size_t within = 0;
     size_t over = 0;
@@ -179,6 +182,11 @@ ErrorMetrics compare_images(const FloatImage& image, const FloatImage& reference
         const double error = pixel_error(&image.pixels[i * size_t(channels)], &reference.pixels[i * size_t(channels)],
                                          channels);
         ++metrics.pixels;
+        const double difference = double(image.pixels[i * size_t(channels)]) - double(reference.pixels[i * size_t(channels)]);
+        if (std::isfinite(difference)) {
+            sum_signed += difference;
+            ++finite;
+        }
         sum += error;
         sum_squares += error * error;
         metrics.max_abs = std::max(metrics.max_abs, error);
@@ -191,6 +199,7 @@ ErrorMetrics compare_images(const FloatImage& image, const FloatImage& reference
     }
     const double count = double(metrics.pixels);
     metrics.mean_abs = sum / count;
+    metrics.mean_signed = finite > 0 ? sum_signed / double(finite) : 0.0;
     metrics.within_5pct = double(within) / count;
     metrics.over_threshold = double(over) / count;
     const double mse = sum_squares / count;

@@ -26,6 +26,8 @@ constexpr double kDefaultErrorThreshold = 4.0 / 255.0;
 
 struct ErrorMetrics {
     double mean_abs = 0.0;        // e_A: mean pixel error
+    double mean_signed = 0.0;     // mean of image - reference (first channel; non-finite pixels left out):
+                                  // > 0 the image is brighter (less occluded) than the reference
     double within_5pct = 1.0;     // e_<5%: fraction of pixels with error <= 0.05 (absolute, visibility units)
     double over_threshold = 0.0;  // fraction of pixels with error > `threshold`
     double threshold = kDefaultErrorThreshold;
@@ -33,6 +35,7 @@ struct ErrorMetrics {
                                   // JSON has no infinity: writers print null (JsonWriter does so).
     double max_abs = 0.0;         // largest pixel error
     size_t pixels = 0;            // pixels compared
+    size_t pixels_total = 0;      // pixels of the image: pixels_total - pixels were masked out (sky)
 };
 
 // Compares `image` against `reference`. Both must have the same width, height and channel count and

@@ -4,6 +4,7 @@
 #include <new>
 
 #include "context.h"
+#include "falloff.h"
 #include "host_enum.h"
 #include "settings.h"
 
@@ -151,6 +152,17 @@ OBSCURA_API obscura_status obscura_reference_settings_for(const obscura_settings
     Error error = obscura::reference_settings_for(*method_settings, &reference);
     if (!error) *out = reference;
     return error.status();
+}
+
+OBSCURA_API obscura_status obscura_evaluate_falloff(const obscura_settings* method_settings, const float* distances,
+                                                    float* rho, uint32_t count) {
+    if (!method_settings || (count > 0 && (!distances || !rho))) return OBSCURA_STATUS_NULL_ARGUMENT;
+    obscura_settings reference;
+    Error error = obscura::reference_settings_for(*method_settings, &reference);
+    if (error) return error.status();
+    const obscura::FalloffParameters falloff = obscura::falloff_parameters(reference.reference);
+    for (uint32_t i = 0; i < count; ++i) rho[i] = float(obscura::falloff_value(falloff, double(distances[i])));
+    return OBSCURA_OK;
 }
 
 OBSCURA_API obscura_status obscura_get_setting_infos(obscura_method method, const obscura_setting_info** out_infos,

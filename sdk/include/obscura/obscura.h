@@ -418,6 +418,15 @@ OBSCURA_API obscura_status obscura_resolve_settings(obscura_context* context, co
 OBSCURA_API obscura_status obscura_reference_settings_for(const obscura_settings* method_settings,
                                                           obscura_settings* out);
 
+/* Writes rho(distances[i]) to rho[i] for `count` distances in metres: the falloff that `method_settings` weigh
+   an occluder with, as the SDK's own integrals define it (the REFERENCE settings' falloff; any other method's
+   as obscura_reference_settings_for() maps it). For tools that integrate the same obscurance by other means,
+   such as the samples' geometry truth (rays against the scene's triangles). The settings are resolved once
+   per call, so pass many distances at a time. `distances` and `rho` may alias; with count 0 both may be NULL.
+   Returns OK, NULL_ARGUMENT, INVALID_STRUCT_SIZE, INVALID_ENUM, INVALID_SETTING. */
+OBSCURA_API obscura_status obscura_evaluate_falloff(const obscura_settings* method_settings, const float* distances,
+                                                    float* rho, uint32_t count);
+
 /* ---- Settings metadata: declared once, read by the CLI, the viewer and the docs ----------------- */
 typedef enum obscura_setting_type {
     OBSCURA_SETTING_FLOAT = 0,

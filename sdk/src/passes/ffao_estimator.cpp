@@ -6,6 +6,7 @@
 #include <functional>
 
 #include "common/shader_interface.h"
+#include "falloff.h"
 
 namespace obscura {
 namespace {
@@ -23,17 +24,13 @@ double adaptive_simpson(const std::function<double(double)>& f, double a, double
 }  // namespace
 
 double FfaoFalloffShape::falloff(double x) const {
-    switch (kind) {
-        case OBSCURA_FALLOFF_RHO0: return std::max(0.0, r * (1.0 + c) / (r + x * x) - c);
-        case OBSCURA_FALLOFF_INVERSE_QUADRATIC: return r / (r + x * x);
-        case OBSCURA_FALLOFF_EXPONENTIAL: return std::exp(-x / std::sqrt(r));
-        default: {
-            const double t = x / radius * (OBSCURA_FALLOFF_TABLE_SIZE - 1);
-            if (!(t < OBSCURA_FALLOFF_TABLE_SIZE - 1)) return 0.0;
-            const int i = int(std::floor(t));
-            return table[i] + (table[i + 1] - table[i]) * (t - i);
-        }
-    }
+    FalloffParameters parameters;
+    parameters.kind = kind;
+    parameters.r = r;
+    parameters.c = c;
+    parameters.radius = radius;
+    parameters.table = table;
+    return falloff_value(parameters, x);
 }
 
 bool FfaoFalloffShape::operator==(const FfaoFalloffShape& o) const {

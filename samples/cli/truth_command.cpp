@@ -1,0 +1,112 @@
+// obscura truth: the geometry truth of one scene view (rays against its triangles), written with the view's
+// linear depth as a capture a studio can keep for CI: the depth as `--depth` reads it (positive view depth
+// in metres, the whole depth buffer with its guard band, sky +inf) and the truth over the visible rectangle.
+// `obscura render --depth DEPTH.pfm --guard-band G --fovy F --pfm AO.pfm` then `obscura diff AO.pfm TRUTH.pfm`
+// measures a method against it without the scene.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "cli_errors.h"
+#include "commands.h"
+#include "headless_gl.h"
+#include "method_spec.h"
+#include "reference_render.h"
+#include "scene_source.h"
+#include "truth_render.h"
+
+namespace obscura::cli {
+namespace {
+
+constexpr int kDefaultTruthRays = 1024;
+
+struct TruthConfig {
+    SceneSourceOptions scene;
+    MethodSpec falloff;
+    int rays = kDefaultTruthRays;
+    uint32_t seed = kDefaultTruthSeed;
+    std::string out_path;
+    std::optional<std::string> depth_path, png_path;
+};
+
+TruthConfig take_truth_config(ArgumentList& arguments) {
+    TruthConfig config;
+    const std::vector<MethodSpec> falloff =
+        parse_method_specs("--falloff", arguments.take_value("--falloff").value_or("reference"), {});
+    if (falloff.size() != 1) throw UsageError("--falloff takes one method spec, whose falloff the truth uses");
+    config.falloff = falloff.front();
+    if (auto rays = arguments.take_value("--rays")) config.rays = parse_int("--rays", *rays, 1, 65536);
+    if (auto seed = arguments.take_value("--seed")) config.seed = uint32_t(parse_int("--seed", *seed, 0, 1 << 30));
+    const std::optional<std::string> out = arguments.take_value("--out");
+    config.depth_path = arguments.take_value("--depth-out");
+    config.png_path = arguments.take_value("--png");
+    if (arguments.contains("--depth")) throw UsageError("truth needs a scene's triangles (--scene), not a depth file");
+    config.scene = take_scene_source_options(arguments, /*takes_size=*/true);
+    arguments.require_all_taken();
+    if (!out) throw UsageError("truth needs --out TRUTH.pfm (and optionally --depth-out DEPTH.pfm, --png TRUTH.png)");
+    config.out_path = *out;
+    return config;
+}
+
+// Positive view depth of every texel of the frame's depth texture (sky +inf), unprojected through the frame's
+// own projection, so every projection variant reads back as the same linear depth.
+samples::FloatImage linear_depth(const samples::SceneFrame& frame) {
+    if (frame.samples > 1) throw UsageError("--depth-out needs a single-sample depth buffer (no --msaa)");
+    samples::FloatImage window = samples::read_texture_region(frame.depth_texture, 0, 0, frame.depth_width,
+                                                              frame.depth_height, samples::TextureReadFormat::Depth);
+    const glm::dmat4 inverse_projection = glm::inverse(glm::dmat4(glm::make_mat4(frame.projection)));
+    const float sky = frame.reversed_z ? 0.0f : 1.0f;
+    for (int y = 0; y < window.height; ++y) {
+        for (int x = 0; x < window.width; ++x) {
+            float& value = window.pixels[size_t(y) * size_t(window.width) + size_t(x)];
+            if (value == sky) {
+                value = std::numeric_limits<float>::infinity();
+                continue;
+            }
+            const double ndc_z = frame.clip_depth == OBSCURA_CLIP_DEPTH_ZERO_TO_ONE ? double(value) : 2.0 * value - 1.0;
+            const glm::dvec4 view = inverse_projection * glm::dvec4(2.0 * (x + 0.5) / window.width - 1.0,
+                                                                    2.0 * (y + 0.5) / window.height - 1.0, ndc_z, 1.0);
+            value = float(-view.z / view.w);
+        }
+    }
+    return window;
+}
+
+}  // namespace
+
+int run_truth(ArgumentList& arguments) {
+    const TruthConfig config = take_truth_config(arguments);
+    const SceneSource source(config.scene);
+    samples::HeadlessGL gl;
+    const samples::RenderedScene frame = source.render();
+    std::printf("scene: %s\n", source.describe(frame.frame()).c_str());
+
+    const TruthTracer tracer(*source.scene());
+    const obscura_settings reference = reference_settings_for(config.falloff.settings, 0);
+    std::printf("geometry truth: %d triangles (built in %.2f s), %d rays per pixel, seed %u, falloff %s\n",
+                tracer.triangle_count(), tracer.build_seconds(), config.rays, config.seed,
+                describe_reference(reference).c_str());
+    const TruthImages truth = tracer.trace(frame.frame(), {config.falloff.settings}, config.rays, config.seed,
+                                           "geometry truth");
+    std::printf("traced %llu rays in %.1f s (%.2f Mrays/s)\n", static_cast<unsigned long long>(truth.rays_cast),
+                truth.seconds, double(truth.rays_cast) / truth.seconds * 1e-6);
+
+    samples::write_pfm(config.out_path, truth.visibility.front());
+    std::printf("wrote %s\n", config.out_path.c_str());
+    if (config.png_path) {
+        samples::write_png(*config.png_path, truth.visibility.front());
+        std::printf("wrote %s\n", config.png_path->c_str());
+    }
+    if (config.depth_path) {
+        samples::write_pfm(*config.depth_path, linear_depth(frame.frame()));
+        std::printf("wrote %s: read it with --depth %s --guard-band %g --fovy %g\n", config.depth_path->c_str(),
+                    config.depth_path->c_str(), double(source.guard_band()), double(source.camera().fov_y_degrees));
+    }
+    return 0;
+}
+
+}  // namespace obscura::cli

@@ -1,0 +1,52 @@
+// The falloff rho(d) of the obscurance integral (FFAO paper eq. 1) on the CPU: the one C++ definition of every
+// obscura_falloff kind, mirrored on the GPU by sdk/glsl/common/falloff.glsl. FFAO's estimator table and the
+// public obscura_evaluate_falloff() (which the samples' geometry truth integrates) both call it.
+#ifndef OBSCURA_FALLOFF_H
+#define OBSCURA_FALLOFF_H
+
+#include <algorithm>
+#include <cmath>
+
+#include <obscura/obscura.h>
+
+namespace obscura {
+
+// r (the decay rate), C and the radius in the units of d; `table` holds OBSCURA_FALLOFF_TABLE_SIZE values of
+// rho over [0, radius] (TABLE only).
+struct FalloffParameters {
+    int kind = OBSCURA_FALLOFF_RHO0;
+    double r = 1.0;
+    double c = 0.3;
+    double radius = 1.0;
+    const float* table = nullptr;
+};
+
+inline double falloff_value(const FalloffParameters& f, double d) {
+    switch (f.kind) {
+        case OBSCURA_FALLOFF_RHO0: return std::max(0.0, f.r * (1.0 + f.c) / (f.r + d * d) - f.c);
+        case OBSCURA_FALLOFF_INVERSE_QUADRATIC: return f.r / (f.r + d * d);
+        case OBSCURA_FALLOFF_EXPONENTIAL: return std::exp(-d / std::sqrt(f.r));
+        default: {
+            // TABLE: linear between the samples, 0 from the radius on.
+            const double t = d / f.radius * (OBSCURA_FALLOFF_TABLE_SIZE - 1);
+            if (!(t < OBSCURA_FALLOFF_TABLE_SIZE - 1)) return 0.0;
+            const int i = int(std::floor(t));
+            return f.table[i] + (f.table[i + 1] - f.table[i]) * (t - i);
+        }
+    }
+}
+
+// The falloff of resolved REFERENCE settings, in metres.
+inline FalloffParameters falloff_parameters(const obscura_reference_settings& reference) {
+    FalloffParameters f;
+    f.kind = reference.falloff;
+    f.r = reference.decay_rate;
+    f.c = reference.falloff_c;
+    f.radius = reference.radius;
+    f.table = reference.falloff_table;
+    return f;
+}
+
+}  // namespace obscura
+
+#endif  // OBSCURA_FALLOFF_H
