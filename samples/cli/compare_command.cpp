@@ -1,7 +1,11 @@
-// obscura compare: renders each method and the ray-traced reference with the same falloff, measures
-// the error (FFAO paper sec. 8: mean absolute error, fraction within 5 %; plus PSNR and the largest
-// error) over the output rectangle, and with --orbit the flicker along a camera path.
+// obscura compare: renders each method and its truths with the same falloff (the geometry truth, rays
+// against the scene's triangles; the screen-space reference, REFERENCE through the depth buffer; or both),
+// measures the error (FFAO paper sec. 8: mean absolute error, fraction within 5 %; plus the signed mean, PSNR
+// and the largest error) over the geometry pixels of the output rectangle, and with --orbit the flicker along
+// a camera path.
 #include <chrono>
+#include <cmath>
+#include <optional>
 #include <cstdio>
 #include <filesystem>
 
@@ -14,16 +18,22 @@
 #include "reference_render.h"
 #include "scene_library.h"
 #include "scene_source.h"
+#include "truth_render.h"
 
 namespace obscura::cli {
 namespace {
 
 constexpr int kDefaultReferenceRays = 256;
+constexpr int kDefaultTruthRays = 1024;
 
 struct CompareConfig {
     std::vector<MethodSpec> methods;
     SceneSourceOptions scene;
+    std::vector<TruthKind> truths;
     int reference_rays = kDefaultReferenceRays;
+    int truth_rays = kDefaultTruthRays;
+    uint32_t truth_seed = kDefaultTruthSeed;
+    bool all_pixels = false;
     std::filesystem::path out_dir = "compare-output";
     std::optional<std::string> json_path;
     std::optional<std::string> strip_path;
@@ -51,6 +61,29 @@ CompareConfig take_compare_config(ArgumentList& arguments) {
     if (auto rays = arguments.take_value("--reference-rays")) {
         config.reference_rays = parse_int("--reference-rays", *rays, 1, 65536);
     }
+    if (auto rays = arguments.take_value("--truth-rays")) config.truth_rays = parse_int("--truth-rays", *rays, 1, 65536);
+    if (auto seed = arguments.take_value("--truth-seed")) {
+        config.truth_seed = uint32_t(parse_int("--truth-seed", *seed, 0, 1 << 30));
+    }
+    // A depth file has no triangles: its only truth is the screen-space reference.
+    const std::string truth = arguments.take_value("--truth").value_or(config.scene.depth_file ? "screen" : "geometry");
+    if (truth == "geometry") {
+        config.truths = {TruthKind::Geometry};
+    } else if (truth == "screen") {
+        config.truths = {TruthKind::Screen};
+    } else if (truth == "both") {
+        config.truths = {TruthKind::Geometry, TruthKind::Screen};
+    } else {
+        throw UsageError("unknown --truth '" + truth + "' (valid: geometry, screen, both)");
+    }
+    if (config.scene.depth_file && config.truths.front() == TruthKind::Geometry) {
+        throw UsageError("--truth " + truth + " needs a scene's triangles: a depth file has only the screen-space reference");
+    }
+    const std::string pixels = arguments.take_value("--metrics-pixels").value_or("geometry");
+    if (pixels != "geometry" && pixels != "all") {
+        throw UsageError("unknown --metrics-pixels '" + pixels + "' (valid: geometry, all)");
+    }
+    config.all_pixels = pixels == "all";
     if (auto dir = arguments.take_value("--out-dir")) config.out_dir = *dir;
     config.json_path = arguments.take_value("--json");
     config.strip_path = arguments.take_value("--strip");
@@ -77,44 +110,77 @@ std::vector<samples::Camera> frame_cameras(const SceneSource& source, const Comp
     return cameras;
 }
 
-// One reference render per distinct falloff; methods[i].reference says which.
-void plan_references(CompareResult& result, const std::vector<MethodSpec>& methods) {
+// One truth image per distinct falloff; methods[i].reference says which. Every truth shares the plan.
+std::vector<obscura_settings> plan_falloffs(CompareResult& result, const std::vector<MethodSpec>& methods, int rays) {
+    std::vector<obscura_settings> falloffs;
     for (const MethodSpec& spec : methods) {
         ComparedMethod method;
         method.spec = spec;
-        const obscura_settings reference = reference_settings_for(spec.settings, result.reference_rays);
-        method.reference = result.references.size();
-        for (size_t k = 0; k < result.references.size(); ++k) {
-            if (same_reference(result.references[k].settings, reference)) method.reference = k;
+        const obscura_settings reference = reference_settings_for(spec.settings, rays);
+        method.reference = falloffs.size();
+        for (size_t k = 0; k < falloffs.size(); ++k) {
+            if (same_reference(falloffs[k], reference)) method.reference = k;
         }
-        if (method.reference == result.references.size()) {
-            ComparedReference added;
-            added.settings = reference;
-            added.description = describe_reference(reference);
-            result.references.push_back(added);
-        }
+        if (method.reference == falloffs.size()) falloffs.push_back(reference);
         result.methods.push_back(method);
     }
+    return falloffs;
 }
 
-void render_references(const ObscuraSession& session, const std::vector<samples::RenderedScene>& frames,
-                       bool use_normals, CompareResult& result) {
-    for (size_t k = 0; k < result.references.size(); ++k) {
-        ComparedReference& reference = result.references[k];
+void render_screen_references(const ObscuraSession& session, const std::vector<samples::RenderedScene>& frames,
+                              bool use_normals, ComparedTruth& truth) {
+    for (size_t k = 0; k < truth.references.size(); ++k) {
+        ComparedReference& reference = truth.references[k];
         const auto start = std::chrono::steady_clock::now();
         for (size_t f = 0; f < frames.size(); ++f) {
-            std::string label = "reference " + reference.description;
+            std::string label = "screen-space reference " + reference.description;
             if (frames.size() > 1) label += ", frame " + std::to_string(f + 1) + "/" + std::to_string(frames.size());
             reference.frames.push_back(render_reference(session, frames[f].frame(), use_normals, reference.settings, label));
         }
         reference.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        std::printf("reference %zu: %s, %d rays x %zu frame(s): %.1f s\n", k + 1, reference.description.c_str(),
-                    result.reference_rays, frames.size(), reference.seconds);
+        truth.seconds += reference.seconds;
+        std::printf("screen-space reference %zu: %s, %d rays x %zu frame(s): %.1f s\n", k + 1,
+                    reference.description.c_str(), truth.rays, frames.size(), reference.seconds);
     }
 }
 
+void trace_geometry_truth(const TruthTracer& tracer, const std::vector<samples::RenderedScene>& frames,
+                          ComparedTruth& truth, std::vector<std::vector<uint8_t>>& masks) {
+    std::vector<obscura_settings> falloffs;
+    for (const ComparedReference& reference : truth.references) falloffs.push_back(reference.settings);
+    for (size_t f = 0; f < frames.size(); ++f) {
+        std::string label = "geometry truth";
+        if (frames.size() > 1) label += ", frame " + std::to_string(f + 1) + "/" + std::to_string(frames.size());
+        TruthImages images = tracer.trace(frames[f].frame(), falloffs, truth.rays, truth.seed, label);
+        for (size_t k = 0; k < falloffs.size(); ++k) truth.references[k].frames.push_back(std::move(images.visibility[k]));
+        masks[f] = std::move(images.geometry_mask);
+        truth.seconds += images.seconds;
+        truth.rays_cast += images.rays_cast;
+    }
+    std::printf("geometry truth: %d triangles, %zu falloff(s), %d rays x %zu frame(s): %.1f s (%.2f Mrays/s)\n",
+                truth.triangles, falloffs.size(), truth.rays, frames.size(), truth.seconds,
+                truth.seconds > 0.0 ? double(truth.rays_cast) / truth.seconds * 1e-6 : 0.0);
+}
+
+// The geometry pixels of a depth file's visible rectangle: finite positive linear depth, or hardware depth
+// other than the clear value.
+std::vector<uint8_t> depth_file_mask(const samples::SceneFrame& frame) {
+    const obscura_rect& rect = frame.output_rect;
+    const bool linear = frame.depth_kind == OBSCURA_DEPTH_LINEAR_VIEW;
+    const samples::FloatImage depth =
+        samples::read_texture_region(frame.depth_texture, rect.x, rect.y, rect.width, rect.height,
+                                     linear ? samples::TextureReadFormat::Red : samples::TextureReadFormat::Depth);
+    const float sky = frame.reversed_z ? 0.0f : 1.0f;
+    std::vector<uint8_t> mask(depth.pixels.size());
+    for (size_t i = 0; i < mask.size(); ++i) {
+        const float value = depth.pixels[i];
+        mask[i] = linear ? uint8_t(std::isfinite(value) && value > 0.0f) : uint8_t(value != sky);
+    }
+    return mask;
+}
+
 void measure_method(const ObscuraSession& session, const std::vector<samples::RenderedScene>& frames,
-                    bool use_normals, const ComparedReference& reference, ComparedMethod& method) {
+                    bool use_normals, const CompareResult& result, ComparedMethod& method) {
     const obscura_rect& rect = frames.front()->output_rect;
     const AoTarget target(rect.width, rect.height, GL_R32F);
     AoRenderRequest request;
@@ -134,20 +200,27 @@ void measure_method(const ObscuraSession& session, const std::vector<samples::Re
         method.frames.push_back(target.read());
     }
 
-    samples::ErrorMetrics& mean = method.metrics;
-    mean = samples::ErrorMetrics{};
-    mean.within_5pct = 0.0;
-    const double weight = 1.0 / double(frames.size());
-    for (size_t f = 0; f < frames.size(); ++f) {
-        const samples::ErrorMetrics metrics = samples::compare_images(method.frames[f], reference.frames[f]);
-        mean.mean_abs += weight * metrics.mean_abs;
-        mean.within_5pct += weight * metrics.within_5pct;
-        mean.over_threshold += weight * metrics.over_threshold;
-        mean.psnr += weight * metrics.psnr;
-        mean.max_abs += weight * metrics.max_abs;
-        mean.pixels = metrics.pixels;
+    for (const ComparedTruth& truth : result.truths) {
+        const ComparedReference& reference = truth.references[method.reference];
+        MethodErrors errors;
+        samples::ErrorMetrics& mean = errors.metrics;
+        mean.within_5pct = 0.0;
+        const double weight = 1.0 / double(frames.size());
+        for (size_t f = 0; f < frames.size(); ++f) {
+            const samples::ErrorMetrics metrics = samples::compare_images(
+                method.frames[f], reference.frames[f], result.all_pixels ? nullptr : &result.masks[f]);
+            mean.mean_abs += weight * metrics.mean_abs;
+            mean.mean_signed += weight * metrics.mean_signed;
+            mean.within_5pct += weight * metrics.within_5pct;
+            mean.over_threshold += weight * metrics.over_threshold;
+            mean.psnr += weight * metrics.psnr;
+            mean.max_abs += weight * metrics.max_abs;
+            mean.pixels = metrics.pixels;
+            mean.pixels_total = metrics.pixels_total;
+        }
+        if (frames.size() > 1) errors.flicker = samples::flicker(method.frames, reference.frames);
+        method.errors.push_back(errors);
     }
-    if (frames.size() > 1) method.flicker = samples::flicker(method.frames, reference.frames);
 }
 
 }  // namespace
@@ -170,9 +243,9 @@ int run_compare(ArgumentList& arguments) {
     result.scene = source.name();
     result.width = frames.front()->output_rect.width;
     result.height = frames.front()->output_rect.height;
-    result.reference_rays = config.reference_rays;
     result.frames = config.frames;
     result.orbit_degrees = config.orbit_degrees;
+    result.all_pixels = config.all_pixels;
     // Resolved through the session first: obscura_reference_settings_for has no context to tell why it
     // refuses settings (an all-zero falloff table, say), and this call's log and last error do.
     for (const MethodSpec& spec : config.methods) {
@@ -180,16 +253,41 @@ int run_compare(ArgumentList& arguments) {
         session.check(obscura_resolve_settings(session.get(), &spec.settings, &resolved),
                       "obscura_resolve_settings(" + spec.text + ")");
     }
-    plan_references(result, config.methods);
-    render_references(session, frames, source.use_normals(), result);
-    for (ComparedMethod& method : result.methods) {
-        measure_method(session, frames, source.use_normals(), result.references[method.reference], method);
+    const std::vector<obscura_settings> falloffs = plan_falloffs(result, config.methods, config.reference_rays);
+
+    // The geometry pixels: where the camera sees the scene (the truth's primary rays, which the tests hold to
+    // the rasteriser's pixels), or a depth file's non-sky texels.
+    result.masks.resize(frames.size());
+    std::optional<TruthTracer> tracer;
+    if (const samples::Scene* scene = source.scene()) tracer.emplace(*scene);
+    for (TruthKind kind : config.truths) {
+        ComparedTruth truth;
+        truth.kind = kind;
+        truth.rays = kind == TruthKind::Geometry ? config.truth_rays : config.reference_rays;
+        for (const obscura_settings& falloff : falloffs) {
+            ComparedReference reference;
+            reference.settings = falloff;
+            reference.description = describe_reference(falloff);
+            truth.references.push_back(reference);
+        }
+        if (kind == TruthKind::Geometry) {
+            truth.seed = config.truth_seed;
+            truth.triangles = tracer->triangle_count();
+            trace_geometry_truth(*tracer, frames, truth, result.masks);
+        } else {
+            render_screen_references(session, frames, source.use_normals(), truth);
+        }
+        result.truths.push_back(std::move(truth));
     }
+    for (size_t f = 0; f < frames.size(); ++f) {
+        if (!result.masks[f].empty()) continue;
+        result.masks[f] = tracer ? tracer->trace(frames[f].frame(), falloffs, 0, config.truth_seed, "primary rays").geometry_mask
+                                 : depth_file_mask(frames[f].frame());
+    }
+    for (ComparedMethod& method : result.methods) measure_method(session, frames, source.use_normals(), result, method);
 
     const bool sync = session.flags() & OBSCURA_CONTEXT_FLAG_SYNC_TIMING;
-    std::printf("\nerrors against the reference over the %dx%d output rectangle%s; times: median of warm frames, "
-                "gpu = SDK total (%s)\n",
-                result.width, result.height, config.frames > 1 ? ", averaged over the frames" : "",
+    std::printf("\ntimes: median of warm frames, gpu = SDK total (%s)\n",
                 sync ? "glFinish + CPU clock per pass" : "GL timer queries");
     print_compare_table(result);
     const std::vector<std::string> written = write_compare_images(result, config.out_dir);

@@ -13,8 +13,14 @@ std::string format_psnr(double psnr) {
     return std::isfinite(psnr) ? format_fixed(psnr, 2) : "inf";
 }
 
-std::string reference_file(size_t reference_index) {
-    return "reference_" + std::to_string(reference_index + 1) + ".png";
+std::string format_signed(double value, int digits) {
+    return (value >= 0.0 ? "+" : "") + format_fixed(value, digits);
+}
+
+// "geometry truth (1024 rays)", "screen-space reference (256 rays)".
+std::string describe_truth(const ComparedTruth& truth) {
+    return std::string(truth.kind == TruthKind::Geometry ? "geometry truth" : "screen-space reference") + " (" +
+           std::to_string(truth.rays) + " rays)";
 }
 
 constexpr int kStripMaxColumns = 4;
@@ -44,8 +50,33 @@ samples::FloatImage first_channel(const samples::FloatImage& image) {
 
 }  // namespace
 
+const char* truth_kind_name(TruthKind kind) {
+    return kind == TruthKind::Geometry ? "geometry" : "screen";
+}
+
+size_t CompareResult::geometry_pixels() const {
+    if (masks.empty()) return size_t(width) * size_t(height);
+    size_t count = 0;
+    for (uint8_t value : masks.front()) count += value != 0;
+    return count;
+}
+
+double CompareResult::sky_fraction() const {
+    const double total = double(width) * double(height);
+    return total > 0.0 ? 1.0 - double(geometry_pixels()) / total : 0.0;
+}
+
 std::string method_file_stem(const CompareResult& result, size_t method_index) {
     return std::to_string(method_index + 1) + "_" + result.methods[method_index].spec.name();
+}
+
+std::string error_file(const CompareResult& result, size_t method_index, TruthKind truth) {
+    return method_file_stem(result, method_index) + "_error_" + truth_kind_name(truth) + ".png";
+}
+
+std::string truth_file(TruthKind truth, size_t reference_index) {
+    return std::string(truth == TruthKind::Geometry ? "geometry_truth_" : "reference_") +
+           std::to_string(reference_index + 1) + ".png";
 }
 
 std::vector<std::string> write_compare_images(const CompareResult& result, const std::filesystem::path& directory) {
@@ -60,22 +91,28 @@ std::vector<std::string> write_compare_images(const CompareResult& result, const
     std::vector<std::string> labels;
     for (size_t i = 0; i < result.methods.size(); ++i) {
         const ComparedMethod& method = result.methods[i];
-        const ComparedReference& reference = result.references[method.reference];
-        const std::string stem = method_file_stem(result, i);
-        const samples::FloatImage errors = samples::error_heat_map(method.frames.front(), reference.frames.front());
-        write(stem + ".png", method.frames.front());
-        write(stem + "_error.png", errors);
-
+        write(method_file_stem(result, i) + ".png", method.frames.front());
         sheet.push_back(method.frames.front());
         labels.push_back(std::to_string(i + 1) + " " + method.spec.text);
-        sheet.push_back(errors);
-        labels.push_back("error: mean " + format_fixed(method.metrics.mean_abs, 4) + ", " +
-                         format_fixed(100.0 * method.metrics.within_5pct, 1) + "%");
-        sheet.push_back(reference.frames.front());
-        labels.push_back("ref " + std::to_string(method.reference + 1) + ": " + reference.description);
+        for (size_t t = 0; t < result.truths.size(); ++t) {
+            const ComparedTruth& truth = result.truths[t];
+            const ComparedReference& reference = truth.references[method.reference];
+            const samples::ErrorMetrics& metrics = method.errors[t].metrics;
+            const samples::FloatImage errors = samples::error_heat_map(method.frames.front(), reference.frames.front());
+            write(error_file(result, i, truth.kind), errors);
+            sheet.push_back(reference.frames.front());
+            labels.push_back(std::string(truth.kind == TruthKind::Geometry ? "truth: " : "screen ref: ") +
+                             reference.description);
+            sheet.push_back(errors);
+            labels.push_back(std::string(truth_kind_name(truth.kind)) + " " + format_fixed(metrics.mean_abs, 4) + " " +
+                             format_signed(metrics.mean_signed, 3) + " " + format_fixed(100.0 * metrics.within_5pct, 0) +
+                             "%");
+        }
     }
-    for (size_t k = 0; k < result.references.size(); ++k) write(reference_file(k), result.references[k].frames.front());
-    write("contact_sheet.png", samples::contact_sheet(sheet, labels, 3));
+    for (const ComparedTruth& truth : result.truths) {
+        for (size_t k = 0; k < truth.references.size(); ++k) write(truth_file(truth.kind, k), truth.references[k].frames.front());
+    }
+    write("contact_sheet.png", samples::contact_sheet(sheet, labels, int(1 + 2 * result.truths.size())));
     return written;
 }
 
@@ -86,12 +123,13 @@ samples::FloatImage compare_strip(const CompareResult& result) {
         images.push_back(result.methods[i].frames.front());
         labels.push_back(strip_label(result, i));
     }
-    // One reference is reference_1.png; several differ in what the labels of their methods say (their
+    // One falloff's truth is its own file; several differ in what the labels of their methods say (their
     // descriptions would not fit a tile), so each is labelled with the first method measured against it.
-    for (size_t k = 0; result.references.size() > 1 && k < result.references.size(); ++k) {
+    const std::vector<ComparedReference>& references = result.truths.front().references;
+    for (size_t k = 0; references.size() > 1 && k < references.size(); ++k) {
         for (size_t i = 0; i < result.methods.size(); ++i) {
             if (result.methods[i].reference == k) {
-                images.push_back(result.references[k].frames.front());
+                images.push_back(references[k].frames.front());
                 labels.push_back("ref: " + strip_label(result, i));
                 break;
             }
@@ -106,23 +144,35 @@ samples::FloatImage compare_strip(const CompareResult& result) {
 }
 
 void print_compare_table(const CompareResult& result) {
-    std::vector<std::string> header = {"method", "gpu ms", "wall ms", "mean_abs", "within_5pct", "psnr dB", "max_abs"};
-    if (result.orbit_degrees) header.push_back("flicker");
-    header.push_back("ref");
-    TextTable table(header);
-    for (const ComparedMethod& method : result.methods) {
-        std::vector<std::string> row = {method.spec.text,
-                                        format_fixed(method.timing.sdk_total().median_ms, 2),
-                                        format_fixed(method.timing.wall.median_ms, 2),
-                                        format_fixed(method.metrics.mean_abs, 5),
-                                        format_fixed(method.metrics.within_5pct, 4),
-                                        format_psnr(method.metrics.psnr),
-                                        format_fixed(method.metrics.max_abs, 4)};
-        if (result.orbit_degrees) row.push_back(format_fixed(method.flicker.value_or(0.0), 5));
-        row.push_back(std::to_string(method.reference + 1));
-        table.add_row(row);
+    for (size_t t = 0; t < result.truths.size(); ++t) {
+        const ComparedTruth& truth = result.truths[t];
+        std::printf("\nerrors against the %s over %s of the %dx%d output rectangle (sky %.1f %%)%s:\n",
+                    describe_truth(truth).c_str(),
+                    result.all_pixels ? "every pixel" : (std::to_string(result.geometry_pixels()) + " geometry pixels").c_str(),
+                    result.width, result.height, 100.0 * result.sky_fraction(),
+                    result.frames > 1 ? ", averaged over the frames" : "");
+        std::vector<std::string> header = {"method", "gpu ms", "wall ms", "mean_abs", "within_5pct", "psnr dB", "max_abs",
+                                           "signed"};
+        if (result.orbit_degrees) header.push_back("flicker");
+        header.push_back(truth.kind == TruthKind::Geometry ? "truth" : "ref");
+        TextTable table(header);
+        for (const ComparedMethod& method : result.methods) {
+            const MethodErrors& errors = method.errors[t];
+            std::vector<std::string> row = {method.spec.text,
+                                            format_fixed(method.timing.sdk_total().median_ms, 2),
+                                            format_fixed(method.timing.wall.median_ms, 2),
+                                            format_fixed(errors.metrics.mean_abs, 5),
+                                            format_fixed(errors.metrics.within_5pct, 4),
+                                            format_psnr(errors.metrics.psnr),
+                                            format_fixed(errors.metrics.max_abs, 4),
+                                            format_signed(errors.metrics.mean_signed, 5)};
+            if (result.orbit_degrees) row.push_back(format_fixed(errors.flicker.value_or(0.0), 5));
+            row.push_back(std::to_string(method.reference + 1));
+            table.add_row(row);
+        }
+        table.print(stdout);
     }
-    table.print(stdout);
+    std::printf("signed = mean of method - truth: > 0 brighter (less occlusion) than the truth, < 0 darker\n");
 }
 
 void write_compare_json(const CompareResult& result, const std::string& path) {
@@ -131,7 +181,12 @@ void write_compare_json(const CompareResult& result, const std::string& path) {
     json.field("device", result.device);
     json.field("scene", result.scene);
     json.field("width", result.width).field("height", result.height);
-    json.field("reference_rays", result.reference_rays);
+    json.key("pixels").begin_object();
+    json.field("metrics_over", result.all_pixels ? "all" : "geometry");
+    json.field("total", double(result.width) * double(result.height));
+    json.field("geometry", double(result.geometry_pixels()));
+    json.field("sky_fraction", result.sky_fraction());
+    json.end_object();
     if (result.orbit_degrees) json.field("orbit_degrees", *result.orbit_degrees).field("frames", result.frames);
     json.key("methods").begin_array();
     for (size_t i = 0; i < result.methods.size(); ++i) {
@@ -141,22 +196,52 @@ void write_compare_json(const CompareResult& result, const std::string& path) {
         write_settings_json(json, method.spec.settings);
         write_gpu_ms_json(json, method.timing);
         json.field("wall_ms", method.timing.wall.median_ms);
-        json.field("mean_abs", method.metrics.mean_abs);
-        json.field("within_5pct", method.metrics.within_5pct);
-        json.field("psnr", method.metrics.psnr);  // null when the images are identical
-        json.field("max_abs", method.metrics.max_abs);
-        if (method.flicker) json.field("flicker", *method.flicker);
         json.field("image", method_file_stem(result, i) + ".png");
-        json.field("reference_image", reference_file(method.reference));
+        json.field("falloff", int(method.reference) + 1);
+        json.key("errors").begin_object();
+        for (size_t t = 0; t < result.truths.size(); ++t) {
+            const MethodErrors& errors = method.errors[t];
+            json.key(truth_kind_name(result.truths[t].kind)).begin_object();
+            json.field("mean_abs", errors.metrics.mean_abs);
+            json.field("signed_mean", errors.metrics.mean_signed);
+            json.field("within_5pct", errors.metrics.within_5pct);
+            json.field("psnr", errors.metrics.psnr);  // null when the images are identical
+            json.field("max_abs", errors.metrics.max_abs);
+            json.field("pixels", double(errors.metrics.pixels));
+            if (errors.flicker) json.field("flicker", *errors.flicker);
+            json.field("error_image", error_file(result, i, result.truths[t].kind));
+            json.field("truth_image", truth_file(result.truths[t].kind, method.reference));
+            json.end_object();
+        }
+        json.end_object();
         json.end_object();
     }
     json.end_array();
-    json.key("references").begin_array();
-    for (const ComparedReference& reference : result.references) {
+    json.key("truths").begin_array();
+    for (const ComparedTruth& truth : result.truths) {
         json.begin_object();
-        json.field("falloff", reference.description);
-        write_settings_json(json, reference.settings);
-        json.field("seconds", reference.seconds);
+        json.key("truth").begin_object();
+        json.field("kind", truth_kind_name(truth.kind));
+        json.field("rays", truth.rays);
+        json.field("seconds", truth.seconds);
+        if (truth.kind == TruthKind::Geometry) {
+            json.field("seed", double(truth.seed));
+            json.field("triangles", truth.triangles);
+            json.field("rays_cast", double(truth.rays_cast));
+            json.field("rays_per_second", truth.seconds > 0.0 ? double(truth.rays_cast) / truth.seconds : 0.0);
+        }
+        json.end_object();
+        json.key("references").begin_array();
+        for (size_t k = 0; k < truth.references.size(); ++k) {
+            const ComparedReference& reference = truth.references[k];
+            json.begin_object();
+            json.field("falloff", reference.description);
+            write_settings_json(json, reference.settings);
+            json.field("image", truth_file(truth.kind, k));
+            if (truth.kind == TruthKind::Screen) json.field("seconds", reference.seconds);
+            json.end_object();
+        }
+        json.end_array();
         json.end_object();
     }
     json.end_array();

@@ -1,8 +1,9 @@
-// What `compare` writes: the images (each method's AO and error heat map, each reference, a labelled
-// contact sheet), the table on stdout and the JSON report.
+// What `compare` writes: the images (each method's AO and its error heat map against each truth, each truth's
+// images, a labelled contact sheet), the tables on stdout and the JSON report.
 #ifndef OBSCURA_CLI_COMPARE_OUTPUT_H
 #define OBSCURA_CLI_COMPARE_OUTPUT_H
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -15,20 +16,46 @@
 
 namespace obscura::cli {
 
+// What a method is measured against:
+//   Geometry  the geometry truth: rays against the scene's triangles (samples/common/geometry_truth.h), what a
+//             viewer sees; mesh scenes only.
+//   Screen    the screen-space reference: the SDK's REFERENCE method, rays through the depth buffer, which
+//             takes every depth texel as infinitely thick unless its `thickness` is set; the ceiling of what a
+//             screen-space method can compute, and the only reference a captured depth buffer has.
+enum class TruthKind { Geometry, Screen };
+// "geometry", "screen".
+const char* truth_kind_name(TruthKind kind);
+
+// One falloff's images of one truth.
 struct ComparedReference {
-    obscura_settings settings{};              // REFERENCE, resolved, with the command's ray count
+    obscura_settings settings{};              // REFERENCE, resolved: the falloff (screen: and the ray count)
     std::string description;                  // "rho0 r=1 m"
     std::vector<samples::FloatImage> frames;  // one per camera (one without --orbit)
-    double seconds = 0.0;                     // wall time of all its frames
+    double seconds = 0.0;                     // screen: its wall time; geometry: 0 (see ComparedTruth::seconds)
+};
+
+struct ComparedTruth {
+    TruthKind kind = TruthKind::Geometry;
+    int rays = 0;                 // per pixel
+    uint32_t seed = 0;            // geometry
+    int triangles = 0;            // geometry
+    uint64_t rays_cast = 0;       // geometry: hemisphere rays of every frame
+    double seconds = 0.0;         // every reference of every frame
+    std::vector<ComparedReference> references;  // ComparedMethod::reference indexes it
+};
+
+// A method's error against one truth, averaged over the frames.
+struct MethodErrors {
+    samples::ErrorMetrics metrics;
+    std::optional<double> flicker;  // with --orbit: samples::flicker against the truth's frames
 };
 
 struct ComparedMethod {
     MethodSpec spec;
-    size_t reference = 0;                     // index into CompareResult::references
+    size_t reference = 0;                     // the falloff: index into every ComparedTruth::references
     TimingSummary timing;                     // warm frames of the first camera
     std::vector<samples::FloatImage> frames;  // one per camera
-    samples::ErrorMetrics metrics;            // against its reference, averaged over the frames
-    std::optional<double> flicker;            // with --orbit: samples::flicker against the reference's frames
+    std::vector<MethodErrors> errors;         // one per CompareResult::truths
 };
 
 struct CompareResult {
@@ -36,25 +63,37 @@ struct CompareResult {
     std::string scene;
     int width = 0;
     int height = 0;
-    int reference_rays = 0;
     int frames = 1;
     std::optional<double> orbit_degrees;
-    std::vector<ComparedReference> references;
+    // Metrics cover the geometry pixels (sky left out: a view of much sky would otherwise score better than
+    // its geometry deserves) unless all_pixels (--metrics-pixels all).
+    bool all_pixels = false;
+    std::vector<std::vector<uint8_t>> masks;  // per frame, one byte per pixel: 1 geometry, 0 sky
+    std::vector<ComparedTruth> truths;        // in the order asked for; the first one is the headline
     std::vector<ComparedMethod> methods;
+
+    // Of the first frame.
+    size_t geometry_pixels() const;
+    double sky_fraction() const;
 };
 
 // "<index>_<method name>" (1-based index), the stem of a method's image files.
 std::string method_file_stem(const CompareResult& result, size_t method_index);
+// "<stem>_error_<truth>.png" and the truth's image of falloff k: "geometry_truth_<k>.png" or "reference_<k>.png".
+std::string error_file(const CompareResult& result, size_t method_index, TruthKind truth);
+std::string truth_file(TruthKind truth, size_t reference_index);
 
-// Writes <stem>.png and <stem>_error.png per method, reference_<k>.png per reference (first frame of
-// each) and contact_sheet.png into `directory` (created if needed). Returns the file names written.
+// Writes <stem>.png and <stem>_error_<truth>.png per method and truth, each truth's image per falloff (first
+// frame) and contact_sheet.png (per method: AO, then truth and error heat map for each truth) into `directory`
+// (created if needed). Returns the file names written.
 std::vector<std::string> write_compare_images(const CompareResult& result, const std::filesystem::path& directory);
 // The --strip sheet, for documentation: each method's AO (first frame) labelled with its settings (the
 // spec without the method's name when every spec names the same method), then, when the methods were
-// measured against more than one reference, each reference labelled "ref: " and the label of the first
-// method measured against it; at most four images per row, the rows balanced. Gray when every image is.
+// measured against more than one falloff, the first truth's image of each labelled "ref: " and the label of
+// the first method measured against it; at most four images per row, the rows balanced. Gray when every
+// image is.
 samples::FloatImage compare_strip(const CompareResult& result);
-// One line per method: spec, times, errors (and flicker with --orbit).
+// One table per truth: a line per method with spec, times and errors (and flicker with --orbit).
 void print_compare_table(const CompareResult& result);
 void write_compare_json(const CompareResult& result, const std::string& path);
 

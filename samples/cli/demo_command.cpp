@@ -1,5 +1,6 @@
 // obscura demo: `compare` on the atrium at 640x360 with every available method (the reference
-// excluded) into demo-output/. Other compare options (--reference-rays, --json ...) pass through.
+// excluded) against the geometry truth into demo-output/. Other compare options (--truth, --truth-rays,
+// --json ...) pass through.
 #include <string>
 #include <vector>
 

@@ -7,6 +7,7 @@
 // line on stderr.
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <exception>
 #include <optional>
 #include <stdexcept>
@@ -73,6 +74,13 @@ void write_json_report(const std::string& path, const std::string& image_path, c
     json.end_object().write_file(path);
 }
 
+// PNG, or PFM (exact floats, as `render --pfm` and `truth --out` write them) by the file's extension.
+samples::FloatImage read_image(const std::string& path) {
+    const std::string extension = std::filesystem::path(path).extension().string();
+    if (extension == ".pfm" || extension == ".PFM") return samples::read_pfm(path);
+    return samples::read_png(path);
+}
+
 int diff(ArgumentList& arguments) {
     const std::optional<std::string> tolerance_text = arguments.take_value("--tolerance");
     const std::optional<std::string> heat_map_path = arguments.take_value("--out");
@@ -84,8 +92,8 @@ int diff(ArgumentList& arguments) {
     }
     const DiffTolerance tolerance = tolerance_text ? parse_tolerance(*tolerance_text) : DiffTolerance{};
 
-    const samples::FloatImage image = samples::luminance(samples::read_png(paths[0]));
-    const samples::FloatImage reference = samples::luminance(samples::read_png(paths[1]));
+    const samples::FloatImage image = samples::luminance(read_image(paths[0]));
+    const samples::FloatImage reference = samples::luminance(read_image(paths[1]));
     if (image.width != reference.width || image.height != reference.height) {
         throw std::runtime_error("size mismatch: '" + paths[0] + "' is " + std::to_string(image.width) + "x" +
                              std::to_string(image.height) + ", '" + paths[1] + "' is " +

@@ -15,18 +15,21 @@ namespace {
 const char* const kUsage = R"(usage:
   obscura render [--method SPEC] [--set KEY=VALUE]... --out AO.png [--pfm AO.pfm] [--json OUT.json]
                  [--debug-view none|depth|normals|ao-before-blur|tap-count] [--sync-timing] [SCENE]
-  obscura compare [--methods SPEC,SPEC,...] [--set KEY=VALUE]... [--reference-rays 256]
+  obscura compare [--methods SPEC,SPEC,...] [--set KEY=VALUE]... [--truth geometry|screen|both]
+                  [--truth-rays 1024] [--truth-seed 1] [--reference-rays 256] [--metrics-pixels geometry|all]
                   [--out-dir compare-output] [--json REPORT.json] [--strip STRIP.png]
                   [--orbit DEG --frames N] [--sync-timing] [SCENE]
+  obscura truth --out TRUTH.pfm [--depth-out DEPTH.pfm] [--png TRUTH.png] [--falloff SPEC]
+                [--rays 1024] [--seed 1] [SCENE without --depth]
   obscura bench [--methods SPEC,SPEC,...] [--set KEY=VALUE]... [--sizes 1280x720,1920x1080,...]
                 [--frames 50] [--warmup 5] [--clock auto|gpu-timer|wall] [--json BENCH.json]
                 [--csv BENCH.csv] [SCENE without --size]
   obscura demo [--out-dir demo-output] [other compare options]
-  obscura diff IMAGE.png REFERENCE.png [--tolerance mean=0.005,pixels=0.005,threshold=4]
+  obscura diff IMAGE.png|pfm REFERENCE.png|pfm [--tolerance mean=0.005,pixels=0.005,threshold=4]
                [--out DIFF.png] [--json REPORT.json]
   obscura --list-scenes | --list-methods | --list-settings [METHOD] | --help
 
-SCENE (render, compare, bench):
+SCENE (render, compare, bench, truth):
   --scene NAME|FILE.obj   atrium (default), terrain, objects, clutter, analytic, room, bunny, or an OBJ file
   --viewpoint NAME        one of the scene's cameras (--list-scenes; default: default)
   --eye X,Y,Z --target X,Y,Z [--fovy DEG]   a camera of your own instead
@@ -46,19 +49,30 @@ Defaults: render --method hbao; compare every available method but the reference
 
 render writes the AO (visibility) of the visible image. --json: scene, size, method, effective settings,
   gpu_ms (the SDK's total and per pass) and wall_ms, medians of warm frames.
-compare renders each method and the ray-traced reference with the same falloff as that method
-  (obscura_reference_settings_for; --reference-rays rays per pixel, traced 32 at a time with progress on
-  stderr) and prints per method: gpu and wall ms, mean_abs, within_5pct (fraction of pixels within 0.05),
-  PSNR. --out-dir gets <n>_<method>.png, <n>_<method>_error.png (white 0, black >= 0.2),
-  reference_<k>.png and contact_sheet.png. --orbit DEG --frames N: N frames along an orbit of DEG degrees
-  in total (images of the first); errors are averaged over them and flicker measures the temporal error.
-  --strip writes one sheet of the methods' AO labelled with their settings, then the references if
-  there are several (falloffs differ).
+compare renders each method and measures it against its truth with the same falloff as that method
+  (obscura_reference_settings_for): --truth geometry (default for scenes) ray-traces the scene's
+  triangles (--truth-rays per pixel, Embree on every core), screen (the only one for --depth files) is the
+  SDK's screen-space REFERENCE through the depth buffer, infinitely thick unless reference:thickness is set
+  (--reference-rays per pixel), both reports each. Progress on stderr. Prints per truth and method: gpu and
+  wall ms, mean_abs, within_5pct (fraction of pixels within 0.05), PSNR, max_abs and the signed mean
+  (method - truth: > 0 too bright), over the geometry pixels (sky left out and its fraction printed;
+  --metrics-pixels all counts every pixel). --out-dir gets <n>_<method>.png,
+  <n>_<method>_error_<geometry|screen>.png (white 0, black >= 0.2), geometry_truth_<k>.png and/or
+  reference_<k>.png (one per falloff) and contact_sheet.png (method | truth | error). --orbit DEG --frames
+  N: N frames along an orbit of DEG degrees in total (images of the first); errors are averaged over them
+  and flicker measures the temporal error. --strip writes one sheet of the methods' AO labelled with their
+  settings, then the first truth's images if there are several (falloffs differ).
+truth ray-traces the geometry truth of one view (--falloff: a method spec whose falloff it weighs hits
+  with, default the reference's rho0 r=1 m) and writes it as PFM (and PNG); --depth-out writes the view's
+  linear depth (positive view depth in metres, whole buffer with guard band, sky +inf) as --depth reads it,
+  so the pair is a capture: render --depth DEPTH.pfm --guard-band G --fovy F --pfm AO.pfm, then
+  diff AO.pfm TRUTH.pfm.
 bench times warm frames, median and min, in total and per pass. Clock: GL timer queries on a GPU
   ("gpu-timer"), wall time around render + glFinish on llvmpipe/softpipe, whose timer queries read 0
   ("wall"; passes then by glFinish + CPU clock). A configuration the SDK refuses is reported (JSON
   "error", CSV pass "failed") and the others still run; the exit status is then 1.
-demo runs compare on the atrium at 640x360 with every available method into demo-output/.
+demo runs compare on the atrium at 640x360 with every available method against the geometry truth
+  into demo-output/.
 --sync-timing times passes with glFinish (automatic on llvmpipe/softpipe, whose timer queries read 0).
 diff compares luminance in [0, 1] without GL: it passes when the mean absolute error is <= mean and
 at most a fraction `pixels` of the pixels is off by more than threshold/255; exit 0 pass, 1 fail, 2 bad

@@ -1,6 +1,8 @@
-// The ray-traced ground truth of `compare`: the REFERENCE method with the same falloff as the method
-// measured (obscura_reference_settings_for), traced in chunks of rays so that a progress line can be
-// printed after each one.
+// The screen-space reference of `compare --truth screen|both`: the REFERENCE method (rays through the depth
+// buffer, infinitely thick unless `thickness` is set) with the same falloff as the method measured
+// (obscura_reference_settings_for), traced in chunks of rays so that a progress line can be printed after
+// each one. It is the limit a screen-space method converges to, not what a viewer sees: the geometry truth
+// (rays against the scene's triangles) is truth_render.h.
 //
 // Chunk k renders rays [k * kReferenceChunkRays, ...) of every pixel's ray sequence (reference.first_ray)
 // into an R32F target; the chunk images are averaged on the CPU, weighted by their ray counts. Since

@@ -7,8 +7,11 @@
 # A non-zero expected exit status needs exactly one line on stderr. CHECK names a report check below:
 #   render       render.json has the documented keys, types and sizes (160x90)
 #   depth        render.json of a depth file: the file's 64x36
-#   compare      report.json: methods[0] errors in range, settings, times
-#   orbit        report.json: methods[0] has a flicker in range
+#   compare      report.json (--truth both): one block per truth (geometry, then screen), methods[0] errors
+#                against each in range, settings, times, the pixel counts
+#   orbit        report.json: methods[0] has a flicker against the geometry truth in range
+#   truth        the capture `truth` wrote reads back: `render --depth` of its depth gives the scene's own
+#                image exactly (obscura diff), and the truth PFM has the visible size
 #   bench        bench.json: two results (160x90, 96x54), clock "wall" (either clock with GPU=ON)
 #   bench_refused  a configuration the SDK refuses is reported in bench.json/csv and the next one runs
 #   strip        strip.png: 8-bit gray, 3 x 2 tiles of 160x90 with labels (7 + 4 px) and 4-pixel gaps
@@ -197,25 +200,66 @@ elseif(CHECK STREQUAL "compare" OR CHECK STREQUAL "orbit")
   expect_string(analytic scene)
   expect_number(width MIN 160 MAX 160)
   expect_number(height MIN 90 MAX 90)
-  expect_number(reference_rays MIN 16 MAX 16)
+  expect_string(geometry pixels metrics_over)
+  expect_number(pixels total MIN 14400 MAX 14400)
+  # The analytic default view sees the scene in every pixel but a band of sky over the wall.
+  expect_number(pixels geometry MIN 11000 MAX 13500)
+  expect_number(pixels sky_fraction MIN 0.05 MAX 0.25)
   expect_type(ARRAY methods)
   expect_string(hbao methods 0 method)
   expect_settings_and_times(methods 0)
-  # The default HBAO against a 16-ray reference of the analytic scene: llvmpipe measures mean 0.009,
-  # 95 % of pixels within 0.05 and 29 dB; the ranges leave room for another GPU or driver.
-  expect_number(methods 0 mean_abs MIN 0 MAX 0.05)
-  expect_number(methods 0 within_5pct MIN 0.7 MAX 1)
-  expect_number(methods 0 psnr MIN 15 MAX 100)
-  expect_number(methods 0 max_abs MIN 0 MAX 1)
+  expect_string(geometry truths 0 truth kind)
+  expect_number(truths 0 truth rays MIN 64 MAX 64)
+  expect_number(truths 0 truth seed MIN 1 MAX 1)
+  expect_number(truths 0 truth triangles MIN 16 MAX 16)
+  expect_number(truths 0 truth rays_per_second MIN 1 MAX 1e12)
+  expect_string(geometry_truth_1.png truths 0 references 0 image)
+  # The default HBAO against a 64-ray geometry truth of the analytic scene (llvmpipe: mean 0.0085, 95 % within
+  # 0.05, 30 dB, signed -0.0006, over 12,315 geometry pixels: sky 14.5 %) and against a 16-ray screen-space
+  # reference (0.0100, 94 %, 28 dB); the ranges leave room for another GPU or driver.
+  expect_number(methods 0 errors geometry mean_abs MIN 0.001 MAX 0.05)
+  expect_number(methods 0 errors geometry signed_mean MIN -0.05 MAX 0.05)
+  expect_number(methods 0 errors geometry within_5pct MIN 0.6 MAX 1)
+  expect_number(methods 0 errors geometry psnr MIN 15 MAX 100)
+  expect_number(methods 0 errors geometry max_abs MIN 0 MAX 1)
+  expect_string(1_hbao_error_geometry.png methods 0 errors geometry error_image)
   if(CHECK STREQUAL "orbit")
-    expect_number(methods 0 flicker MIN 0 MAX 0.1)
+    expect_number(methods 0 errors geometry flicker MIN 0 MAX 0.1)
   else()
+    expect_string(screen truths 1 truth kind)
+    expect_number(truths 1 truth rays MIN 16 MAX 16)
+    expect_string(reference_1.png truths 1 references 0 image)
+    expect_number(methods 0 errors screen mean_abs MIN 0.001 MAX 0.05)
+    expect_number(methods 0 errors screen within_5pct MIN 0.7 MAX 1)
+    expect_number(methods 0 errors screen psnr MIN 15 MAX 100)
+    expect_number(methods 0 errors screen pixels MIN 11000 MAX 13500)
     string(JSON length LENGTH "${json}" methods)
     if(NOT length EQUAL 2)
       problem("methods has ${length} entries, expected 2")
     endif()
     expect_string(hbao:blur=off methods 1 method)
     expect_type(BOOLEAN methods 1 settings blur)
+  endif()
+elseif(CHECK STREQUAL "truth")
+  string(REGEX MATCH "read it with --depth depth.pfm --guard-band ([0-9.]+) --fovy ([0-9.]+)" hint "${out}")
+  if(NOT hint)
+    problem("truth does not say how to read the depth back")
+  else()
+    set(guard "${CMAKE_MATCH_1}")
+    set(fovy "${CMAKE_MATCH_2}")
+    run_obscura(render --depth depth.pfm --guard-band ${guard} --fovy ${fovy} --method hbao --pfm from_depth.pfm)
+    if(NOT status EQUAL 0)
+      problem("render --depth of the capture exited ${status}: ${err}")
+    endif()
+    run_obscura(render --scene analytic --size 160x90 --method hbao --pfm from_scene.pfm)
+    run_obscura(diff from_depth.pfm from_scene.pfm --tolerance mean=0.0005,pixels=0.002,threshold=2)
+    if(NOT status EQUAL 0)
+      problem("HBAO of the captured depth differs from HBAO of the scene: ${out}")
+    endif()
+    run_obscura(diff truth.pfm from_scene.pfm --tolerance mean=0.05,pixels=1,threshold=255)
+    if(NOT status EQUAL 0)
+      problem("the truth PFM does not read back at the visible size, or is far from HBAO: ${out} ${err}")
+    endif()
   endif()
 elseif(CHECK STREQUAL "strip")
   # The PNG's IHDR: width and height (4 bytes each, big-endian), bit depth, colour type (0: gray).

@@ -57,16 +57,20 @@ obscura_cli_command_test(render_depth_file 0
   "render|--depth|${OBSCURA_CLI_COMMANDS_DIR}/data/plane_64x36_linear.pfm|--depth-kind|linear|--fovy|60|--method|hbao:directions=4:steps=6|--out|ao.png|--json|render.json"
   GL CHECK depth EXPECT_FILES "ao.png")
 obscura_cli_command_test(compare_analytic 0
-  "compare|${scene}|--methods|hbao,hbao:blur=off|--reference-rays|16|--out-dir|out|--json|report.json"
+  "compare|${scene}|--methods|hbao,hbao:blur=off|--truth|both|--truth-rays|64|--reference-rays|16|--out-dir|out|--json|report.json"
   GL CHECK compare
-  EXPECT_FILES "out/1_hbao.png|out/1_hbao_error.png|out/2_hbao.png|out/2_hbao_error.png|out/reference_1.png|out/contact_sheet.png"
-  EXPECT_STDOUT "mean_abs +within_5pct +psnr")
+  EXPECT_FILES "out/1_hbao.png|out/1_hbao_error_geometry.png|out/1_hbao_error_screen.png|out/2_hbao.png|out/2_hbao_error_geometry.png|out/geometry_truth_1.png|out/reference_1.png|out/contact_sheet.png"
+  EXPECT_STDOUT "errors against the geometry truth [(]64 rays[)] over [0-9]+ geometry pixels[^\n]*sky [0-9.]+ %[^\n]*\nmethod +gpu ms +wall ms +mean_abs +within_5pct +psnr dB +max_abs +signed[^\n]*\n.*errors against the screen-space reference [(]16 rays[)]")
+# Metrics over every pixel: the sky counts (as zero error), so the same method scores better.
+obscura_cli_command_test(compare_metrics_all_pixels 0
+  "compare|${scene}|--methods|hbao|--truth-rays|16|--metrics-pixels|all|--out-dir|out"
+  GL EXPECT_STDOUT "over every pixel of the 160x90")
 # --strip: three methods, two of them sharing a reference (radius 1), so 3 + 2 labelled tiles in 2 rows of 3.
 obscura_cli_command_test(compare_strip 0
-  "compare|${scene}|--methods|hbao:radius=0.5,hbao:radius=1,hbao:blur=off|--reference-rays|16|--strip|strip.png"
+  "compare|${scene}|--methods|hbao:radius=0.5,hbao:radius=1,hbao:blur=off|--truth-rays|16|--strip|strip.png"
   GL CHECK strip EXPECT_FILES "strip.png" EXPECT_STDOUT "wrote strip.png")
 obscura_cli_command_test(compare_orbit_flicker 0
-  "compare|${scene}|--methods|hbao|--reference-rays|16|--orbit|4|--frames|2|--json|report.json"
+  "compare|${scene}|--methods|hbao|--truth-rays|64|--orbit|4|--frames|2|--json|report.json"
   GL CHECK orbit EXPECT_FILES "compare-output/1_hbao.png|compare-output/contact_sheet.png" EXPECT_STDOUT "flicker")
 obscura_cli_command_test(bench_two_sizes 0
   "bench|--scene|analytic|--sizes|160x90,96x54|--methods|hbao|--frames|2|--warmup|1|--json|bench.json|--csv|bench.csv"
@@ -78,8 +82,13 @@ obscura_cli_command_test(bench_refused_configuration 1
 obscura_cli_command_test(compare_refused_settings_say_why 1
   "compare|--scene|analytic|--size|160x90|--reference-rays|1|--methods|hbao,ffao:falloff=4"
   GL EXPECT_STDERR "obscura: error: obscura_resolve_settings[(]ffao:falloff=4[)] failed: OBSCURA_STATUS_INVALID_SETTING: [^\n]*ffao.falloff is TABLE but ffao.falloff_table is all zero")
-obscura_cli_command_test(demo 0 "demo|--reference-rays|1|--out-dir|demo"
-  GL EXPECT_FILES "demo/1_hbao.png|demo/reference_1.png|demo/contact_sheet.png" EXPECT_STDOUT "scene: atrium[^\n]*640x360")
+obscura_cli_command_test(demo 0 "demo|--truth-rays|4|--out-dir|demo"
+  GL EXPECT_FILES "demo/1_hbao.png|demo/1_hbao_error_geometry.png|demo/geometry_truth_1.png|demo/contact_sheet.png"
+  EXPECT_STDOUT "scene: atrium[^\n]*640x360.*errors against the geometry truth")
+# truth: a capture (linear depth + truth) that render --depth reads back as the scene itself.
+obscura_cli_command_test(truth_capture 0
+  "truth|${scene}|--rays|16|--falloff|hbao|--out|truth.pfm|--depth-out|depth.pfm|--png|truth.png"
+  GL CHECK truth EXPECT_FILES "truth.pfm|depth.pfm|truth.png" EXPECT_STDOUT "traced [0-9]+ rays")
 
 # ---- Lists and help (no GL) --------------------------------------------------------------------------
 obscura_cli_command_test(list_scenes 0 "--list-scenes" EXPECT_STDOUT "atrium +available[^\n]*\n[^\n]*viewpoints: default")
@@ -101,5 +110,11 @@ obscura_cli_command_test(set_key_of_no_method 2 "compare|--methods|hbao|--set|no
 obscura_cli_command_test(unknown_scene 2 "render|--scene|no_such_scene|--out|ao.png")
 obscura_cli_command_test(depth_with_size 2 "render|--depth|plane.pfm|--size|64x36|--out|ao.png")
 obscura_cli_command_test(orbit_without_frames 2 "compare|--orbit|4")
+obscura_cli_command_test(unknown_truth 2 "compare|--truth|nosuch" EXPECT_STDERR "unknown --truth 'nosuch' [(]valid: geometry, screen, both[)]")
+obscura_cli_command_test(depth_file_has_no_geometry_truth 2
+  "compare|--depth|${OBSCURA_CLI_COMMANDS_DIR}/data/plane_64x36_linear.pfm|--truth|both"
+  EXPECT_STDERR "needs a scene's triangles")
+obscura_cli_command_test(truth_of_a_depth_file 2 "truth|--depth|x.pfm|--out|t.pfm" EXPECT_STDERR "needs a scene's triangles")
+obscura_cli_command_test(truth_without_out 2 "truth|--scene|analytic" EXPECT_STDERR "truth needs --out")
 # A method the library does not implement (found with --list-methods): exit 1, naming it.
 obscura_cli_command_test(unavailable_method 1 "" CHECK unavailable)
