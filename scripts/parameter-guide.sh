@@ -4,13 +4,15 @@
 #
 # The settings (names, types, defaults, ranges, units, descriptions) come from the SDK's metadata through
 # `obscura --list-settings METHOD`, the methods from `obscura --list-methods`; the values shown are picked
-# from that metadata by the rules in pick_values() below. Each setting is one `obscura compare` run with
-# the method's spec at each value on the atrium at 320x180 (64 reference rays): its --strip sheet becomes
-# docs/images/parameters/<method>_<setting>.png and its --json report the table of cost and error.
+# from that metadata by the rules in pick_values() below. Each setting is one `obscura compare --truth both`
+# run with the method's spec at each value on the atrium at 320x180 (the geometry truth with 256 rays, the
+# screen-space reference with 64): its --strip sheet becomes docs/images/parameters/<method>_<setting>.png and
+# its --json report the table of cost and error against each.
 #
 # Usage:  scripts/parameter-guide.sh
 #   OBSCURA_BIN     the CLI to run (default: build/bin/obscura of this checkout; needs `compare --strip`)
-#   GUIDE_SIZE      image size (default 320x180)      GUIDE_RAYS   reference rays per pixel (default 64)
+#   GUIDE_SIZE      image size (default 320x180)      GUIDE_RAYS   screen-space reference rays per pixel (default 64)
+#   GUIDE_TRUTH_RAYS  geometry truth rays per pixel (default 256)
 #   GUIDE_METHODS   space-separated subset of the methods, for a quick look (default: every available one)
 # Needs jq and awk. Without a GPU: EGL_PLATFORM=surfaceless LIBGL_ALWAYS_SOFTWARE=1 (Mesa llvmpipe), where
 # the whole guide takes 17-19 minutes on 2 cores (with other work beside it). The documents are replaced
@@ -21,6 +23,7 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 bin="${OBSCURA_BIN:-$root/build/bin/obscura}"
 size="${GUIDE_SIZE:-320x180}"
 rays="${GUIDE_RAYS:-64}"
+truth_rays="${GUIDE_TRUTH_RAYS:-256}"
 scene="atrium"
 doc="$root/docs/parameters.md"
 image_dir="$root/docs/images/parameters"
@@ -35,6 +38,7 @@ command -v jq >/dev/null || die "needs jq (apt-get install jq)"
 [[ "$("$bin" --help)" == *"--strip"* ]] || die "'$bin' has no 'compare --strip': rebuild the CLI"
 [[ "$size" =~ ^[0-9]+x[0-9]+$ ]] || die "GUIDE_SIZE '$size' is not WxH"
 [[ "$rays" =~ ^[0-9]+$ ]] || die "GUIDE_RAYS '$rays' is not a number"
+[[ "$truth_rays" =~ ^[0-9]+$ ]] || die "GUIDE_TRUTH_RAYS '$truth_rays' is not a number"
 
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
@@ -175,36 +179,46 @@ for method in "${methods[@]}"; do
   # defaults resolved) from the JSON report.
   echo "parameter-guide: $method at its defaults" >&2
   rm -rf "$work/out"
-  "$bin" compare --scene "$scene" --size "$size" --reference-rays "$reference_rays" --methods "$method" \
+  "$bin" compare --scene "$scene" --size "$size" --truth both --truth-rays "$truth_rays" \
+    --reference-rays "$reference_rays" --methods "$method" \
     --out-dir "$work/out" --json "$work/$method.defaults.json" </dev/null >"$work/compare.log" 2>&1 ||
     die "compare of $method at its defaults failed: $(tail -n 3 "$work/compare.log")"
   runs=$((runs + 1))
   [[ -n "$gl_line" ]] || gl_line="$(sed -n 's/^GL: //p' "$work/compare.log" | head -n 1)"
   cp "$work/out/1_$method.png" "$work/images/${method}_defaults.png"
+  cp "$work/out/geometry_truth_1.png" "$work/images/${method}_truth.png"
   [[ "$method" == "reference" ]] || cp "$work/out/reference_1.png" "$work/images/${method}_reference.png"
-  read -r gpu wall mean within falloff < <(jq -r '.methods[0] as $m |
-    [$m.gpu_ms.total, $m.wall_ms, $m.mean_abs, $m.within_5pct, .references[0].falloff] | @tsv' "$work/$method.defaults.json")
+  read -r gpu wall mean signed within screen_mean screen_within falloff < <(jq -r '.methods[0] as $m |
+    [$m.gpu_ms.total, $m.wall_ms, $m.errors.geometry.mean_abs, $m.errors.geometry.signed_mean,
+     $m.errors.geometry.within_5pct, $m.errors.screen.mean_abs, $m.errors.screen.within_5pct,
+     .truths[1].references[0].falloff] | @tsv' "$work/$method.defaults.json")
 
   {
     echo
     echo "## $method"
     echo
     if [[ "$method" == "reference" ]]; then
-      echo "![reference at its defaults](images/parameters/${method}_defaults.png)"
+      echo "![reference at its defaults](images/parameters/${method}_defaults.png) ![the geometry truth](images/parameters/${method}_truth.png)"
       echo
-      echo "The ray-traced ground truth at its defaults ($falloff, $reference_rays rays: $(awk -v w="$wall" 'BEGIN { printf "%.0f", w }') ms)."
-      echo "Below, every setting but \`rays\` is rendered with \`rays=$rays\` and measured against the reference with the"
-      echo "same settings at its default $reference_rays rays, so the error is only the noise of $rays rays, and the cost"
-      echo "is that of $rays rays (it grows with the rays; one frame, not the median of 5). The other methods'"
-      echo "references in this guide have $rays rays."
+      echo "The screen-space reference at its defaults (left: $falloff, $reference_rays rays, $(awk -v w="$wall" 'BEGIN { printf "%.0f", w }') ms) and the geometry"
+      awk -v e="$mean" -v s="$signed" -v p="$within" -v t="$truth_rays" 'BEGIN {
+        printf "truth with its falloff (right, %d rays): against the truth mean_abs %.4f, signed %+.4f, within_5pct %.1f %%.\n", t, e, s, 100 * p }'
+      echo "Below, every setting but \`rays\` is rendered with \`rays=$rays\`; the screen columns measure it against the"
+      echo "reference with the same settings at its default $reference_rays rays, so their error is only the noise of $rays"
+      echo "rays, and the cost is that of $rays rays (it grows with the rays; one frame, not the median of 5). The"
+      echo "geometry columns say how far each setting brings the screen-space reference from the geometry (\`thickness\`"
+      echo "most). The other methods' screen-space references in this guide have $rays rays."
     else
-      echo "![$method at its defaults](images/parameters/${method}_defaults.png) ![its reference](images/parameters/${method}_reference.png)"
+      echo "![$method at its defaults](images/parameters/${method}_defaults.png) ![the geometry truth](images/parameters/${method}_truth.png) ![the screen-space reference](images/parameters/${method}_reference.png)"
       echo
-      awk -v m="$method" -v g="$gpu" -v w="$wall" -v e="$mean" -v p="$within" -v f="$falloff" -v r="$rays" 'BEGIN {
-        printf "%s at its defaults (left) and the reference it is measured against (right: %s, %d rays):\n", m, f, r
-        printf "gpu %.1f ms, wall %.1f ms, mean_abs %.4f, within_5pct %.1f %%.\n", g, w, e, 100 * p }'
-      echo "In the strips below every tile is $method at its defaults but for the one setting, measured against this"
-      echo "reference, or against one per value where the setting changes the falloff."
+      awk -v m="$method" -v g="$gpu" -v w="$wall" -v e="$mean" -v s="$signed" -v p="$within" -v se="$screen_mean" \
+          -v sp="$screen_within" -v f="$falloff" -v r="$rays" -v t="$truth_rays" 'BEGIN {
+        printf "%s at its defaults (left), the geometry truth it is measured against (middle: %s, %d rays) and the\n", m, f, t
+        printf "screen-space reference with the same falloff (right, %d rays): gpu %.1f ms, wall %.1f ms; against the\n", r, g, w
+        printf "geometry truth mean_abs %.4f, signed %+.4f, within_5pct %.1f %%; against the screen-space reference\n", e, s, 100 * p
+        printf "mean_abs %.4f, within_5pct %.1f %%.\n", se, 100 * sp }'
+      echo "In the strips below every tile is $method at its defaults but for the one setting, measured against these"
+      echo "truths, or against one per value where the setting changes the falloff."
     fi
   } >>"$body"
 
@@ -238,7 +252,8 @@ for method in "${methods[@]}"; do
     specs=()
     for value in $values; do specs+=("$method:$name=$value"); done
     spec_list="$(IFS=,; echo "${specs[*]}")"
-    arguments=(compare --scene "$scene" --size "$size" --reference-rays "$reference_rays" --methods "$spec_list")
+    arguments=(compare --scene "$scene" --size "$size" --truth both --truth-rays "$truth_rays"
+               --reference-rays "$reference_rays" --methods "$spec_list")
     shown_context="${context[$key]:-}"
     [[ "$method" == "reference" && "$name" != "rays" ]] && shown_context="rays=$rays${shown_context:+ $shown_context}"
     for setting in $shown_context; do arguments+=(--set "$setting"); done
@@ -253,12 +268,14 @@ for method in "${methods[@]}"; do
     fi
     runs=$((runs + 1))
 
-    # One row per value: value, gpu ms, wall ms, mean_abs, within_5pct, the reference's falloff. The
-    # falloff's description leaves out a derived decay rate (C*radius^2), so where references of one
-    # description differ in it (C of a falloff other than rho0) it is added.
-    jq -r '.references as $refs | .methods[] |
-           $refs[(.reference_image | capture("reference_(?<k>[0-9]+)").k | tonumber) - 1] as $ref |
-           [(.method | sub("^[^:]*:[^=]*="; "")), .gpu_ms.total, .wall_ms, .mean_abs, .within_5pct,
+    # One row per value: value, gpu ms, wall ms, against the geometry truth mean_abs, signed, within_5pct,
+    # against the screen-space reference mean_abs, within_5pct, and the falloff. The falloff's description
+    # leaves out a derived decay rate (C*radius^2), so where falloffs of one description differ in it (C of
+    # a falloff other than rho0) it is added.
+    jq -r '.truths[1].references as $refs | .methods[] | $refs[.falloff - 1] as $ref |
+           [(.method | sub("^[^:]*:[^=]*="; "")), .gpu_ms.total, .wall_ms, .errors.geometry.mean_abs,
+            .errors.geometry.signed_mean, .errors.geometry.within_5pct, .errors.screen.mean_abs,
+            .errors.screen.within_5pct,
             (if ([$refs[] | select(.falloff == $ref.falloff) | .settings.decay_rate] | unique | length) > 1
              then "\($ref.falloff) decay=\($ref.settings.decay_rate) m^2" else $ref.falloff end)] | @tsv' \
       "$work/report.json" >"$work/rows.tsv"
@@ -277,9 +294,9 @@ for method in "${methods[@]}"; do
       fi
       echo "![$method $name: ${values// /, }](images/parameters/$image)"
       echo
-      echo "| $name | gpu ms | wall ms | wall vs default | mean_abs | within_5pct | reference |"
-      echo "|---|---:|---:|---:|---:|---:|---|"
-      while IFS=$'\t' read -r value gpu wall mean within falloff; do
+      echo "| $name | gpu ms | wall ms | wall vs default | truth: mean_abs | signed | within_5pct | screen ref: mean_abs | within_5pct | falloff |"
+      echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|"
+      while IFS=$'\t' read -r value gpu wall mean signed within screen_mean screen_within falloff; do
         label="$value"
         ratio="-"
         if [[ -n "$default_wall" ]]; then
@@ -288,8 +305,10 @@ for method in "${methods[@]}"; do
         if [[ "$value" == "$effective" ]] || { [[ "$type" != "toggle" ]] && same_number "$value" "$effective"; }; then
           label="**$value** (default)"
         fi
-        awk -v label="$label" -v gpu="$gpu" -v wall="$wall" -v ratio="$ratio" -v mean="$mean" -v within="$within" \
-          -v falloff="$falloff" 'BEGIN { printf "| %s | %.1f | %.1f | %s | %.4f | %.1f %% | %s |\n", label, gpu, wall, ratio, mean, 100 * within, falloff }'
+        awk -v label="$label" -v gpu="$gpu" -v wall="$wall" -v ratio="$ratio" -v mean="$mean" -v signed="$signed" \
+          -v within="$within" -v smean="$screen_mean" -v swithin="$screen_within" -v falloff="$falloff" 'BEGIN {
+          printf "| %s | %.1f | %.1f | %s | %.4f | %+.4f | %.1f %% | %.4f | %.1f %% | %s |\n", label, gpu, wall, ratio, mean,
+                 signed, 100 * within, smean, 100 * swithin, falloff }'
       done <"$work/rows.tsv"
       echo
       echo "\`obscura ${arguments[*]} --strip $image\`"
@@ -321,7 +340,8 @@ software=""
   echo "- GL: ${gl_line:-unknown}."
   echo "- ${runs} \`obscura compare\` runs in $((elapsed / 60)) min $((elapsed % 60)) s on $(nproc) cores (load average $load_start at the"
   echo "  start, $load_end at the end)."
-  echo "- Scene: the built-in \`$scene\` (default viewpoint) at $size, +10 % guard band; references with $rays rays per pixel."
+  echo "- Scene: the built-in \`$scene\` (default viewpoint) at $size, +10 % guard band; the geometry truth with $truth_rays rays"
+  echo "  per pixel, the screen-space references with $rays."
   echo "- Settings, defaults, ranges, units and descriptions: \`obscura --list-settings METHOD\` (the SDK's"
   echo "  \`obscura_get_setting_infos\`). The values shown follow the rules of the script's pick_values(): toggles off and"
   echo "  on; integers with at most 6 values all of them, others a quarter of the default, the default and four"
@@ -331,17 +351,21 @@ software=""
   echo
   echo "## How to read it"
   echo
-  echo "Each method's section opens with the method at its defaults beside the ray-traced reference it is"
-  echo "measured against (the AO is visibility: white is open). Each setting is then one \`obscura compare\` run,"
+  echo "Each method's section opens with the method at its defaults beside what it is measured against (the AO"
+  echo "is visibility: white is open): the geometry truth (rays against the scene's triangles: what a viewer sees)"
+  echo "and the screen-space reference (REFERENCE, rays through the depth buffer, infinitely thick: the ceiling of"
+  echo "what a screen-space method can compute). Each setting is then one \`obscura compare --truth both\` run,"
   echo "whose command is under its table; the picture is that run's \`--strip\` sheet: the method at each value,"
-  echo "labelled \`setting=value\`. Settings that change the falloff (radius, decay rate, C, the falloff itself,"
-  echo "thickness) are measured against one reference per value, which follow the values (\`ref: setting=value\`)."
+  echo "labelled \`setting=value\`. Settings that change the falloff (radius, decay rate, C, the falloff itself)"
+  echo "are measured against one truth per value, which follow the values (\`truth: setting=value\`)."
   echo
   echo "In the tables, **gpu ms** is the SDK's total of its passes and **wall ms** the time around"
   echo "\`obscura_render\` + \`glFinish\`, medians of 5 warm frames; **wall vs default** divides by the default's"
   echo "wall time in the same run. **mean_abs** is the mean absolute error of the visibility against the"
-  echo "reference over the visible image (lower is better) and **within_5pct** the fraction of pixels within 0.05"
-  echo "of it (higher is better), the FFAO paper's two metrics (docs/quality.md)."
+  echo "geometry truth (first) or the screen-space reference over the geometry pixels of the visible image (sky"
+  echo "left out; lower is better), **within_5pct** the fraction of pixels within 0.05 of it (higher is better),"
+  echo "the FFAO paper's two metrics (docs/quality.md), and **signed** the mean of method - truth: positive is"
+  echo "too bright (missing occlusion), negative too dark."
   echo
   if [[ -n "$software" ]]; then
     echo "The times are Mesa llvmpipe's, a CPU rasteriser on a small machine: they say nothing about a GPU's"
@@ -352,8 +376,9 @@ software=""
     echo "one table, not across tables."
   fi
   echo
-  echo "At $rays rays the reference has noise of its own (the reference section's \`rays\` table measures it), which"
-  echo "puts a floor under the errors: differences of a few thousandths in mean_abs are noise."
+  echo "At $rays rays the screen-space reference has noise of its own (the reference section's \`rays\` table"
+  echo "measures it), which puts a floor under its errors: differences of a few thousandths in mean_abs are noise."
+  echo "The geometry truth at $truth_rays rays is within about 0.002 of its converged mean (tests/gl/geometry_truth_test.cpp)."
   echo
   echo "Methods: $(for m in "${methods[@]}"; do printf '[%s](#%s)\n' "$m" "$m"; done | paste -sd' ' -)."
   cat "$body"

@@ -162,23 +162,6 @@ void trace_geometry_truth(const TruthTracer& tracer, const std::vector<samples::
                 truth.seconds > 0.0 ? double(truth.rays_cast) / truth.seconds * 1e-6 : 0.0);
 }
 
-// The geometry pixels of a depth file's visible rectangle: finite positive linear depth, or hardware depth
-// other than the clear value.
-std::vector<uint8_t> depth_file_mask(const samples::SceneFrame& frame) {
-    const obscura_rect& rect = frame.output_rect;
-    const bool linear = frame.depth_kind == OBSCURA_DEPTH_LINEAR_VIEW;
-    const samples::FloatImage depth =
-        samples::read_texture_region(frame.depth_texture, rect.x, rect.y, rect.width, rect.height,
-                                     linear ? samples::TextureReadFormat::Red : samples::TextureReadFormat::Depth);
-    const float sky = frame.reversed_z ? 0.0f : 1.0f;
-    std::vector<uint8_t> mask(depth.pixels.size());
-    for (size_t i = 0; i < mask.size(); ++i) {
-        const float value = depth.pixels[i];
-        mask[i] = linear ? uint8_t(std::isfinite(value) && value > 0.0f) : uint8_t(value != sky);
-    }
-    return mask;
-}
-
 void measure_method(const ObscuraSession& session, const std::vector<samples::RenderedScene>& frames,
                     bool use_normals, const CompareResult& result, ComparedMethod& method) {
     const obscura_rect& rect = frames.front()->output_rect;
@@ -282,7 +265,7 @@ int run_compare(ArgumentList& arguments) {
     for (size_t f = 0; f < frames.size(); ++f) {
         if (!result.masks[f].empty()) continue;
         result.masks[f] = tracer ? tracer->trace(frames[f].frame(), falloffs, 0, config.truth_seed, "primary rays").geometry_mask
-                                 : depth_file_mask(frames[f].frame());
+                                 : samples::read_geometry_mask(frames[f].frame());
     }
     for (ComparedMethod& method : result.methods) measure_method(session, frames, source.use_normals(), result, method);
 

@@ -130,7 +130,8 @@ samples::FloatImage compare_strip(const CompareResult& result) {
         for (size_t i = 0; i < result.methods.size(); ++i) {
             if (result.methods[i].reference == k) {
                 images.push_back(references[k].frames.front());
-                labels.push_back("ref: " + strip_label(result, i));
+                labels.push_back(std::string(result.truths.front().kind == TruthKind::Geometry ? "truth: " : "ref: ") +
+                                 strip_label(result, i));
                 break;
             }
         }

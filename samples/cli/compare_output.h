@@ -89,8 +89,8 @@ std::string truth_file(TruthKind truth, size_t reference_index);
 std::vector<std::string> write_compare_images(const CompareResult& result, const std::filesystem::path& directory);
 // The --strip sheet, for documentation: each method's AO (first frame) labelled with its settings (the
 // spec without the method's name when every spec names the same method), then, when the methods were
-// measured against more than one falloff, the first truth's image of each labelled "ref: " and the label of
-// the first method measured against it; at most four images per row, the rows balanced. Gray when every
+// measured against more than one falloff, the first truth's image of each labelled "truth: " (geometry) or
+// "ref: " (screen) and the label of the first method measured against it; at most four images per row, the rows balanced. Gray when every
 // image is.
 samples::FloatImage compare_strip(const CompareResult& result);
 // One table per truth: a line per method with spec, times and errors (and flicker with --orbit).

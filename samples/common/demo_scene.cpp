@@ -3,6 +3,7 @@
 #include "demo_scene.h"
 
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <cstdio>
 #include <cstring>
@@ -14,6 +15,7 @@
 #include "headless_gl.h"
 #include "host_gl_objects.h"
 #include "host_gl_program.h"
+#include "image_io.h"
 
 namespace obscura::samples {
 namespace {
@@ -379,6 +381,24 @@ RenderedScene render_scene(const SceneMesh& mesh, const SceneRenderOptions& opti
 
 RenderedScene render_demo_scene(const SceneRenderOptions& options) {
     return render_scene(build_demo_scene_mesh(options.ceiling), options);
+}
+
+
+std::vector<uint8_t> read_geometry_mask(const SceneFrame& frame) {
+    if (frame.samples > 1 || frame.depth_target != GL_TEXTURE_2D) {
+        throw std::runtime_error("read_geometry_mask: the depth texture is multisampled (read the normals' alpha)");
+    }
+    const obscura_rect& rect = frame.output_rect;
+    const bool linear = frame.depth_kind == OBSCURA_DEPTH_LINEAR_VIEW;
+    const FloatImage depth = read_texture_region(frame.depth_texture, rect.x, rect.y, rect.width, rect.height,
+                                                 linear ? TextureReadFormat::Red : TextureReadFormat::Depth);
+    const float sky = frame.reversed_z ? 0.0f : 1.0f;
+    std::vector<uint8_t> mask(depth.pixels.size());
+    for (size_t i = 0; i < mask.size(); ++i) {
+        const float value = depth.pixels[i];
+        mask[i] = linear ? uint8_t(std::isfinite(value) && value > 0.0f) : uint8_t(value != sky);
+    }
+    return mask;
 }
 
 }  // namespace obscura::samples

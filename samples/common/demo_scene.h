@@ -10,6 +10,7 @@
 #ifndef OBSCURA_SAMPLES_DEMO_SCENE_H
 #define OBSCURA_SAMPLES_DEMO_SCENE_H
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -103,6 +104,12 @@ private:
 // viewport, depth/blend/cull/scissor/stencil state, clear values, clip control), and it leaves no GL
 // error. Throws std::invalid_argument (empty mesh, bad options) or std::runtime_error on failure.
 RenderedScene render_scene(const SceneMesh& mesh, const SceneRenderOptions& options);
+
+// One byte per pixel of the frame's output rectangle (rows bottom-up): 1 where it has geometry, 0 on sky
+// (hardware depth at the clear value; linear depth that is not finite and positive). What error metrics
+// count by default (compare_images' mask), so that a view with much sky does not score better than its
+// geometry deserves. Reads the depth texture back: std::runtime_error for a multisampled one.
+std::vector<uint8_t> read_geometry_mask(const SceneFrame& frame);
 
 // render_scene(build_demo_scene_mesh(options.ceiling), options).
 RenderedScene render_demo_scene(const SceneRenderOptions& options = {});
