@@ -1,6 +1,8 @@
-// Reference: screen-space ray-traced ambient obscurance (sdk/glsl/reference.comp), the ground truth of
-// every quality measurement. Rays are traced in batches, one dispatch each, accumulating into an R32F
-// texture whose last batch leaves visibility in it.
+// Reference: the screen-space reference (sdk/glsl/reference.comp), ambient obscurance ray-traced through the
+// depth buffer, infinitely thick unless `thickness` is set: what screen-space methods converge to (and what
+// `compare --truth screen` measures them against), not the geometry truth (rays against the scene's
+// triangles, in the samples; the SDK only sees depth). Rays are traced in batches, one dispatch each,
+// accumulating into an R32F texture whose last batch leaves visibility in it.
 #ifndef OBSCURA_REFERENCE_H
 #define OBSCURA_REFERENCE_H
 
