@@ -11,10 +11,16 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: obscura-viewer [--scene NAME|FILE.obj|FILE.pfm] [--viewpoint NAME] [--method SPEC]\n"
-    "                      [--settings FILE.json] [--view ao|lit|lit-no-ao|split|error] [--compare SPEC|reference]\n"
-    "                      [--size WxH] [--normals] [--reference-rays N] [--screenshot OUT.png --frames N]\n"
+    "                      [--settings FILE.json] [--view ao|lit|lit-no-ao|split|error]\n"
+    "                      [--compare reference|truth|SPEC] [--size WxH] [--normals] [--reference-rays N]\n"
+    "                      [--truth-rays N] [--screenshot OUT.png --frames N]\n"
     "SPEC is NAME[:KEY=VALUE...] as in `obscura --list-settings`, e.g. hbao:directions=16:steps=48.\n"
-    "--screenshot with --frames N renders N frames, saves the window (panel included) and exits.\n"
+    "--compare: what the error heat map and the split view compare the method with: `reference`, the\n"
+    "  screen-space reference (REFERENCE: the depth buffer ray-traced, infinitely thick; the default), or\n"
+    "  `truth`, the geometry truth (the scene's triangles ray-traced on the CPU, --truth-rays per pixel,\n"
+    "  default 256; not for .pfm depth files); a SPEC puts a second method on the split view's right.\n"
+    "--screenshot with --frames N renders N frames, saves the window (panel included) and exits; with\n"
+    "  --compare truth the frame before the last waits for the geometry truth to complete.\n"
     "Mouse: drag to orbit (fly: to look), wheel to dolly; fly mode moves with W A S D Q E.\n";
 
 int usage_error(const std::string& message) {
@@ -49,13 +55,16 @@ int main(int argc, char** argv) {
             options.settings_file = value;
         } else if (arg == "--compare") {
             options.compare = value;
+            options.comparison = value == "truth" ? obscura::viewer::Comparison::GeometryTruth
+                                                  : obscura::viewer::Comparison::ScreenSpaceReference;
         } else if (arg == "--screenshot") {
             options.screenshot = value;
-        } else if (arg == "--frames" || arg == "--reference-rays") {
+        } else if (arg == "--frames" || arg == "--reference-rays" || arg == "--truth-rays") {
             char* rest = nullptr;
             const long n = std::strtol(value.c_str(), &rest, 10);
             if (*rest != 0 || n < 1 || n > 100000) return usage_error(arg + " needs a count in [1, 100000]");
-            (arg == "--frames" ? options.frames : options.reference_rays) = int(n);
+            (arg == "--frames" ? options.frames : arg == "--truth-rays" ? options.truth_rays : options.reference_rays) =
+                int(n);
         } else if (arg == "--size") {
             int w = 0, h = 0;
             char tail = 0;
@@ -82,7 +91,7 @@ int main(int argc, char** argv) {
     if (options.frames > 0 && options.screenshot.empty()) return usage_error("--frames goes with --screenshot");
     try {
         obscura::viewer::settings_from_spec(options.method);
-        if (!options.compare.empty() && options.compare != "reference") {
+        if (!options.compare.empty() && options.compare != "reference" && options.compare != "truth") {
             obscura::viewer::settings_from_spec(options.compare);
         }
     } catch (const std::invalid_argument& error) {

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 #include <deque>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -16,12 +17,47 @@
 
 #include "settings_document.h"
 #include "viewer_camera.h"
+#include "viewer_truth.h"
 
 namespace obscura::viewer {
 namespace {
 
 constexpr float kPanelWidth = 390.0f;
 constexpr size_t kHistory = 240;
+// The geometry truth restarts once the view has held still this long (seconds): orbiting does not start (and
+// cancel) a job per frame, and a cancelled worker has long returned when the next one is started.
+constexpr double kTruthRestartDelay = 0.25;
+constexpr int kTruthBatchRays = 8;  // rays per pixel per published batch of the geometry truth
+const char* const kTruthUnavailable =
+    "The geometry truth traces rays against the scene's triangles: a depth file (.pfm) has none. "
+    "Open a built-in scene or an .obj to compare against it.";
+
+// A string that changes exactly when the falloff that `settings` weigh occluders with changes: the falloff at
+// distances from 5 mm to 2.5 km (whatever the method, as obscura_evaluate_falloff defines it).
+std::string falloff_signature(const obscura_settings& settings) {
+    constexpr int kCount = 40;
+    float distances[kCount], rho[kCount];
+    for (int i = 0; i < kCount; ++i) distances[i] = i == 0 ? 0.0f : 0.005f * std::pow(1.4f, float(i - 1));
+    if (obscura_evaluate_falloff(&settings, distances, rho, kCount) != OBSCURA_STATUS_OK) return "refused";
+    std::string text;
+    char number[32];
+    for (float value : rho) {
+        std::snprintf(number, sizeof number, "%a,", double(value));
+        text += number;
+    }
+    return text;
+}
+
+// A line of explanation, wrapped to the panel, in the dimmed text colour.
+void note(const char* text) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("%s", text);
+    ImGui::PopStyleColor();
+}
+
+double sky_fraction(const samples::ErrorMetrics& metrics) {
+    return metrics.pixels_total > 0 ? 1.0 - double(metrics.pixels) / double(metrics.pixels_total) : 0.0;
+}
 
 obscura_gl_function glfw_proc(const char* name) { return reinterpret_cast<obscura_gl_function>(glfwGetProcAddress(name)); }
 
@@ -86,8 +122,22 @@ private:
     void build_panel();
     bool method_panel(const char* id, MethodPanel& panel);
     void timings_panel();
-    void reference_panel();
+    void comparison_panel();
+    void reference_section();
+    void truth_section();
+    void metrics_text(const samples::ErrorMetrics& metrics, const std::string& against, const char* short_name);
     void update_timings();
+    // The geometry truth for the current frame: (re)starts the worker when the view, the size or the falloff
+    // changed, uploads its newest estimate and measures the method against it. `wait` (screenshot mode, the
+    // frame before the last, so that the last frame's panel shows the result): waits for it to complete.
+    // Not `wanted` (another view or comparison): only cancels a job that is of another view.
+    void update_truth(bool wanted, bool wait);
+    bool truth_available() const { return scene_.mesh.has_value(); }
+    std::string truth_key(const samples::TruthView& view) const;
+    std::string comparison_label() const;
+    void draw_scene_caption(int scene_x, int width);
+    // Screenshot mode: prints the metrics of the comparison shown (stdout); a failed geometry truth sets 1.
+    void report_comparison(int* exit_code);
     std::string view_key() const;
     bool save_screenshot(const std::string& path);
 
@@ -102,7 +152,18 @@ private:
     bool split_reference_ = true;
     int reference_rays_ = 64;
     bool use_normals_ = false;
+    Comparison comparison_ = Comparison::ScreenSpaceReference;
     ReferenceJob job_;
+    // The geometry truth: the worker, and what the GL thread has of it.
+    TruthJob truth_;
+    int truth_rays_ = 256;
+    std::string truth_wanted_key_;   // the key the current view wants, and since when (glfwGetTime)
+    double truth_wanted_since_ = 0.0;
+    uint64_t truth_generation_ = 0;  // of the last snapshot taken from the worker
+    TruthSnapshot truth_snapshot_;   // the estimate uploaded (its key says which view it is of)
+    bool truth_current_ = false;     // truth_snapshot_ is of the current view
+    std::string truth_method_key_;   // the method (view_key()) truth_metrics_ were measured for
+    std::optional<samples::ErrorMetrics> truth_metrics_;
     TimingState timings_;
     std::string status_;
     std::string pending_drop_;
@@ -121,7 +182,14 @@ void ViewerApp::open_scene(const std::string& name) {
         }
         scene_ = std::move(scene);
         job_.cancel();
+        truth_.cancel();
         status_ = "opened " + name;
+        if (comparison_ == Comparison::GeometryTruth && !truth_available()) {
+            comparison_ = Comparison::ScreenSpaceReference;
+            status_ = "the geometry truth is unavailable for " + name +
+                      " (a depth file has no triangles): comparing with the screen-space reference instead";
+            std::fprintf(stderr, "obscura-viewer: %s\n", status_.c_str());
+        }
     } catch (const std::exception& error) {
         if (scene_.name.empty()) throw;  // nothing to show: the caller reports it and exits
         status_ = std::string("cannot open ") + name + ": " + error.what();
@@ -301,8 +369,33 @@ void ViewerApp::timings_panel() {
     ImGui::Text("GPU memory: %.2f MiB", double(timings_.memory_bytes) / (1024.0 * 1024.0));
 }
 
-void ViewerApp::reference_panel() {
-    if (!ImGui::CollapsingHeader("Error against the reference", ImGuiTreeNodeFlags_DefaultOpen)) return;
+std::string ViewerApp::comparison_label() const {
+    char label[128];
+    if (comparison_ == Comparison::GeometryTruth) {
+        if (truth_current_ && truth_snapshot_.rays < truth_snapshot_.rays_total) {
+            std::snprintf(label, sizeof label, "geometry truth (%d of %d rays so far)", truth_snapshot_.rays,
+                          truth_snapshot_.rays_total);
+        } else {
+            std::snprintf(label, sizeof label, "geometry truth (%d rays)",
+                          truth_current_ ? truth_snapshot_.rays : truth_rays_);
+        }
+    } else {
+        std::snprintf(label, sizeof label, "screen-space reference (infinitely thick depth, %d rays)",
+                      job_.active() ? job_.traced_rays() : reference_rays_);
+    }
+    return label;
+}
+
+void ViewerApp::metrics_text(const samples::ErrorMetrics& metrics, const std::string& against, const char* short_name) {
+    ImGui::TextWrapped("%s against %s:", obscura_method_name(panels_[0].settings.method), against.c_str());
+    ImGui::Text("mean_abs %.4f  within 5%% %.3f  PSNR %.1f dB", metrics.mean_abs, metrics.within_5pct, metrics.psnr);
+    ImGui::Text("signed mean %+.4f (method - %s; + too bright)", metrics.mean_signed, short_name);
+    ImGui::Text("geometry pixels only: sky %.1f %% excluded", 100.0 * sky_fraction(metrics));
+}
+
+void ViewerApp::reference_section() {
+    note("REFERENCE: rays marched through the depth buffer on the GPU, every surface taken as infinitely "
+         "thick, so it knows only what the camera sees. Not ground truth.");
     ImGui::SliderInt("rays", &reference_rays_, ReferenceJob::kChunkRays, 1024);
     if (ImGui::Button(job_.active() ? "Restart" : "Compute")) {
         job_.start(view_key(), panels_[0].settings, reference_rays_);
@@ -314,9 +407,64 @@ void ViewerApp::reference_panel() {
                       int(std::lround(job_.traced_rays() / std::max(job_.progress(), 1e-6f))));
         ImGui::ProgressBar(job_.progress(), ImVec2(-1.0f, 0.0f), label);
     }
-    if (job_.metrics) {
-        ImGui::Text("mean_abs %.4f  within_5pct %.3f  PSNR %.1f dB", job_.metrics->mean_abs, job_.metrics->within_5pct,
-                    job_.metrics->psnr);
+    if (job_.metrics) metrics_text(*job_.metrics, comparison_label(), "reference");
+}
+
+void ViewerApp::truth_section() {
+    note("Rays against the scene's triangles (Embree, on the CPU, on a worker thread), weighed with the "
+         "method's falloff: what the scene really occludes, off screen and behind surfaces included.");
+    ImGui::SliderInt("truth rays", &truth_rays_, kTruthBatchRays, 4096, "%d",
+                     ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+    if (ImGui::Button("Restart##truth")) {
+        truth_.stop();
+        truth_wanted_key_.clear();  // starts again at once on the next frame
+        if (view_ != ViewMode::Split) view_ = ViewMode::ErrorMap;
+    }
+    const TruthProgress progress = truth_.progress();
+    if (progress.active || progress.done || !progress.error.empty()) {
+        char label[96];
+        if (progress.rays_done > 0 || progress.done) {
+            std::snprintf(label, sizeof label, "%d / %d rays, %.1f s", progress.rays_done, progress.rays_total,
+                          progress.seconds);
+        } else {
+            std::snprintf(label, sizeof label, "%s, %.1f s", progress.phase.c_str(), progress.seconds);
+        }
+        const float fraction = progress.rays_total > 0 ? float(progress.rays_done) / float(progress.rays_total) : 0.0f;
+        ImGui::ProgressBar(fraction, ImVec2(-1.0f, 0.0f), label);
+        if (progress.triangles > 0) ImGui::TextDisabled("%d triangles", progress.triangles);
+    } else if (view_ != ViewMode::ErrorMap && !(view_ == ViewMode::Split && split_reference_)) {
+        ImGui::TextDisabled("traced in the error and split views");
+    }
+    if (!progress.error.empty()) ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.3f, 1.0f), "%s", progress.error.c_str());
+    if (truth_current_ && truth_metrics_) metrics_text(*truth_metrics_, comparison_label(), "truth");
+}
+
+void ViewerApp::comparison_panel() {
+    if (!ImGui::CollapsingHeader("Comparison", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    const char* labels[] = {"screen-space reference", "geometry truth"};
+    if (comparison_ == Comparison::GeometryTruth && !truth_available()) comparison_ = Comparison::ScreenSpaceReference;
+    if (ImGui::BeginCombo("compare with", labels[int(comparison_)])) {
+        if (ImGui::Selectable(labels[0], comparison_ == Comparison::ScreenSpaceReference)) {
+            comparison_ = Comparison::ScreenSpaceReference;
+        }
+        if (ImGui::Selectable(truth_available() ? labels[1] : "geometry truth (unavailable: depth file)",
+                              comparison_ == Comparison::GeometryTruth,
+                              truth_available() ? 0 : ImGuiSelectableFlags_Disabled)) {
+            comparison_ = Comparison::GeometryTruth;
+        }
+        if (!truth_available() && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+            ImGui::SetTooltip("%s", kTruthUnavailable);
+        }
+        ImGui::EndCombo();
+    }
+    if (!truth_available()) {
+        ImGui::TextDisabled("geometry truth: unavailable (depth file)");
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", kTruthUnavailable);
+    }
+    if (comparison_ == Comparison::GeometryTruth) {
+        truth_section();
+    } else {
+        reference_section();
     }
 }
 
@@ -356,14 +504,14 @@ void ViewerApp::build_panel() {
         view_ = ViewMode(view);
         if (view_ == ViewMode::Split) {
             ImGui::SliderFloat("split", &split_, 0.0f, 1.0f);
-            ImGui::Checkbox("right: the reference", &split_reference_);
+            ImGui::Checkbox("right: the comparison (else a second method)", &split_reference_);
         }
     }
     if (ImGui::CollapsingHeader("Method", ImGuiTreeNodeFlags_DefaultOpen)) method_panel("a", panels_[0]);
     if (view_ == ViewMode::Split && !split_reference_ && ImGui::CollapsingHeader("Right side", ImGuiTreeNodeFlags_DefaultOpen)) {
         method_panel("b", panels_[1]);
     }
-    reference_panel();
+    comparison_panel();
     timings_panel();
     if (ImGui::CollapsingHeader("Screenshot")) {
         if (screenshot_path_[0] == 0) std::snprintf(screenshot_path_.data(), screenshot_path_.size(), "obscura-viewer.png");
@@ -372,6 +520,138 @@ void ViewerApp::build_panel() {
     }
     if (!status_.empty()) ImGui::TextWrapped("%s", status_.c_str());
     ImGui::End();
+}
+
+std::string ViewerApp::truth_key(const samples::TruthView& view) const {
+    std::string key = scene_.name + "|";
+    char number[48];
+    auto add = [&](double value) {
+        std::snprintf(number, sizeof number, "%a,", value);
+        key += number;
+    };
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) add(view.view[c][r]);
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) add(view.projection[c][r]);
+    add(view.depth_width);
+    add(view.depth_height);
+    add(view.output_rect.x);
+    add(view.output_rect.y);
+    add(view.output_rect.width);
+    add(view.output_rect.height);
+    add(view.near_plane);
+    add(view.far_plane);
+    add(truth_rays_);
+    return key + "|" + falloff_signature(panels_[0].settings);
+}
+
+void ViewerApp::update_truth(bool wanted, bool wait) {
+    truth_current_ = false;
+    const samples::SceneFrame* frame = renderer_->frame();
+    if (!frame || !scene_.mesh) return;
+    const samples::TruthView view = samples::TruthView::of(*frame);
+    const std::string key = truth_key(view);
+    if (!wanted) {
+        // A job keeps running while the view is unchanged (the error view shows it at once when it comes back).
+        if (!truth_.key().empty() && truth_.key() != key) truth_.cancel();
+        return;
+    }
+    const double now = glfwGetTime();
+    if (key != truth_.key()) {
+        // Another view, size or falloff: the running job is of no use any more. It is joined when the next
+        // one starts, once the view has held still (or at once for the first job and in screenshot mode).
+        if (!truth_.key().empty()) truth_.cancel();
+        if (key != truth_wanted_key_) {
+            truth_wanted_since_ = truth_wanted_key_.empty() ? now - kTruthRestartDelay : now;
+            truth_wanted_key_ = key;
+        }
+        if ((now - truth_wanted_since_ >= kTruthRestartDelay && !truth_.busy()) || options_.frames > 0) {
+            TruthRequest request;
+            request.key = key;
+            request.scene_name = scene_.name;
+            request.view = view;
+            request.falloff = panels_[0].settings;
+            request.rays = truth_rays_;
+            request.batch_rays = kTruthBatchRays;
+            truth_.start(std::move(request), scene_.mesh->mesh);
+        }
+    }
+    if (wait && truth_.key() == key && !truth_.progress().done) {
+        std::fprintf(stderr, "obscura-viewer: waiting for the geometry truth (%d rays per pixel)\n", truth_rays_);
+        truth_.wait();
+    }
+    TruthSnapshot snapshot;
+    if (truth_.latest(truth_generation_, &snapshot)) {
+        truth_generation_ = snapshot.generation;
+        if (snapshot.key == key) {
+            renderer_->upload_truth(snapshot.visibility);
+            truth_snapshot_ = std::move(snapshot);
+            truth_method_key_.clear();
+        }
+    }
+    truth_current_ = truth_snapshot_.generation != 0 && truth_snapshot_.key == key && truth_snapshot_.mask;
+    if (!truth_current_) {
+        truth_metrics_.reset();
+        return;
+    }
+    // The method is measured again when it changes without changing the falloff (no new trace needed).
+    const std::string method_key = view_key();
+    if (method_key != truth_method_key_) {
+        try {
+            truth_metrics_ = renderer_->compare_with_truth(truth_snapshot_.visibility, *truth_snapshot_.mask);
+        } catch (const std::exception& error) {
+            truth_metrics_.reset();
+            status_ = std::string("comparing with the geometry truth: ") + error.what();
+        }
+        truth_method_key_ = method_key;
+    }
+}
+
+void ViewerApp::report_comparison(int* exit_code) {
+    if (view_ != ViewMode::ErrorMap && !(view_ == ViewMode::Split && split_reference_)) return;
+    const samples::ErrorMetrics* metrics = nullptr;
+    if (comparison_ == Comparison::GeometryTruth) {
+        const TruthProgress progress = truth_.progress();
+        if (!progress.error.empty()) {
+            std::fprintf(stderr, "obscura-viewer: the geometry truth failed: %s\n", progress.error.c_str());
+            *exit_code = 1;
+            return;
+        }
+        if (truth_current_ && truth_metrics_) metrics = &*truth_metrics_;
+    } else if (job_.metrics) {
+        metrics = &*job_.metrics;
+    }
+    if (!metrics) return;
+    std::printf("obscura-viewer: %s against %s: mean_abs %.4f within_5pct %.4f mean_signed %+.4f psnr %.2f dB "
+                "(geometry pixels only, sky %.1f %% excluded)\n",
+                obscura_method_name(panels_[0].settings.method), comparison_label().c_str(), metrics->mean_abs,
+                metrics->within_5pct, metrics->mean_signed, metrics->psnr, 100.0 * sky_fraction(*metrics));
+}
+
+// What the scene area shows, written over its top edge: which image is which, and what the comparison is.
+void ViewerApp::draw_scene_caption(int scene_x, int width) {
+    if (view_ != ViewMode::Split && view_ != ViewMode::ErrorMap) return;
+    const bool comparison = view_ == ViewMode::ErrorMap || split_reference_;
+    const std::string method = obscura_method_name(panels_[0].settings.method);
+    std::string left, right;
+    if (view_ == ViewMode::ErrorMap) {
+        left = "|" + method + " - " + comparison_label() + "|: white 0, black >= 0.2";
+    } else {
+        left = method;
+        right = comparison ? comparison_label() : std::string(obscura_method_name(panels_[1].settings.method));
+    }
+    ImDrawList* draw = ImGui::GetForegroundDrawList();
+    const float pad = 4.0f, line = ImGui::GetTextLineHeight();
+    auto caption = [&](float x, const std::string& text) {
+        const ImVec2 size = ImGui::CalcTextSize(text.c_str());
+        draw->AddRectFilled(ImVec2(x, 0.0f), ImVec2(x + size.x + 2.0f * pad, line + 2.0f * pad), IM_COL32(0, 0, 0, 150));
+        draw->AddText(ImVec2(x + pad, pad), IM_COL32(255, 255, 255, 230), text.c_str());
+    };
+    caption(float(scene_x), left);
+    if (!right.empty()) {
+        const float x = float(scene_x) + split_ * float(width);
+        caption(std::min(x + 2.0f, float(scene_x + width) - ImGui::CalcTextSize(right.c_str()).x - 2.0f * pad), right);
+    }
 }
 
 std::string ViewerApp::view_key() const {
@@ -449,6 +729,8 @@ int ViewerApp::run() {
         renderer_ = std::make_unique<ViewerRenderer>(glfw_proc, software);
         use_normals_ = options_.use_normals;
         reference_rays_ = options_.reference_rays;
+        truth_rays_ = options_.truth_rays;
+        comparison_ = options_.comparison;
         view_ = options_.view;
         open_scene(options_.scene);
         panels_[0].settings = settings_from_spec(options_.method);
@@ -457,7 +739,7 @@ int ViewerApp::run() {
             if (!read_text_file(options_.settings_file, &text, &error)) throw std::runtime_error(error);
             panels_[0].settings = settings_from_json(text);
         }
-        split_reference_ = options_.compare.empty() || options_.compare == "reference";
+        split_reference_ = options_.compare.empty() || options_.compare == "reference" || options_.compare == "truth";
         panels_[1].settings = settings_from_spec(split_reference_ ? "hbao" : options_.compare);
         if (!options_.screenshot.empty()) {
             std::snprintf(screenshot_path_.data(), screenshot_path_.size(), "%s", options_.screenshot.c_str());
@@ -489,18 +771,33 @@ int ViewerApp::run() {
                     ok = renderer_->render_ao(1, panels_[1].settings, use_normals_);
                 }
                 if (!ok) status_ = renderer_->last_error();
-                const bool wants_reference =
+                const bool wants_comparison =
                     view_ == ViewMode::ErrorMap || (view_ == ViewMode::Split && split_reference_);
-                if (wants_reference && ok) {
+                const bool wait_for_truth = options_.frames > 0 && frame + 2 >= options_.frames;
+                truth_current_ = false;
+                if (wants_comparison && ok && comparison_ == Comparison::ScreenSpaceReference) {
                     const std::string key = view_key();
                     if (!job_.active() || job_.key() != key) job_.start(key, panels_[0].settings, reference_rays_);
                     if (!job_.done() && !renderer_->step_reference(job_, use_normals_)) status_ = renderer_->last_error();
+                } else if (ok) {
+                    update_truth(wants_comparison && comparison_ == Comparison::GeometryTruth, wait_for_truth);
                 }
                 update_timings();
+                GLuint right = 0, heat = 0;
+                if (view_ == ViewMode::Split && !split_reference_) {
+                    right = renderer_->ao_texture(1);
+                } else if (comparison_ == Comparison::GeometryTruth) {
+                    right = truth_current_ ? renderer_->truth_texture() : 0;
+                    heat = truth_current_ && truth_metrics_ ? renderer_->truth_heat() : 0;
+                } else {
+                    right = renderer_->reference_texture(job_);
+                    heat = renderer_->reference_heat(job_);
+                }
                 glBindFramebuffer(GL_FRAMEBUFFER, 0);
                 glViewport(scene_x, 0, width, height);
-                renderer_->composite(view_, split_, split_reference_, job_);
+                renderer_->composite(view_, split_, right, heat);
                 glViewport(0, 0, window_width, height);
+                draw_scene_caption(scene_x, width);
             }
             ImGui::Render();
             ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
@@ -513,6 +810,7 @@ int ViewerApp::run() {
             glfwSwapBuffers(window_);
             if (last) break;
         }
+        if (options_.frames > 0) report_comparison(&exit_code);
         const GLenum error = glGetError();
         if (error != GL_NO_ERROR) {
             std::fprintf(stderr, "obscura-viewer: GL error 0x%04x left pending\n", error);
@@ -526,6 +824,7 @@ int ViewerApp::run() {
         std::fprintf(stderr, "obscura-viewer: %s\n", error.what());
         exit_code = 1;
     }
+    truth_.stop();  // the window is closing: the worker is cancelled and joined
     renderer_.reset();
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();

@@ -13,12 +13,14 @@ struct ViewerOptions {
     std::string scene = "atrium";   // built-in name, .obj or .pfm path
     std::string viewpoint = "default";
     std::string method = "hbao";    // NAME[:KEY=VALUE...], as the CLI's specs
-    std::string compare;            // split view's right side: a spec, or "reference"
+    std::string compare;            // split view's right side: a spec, or "reference" / "truth" (the comparison)
+    Comparison comparison = Comparison::ScreenSpaceReference;  // what the heat map and the split compare with
     std::string settings_file;      // a settings JSON to start from (replaces `method`)
     ViewMode view = ViewMode::LitWithAo;
     int width = 1280, height = 720; // window size
     bool use_normals = false;       // hand the scene's normals to the SDK (else it reconstructs them)
-    int reference_rays = 64;        // rays per pixel of the on-demand reference
+    int reference_rays = 64;        // rays per pixel of the on-demand screen-space reference
+    int truth_rays = 256;           // rays per pixel of the geometry truth (worker thread)
     std::string screenshot;         // with frames > 0: render `frames` frames, save the window, exit
     int frames = 0;
 };

@@ -1,6 +1,7 @@
 #include "viewer_renderer.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
@@ -60,7 +61,8 @@ void main() {
         color = vec3(value);
         if (abs(v_uv.x - u_split) * float(textureSize(u_ao0, 0).x) < 1.0) color = vec3(1.0, 0.55, 0.1);
     } else {
-        color = u_has_heat != 0 ? texture(u_heat, v_uv).rgb : vec3(ao);
+        // The heat map; sky (left out of the metrics) in a pale blue-grey so that it is not read as 0 error.
+        color = u_has_heat != 0 ? (geometry ? texture(u_heat, v_uv).rgb : vec3(0.74, 0.80, 0.88)) : vec3(ao);
     }
     // Lit views are linear radiance, shown with the display's gamma; AO, split and heat maps as values.
     bool radiance = u_mode == 1 || u_mode == 2;
@@ -127,6 +129,10 @@ const char* view_mode_name(ViewMode mode) {
         case ViewMode::ErrorMap: return "error";
     }
     return "?";
+}
+
+const char* comparison_name(Comparison comparison) {
+    return comparison == Comparison::GeometryTruth ? "truth" : "reference";
 }
 
 void AoTexture::ensure(int w, int h, GLenum internal_format) {
@@ -234,13 +240,52 @@ bool ViewerRenderer::step_reference(ReferenceJob& job, bool use_scene_normals) {
     upload_image(reference_, reference);
     if (job.done()) {
         job.method_image = samples::read_texture_region(ao_[0].texture.get(), 0, 0, ao_[0].width, ao_[0].height);
-        job.metrics = samples::compare_images(job.method_image, reference);
+        const std::vector<uint8_t> mask = geometry_mask();
+        job.metrics = samples::compare_images(job.method_image, reference, &mask);
         upload_image(heat_, samples::error_heat_map(job.method_image, reference));
     }
     return true;
 }
 
-void ViewerRenderer::composite(ViewMode mode, float split, bool split_reference, const ReferenceJob& job) {
+void ViewerRenderer::upload_truth(const samples::FloatImage& visibility) { upload_image(truth_, visibility); }
+
+samples::ErrorMetrics ViewerRenderer::compare_with_truth(const samples::FloatImage& truth,
+                                                         const std::vector<uint8_t>& mask) {
+    if (!ao_[0].texture.get()) throw std::runtime_error("no AO image to compare with the geometry truth");
+    const samples::FloatImage method =
+        samples::read_texture_region(ao_[0].texture.get(), 0, 0, ao_[0].width, ao_[0].height);
+    const samples::ErrorMetrics metrics = samples::compare_images(method, truth, &mask);
+    upload_image(truth_heat_, samples::error_heat_map(method, truth));
+    return metrics;
+}
+
+std::vector<uint8_t> ViewerRenderer::geometry_mask() const {
+    std::vector<uint8_t> mask(size_t(visible_width_) * size_t(visible_height_), 1);
+    if (!scene_) return mask;
+    const samples::SceneFrame& frame = scene_->frame();
+    const obscura_rect& r = frame.output_rect;
+    if (frame.normal_texture) {
+        const samples::FloatImage normals = samples::read_texture_region(frame.normal_texture, r.x, r.y, r.width, r.height,
+                                                                         samples::TextureReadFormat::Rgba);
+        for (size_t i = 0; i < mask.size(); ++i) mask[i] = normals.pixels[4 * i + 3] > 0.5f ? 1 : 0;
+    } else if (frame.depth_kind == OBSCURA_DEPTH_LINEAR_VIEW && frame.samples == 1) {
+        // A depth file: positive view depth, sky stored as +infinity.
+        const samples::FloatImage depth = samples::read_texture_region(frame.depth_texture, r.x, r.y, r.width, r.height);
+        for (size_t i = 0; i < mask.size(); ++i) {
+            const float d = depth.pixels[i];
+            mask[i] = std::isfinite(d) && d > 0.0f ? 1 : 0;
+        }
+    }
+    return mask;
+}
+
+GLuint ViewerRenderer::reference_texture(const ReferenceJob& job) const {
+    return job.active() && job.traced_rays() > 0 ? reference_.get() : 0;
+}
+
+GLuint ViewerRenderer::reference_heat(const ReferenceJob& job) const { return job.done() ? heat_.get() : 0; }
+
+void ViewerRenderer::composite(ViewMode mode, float split, GLuint right, GLuint heat) {
     const GLuint program = composite_.get();
     glUseProgram(program);
     const samples::SceneFrame* frame = scene_ ? &scene_->frame() : nullptr;
@@ -248,14 +293,12 @@ void ViewerRenderer::composite(ViewMode mode, float split, bool split_reference,
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, ao_[0].texture.get());
     glActiveTexture(GL_TEXTURE1);
-    const bool right_is_reference = split_reference && job.active() && job.traced_rays() > 0;
-    const GLuint right = right_is_reference ? reference_.get() : (split_reference ? 0 : ao_[1].texture.get());
     glBindTexture(GL_TEXTURE_2D, right);
     glActiveTexture(GL_TEXTURE2);
     glBindTexture(GL_TEXTURE_2D, has_normals ? frame->normal_texture : 0);
     glActiveTexture(GL_TEXTURE3);
-    const bool has_heat = job.done() && heat_.get();
-    glBindTexture(GL_TEXTURE_2D, has_heat ? heat_.get() : 0);
+    const bool has_heat = heat != 0;
+    glBindTexture(GL_TEXTURE_2D, heat);
     glActiveTexture(GL_TEXTURE0);
     glUniform1i(glGetUniformLocation(program, "u_mode"), int(mode));
     glUniform1f(glGetUniformLocation(program, "u_split"), split);

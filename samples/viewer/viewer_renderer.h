@@ -4,9 +4,11 @@
 //      with a guard band and a view-space normal texture, as an engine's G-buffer pass would;
 //   2. AO of one or two method settings into R16F targets of the visible size (obscura_render);
 //   3. a composite into the window: AO only, lit with or without AO on the ambient term, a split screen, or the
-//      error heat map against the reference.
-// ReferenceJob accumulates the ray-traced reference for a frozen view a chunk of rays per frame, so the window
-// stays responsive, and then measures the method against it.
+//      error heat map against what the method is compared with (the comparison).
+// Two comparisons: the screen-space reference (REFERENCE, rays marched through the depth buffer, every surface
+// infinitely thick), which ReferenceJob accumulates for a frozen view a chunk of rays per frame on the GPU so the
+// window stays responsive; and the geometry truth (rays against the scene's triangles on the CPU), which
+// TruthJob (viewer_truth.h) traces on a worker thread and whose estimates the renderer only uploads.
 #ifndef OBSCURA_VIEWER_RENDERER_H
 #define OBSCURA_VIEWER_RENDERER_H
 
@@ -39,6 +41,13 @@ ViewerScene load_viewer_scene(const std::string& name_or_path);
 enum class ViewMode { AoOnly, LitWithAo, LitWithoutAo, Split, ErrorMap };
 const char* view_mode_name(ViewMode mode);  // "ao", "lit", "lit-no-ao", "split", "error"
 
+// What the heat map and the split view compare the method with.
+enum class Comparison {
+    ScreenSpaceReference,  // REFERENCE: the depth buffer ray-traced on the GPU (sees only what the camera sees)
+    GeometryTruth          // the scene's triangles ray-traced on the CPU (mesh scenes only)
+};
+const char* comparison_name(Comparison comparison);  // "reference", "truth" (the --compare values)
+
 // An R16F or R32F texture of the visible size that obscura_render writes.
 struct AoTexture {
     samples::HostTexture texture;
@@ -67,7 +76,7 @@ public:
     obscura_settings reference{};      // the settings of one chunk (first_ray moves on)
     samples::FloatImage sum;           // accumulated visibility x rays
     samples::FloatImage method_image;  // the method's AO at the time the reference completed
-    std::optional<samples::ErrorMetrics> metrics;
+    std::optional<samples::ErrorMetrics> metrics;  // over geometry pixels (sky excluded)
 
 private:
     friend class ViewerRenderer;
@@ -94,9 +103,27 @@ public:
     // One step of `job` (a chunk of reference rays) for the current scene, given slot 0 holds the method's
     // AO. False on failure (last_error()).
     bool step_reference(ReferenceJob& job, bool use_scene_normals);
+    // The geometry truth's estimate (visible size, rows bottom-up) into the truth texture, for the split view.
+    void upload_truth(const samples::FloatImage& visibility);
+    // Measures slot 0 (the method) against `truth` over the pixels where `mask` is non-zero and uploads the
+    // heat map of the truth comparison. Throws std::runtime_error / std::invalid_argument (sizes differ).
+    samples::ErrorMetrics compare_with_truth(const samples::FloatImage& truth, const std::vector<uint8_t>& mask);
+    // One byte per visible pixel, 1 where the rasterised scene has geometry (normals' alpha; depth for a depth
+    // file), 0 on sky.
+    std::vector<uint8_t> geometry_mask() const;
     // Draws `mode` into the current framebuffer's viewport. Split: slot 0 left of `split` (0..1 of the
-    // width), slot 1 or the reference (split_reference) to the right.
-    void composite(ViewMode mode, float split, bool split_reference, const ReferenceJob& job);
+    // width), `right` (an R16F/R32F texture, 0 for none: mid grey) to the right. Error: the RGB heat map `heat`
+    // (0: the method's AO while the comparison is not ready).
+    void composite(ViewMode mode, float split, GLuint right, GLuint heat);
+
+    GLuint ao_texture(int slot) const { return ao_[slot].texture.get(); }
+    // The screen-space reference so far, and its heat map once the job is done (0 otherwise).
+    GLuint reference_texture(const ReferenceJob& job) const;
+    GLuint reference_heat(const ReferenceJob& job) const;
+    GLuint truth_texture() const { return truth_.get(); }
+    GLuint truth_heat() const { return truth_heat_.get(); }
+    // The current frame (nullptr before the first render_scene()).
+    const samples::SceneFrame* frame() const { return scene_ ? &scene_->frame() : nullptr; }
 
     // The size of the visible image of the current scene.
     int width() const { return visible_width_; }
@@ -115,7 +142,9 @@ private:
     AoTexture ao_[2];
     AoTexture chunk_;                // one chunk of reference rays
     samples::HostTexture reference_; // the accumulated reference (R32F), for the split view
-    samples::HostTexture heat_;      // the error heat map (RGB8)
+    samples::HostTexture heat_;      // the error heat map against the reference (RGB32F)
+    samples::HostTexture truth_;     // the geometry truth's latest estimate (R32F)
+    samples::HostTexture truth_heat_;// the error heat map against the truth (RGB32F)
     samples::HostProgram composite_;
     samples::HostVertexArray empty_vao_;
     std::string last_error_;

@@ -1,19 +1,24 @@
-// obscura_viewer_screenshot_check SHOT.png PANEL_WIDTH: checks a screenshot of obscura-viewer.
+// obscura_viewer_screenshot_check SHOT.png PANEL_WIDTH [heat]: checks a screenshot of obscura-viewer.
 //   - the scene (right of the panel) is not blank: its luminance varies (standard deviation >= 0.02) and it
 //     is not all one extreme;
 //   - the panel is there: most of its pixels have the dark window background of Dear ImGui's dark style and a
-//     few percent are light (its text and widgets).
-// Exit 0 when both hold, 1 otherwise (with the measured numbers), 2 for bad arguments or an unreadable file.
+//     few percent are light (its text and widgets);
+//   - with `heat`, the scene is an error heat map (white 0, yellow, red, black): at least 0.5 % of its pixels
+//     are warm colours (red clearly above blue), which a grey AO image never has, and it is neither all
+//     white nor all black (under 98 % of the pixels near white, under 98 % near black).
+// Exit 0 when all hold, 1 otherwise (with the measured numbers), 2 for bad arguments or an unreadable file.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
 
 #include "image_io.h"
 
 int main(int argc, char** argv) {
-    if (argc != 3) {
-        std::fprintf(stderr, "usage: %s SHOT.png PANEL_WIDTH\n", argv[0]);
+    const bool heat = argc == 4 && std::strcmp(argv[3], "heat") == 0;
+    if (argc != 3 && !heat) {
+        std::fprintf(stderr, "usage: %s SHOT.png PANEL_WIDTH [heat]\n", argv[0]);
         return 2;
     }
     obscura::samples::FloatImage image;
@@ -55,5 +60,25 @@ int main(int argc, char** argv) {
     const bool panel_ok = dark >= 0.3 && light >= 0.01;
     std::printf("%s: scene mean %.3f deviation %.3f (%s); panel dark %.2f light %.3f (%s)\n", argv[1], mean, deviation,
                 scene_ok ? "ok" : "BLANK", dark, light, panel_ok ? "ok" : "NO PANEL");
-    return scene_ok && panel_ok ? 0 : 1;
+    bool heat_ok = true;
+    if (heat && image.channels >= 3) {
+        double warm = 0.0, white = 0.0, black = 0.0;
+        for (int y = 0; y < image.height; ++y)
+            for (int x = panel + 4; x < image.width; ++x) {
+                const double r = image.at(x, y, 0), b = image.at(x, y, 2), v = luma(x, y);
+                warm += r - b > 0.25 ? 1.0 : 0.0;
+                white += v > 0.97 ? 1.0 : 0.0;
+                black += v < 0.03 ? 1.0 : 0.0;
+            }
+        warm /= n;
+        white /= n;
+        black /= n;
+        heat_ok = warm >= 0.005 && white < 0.98 && black < 0.98;
+        std::printf("%s: heat map: warm %.3f white %.3f black %.3f (%s)\n", argv[1], warm, white, black,
+                    heat_ok ? "ok" : "NOT A HEAT MAP");
+    } else if (heat) {
+        heat_ok = false;
+        std::printf("%s: heat map check needs an RGB screenshot\n", argv[1]);
+    }
+    return scene_ok && panel_ok && heat_ok ? 0 : 1;
 }
