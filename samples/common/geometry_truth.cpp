@@ -10,6 +10,8 @@
 #include <embree3/rtcore.h>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "integer_hash.h"
+
 namespace obscura::samples {
 namespace {
 
@@ -18,18 +20,6 @@ constexpr double kPi = 3.14159265358979323846;
 // The R2 sequence's step: (1/g, 1/g^2) for the plastic number g, the real root of x^3 = x + 1.
 constexpr double kR2StepX = 0.75487766624669276005;
 constexpr double kR2StepY = 0.56984029099805326591;
-
-// A 32-bit integer hash (a xorshift-multiply finaliser) for the per-pixel rotations.
-uint32_t hash32(uint32_t x) {
-    x ^= x >> 16;
-    x *= 0x7feb352dU;
-    x ^= x >> 15;
-    x *= 0x846ca68bU;
-    x ^= x >> 16;
-    return x;
-}
-
-float unit_float(uint32_t bits) { return float(bits >> 8) * (1.0f / 16777216.0f); }
 
 // An orthonormal basis around unit n (Duff et al., "Building an Orthonormal Basis, Revisited", JCGT 2017).
 void tangent_frame(const glm::vec3& n, glm::vec3* t, glm::vec3* b) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "integer_hash.h"
 #include "mesh_builder.h"
 #include "scenes/procedural_scenes.h"
 
@@ -16,18 +17,10 @@ constexpr int kCells = 224;         // 0.43 m cells
 
 // Integer hash (xorshift-multiply rounds) of a lattice point; deterministic on every platform.
 uint32_t hash(int32_t x, int32_t z, uint32_t seed) {
-    uint32_t h = uint32_t(x) * 0x8da6b343u ^ uint32_t(z) * 0xd8163841u ^ seed * 0xcb1ab31fu;
-    h ^= h >> 16;
-    h *= 0x7feb352du;
-    h ^= h >> 15;
-    h *= 0x846ca68bu;
-    h ^= h >> 16;
-    return h;
+    return hash32(uint32_t(x) * 0x8da6b343u ^ uint32_t(z) * 0xd8163841u ^ seed * 0xcb1ab31fu);
 }
 
-float lattice(int32_t x, int32_t z, uint32_t seed) {
-    return float(hash(x, z, seed) >> 8) * (1.0f / 16777216.0f);  // [0, 1)
-}
+float lattice(int32_t x, int32_t z, uint32_t seed) { return unit_float(hash(x, z, seed)); }
 
 // Value noise in [0, 1): lattice values blended with a quintic fade (C2 across cell borders).
 float value_noise(float x, float z, uint32_t seed) {
