@@ -1,6 +1,6 @@
 // libFuzzer target for the settings API, no GL: obscura_default_settings, obscura_resolve_settings (without a
-// context), obscura_reference_settings_for, obscura_get_setting_infos, obscura_set_setting / obscura_get_setting,
-// obscura_status_string, obscura_method_name and obscura_method_available, fed with raw bytes and raw enum values.
+// context), obscura_reference_settings_for, obscura_evaluate_falloff, obscura_get_setting_infos,
+// obscura_set_setting / obscura_get_setting, obscura_status_string, obscura_method_name and obscura_method_available, fed with raw bytes and raw enum values.
 //
 // Input layout (all optional: missing bytes read as zero, so a seed needs no knowledge of the struct's size):
 //   u8 flags      bit 0: force settings.struct_size valid; bit 1: force a small method value (-1..6) into the
@@ -255,6 +255,13 @@ void check_resolve(const obscura_settings& input, bool* resolved_ok, obscura_set
         FUZZ_CHECK(reference_status == status, "obscura_reference_settings_for returned %d where resolve returned %d",
                    reference_status, status);
         FUZZ_CHECK(same_bytes(reference, reference_untouched), "obscura_reference_settings_for failed but wrote");
+        // The falloff evaluator resolves the same way and writes nothing when it refuses.
+        const float distance = 0.5f;
+        float rho = -7.0f;
+        const int32_t falloff_status = status_code(obscura_evaluate_falloff(&input, &distance, &rho, 1));
+        FUZZ_CHECK(falloff_status == status, "obscura_evaluate_falloff returned %d where resolve returned %d",
+                   falloff_status, status);
+        FUZZ_CHECK(rho == -7.0f, "obscura_evaluate_falloff failed but wrote %g", double(rho));
         return;
     }
     FUZZ_CHECK(input.struct_size == sizeof input && valid_method(method), "resolve accepted struct_size %u method %d",
@@ -298,6 +305,20 @@ void check_resolve(const obscura_settings& input, bool* resolved_ok, obscura_set
     FUZZ_CHECK(load_raw(reference.method) == OBSCURA_METHOD_REFERENCE, "reference settings have method %d",
                load_raw(reference.method));
     check_resolved(reference, "reference settings");
+
+    // The falloff those settings weigh an occluder with: finite, in [0, 1], and what the matching reference
+    // weighs with (one definition of each falloff).
+    const float distances[5] = {0.0f, 0.3f, 1.0f, 7.5f, 1e4f};
+    float rho[5], rho_reference[5];
+    FUZZ_CHECK(status_code(obscura_evaluate_falloff(&input, distances, rho, 5)) == kOk &&
+                   status_code(obscura_evaluate_falloff(&reference, distances, rho_reference, 5)) == kOk,
+               "obscura_evaluate_falloff refused settings that resolve");
+    for (int i = 0; i < 5; ++i) {
+        FUZZ_CHECK(std::isfinite(rho[i]) && rho[i] >= 0.0f && rho[i] <= 1.0f, "rho(%g) = %g is outside [0, 1]",
+                   double(distances[i]), double(rho[i]));
+        FUZZ_CHECK(rho[i] == rho_reference[i], "rho(%g) differs from the reference's: %g vs %g", double(distances[i]),
+                   double(rho[i]), double(rho_reference[i]));
+    }
     obscura_settings reference_again;
     int32_t reference_again_status = status_code(obscura_resolve_settings(nullptr, &reference, &reference_again));
     FUZZ_CHECK(reference_again_status == kOk && same_bytes(reference_again, reference),

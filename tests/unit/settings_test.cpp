@@ -697,3 +697,81 @@ TEST(SettingsRanges, SmallestDerivedDecayRateResolvesAgain) {
     EXPECT_EQ(obscura_resolve_settings(nullptr, &resolved, &again), OBSCURA_OK);
     EXPECT_EQ(obscura_reference_settings_for(&s, &reference), OBSCURA_OK);
 }
+
+// ---- obscura_evaluate_falloff: the SDK's falloff, as the geometry truth weighs its hits ------------------
+
+namespace {
+
+float falloff_at(const obscura_settings& settings, float distance) {
+    float rho = -1.0f;
+    EXPECT_EQ(obscura_evaluate_falloff(&settings, &distance, &rho, 1), OBSCURA_OK);
+    return rho;
+}
+
+obscura_settings reference_with_falloff(obscura_falloff falloff) {
+    obscura_settings settings{};
+    settings.struct_size = sizeof settings;
+    settings.method = OBSCURA_METHOD_REFERENCE;
+    settings.reference.falloff = falloff;
+    return settings;
+}
+
+}  // namespace
+
+// Values worked out by hand from the header's formulas (radius 1 m, C = 0.3, r = C radius^2 = 0.3 m^2).
+TEST(EvaluateFalloff, EachKindAtKnownDistances) {
+    const obscura_settings rho0 = reference_with_falloff(OBSCURA_FALLOFF_RHO0);
+    EXPECT_NEAR(falloff_at(rho0, 0.0f), 1.0f, 1e-6f);
+    EXPECT_NEAR(falloff_at(rho0, 0.5f), 0.39f / 0.55f - 0.3f, 1e-6f);  // r(1+C)/(r+d^2) - C
+    EXPECT_NEAR(falloff_at(rho0, 1.0f), 0.0f, 1e-6f);                  // reaches 0 at the radius
+    EXPECT_EQ(falloff_at(rho0, 3.0f), 0.0f);                           // and stays there
+    const obscura_settings inverse = reference_with_falloff(OBSCURA_FALLOFF_INVERSE_QUADRATIC);
+    EXPECT_NEAR(falloff_at(inverse, std::sqrt(0.3f)), 0.5f, 1e-6f);    // r/(r+d^2) at d^2 = r
+    const obscura_settings exponential = reference_with_falloff(OBSCURA_FALLOFF_EXPONENTIAL);
+    EXPECT_NEAR(falloff_at(exponential, std::sqrt(0.3f)), std::exp(-1.0f), 1e-6f);
+    obscura_settings table = reference_with_falloff(OBSCURA_FALLOFF_TABLE);
+    for (int i = 0; i < OBSCURA_FALLOFF_TABLE_SIZE; ++i) table.reference.falloff_table[i] = i % 2 ? 0.0f : 1.0f;
+    EXPECT_NEAR(falloff_at(table, 0.5f / 15.0f), 0.5f, 1e-6f);         // halfway between samples 0 and 1
+    EXPECT_NEAR(falloff_at(table, 2.0f / 15.0f), 1.0f, 1e-6f);
+    EXPECT_EQ(falloff_at(table, 1.0f), 0.0f);                          // 0 from the radius on
+}
+
+// Another method's falloff is the one obscura_reference_settings_for maps it to.
+TEST(EvaluateFalloff, MethodsWeighWithTheirReferenceFalloff) {
+    obscura_settings hbao{};
+    ASSERT_EQ(obscura_default_settings(OBSCURA_METHOD_HBAO, &hbao), OBSCURA_OK);
+    hbao.hbao.radius = 2.0f;
+    hbao.hbao.decay_rate = 0.0f;  // derived: C * 4 m^2, so rho0 ends at 2 m
+    EXPECT_GT(falloff_at(hbao, 1.9f), 0.0f);
+    EXPECT_EQ(falloff_at(hbao, 2.01f), 0.0f);
+    obscura_settings sao{};
+    ASSERT_EQ(obscura_default_settings(OBSCURA_METHOD_SAO, &sao), OBSCURA_OK);
+    EXPECT_EQ(falloff_at(sao, 0.99f * sao.sao.radius), 1.0f);  // AlchemyAO: a step at the radius
+    EXPECT_EQ(falloff_at(sao, 1.01f * sao.sao.radius), 0.0f);
+    obscura_settings lsao{};
+    ASSERT_EQ(obscura_default_settings(OBSCURA_METHOD_LSAO, &lsao), OBSCURA_OK);
+    obscura_settings mapped{};
+    ASSERT_EQ(obscura_reference_settings_for(&lsao, &mapped), OBSCURA_OK);
+    const float distances[3] = {0.1f, 1.0f, 30.0f};
+    float from_method[3], from_reference[3];
+    ASSERT_EQ(obscura_evaluate_falloff(&lsao, distances, from_method, 3), OBSCURA_OK);
+    ASSERT_EQ(obscura_evaluate_falloff(&mapped, distances, from_reference, 3), OBSCURA_OK);
+    for (int i = 0; i < 3; ++i) EXPECT_EQ(from_method[i], from_reference[i]);
+    EXPECT_GT(from_method[2], 0.0f);  // r/(r+d^2) never reaches 0
+}
+
+TEST(EvaluateFalloff, RefusesBadArgumentsAndSettings) {
+    obscura_settings settings = reference_with_falloff(OBSCURA_FALLOFF_RHO0);
+    float distance = 0.5f, rho = -1.0f;
+    EXPECT_EQ(obscura_evaluate_falloff(nullptr, &distance, &rho, 1), OBSCURA_STATUS_NULL_ARGUMENT);
+    EXPECT_EQ(obscura_evaluate_falloff(&settings, nullptr, &rho, 1), OBSCURA_STATUS_NULL_ARGUMENT);
+    EXPECT_EQ(obscura_evaluate_falloff(&settings, &distance, nullptr, 1), OBSCURA_STATUS_NULL_ARGUMENT);
+    EXPECT_EQ(obscura_evaluate_falloff(&settings, nullptr, nullptr, 0), OBSCURA_OK);  // validates only
+    settings.reference.falloff = 9;
+    EXPECT_EQ(obscura_evaluate_falloff(&settings, &distance, &rho, 1), OBSCURA_STATUS_INVALID_SETTING);
+    EXPECT_EQ(rho, -1.0f);  // nothing written on failure
+    settings = reference_with_falloff(OBSCURA_FALLOFF_TABLE);  // a table of zeros is refused
+    EXPECT_EQ(obscura_evaluate_falloff(&settings, &distance, &rho, 1), OBSCURA_STATUS_INVALID_SETTING);
+    settings.struct_size = 4;
+    EXPECT_EQ(obscura_evaluate_falloff(&settings, &distance, &rho, 1), OBSCURA_STATUS_INVALID_STRUCT_SIZE);
+}
