@@ -1,6 +1,8 @@
 #include "analytic_ao.h"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 #include <cmath>
 #include <limits>
 
@@ -152,6 +154,25 @@ double exact_obscurance(const std::vector<AnalyticPrimitive>& scene, const glm::
         sum += ring;
     }
     return sum / (double(u_cells) * double(phi_cells));
+}
+
+double exact_obscurance(const std::vector<AnalyticPrimitive>& scene, const glm::dvec3& p, const glm::dvec3& n,
+                        const obscura_settings& falloff, int resolution) {
+    // The same quadrature, its hit distances weighed in one call (obscura_evaluate_falloff resolves the settings
+    // once per call).
+    std::vector<float> distances;
+    exact_obscurance(scene, p, n, [&](double t) { distances.push_back(float(t)); return 0.0; }, resolution);
+    std::vector<float> rho(distances.size());
+    const obscura_status status =
+        obscura_evaluate_falloff(&falloff, distances.data(), rho.data(), uint32_t(distances.size()));
+    if (status != OBSCURA_OK) {
+        throw std::invalid_argument(std::string("exact_obscurance: the falloff's settings are refused (") +
+                                    obscura_status_string(status) + ")");
+    }
+    double sum = 0.0;
+    for (float value : rho) sum += double(value);
+    const double cells = double(std::max(resolution, 1)) * double(4 * std::max(resolution, 1));
+    return sum / cells;
 }
 
 }  // namespace obscura::samples

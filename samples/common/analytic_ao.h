@@ -34,6 +34,8 @@
 
 #include <glm/glm.hpp>
 
+#include "obscura/obscura.h"
+
 namespace obscura::samples {
 
 // Layout of the analytic scene (the numbers above), for tests and tools that pick receivers.
@@ -76,6 +78,11 @@ bool cast_ray(const std::vector<AnalyticPrimitive>& scene, const glm::dvec3& ori
 // called for misses. resolution < 1 is treated as 1.
 double exact_obscurance(const std::vector<AnalyticPrimitive>& scene, const glm::dvec3& p, const glm::dvec3& n,
                         const std::function<double(double)>& rho, int resolution = 256);
+
+// The same with the falloff of `falloff` (any method's settings), as the SDK defines it
+// (obscura_evaluate_falloff), all hits weighed in one call. std::invalid_argument for refused settings.
+double exact_obscurance(const std::vector<AnalyticPrimitive>& scene, const glm::dvec3& p, const glm::dvec3& n,
+                        const obscura_settings& falloff, int resolution = 256);
 
 }  // namespace obscura::samples
 

@@ -32,9 +32,16 @@ constexpr int kHeight = 180;
 constexpr double kRadius = 1.0;
 constexpr double kC = 0.3;
 
-double rho0(double d) {
-    const double r = kC * kRadius * kRadius;
-    return std::max(0.0, r * (1.0 + kC) / (r + d * d) - kC);
+// rho0 with radius 1 m and C = 0.3 (decay rate C * radius^2), evaluated as the SDK defines it
+// (exact_obscurance hands the hits to obscura_evaluate_falloff).
+obscura_settings rho0_settings() {
+    obscura_settings settings{};
+    settings.struct_size = sizeof settings;
+    settings.method = OBSCURA_METHOD_REFERENCE;
+    settings.reference.falloff = OBSCURA_FALLOFF_RHO0;
+    settings.reference.radius = float(kRadius);
+    settings.reference.falloff_c = float(kC);
+    return settings;
 }
 
 struct Receiver {
@@ -124,7 +131,7 @@ void expect_matches_exact(obscura_context* context, const obscura_settings& sett
         for (size_t m = 0; m < members[k].size(); m += stride) {
             const Receiver& receiver = *members[k][m];
             const double exact =
-                1.0 - obscura::samples::exact_obscurance(primitives, receiver.position, receiver.normal, rho0, 192);
+                1.0 - obscura::samples::exact_obscurance(primitives, receiver.position, receiver.normal, rho0_settings(), 192);
             classes[k].errors.push_back(double(visibility[size_t(receiver.index)]) - exact);
 
         }
