@@ -74,6 +74,10 @@ std::string error_file(const CompareResult& result, size_t method_index, TruthKi
     return method_file_stem(result, method_index) + "_error_" + truth_kind_name(truth) + ".png";
 }
 
+std::string signed_error_file(const CompareResult& result, size_t method_index, TruthKind truth) {
+    return method_file_stem(result, method_index) + "_signed_" + truth_kind_name(truth) + ".png";
+}
+
 std::string truth_file(TruthKind truth, size_t reference_index) {
     return std::string(truth == TruthKind::Geometry ? "geometry_truth_" : "reference_") +
            std::to_string(reference_index + 1) + ".png";
@@ -98,12 +102,15 @@ std::vector<std::string> write_compare_images(const CompareResult& result, const
             const ComparedTruth& truth = result.truths[t];
             const ComparedReference& reference = truth.references[method.reference];
             const samples::ErrorMetrics& metrics = method.errors[t].metrics;
-            const samples::FloatImage errors = samples::error_heat_map(method.frames.front(), reference.frames.front());
-            write(error_file(result, i, truth.kind), errors);
+            write(error_file(result, i, truth.kind),
+                  samples::error_heat_map(method.frames.front(), reference.frames.front()));
+            const samples::FloatImage signed_errors =
+                samples::signed_error_map(method.frames.front(), reference.frames.front());
+            write(signed_error_file(result, i, truth.kind), signed_errors);
             sheet.push_back(reference.frames.front());
             labels.push_back(std::string(truth.kind == TruthKind::Geometry ? "truth: " : "screen ref: ") +
                              reference.description);
-            sheet.push_back(errors);
+            sheet.push_back(signed_errors);
             labels.push_back(std::string(truth_kind_name(truth.kind)) + " " + format_fixed(metrics.mean_abs, 4) + " " +
                              format_signed(metrics.mean_signed, 3) + " " + format_fixed(100.0 * metrics.within_5pct, 0) +
                              "%");
@@ -211,6 +218,7 @@ void write_compare_json(const CompareResult& result, const std::string& path) {
             json.field("pixels", double(errors.metrics.pixels));
             if (errors.flicker) json.field("flicker", *errors.flicker);
             json.field("error_image", error_file(result, i, result.truths[t].kind));
+            json.field("signed_error_image", signed_error_file(result, i, result.truths[t].kind));
             json.field("truth_image", truth_file(result.truths[t].kind, method.reference));
             json.end_object();
         }

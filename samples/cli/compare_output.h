@@ -79,13 +79,15 @@ struct CompareResult {
 
 // "<index>_<method name>" (1-based index), the stem of a method's image files.
 std::string method_file_stem(const CompareResult& result, size_t method_index);
-// "<stem>_error_<truth>.png" and the truth's image of falloff k: "geometry_truth_<k>.png" or "reference_<k>.png".
+// "<stem>_error_<truth>.png" (heat map of |method - truth|), "<stem>_signed_<truth>.png" (red too dark, blue too
+// bright) and the truth's image of falloff k: "geometry_truth_<k>.png" or "reference_<k>.png".
 std::string error_file(const CompareResult& result, size_t method_index, TruthKind truth);
+std::string signed_error_file(const CompareResult& result, size_t method_index, TruthKind truth);
 std::string truth_file(TruthKind truth, size_t reference_index);
 
-// Writes <stem>.png and <stem>_error_<truth>.png per method and truth, each truth's image per falloff (first
-// frame) and contact_sheet.png (per method: AO, then truth and error heat map for each truth) into `directory`
-// (created if needed). Returns the file names written.
+// Writes <stem>.png, <stem>_error_<truth>.png and <stem>_signed_<truth>.png per method and truth, each truth's
+// image per falloff (first frame) and contact_sheet.png (per method: AO, then for each truth the truth and the
+// signed error map) into `directory` (created if needed). Returns the file names written.
 std::vector<std::string> write_compare_images(const CompareResult& result, const std::filesystem::path& directory);
 // The --strip sheet, for documentation: each method's AO (first frame) labelled with its settings (the
 // spec without the method's name when every spec names the same method), then, when the methods were

@@ -57,8 +57,9 @@ compare renders each method and measures it against its truth with the same fall
   wall ms, mean_abs, within_5pct (fraction of pixels within 0.05), PSNR, max_abs and the signed mean
   (method - truth: > 0 too bright), over the geometry pixels (sky left out and its fraction printed;
   --metrics-pixels all counts every pixel). --out-dir gets <n>_<method>.png,
-  <n>_<method>_error_<geometry|screen>.png (white 0, black >= 0.2), geometry_truth_<k>.png and/or
-  reference_<k>.png (one per falloff) and contact_sheet.png (method | truth | error). --orbit DEG --frames
+  <n>_<method>_error_<geometry|screen>.png (white 0, black >= 0.2), <n>_<method>_signed_<truth>.png (red
+  too dark, blue too bright, full at 0.2), geometry_truth_<k>.png and/or reference_<k>.png (one per
+  falloff) and contact_sheet.png (method | truth | signed error). --orbit DEG --frames
   N: N frames along an orbit of DEG degrees in total (images of the first); errors are averaged over them
   and flicker measures the temporal error. --strip writes one sheet of the methods' AO labelled with their
   settings, then the first truth's images if there are several (falloffs differ).

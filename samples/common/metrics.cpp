@@ -253,6 +253,32 @@ FloatImage error_heat_map(const FloatImage& image, const FloatImage& reference, 
     return heat;
 }
 
+FloatImage signed_error_map(const FloatImage& image, const FloatImage& reference, double full_scale) {
+    check_same_size(image, reference);
+    if (!(full_scale > 0.0)) throw std::invalid_argument("signed error map full scale must be positive");
+    FloatImage map;
+    map.width = image.width;
+    map.height = image.height;
+    map.channels = 3;
+    const size_t pixel_count = size_t(image.width) * size_t(image.height);
+    map.pixels.resize(pixel_count * 3);
+    const size_t channels = size_t(image.channels);
+    for (size_t i = 0; i < pixel_count; ++i) {
+        const double difference = double(image.pixels[i * channels]) - double(reference.pixels[i * channels]);
+        float* rgb = &map.pixels[i * 3];
+        if (!std::isfinite(difference)) {
+            rgb[0] = rgb[1] = rgb[2] = 0.0f;
+            continue;
+        }
+        const float fade = float(1.0 - std::min(1.0, std::fabs(difference) / full_scale));
+        // Too dark: red stays 1 and the others fade; too bright: blue stays 1.
+        rgb[0] = difference < 0.0 ? 1.0f : fade;
+        rgb[1] = fade;
+        rgb[2] = difference > 0.0 ? 1.0f : fade;
+    }
+    return map;
+}
+
 double flicker(const std::vector<FloatImage>& method_frames, const std::vector<FloatImage>& reference_frames) {
     if (method_frames.size() != reference_frames.size()) {
         throw std::invalid_argument("flicker: " + std::to_string(method_frames.size()) + " method frames but " +

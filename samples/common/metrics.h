@@ -60,6 +60,12 @@ FloatImage quantize_8bit(const FloatImage& image);
 // >= 20 %). Same size rules as compare_images; `full_scale` must be > 0.
 FloatImage error_heat_map(const FloatImage& image, const FloatImage& reference, double full_scale = 0.2);
 
+// RGB map of the signed error image - reference (first channel): white at 0, towards red where the image is
+// darker than the reference (too much occlusion: halos, darkened silhouettes), towards blue where it is
+// brighter (missing occlusion: lost contact shadows), saturated from `full_scale` on. Non-finite samples are
+// black. Same size rules as compare_images; `full_scale` must be > 0.
+FloatImage signed_error_map(const FloatImage& image, const FloatImage& reference, double full_scale = 0.2);
+
 // Temporal stability against a reference along the same camera path: the mean over consecutive frame
 // pairs i, i+1 and over pixels of |(m[i+1] - m[i]) - (r[i+1] - r[i])|, so a method that changes
 // exactly as the reference does scores 0 whatever its constant error. Needs as many method frames as

@@ -59,7 +59,7 @@ obscura_cli_command_test(render_depth_file 0
 obscura_cli_command_test(compare_analytic 0
   "compare|${scene}|--methods|hbao,hbao:blur=off|--truth|both|--truth-rays|64|--reference-rays|16|--out-dir|out|--json|report.json"
   GL CHECK compare
-  EXPECT_FILES "out/1_hbao.png|out/1_hbao_error_geometry.png|out/1_hbao_error_screen.png|out/2_hbao.png|out/2_hbao_error_geometry.png|out/geometry_truth_1.png|out/reference_1.png|out/contact_sheet.png"
+  EXPECT_FILES "out/1_hbao.png|out/1_hbao_error_geometry.png|out/1_hbao_signed_geometry.png|out/1_hbao_signed_screen.png|out/1_hbao_error_screen.png|out/2_hbao.png|out/2_hbao_error_geometry.png|out/geometry_truth_1.png|out/reference_1.png|out/contact_sheet.png"
   EXPECT_STDOUT "errors against the geometry truth [(]64 rays[)] over [0-9]+ geometry pixels[^\n]*sky [0-9.]+ %[^\n]*\nmethod +gpu ms +wall ms +mean_abs +within_5pct +psnr dB +max_abs +signed[^\n]*\n.*errors against the screen-space reference [(]16 rays[)]")
 # Metrics over every pixel: the sky counts (as zero error), so the same method scores better.
 obscura_cli_command_test(compare_metrics_all_pixels 0

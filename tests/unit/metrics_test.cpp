@@ -319,3 +319,20 @@ TEST(JsonWriter, MisuseThrows) {
 }
 
 }  // namespace
+
+// ---- signed_error_map --------------------------------------------------------------------------------
+
+TEST(SignedErrorMap, RedTooDarkBlueTooBright) {
+    FloatImage reference;
+    reference.width = 4;
+    reference.height = 1;
+    reference.pixels = {0.5f, 0.5f, 0.5f, 0.5f};
+    FloatImage image = reference;
+    image.pixels = {0.5f, 0.4f, 0.9f, std::nanf("")};  // equal, darker by half the scale, brighter past it, NaN
+    const FloatImage map = obscura::samples::signed_error_map(image, reference, 0.2);
+    ASSERT_EQ(map.channels, 3);
+    const std::vector<float> expected = {1.0f, 1.0f, 1.0f,   1.0f, 0.5f, 0.5f,   0.0f, 0.0f, 1.0f,   0.0f, 0.0f, 0.0f};
+    ASSERT_EQ(map.pixels.size(), expected.size());
+    for (size_t i = 0; i < expected.size(); ++i) EXPECT_NEAR(map.pixels[i], expected[i], 1e-6f) << "sample " << i;
+    EXPECT_THROW(obscura::samples::signed_error_map(image, reference, 0.0), std::invalid_argument);
+}
