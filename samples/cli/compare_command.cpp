@@ -3,9 +3,11 @@
 // measures the error (FFAO paper sec. 8: mean absolute error, fraction within 5 %; plus the signed mean, PSNR
 // and the largest error) over the geometry pixels of the output rectangle, and with --orbit the flicker along
 // a camera path.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <optional>
+#include <stdexcept>
 #include <cstdio>
 #include <filesystem>
 
@@ -24,7 +26,6 @@ namespace obscura::cli {
 namespace {
 
 constexpr int kDefaultReferenceRays = 256;
-constexpr int kDefaultTruthRays = 1024;
 
 struct CompareConfig {
     std::vector<MethodSpec> methods;
@@ -250,7 +251,12 @@ int run_compare(ArgumentList& arguments) {
         for (const obscura_settings& falloff : falloffs) {
             ComparedReference reference;
             reference.settings = falloff;
-            reference.description = describe_reference(falloff);
+            if (kind == TruthKind::Geometry) {
+                // The geometry truth takes the falloff only: its own rays, and the scene's real thickness.
+                reference.settings.reference.rays = truth.rays;
+                reference.settings.reference.thickness = 0.0f;
+            }
+            reference.description = describe_reference(reference.settings);
             truth.references.push_back(reference);
         }
         if (kind == TruthKind::Geometry) {
@@ -266,6 +272,13 @@ int run_compare(ArgumentList& arguments) {
         if (!result.masks[f].empty()) continue;
         result.masks[f] = tracer ? tracer->trace(frames[f].frame(), falloffs, 0, config.truth_seed, "primary rays").geometry_mask
                                  : samples::read_geometry_mask(frames[f].frame());
+    }
+    for (size_t f = 0; f < frames.size() && !result.all_pixels; ++f) {
+        if (std::count(result.masks[f].begin(), result.masks[f].end(), uint8_t(1)) == 0) {
+            throw std::runtime_error("frame " + std::to_string(f + 1) + " shows no geometry (every pixel is sky): "
+                                     "nothing to measure; aim the camera at the scene, or count every pixel with "
+                                     "--metrics-pixels all");
+        }
     }
     for (ComparedMethod& method : result.methods) measure_method(session, frames, source.use_normals(), result, method);
 

@@ -22,8 +22,6 @@
 namespace obscura::cli {
 namespace {
 
-constexpr int kDefaultTruthRays = 1024;
-
 struct TruthConfig {
     SceneSourceOptions scene;
     MethodSpec falloff;
@@ -48,6 +46,15 @@ TruthConfig take_truth_config(ArgumentList& arguments) {
     config.scene = take_scene_source_options(arguments, /*takes_size=*/true);
     arguments.require_all_taken();
     if (!out) throw UsageError("truth needs --out TRUTH.pfm (and optionally --depth-out DEPTH.pfm, --png TRUTH.png)");
+    if (config.depth_path) {
+        // What --depth reads back: one perspective, single-sample depth buffer with a guard band it accepts.
+        const samples::SceneRenderOptions& raster = config.scene.raster;
+        if (raster.samples > 1) throw UsageError("--depth-out needs a single-sample depth buffer (no --msaa)");
+        if (raster.projection == samples::ProjectionKind::Orthographic) {
+            throw UsageError("--depth-out needs a perspective projection: --depth reads perspective captures only");
+        }
+        if (!(raster.guard_band < 1.0f)) throw UsageError("--depth-out needs --guard-band below 1 (what --depth reads)");
+    }
     config.out_path = *out;
     return config;
 }
@@ -55,7 +62,6 @@ TruthConfig take_truth_config(ArgumentList& arguments) {
 // Positive view depth of every texel of the frame's depth texture (sky +inf), unprojected through the frame's
 // own projection, so every projection variant reads back as the same linear depth.
 samples::FloatImage linear_depth(const samples::SceneFrame& frame) {
-    if (frame.samples > 1) throw UsageError("--depth-out needs a single-sample depth buffer (no --msaa)");
     samples::FloatImage window = samples::read_texture_region(frame.depth_texture, 0, 0, frame.depth_width,
                                                               frame.depth_height, samples::TextureReadFormat::Depth);
     const glm::dmat4 inverse_projection = glm::inverse(glm::dmat4(glm::make_mat4(frame.projection)));

@@ -17,6 +17,7 @@
 namespace obscura::cli {
 
 constexpr int kTruthBatchRays = 32;
+constexpr int kDefaultTruthRays = 1024;  // compare --truth-rays, truth --rays: within 0.002 of converged
 constexpr uint32_t kDefaultTruthSeed = 1;
 
 struct TruthImages {

@@ -5,6 +5,8 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <exception>
+#include <mutex>
 #include <thread>
 
 #include <embree3/rtcore.h>
@@ -30,12 +32,6 @@ void tangent_frame(const glm::vec3& n, glm::vec3* t, glm::vec3* b) {
     *b = glm::vec3(c, sign + n.y * n.y * a, -n.y);
 }
 
-// The distance a secondary ray starts from its surface: above the float rounding of a primary hit's position.
-float surface_offset(const glm::vec3& p) {
-    const float extent = std::max({1.0f, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
-    return 1e-4f * extent;
-}
-
 std::string embree_error_text(RTCDevice device) {
     switch (rtcGetDeviceError(device)) {
         case RTC_ERROR_NONE: return "no error";
@@ -49,24 +45,40 @@ std::string embree_error_text(RTCDevice device) {
 }
 
 // Runs body(row) for rows [0, rows) on `threads` threads (rows handed out one at a time) with a
-// per-thread scratch state; stops handing out rows once `cancel` is set.
+// per-thread scratch state; stops handing out rows once `cancel` is set. The first exception a worker throws
+// stops the others and is rethrown here once every thread has joined.
 template <typename Scratch, typename Body>
 void parallel_rows(int rows, int threads, const std::atomic<bool>* cancel, Body body) {
     std::atomic<int> next{0};
+    std::atomic<bool> failed{false};
+    std::exception_ptr failure;
+    std::mutex failure_mutex;
     auto worker = [&] {
-        Scratch scratch;
-        for (;;) {
-            if (cancel && cancel->load(std::memory_order_relaxed)) return;
-            const int row = next.fetch_add(1);
-            if (row >= rows) return;
-            body(row, scratch);
+        try {
+            Scratch scratch;
+            for (;;) {
+                if (failed.load(std::memory_order_relaxed)) return;
+                if (cancel && cancel->load(std::memory_order_relaxed)) return;
+                const int row = next.fetch_add(1);
+                if (row >= rows) return;
+                body(row, scratch);
+            }
+        } catch (...) {
+            const std::lock_guard<std::mutex> lock(failure_mutex);
+            if (!failure) failure = std::current_exception();
+            failed = true;
         }
     };
     const int count = std::max(1, std::min(threads, rows));
     std::vector<std::thread> pool;
-    for (int i = 1; i < count; ++i) pool.emplace_back(worker);
+    try {
+        for (int i = 1; i < count; ++i) pool.emplace_back(worker);
+    } catch (...) {
+        // No more threads to be had: the ones started and this one do the work.
+    }
     worker();
     for (std::thread& thread : pool) thread.join();
+    if (failure) std::rethrow_exception(failure);
 }
 
 }  // namespace
@@ -116,9 +128,15 @@ TruthScene::TruthScene(const SceneMesh& mesh) : embree_(std::make_unique<Embree>
         rtcReleaseGeometry(geometry);
         throw std::runtime_error("geometry truth: Embree could not allocate the mesh's buffers (" + error + ")");
     }
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
     for (int v = 0; v < vertex_count; ++v) {
         for (int k = 0; k < 3; ++k) vertices[3 * v + k] = mesh.vertices[size_t(6 * v + k)];
+        const glm::vec3 position(vertices[3 * v], vertices[3 * v + 1], vertices[3 * v + 2]);
+        lo = glm::min(lo, position);
+        hi = glm::max(hi, position);
     }
+    const float diagonal = glm::length(hi - lo);
+    extent_ = std::isfinite(diagonal) ? diagonal : 0.0f;
     for (int i = 0; i < 3 * triangle_count_; ++i) indices[i] = uint32_t(i);
     rtcCommitGeometry(geometry);
     rtcAttachGeometry(embree_->scene, geometry);
@@ -159,6 +177,14 @@ bool TruthScene::intersect(const glm::vec3& origin, const glm::vec3& direction, 
         hit->triangle = query.hit.primID;
     }
     return true;
+}
+
+float TruthScene::surface_offset(const glm::vec3& p) const {
+    // 64 float steps at p's magnitude cover the rounding of a primary hit's position (its distance has a
+    // relative error of a few steps); a millionth of the scene's size keeps secondary rays off the surface's own
+    // triangles where p is near the origin. Both stay far below any contact a falloff can see.
+    const float magnitude = std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+    return 64.0f * std::numeric_limits<float>::epsilon() * magnitude + 1e-6f * extent_;
 }
 
 // ---- GeometryTruth --------------------------------------------------------------------------------
@@ -250,12 +276,14 @@ void GeometryTruth::trace_row(int y, int first_ray, int rays, std::vector<float>
     const size_t pixels = size_t(width_) * size_t(height_);
     for (int x = 0; x < width_; ++x) {
         const size_t index = size_t(y) * size_t(width_) + size_t(x);
-        for (size_t k = 0; k < falloffs_.size(); ++k) batch_[k * pixels + index] = 0.0;
+        // The batch continues the pixel's running sums, ray after ray, so the result does not depend on how the
+        // rays were split into batches.
+        for (size_t k = 0; k < falloffs_.size(); ++k) batch_[k * pixels + index] = sums_[k * pixels + index];
         if (!mask_[index]) continue;
         const glm::vec3 n = normal_[index];
         glm::vec3 t, b;
         tangent_frame(n, &t, &b);
-        const glm::vec3 origin = position_[index] + surface_offset(position_[index]) * n;
+        const glm::vec3 origin = position_[index] + scene_.surface_offset(position_[index]) * n;
         distances.clear();
         for (int i = 0; i < rays; ++i) {
             const glm::vec3 local = truth_ray_direction(uint32_t(first_ray + i), rotation_[index]);
@@ -270,9 +298,8 @@ void GeometryTruth::trace_row(int y, int first_ray, int rays, std::vector<float>
         for (size_t k = 0; k < falloffs_.size(); ++k) {
             // Checked in the constructor: these settings are accepted.
             obscura_evaluate_falloff(&falloffs_[k], distances.data(), rho.data(), uint32_t(distances.size()));
-            double sum = 0.0;
+            double& sum = batch_[k * pixels + index];
             for (float value : rho) sum += double(value);
-            batch_[k * pixels + index] = sum;
         }
     }
 }
@@ -286,7 +313,7 @@ bool GeometryTruth::trace(int rays, const std::atomic<bool>* cancel) {
     parallel_rows<Scratch>(height_, options_.threads, cancel,
                            [&](int y, Scratch& scratch) { trace_row(y, first_ray, rays, scratch.distances, scratch.rho); });
     if (cancel && cancel->load()) return false;
-    for (size_t i = 0; i < sums_.size(); ++i) sums_[i] += batch_[i];
+    sums_.swap(batch_);
     rays_traced_ += rays;
     return true;
 }

@@ -13,9 +13,9 @@
 // THE ESTIMATOR: cosine-weighted rays, so V = 1 - mean(rho(d)). Ray i of a pixel takes the i-th point of the
 // R2 sequence (the 2D rank-1 lattice of the plastic number: every prefix of it is evenly stratified over the
 // unit square), shifted by a per-pixel rotation hashed from the pixel and the seed (Cranley-Patterson), mapped
-// to the hemisphere by Malley's method. Rays are traced in batches and each pixel sums its rays in order, so
-// the result depends only on the seed and the ray count, never on the thread count or the batch sizes; a
-// progressive caller traces a few rays at a time and reads the running estimate.
+// to the hemisphere by Malley's method. Rays are traced in batches and each pixel adds its rays to its running
+// sum one after the other, so the result depends only on the seed and the ray count, never on the thread count
+// or the batch sizes (to the bit); a progressive caller traces a few rays at a time and reads the estimate.
 //
 // Several falloffs are estimated from one set of rays (a hit's distance is weighed by each): a comparison of
 // methods with different falloffs costs one trace.
@@ -71,11 +71,15 @@ public:
     bool intersect(const glm::vec3& origin, const glm::vec3& direction, float t_near, float t_far, Hit* hit) const;
 
     int triangle_count() const { return triangle_count_; }
+    // How far above a surface point p a secondary ray starts: past the float rounding of p, tiny against the
+    // scene (a few float steps of |p| plus a millionth of the scene's diagonal).
+    float surface_offset(const glm::vec3& p) const;
 
 private:
     struct Embree;
     std::unique_ptr<Embree> embree_;
     int triangle_count_ = 0;
+    float extent_ = 0.0f;  // the diagonal of the mesh's bounding box
 };
 
 struct GeometryTruthOptions {
@@ -96,7 +100,8 @@ public:
 
     // Traces `rays` more rays per pixel (ray indices rays_traced() ... + rays - 1 of each pixel's sequence).
     // When `cancel` becomes true, returns early at a row boundary and keeps the previous estimate (the partial
-    // batch is discarded); returns whether the batch completed.
+    // batch is discarded); returns whether the batch completed. An exception of a worker thread (out of memory)
+    // is rethrown here, after every thread has joined, with the previous estimate kept.
     bool trace(int rays, const std::atomic<bool>* cancel = nullptr);
 
     int rays_traced() const { return rays_traced_; }
@@ -133,7 +138,7 @@ private:
     std::vector<uint32_t> triangles_;
     std::vector<glm::vec2> rotation_;  // per-pixel Cranley-Patterson shift
     std::vector<double> sums_;         // per falloff, per pixel: sum of rho over the rays traced
-    std::vector<double> batch_;        // the current batch's sums (committed when it completes)
+    std::vector<double> batch_;        // the sums with the current batch's rays (committed when it completes)
 };
 
 // Hemisphere direction i of a pixel (unit length, tangent frame: z along the normal) for the rotation

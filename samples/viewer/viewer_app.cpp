@@ -32,19 +32,21 @@ const char* const kTruthUnavailable =
     "The geometry truth traces rays against the scene's triangles: a depth file (.pfm) has none. "
     "Open a built-in scene or an .obj to compare against it.";
 
-// A string that changes exactly when the falloff that `settings` weigh occluders with changes: the falloff at
-// distances from 5 mm to 2.5 km (whatever the method, as obscura_evaluate_falloff defines it).
+// A string that changes exactly when the falloff that `settings` weigh occluders with changes: the bytes of the
+// falloff fields of the matching REFERENCE settings (obscura_reference_settings_for: kind, radius, C, decay
+// rate, table), as the CLI tells falloffs apart. Rays and thickness are left out: the geometry truth has its
+// own rays and the scene's real thickness.
 std::string falloff_signature(const obscura_settings& settings) {
-    constexpr int kCount = 40;
-    float distances[kCount], rho[kCount];
-    for (int i = 0; i < kCount; ++i) distances[i] = i == 0 ? 0.0f : 0.005f * std::pow(1.4f, float(i - 1));
-    if (obscura_evaluate_falloff(&settings, distances, rho, kCount) != OBSCURA_STATUS_OK) return "refused";
+    obscura_settings reference{};
+    if (obscura_reference_settings_for(&settings, &reference) != OBSCURA_STATUS_OK) return "refused";
+    const obscura_reference_settings& r = reference.reference;
     std::string text;
-    char number[32];
-    for (float value : rho) {
-        std::snprintf(number, sizeof number, "%a,", double(value));
-        text += number;
-    }
+    auto append = [&text](const void* bytes, size_t size) { text.append(static_cast<const char*>(bytes), size); };
+    append(&r.falloff, sizeof r.falloff);
+    append(&r.radius, sizeof r.radius);
+    append(&r.falloff_c, sizeof r.falloff_c);
+    append(&r.decay_rate, sizeof r.decay_rate);
+    append(r.falloff_table, sizeof r.falloff_table);
     return text;
 }
 

@@ -21,7 +21,10 @@ struct FalloffParameters {
     const float* table = nullptr;
 };
 
+// d in the units of the parameters. A negative d is taken as 0 (an occluder on the surface), a NaN one as a miss
+// (rho 0, as +infinity gives), so no input reads outside the table.
 inline double falloff_value(const FalloffParameters& f, double d) {
+    if (!(d >= 0.0)) d = std::isnan(d) ? HUGE_VAL : 0.0;
     switch (f.kind) {
         case OBSCURA_FALLOFF_RHO0: return std::max(0.0, f.r * (1.0 + f.c) / (f.r + d * d) - f.c);
         case OBSCURA_FALLOFF_INVERSE_QUADRATIC: return f.r / (f.r + d * d);

@@ -308,12 +308,13 @@ void check_resolve(const obscura_settings& input, bool* resolved_ok, obscura_set
 
     // The falloff those settings weigh an occluder with: finite, in [0, 1], and what the matching reference
     // weighs with (one definition of each falloff).
-    const float distances[5] = {0.0f, 0.3f, 1.0f, 7.5f, 1e4f};
-    float rho[5], rho_reference[5];
-    FUZZ_CHECK(status_code(obscura_evaluate_falloff(&input, distances, rho, 5)) == kOk &&
-                   status_code(obscura_evaluate_falloff(&reference, distances, rho_reference, 5)) == kOk,
+    const float distances[8] = {0.0f, 0.3f, 1.0f, 7.5f, 1e4f, -2.0f, std::numeric_limits<float>::quiet_NaN(),
+                                std::numeric_limits<float>::infinity()};
+    float rho[8], rho_reference[8];
+    FUZZ_CHECK(status_code(obscura_evaluate_falloff(&input, distances, rho, 8)) == kOk &&
+                   status_code(obscura_evaluate_falloff(&reference, distances, rho_reference, 8)) == kOk,
                "obscura_evaluate_falloff refused settings that resolve");
-    for (int i = 0; i < 5; ++i) {
+    for (int i = 0; i < 8; ++i) {
         FUZZ_CHECK(std::isfinite(rho[i]) && rho[i] >= 0.0f && rho[i] <= 1.0f, "rho(%g) = %g is outside [0, 1]",
                    double(distances[i]), double(rho[i]));
         FUZZ_CHECK(rho[i] == rho_reference[i], "rho(%g) differs from the reference's: %g vs %g", double(distances[i]),

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstring>
+#include <initializer_list>
 #include <limits>
 #include <set>
 #include <string>
@@ -734,6 +735,15 @@ TEST(EvaluateFalloff, EachKindAtKnownDistances) {
     EXPECT_NEAR(falloff_at(table, 0.5f / 15.0f), 0.5f, 1e-6f);         // halfway between samples 0 and 1
     EXPECT_NEAR(falloff_at(table, 2.0f / 15.0f), 1.0f, 1e-6f);
     EXPECT_EQ(falloff_at(table, 1.0f), 0.0f);                          // 0 from the radius on
+    // Outside the domain: negative is on the surface, NaN and infinity a miss (and the table is not read
+    // out of its bounds).
+    EXPECT_EQ(falloff_at(table, -0.1f), falloff_at(table, 0.0f));
+    EXPECT_EQ(falloff_at(rho0, -5.0f), falloff_at(rho0, 0.0f));
+    const std::initializer_list<const obscura_settings*> kinds = {&rho0, &inverse, &exponential, &table};
+    for (const obscura_settings* settings : kinds) {
+        EXPECT_EQ(falloff_at(*settings, std::numeric_limits<float>::quiet_NaN()), 0.0f);
+        EXPECT_EQ(falloff_at(*settings, std::numeric_limits<float>::infinity()), 0.0f);
+    }
 }
 
 // Another method's falloff is the one obscura_reference_settings_for maps it to.

@@ -433,7 +433,8 @@ OBSCURA_API obscura_status obscura_reference_settings_for(const obscura_settings
    an occluder with, as the SDK's own integrals define it (the REFERENCE settings' falloff; any other method's
    as obscura_reference_settings_for() maps it). For tools that integrate the same obscurance by other means,
    such as the samples' geometry truth (rays against the scene's triangles). The settings are resolved once
-   per call, so pass many distances at a time. `distances` and `rho` may alias; with count 0 both may be NULL.
+   per call, so pass many distances at a time. A negative distance counts as 0, +infinity and NaN as a miss
+   (rho 0). `distances` and `rho` may alias; with count 0 both may be NULL; on failure nothing is written.
    Returns OK, NULL_ARGUMENT, INVALID_STRUCT_SIZE, INVALID_ENUM, INVALID_SETTING. */
 OBSCURA_API obscura_status obscura_evaluate_falloff(const obscura_settings* method_settings, const float* distances,
                                                     float* rho, uint32_t count);
