@@ -116,5 +116,11 @@ obscura_cli_command_test(depth_file_has_no_geometry_truth 2
   EXPECT_STDERR "needs a scene's triangles")
 obscura_cli_command_test(truth_of_a_depth_file 2 "truth|--depth|x.pfm|--out|t.pfm" EXPECT_STDERR "needs a scene's triangles")
 obscura_cli_command_test(truth_without_out 2 "truth|--scene|analytic" EXPECT_STDERR "truth needs --out")
+obscura_cli_command_test(truth_depth_out_needs_single_sample 2
+  "truth|--scene|analytic|--msaa|2|--out|t.pfm|--depth-out|d.pfm" EXPECT_STDERR "needs a single-sample depth buffer")
+# A camera that sees only sky has no geometry pixel to measure: refused with a reason, not a perfect score.
+obscura_cli_command_test(compare_sky_only_view 1
+  "compare|--scene|analytic|--size|64x36|--eye|0,2,0|--target|0,10,5|--methods|hbao|--truth-rays|1"
+  GL EXPECT_STDERR "shows no geometry [(]every pixel is sky[)]")
 # A method the library does not implement (found with --list-methods): exit 1, naming it.
 obscura_cli_command_test(unavailable_method 1 "" CHECK unavailable)
