@@ -202,7 +202,10 @@ void measure_method(const ObscuraSession& session, const std::vector<samples::Re
             mean.pixels = metrics.pixels;
             mean.pixels_total = metrics.pixels_total;
         }
-        if (frames.size() > 1) errors.flicker = samples::flicker(method.frames, reference.frames);
+        if (frames.size() > 1) {
+            errors.flicker =
+                samples::flicker(method.frames, reference.frames, result.all_pixels ? nullptr : &result.masks);
+        }
         method.errors.push_back(errors);
     }
 }

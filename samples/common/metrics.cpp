@@ -279,7 +279,8 @@ FloatImage signed_error_map(const FloatImage& image, const FloatImage& reference
     return map;
 }
 
-double flicker(const std::vector<FloatImage>& method_frames, const std::vector<FloatImage>& reference_frames) {
+double flicker(const std::vector<FloatImage>& method_frames, const std::vector<FloatImage>& reference_frames,
+               const std::vector<std::vector<uint8_t>>* masks) {
     if (method_frames.size() != reference_frames.size()) {
         throw std::invalid_argument("flicker: " + std::to_string(method_frames.size()) + " method frames but " +
                                     std::to_string(reference_frames.size()) + " reference frames");
@@ -290,14 +291,24 @@ double flicker(const std::vector<FloatImage>& method_frames, const std::vector<F
         check_same_size(reference_frames[f], reference_frames[0]);
     }
     const size_t pixel_count = size_t(reference_frames[0].width) * size_t(reference_frames[0].height);
+    if (masks && (masks->size() != method_frames.size())) {
+        throw std::invalid_argument("flicker: " + std::to_string(masks->size()) + " masks for " +
+                                    std::to_string(method_frames.size()) + " frames");
+    }
+    for (size_t f = 0; masks && f < masks->size(); ++f) {
+        if ((*masks)[f].size() != pixel_count) throw std::invalid_argument("flicker: a mask of another size");
+    }
     const int channels = reference_frames[0].channels;
     double sum = 0.0;
+    size_t counted = 0;
     for (size_t f = 0; f + 1 < method_frames.size(); ++f) {
         const float* m0 = method_frames[f].pixels.data();
         const float* m1 = method_frames[f + 1].pixels.data();
         const float* r0 = reference_frames[f].pixels.data();
         const float* r1 = reference_frames[f + 1].pixels.data();
         for (size_t i = 0; i < pixel_count; ++i) {
+            if (masks && ((*masks)[f][i] == 0 || (*masks)[f + 1][i] == 0)) continue;
+            ++counted;
             double error = 0.0;
             for (int c = 0; c < channels; ++c) {
                 const size_t k = i * size_t(channels) + size_t(c);
@@ -311,7 +322,7 @@ double flicker(const std::vector<FloatImage>& method_frames, const std::vector<F
             sum += error;
         }
     }
-    return sum / (double(method_frames.size() - 1) * double(pixel_count));
+    return counted > 0 ? sum / double(counted) : 0.0;
 }
 
 FloatImage contact_sheet(const std::vector<FloatImage>& images, const std::vector<std::string>& labels, int columns) {

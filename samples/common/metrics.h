@@ -71,7 +71,10 @@ FloatImage signed_error_map(const FloatImage& image, const FloatImage& reference
 // exactly as the reference does scores 0 whatever its constant error. Needs as many method frames as
 // reference frames, at least two, all of one size (std::invalid_argument otherwise). Several channels:
 // the largest channel difference; non-finite samples: 1.
-double flicker(const std::vector<FloatImage>& method_frames, const std::vector<FloatImage>& reference_frames);
+// `masks`, when given, holds one mask per frame (compare_images' kind): only pixels that are non-zero in both
+// frames of a pair count (the geometry seen in both); with none counted the flicker is 0.
+double flicker(const std::vector<FloatImage>& method_frames, const std::vector<FloatImage>& reference_frames,
+               const std::vector<std::vector<uint8_t>>* masks = nullptr);
 
 // A contact sheet of `images` (1, 3 or 4 channels; alpha dropped) in a grid of `columns` columns
 // (<= 0: one row), left to right and top to bottom, on a dark grey background with a 4-pixel gap.

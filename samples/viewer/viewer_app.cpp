@@ -164,6 +164,7 @@ private:
     uint64_t truth_generation_ = 0;  // of the last snapshot taken from the worker
     TruthSnapshot truth_snapshot_;   // the estimate uploaded (its key says which view it is of)
     bool truth_current_ = false;     // truth_snapshot_ is of the current view
+    int scene_generation_ = 0;       // counts open_scene() calls: one BVH per scene opened
     std::string truth_method_key_;   // the method (view_key()) truth_metrics_ were measured for
     std::optional<samples::ErrorMetrics> truth_metrics_;
     TimingState timings_;
@@ -183,6 +184,7 @@ void ViewerApp::open_scene(const std::string& name) {
             camera_.reset(view.camera);
         }
         scene_ = std::move(scene);
+        ++scene_generation_;  // a reopened OBJ may have changed on disk: the truth's BVH is rebuilt
         job_.cancel();
         truth_.cancel();
         status_ = "opened " + name;
@@ -570,7 +572,7 @@ void ViewerApp::update_truth(bool wanted, bool wait) {
         if ((now - truth_wanted_since_ >= kTruthRestartDelay && !truth_.busy()) || options_.frames > 0) {
             TruthRequest request;
             request.key = key;
-            request.scene_name = scene_.name;
+            request.scene_name = scene_.name + "#" + std::to_string(scene_generation_);
             request.view = view;
             request.falloff = panels_[0].settings;
             request.rays = truth_rays_;

@@ -222,6 +222,23 @@ TEST(Flicker, MeasuresChangeTheReferenceDoesNotHave) {
     EXPECT_DOUBLE_EQ(flicker(method, reference), 0.125);
 }
 
+// With masks only the pixels seen in both frames of a pair count: the sky (still in both) no longer waters
+// the flicker down.
+TEST(Flicker, MasksLeaveOutPixelsNotSeenInBothFrames) {
+    const std::vector<FloatImage> reference(3, constant_image(2, 1, 0.5f));
+    const std::vector<FloatImage> method = {make_image(2, 1, {0.5f, 1.0f}), make_image(2, 1, {0.75f, 1.0f}),
+                                            make_image(2, 1, {0.5f, 1.0f})};
+    const std::vector<std::vector<uint8_t>> geometry_then_sky(3, std::vector<uint8_t>{1, 0});
+    EXPECT_DOUBLE_EQ(flicker(method, reference, &geometry_then_sky), 0.25);  // 0.125 over both pixels
+    // The first pixel is sky in the middle frame: no pair sees it in both frames, nothing is counted.
+    const std::vector<std::vector<uint8_t>> gone = {{1, 0}, {0, 0}, {1, 0}};
+    EXPECT_DOUBLE_EQ(flicker(method, reference, &gone), 0.0);
+    const std::vector<std::vector<uint8_t>> too_few(2, std::vector<uint8_t>{1, 1});
+    EXPECT_THROW(flicker(method, reference, &too_few), std::invalid_argument);
+    const std::vector<std::vector<uint8_t>> wrong_size(3, std::vector<uint8_t>{1});
+    EXPECT_THROW(flicker(method, reference, &wrong_size), std::invalid_argument);
+}
+
 TEST(Flicker, NeedsMatchingFrameLists) {
     const std::vector<FloatImage> two(2, constant_image(2, 1, 0.5f));
     const std::vector<FloatImage> three(3, constant_image(2, 1, 0.5f));
