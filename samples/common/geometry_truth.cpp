@@ -240,7 +240,7 @@ GeometryTruth::GeometryTruth(const TruthScene& scene, const TruthView& view, std
     const double ndc_near = ndc_depth(-near_plane), ndc_mid = ndc_depth(-2.0 * near_plane);
     const double far_plane = std::isfinite(view.far_plane) ? double(view.far_plane) : 1e30;
 
-    parallel_rows<int>(height_, options_.threads, nullptr, [&](int y, int&) {
+    parallel_rows<int>(height_, options_.threads, options_.cancel, [&](int y, int&) {
         for (int x = 0; x < width_; ++x) {
             const size_t index = size_t(y) * size_t(width_) + size_t(x);
             const uint32_t seed = hash32(options_.seed * 0x9e3779b9U + uint32_t(index));
@@ -269,6 +269,7 @@ GeometryTruth::GeometryTruth(const TruthScene& scene, const TruthView& view, std
             triangles_[index] = hit.triangle;
         }
     });
+    cancelled_ = options_.cancel && options_.cancel->load();
     geometry_pixels_ = size_t(std::count(mask_.begin(), mask_.end(), uint8_t(1)));
 }
 
@@ -305,6 +306,7 @@ void GeometryTruth::trace_row(int y, int first_ray, int rays, std::vector<float>
 }
 
 bool GeometryTruth::trace(int rays, const std::atomic<bool>* cancel) {
+    if (cancelled_) return false;
     if (rays <= 0) return true;
     struct Scratch {
         std::vector<float> distances, rho;

@@ -85,6 +85,9 @@ private:
 struct GeometryTruthOptions {
     uint32_t seed = 1;  // picks the per-pixel rotations: another seed gives another, equally good, estimate
     int threads = 0;    // worker threads for tracing; 0: every hardware thread
+    // When it becomes true the constructor's primary rays stop at a row boundary (a progressive caller that
+    // restarts need not wait for them); the object then has cancelled() true and traces nothing.
+    const std::atomic<bool>* cancel = nullptr;
 };
 
 // The progressive estimate for one view and a list of falloffs.
@@ -98,12 +101,15 @@ public:
     GeometryTruth(const TruthScene& scene, const TruthView& view, std::vector<obscura_settings> falloffs,
                   GeometryTruthOptions options = {});
 
-    // Traces `rays` more rays per pixel (ray indices rays_traced() ... + rays - 1 of each pixel's sequence).
+    // Traces `rays` more rays per pixel (ray indices rays_traced() ... + rays - 1 of each pixel's sequence);
+    // false at once when cancelled().
     // When `cancel` becomes true, returns early at a row boundary and keeps the previous estimate (the partial
     // batch is discarded); returns whether the batch completed. An exception of a worker thread (out of memory)
     // is rethrown here, after every thread has joined, with the previous estimate kept.
     bool trace(int rays, const std::atomic<bool>* cancel = nullptr);
 
+    // Whether options.cancel stopped the primary rays: the object holds no usable estimate.
+    bool cancelled() const { return cancelled_; }
     int rays_traced() const { return rays_traced_; }
     uint64_t rays_cast() const { return uint64_t(rays_traced_) * uint64_t(geometry_pixels_); }
     int width() const { return width_; }
@@ -130,6 +136,7 @@ private:
     int width_ = 0;
     int height_ = 0;
     int rays_traced_ = 0;
+    bool cancelled_ = false;
     size_t geometry_pixels_ = 0;
     std::vector<glm::vec3> position_;  // primary hit, world space
     std::vector<glm::vec3> normal_;    // geometric normal facing the camera

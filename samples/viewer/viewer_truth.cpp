@@ -105,7 +105,9 @@ void TruthJob::run(TruthRequest request, std::shared_ptr<const samples::SceneMes
         samples::GeometryTruthOptions options;
         options.seed = request.seed;
         options.threads = request.threads;
+        options.cancel = &cancel_;  // a restart need not wait for the primary rays
         samples::GeometryTruth truth(*bvh_, request.view, {request.falloff}, options);
+        if (truth.cancelled()) return finish("cancelled", "");
         const auto mask = std::make_shared<const std::vector<uint8_t>>(truth.geometry_mask());
         set_phase("tracing");
         while (truth.rays_traced() < request.rays) {

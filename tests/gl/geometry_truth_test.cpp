@@ -575,3 +575,36 @@ TEST(GeometryTruthInput, BadSettingsEmptyFalloffsAndEmptyMeshesAreRefused) {
 
 }  // namespace
 }  // namespace obscura_test
+
+namespace obscura_test {
+namespace {
+
+// A cancel flag set before construction stops the primary rays: the object says so and traces nothing; a
+// flag that stays false changes nothing (the same image as without one).
+TEST_F(GeometryTruthTest, CancelStopsThePrimaryRays) {
+    const os::Scene scene = os::load_scene("analytic");
+    const os::RenderedScene rendered = render(scene);
+    const os::TruthView view = os::TruthView::of(rendered.frame());
+    const os::TruthScene truth_scene(scene.mesh);
+    const obscura_settings settings = reference_settings(64);
+
+    std::atomic<bool> cancel{true};
+    os::GeometryTruthOptions cancelled;
+    cancelled.cancel = &cancel;
+    os::GeometryTruth stopped(truth_scene, view, {settings}, cancelled);
+    EXPECT_TRUE(stopped.cancelled());
+    EXPECT_FALSE(stopped.trace(16));
+    EXPECT_EQ(stopped.rays_traced(), 0);
+
+    cancel = false;
+    os::GeometryTruth running(truth_scene, view, {settings}, cancelled);
+    os::GeometryTruth plain(truth_scene, view, {settings});
+    EXPECT_FALSE(running.cancelled());
+    ASSERT_TRUE(running.trace(16));
+    ASSERT_TRUE(plain.trace(16));
+    EXPECT_GT(running.geometry_pixels(), 0u);
+    EXPECT_EQ(running.visibility(0).pixels, plain.visibility(0).pixels);
+}
+
+}  // namespace
+}  // namespace obscura_test
