@@ -234,28 +234,15 @@ FloatImage quantize_8bit(const FloatImage& image) {
     return quantized;
 }
 
-FloatImage error_heat_map(const FloatImage& image, const FloatImage& reference, double full_scale) {
-    check_same_size(image, reference);
-    if (!(full_scale > 0.0)) throw std::invalid_argument("heat map full scale must be positive");
-    FloatImage heat;
-    heat.width = image.width;
-    heat.height = image.height;
-    heat.channels = 3;
-    const size_t pixel_count = size_t(image.width) * size_t(image.height);
-    heat.pixels.resize(pixel_count * 3);
-    const int channels = image.channels;
-    for (size_t i = 0; i < pixel_count; ++i) {
-        const double error = pixel_error(&image.pixels[i * size_t(channels)], &reference.pixels[i * size_t(channels)],
-                                         channels);
-        const std::array<float, 3> colour = heat_colour(error / full_scale);
-        std::copy(colour.begin(), colour.end(), heat.pixels.begin() + long(i * 3));
-    }
-    return heat;
-}
+namespace {
 
-FloatImage signed_error_map(const FloatImage& image, const FloatImage& reference, double full_scale) {
+// An RGB map of the size of `image`, one colour per pixel from colour(image pixel, reference pixel, channels):
+// what the heat map and the signed map share.
+template <typename Colour>
+FloatImage error_map(const FloatImage& image, const FloatImage& reference, double full_scale, const char* name,
+                     Colour colour) {
     check_same_size(image, reference);
-    if (!(full_scale > 0.0)) throw std::invalid_argument("signed error map full scale must be positive");
+    if (!(full_scale > 0.0)) throw std::invalid_argument(std::string(name) + " full scale must be positive");
     FloatImage map;
     map.width = image.width;
     map.height = image.height;
@@ -264,19 +251,29 @@ FloatImage signed_error_map(const FloatImage& image, const FloatImage& reference
     map.pixels.resize(pixel_count * 3);
     const size_t channels = size_t(image.channels);
     for (size_t i = 0; i < pixel_count; ++i) {
-        const double difference = double(image.pixels[i * channels]) - double(reference.pixels[i * channels]);
-        float* rgb = &map.pixels[i * 3];
-        if (!std::isfinite(difference)) {
-            rgb[0] = rgb[1] = rgb[2] = 0.0f;
-            continue;
-        }
-        const float fade = float(1.0 - std::min(1.0, std::fabs(difference) / full_scale));
-        // Too dark: red stays 1 and the others fade; too bright: blue stays 1.
-        rgb[0] = difference < 0.0 ? 1.0f : fade;
-        rgb[1] = fade;
-        rgb[2] = difference > 0.0 ? 1.0f : fade;
+        const std::array<float, 3> rgb = colour(&image.pixels[i * channels], &reference.pixels[i * channels]);
+        std::copy(rgb.begin(), rgb.end(), map.pixels.begin() + long(i * 3));
     }
     return map;
+}
+
+}  // namespace
+
+FloatImage error_heat_map(const FloatImage& image, const FloatImage& reference, double full_scale) {
+    const int channels = image.channels;
+    return error_map(image, reference, full_scale, "heat map", [&](const float* a, const float* b) {
+        return heat_colour(pixel_error(a, b, channels) / full_scale);
+    });
+}
+
+FloatImage signed_error_map(const FloatImage& image, const FloatImage& reference, double full_scale) {
+    return error_map(image, reference, full_scale, "signed error map", [&](const float* a, const float* b) {
+        const double difference = double(*a) - double(*b);
+        if (!std::isfinite(difference)) return std::array<float, 3>{0.0f, 0.0f, 0.0f};
+        const float fade = float(1.0 - std::min(1.0, std::fabs(difference) / full_scale));
+        // Too dark: red stays 1 and the others fade; too bright: blue stays 1.
+        return std::array<float, 3>{difference < 0.0 ? 1.0f : fade, fade, difference > 0.0 ? 1.0f : fade};
+    });
 }
 
 double flicker(const std::vector<FloatImage>& method_frames, const std::vector<FloatImage>& reference_frames,
