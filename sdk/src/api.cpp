@@ -6,6 +6,7 @@
 #include "context.h"
 #include "falloff.h"
 #include "host_enum.h"
+#include "method_registry.h"
 #include "settings.h"
 
 using obscura::Context;
@@ -17,16 +18,12 @@ namespace {
 const char* const kStatusStrings[] = {OBSCURA_STATUS_LIST(OBSCURA_STATUS_STRING_ENTRY_)};
 #undef OBSCURA_STATUS_STRING_ENTRY_
 
-const char* const kMethodNames[] = {"default", "hbao", "sao", "lsao", "ffao", "reference"};
-
 Context* as_context(obscura_context* context) { return static_cast<Context*>(context); }
-
 
 // The method argument resolved (DEFAULT -> HBAO), or OBSCURA_METHOD_COUNT_ for a value the API does not know.
 obscura_method method_argument(const obscura_method& method) {
-    const int32_t value = obscura::stored_enum(method);
-    if (value < 0 || value >= int32_t(OBSCURA_METHOD_COUNT_)) return OBSCURA_METHOD_COUNT_;
-    return obscura::resolve_method(obscura_method(value));
+    const obscura::MethodDescriptor* row = obscura::find_method(method);
+    return row ? row->method : OBSCURA_METHOD_COUNT_;
 }
 
 // Runs `body` (returning Error) and maps its result and any exception to a status on `context`.
@@ -65,18 +62,13 @@ OBSCURA_API const char* obscura_status_string(obscura_status status) {
 }
 
 OBSCURA_API const char* obscura_method_name(obscura_method method) {
-    const obscura_method resolved = method_argument(method);
-    if (resolved == OBSCURA_METHOD_COUNT_) return nullptr;
-    return kMethodNames[resolved];
+    const obscura::MethodDescriptor* row = obscura::find_method(method);
+    return row ? row->name : nullptr;
 }
 
-OBSCURA_API int obscura_method_available(obscura_method method) {
-    const obscura_method resolved = method_argument(method);
-    return resolved == OBSCURA_METHOD_HBAO || resolved == OBSCURA_METHOD_SAO || resolved == OBSCURA_METHOD_LSAO ||
-                   resolved == OBSCURA_METHOD_FFAO || resolved == OBSCURA_METHOD_REFERENCE
-               ? 1
-               : 0;
-}
+// Every method with a registry row is implemented; the function remains for methods a build or a later
+// version does not have.
+OBSCURA_API int obscura_method_available(obscura_method method) { return obscura::find_method(method) ? 1 : 0; }
 
 OBSCURA_API obscura_status obscura_create_context(const obscura_context_desc* desc, obscura_context** out_context) {
     if (out_context) *out_context = nullptr;

@@ -34,12 +34,12 @@ void GpuTimer::begin_frame() {
     gl_->QueryCounter(slot.queries[0].name(), GL_TIMESTAMP);
 }
 
-void GpuTimer::mark(const char* label) {
+void GpuTimer::mark(PassId pass) {
     if (sync_) {
         gl_->Finish();
         auto now = std::chrono::steady_clock::now();
         if (sync_count_ < kMaxPasses) {
-            sync_labels_[sync_count_] = label;
+            sync_passes_[sync_count_] = pass;
             sync_ms_[sync_count_] = std::chrono::duration<double, std::milli>(now - sync_last_).count();
             ++sync_count_;
         }
@@ -49,7 +49,7 @@ void GpuTimer::mark(const char* label) {
     if (current_ < 0) return;
     FrameSlot& slot = slots_[current_];
     if (slot.marks >= kMaxPasses) return;
-    slot.labels[slot.marks] = label;
+    slot.passes[slot.marks] = pass;
     ++slot.marks;
     gl_->QueryCounter(slot.queries[slot.marks].name(), GL_TIMESTAMP);
 }
@@ -59,7 +59,7 @@ void GpuTimer::end_frame() {
         latest_count_ = sync_count_;
         latest_frame_ = frames_begun_;
         for (int i = 0; i < sync_count_; ++i) {
-            latest_labels_[i] = sync_labels_[i];
+            latest_passes_[i] = sync_passes_[i];
             latest_ms_[i] = sync_ms_[i];
         }
         return;
@@ -81,7 +81,7 @@ void GpuTimer::collect() {
         for (int m = 0; m < slot.marks; ++m) {
             GLuint64 stamp = 0;
             gl_->GetQueryObjectui64v(slot.queries[m + 1].name(), GL_QUERY_RESULT, &stamp);
-            latest_labels_[m] = slot.labels[m];
+            latest_passes_[m] = slot.passes[m];
             latest_ms_[m] = stamp >= previous ? double(stamp - previous) * 1e-6 : 0.0;
             previous = stamp;
         }
@@ -99,7 +99,7 @@ uint32_t GpuTimer::latest(obscura_timing* out, uint32_t capacity, uint64_t* fram
     double total = 0.0;
     for (int i = 0; i < latest_count_; ++i) total += latest_ms_[i];
     if (out && capacity > 0) out[0] = {"total", total};
-    for (uint32_t i = 1; out && i < capacity && i < available; ++i) out[i] = {latest_labels_[i - 1], latest_ms_[i - 1]};
+    for (uint32_t i = 1; out && i < capacity && i < available; ++i) out[i] = {pass_label(latest_passes_[i - 1]), latest_ms_[i - 1]};
     return available;
 }
 

@@ -9,6 +9,7 @@
 
 #include "gl/gl_objects.h"
 #include "obscura/obscura.h"
+#include "pass_id.h"
 
 namespace obscura {
 
@@ -20,9 +21,9 @@ public:
     void create(const gl::Table& gl, bool sync_timing);
     void destroy();
 
-    // Frame bracketing; `label`s must be string literals (they are returned as is).
+    // Frame bracketing: each mark ends the pass it names.
     void begin_frame();
-    void mark(const char* label);
+    void mark(PassId pass);
     void end_frame();
 
     // Latest complete frame: "total" first, then each pass. Returns the number available and sets
@@ -32,7 +33,7 @@ public:
 private:
     struct FrameSlot {
         gl::Object queries[kMaxPasses + 1];
-        const char* labels[kMaxPasses] = {};
+        PassId passes[kMaxPasses] = {};
         int marks = 0;
         bool pending = false;
         uint64_t frame_index = 0;
@@ -45,13 +46,13 @@ private:
     int current_ = -1;  // slot being recorded, -1 when this frame is not timed
     int next_ = 0;
     std::chrono::steady_clock::time_point sync_last_;
-    const char* latest_labels_[kMaxPasses] = {};
+    PassId latest_passes_[kMaxPasses] = {};
     double latest_ms_[kMaxPasses] = {};
     int latest_count_ = 0;
     uint64_t latest_frame_ = 0;
     uint64_t frames_begun_ = 0;
     int sync_count_ = 0;
-    const char* sync_labels_[kMaxPasses] = {};
+    PassId sync_passes_[kMaxPasses] = {};
     double sync_ms_[kMaxPasses] = {};
 };
 

@@ -8,7 +8,11 @@ namespace obscura {
 
 class BilateralBlurPass {
 public:
-    Error create(const PassEnv& env) { return env.build("bilateral_blur.comp", "", &program_); }
+    // Builds the program on first use.
+    Error prepare(const PassEnv& env) {
+        if (program_) return Error();
+        return env.build("bilateral_blur.comp", "", &program_);
+    }
     static BlurConstants constants(int radius, float sharpness, int axis_x, int axis_y);
     // Blurs `source` into `destination` over `region` along the axis in `pass`.
     void run(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,

@@ -2,7 +2,8 @@
 
 namespace obscura {
 
-Error HbaoPass::create(const PassEnv& env) {
+Error HbaoPass::prepare(const PassEnv& env) {
+    if (programs_[1]) return Error();
     Error error = env.build("hbao.comp", "OBSCURA_HBAO_ESTIMATOR 1\n", &programs_[0]);
     if (!error) error = env.build("hbao.comp", "OBSCURA_HBAO_ESTIMATOR 2\n", &programs_[1]);
     return error;

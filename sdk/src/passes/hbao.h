@@ -10,8 +10,9 @@ namespace obscura {
 
 class HbaoPass {
 public:
-    // Builds one program per estimator (compiled in: CPU rasterisers run both sides of a branch on a uniform).
-    Error create(const PassEnv& env);
+    // Builds one program per estimator on first use (compiled in: CPU rasterisers run both sides of a branch
+    // on a uniform).
+    Error prepare(const PassEnv& env);
     // Converts resolved settings (metres) to the shader's constants (view units).
     static HbaoConstants constants(const obscura_hbao_settings& settings, const FrameInput& input);
     // Writes visibility into resources.ao over `region` (frame.work_rect must equal it).

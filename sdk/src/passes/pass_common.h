@@ -13,22 +13,17 @@
 
 namespace obscura {
 
-// Per-size GPU resources shared by the passes; all cover the whole depth texture.
+// Per-size GPU resources every method shares; all cover the whole depth texture. A technique's own
+// resources live in the technique (sdk/src/methods/).
 struct FrameResources {
     int width = 0, height = 0;
-    gl::Texture2D linear_depth; // R32F positive view depth, OBSCURA_SKY_DEPTH for sky; levels above 0: SAO's z pyramid
+    gl::Texture2D linear_depth; // R32F positive view depth, OBSCURA_SKY_DEPTH for sky; levels above 0: a z pyramid
     gl::Texture2D normals;      // RG16_SNORM octahedral view-space normals
-    gl::Texture2D ao;           // R16F visibility before blur
-    gl::Texture2D blur_temp;    // R16F after the horizontal blur
+    gl::Texture2D ao;           // R16F visibility before the reconstruction
+    gl::Texture2D blur_temp;    // R16F after a separable reconstruction's horizontal pass
     gl::Texture2D ao_blurred;   // R16F final visibility
-    gl::Texture2D staging;      // RGBA8 output-rect sized, only for framebuffer targets reached by blits
-    gl::Object staging_framebuffer;
-    gl::Texture2D reference;    // R32F ray-traced reference: falloff sums, then visibility (REFERENCE only)
-    gl::Texture2D packed_ao;    // RGBA8 SAO visibility + 16-bit z key + geometry flag (SAO only) ...
-    gl::Texture2D packed_temp;  // ... and the same after the horizontal blur
     uint64_t bytes() const {
-        return linear_depth.bytes() + normals.bytes() + ao.bytes() + blur_temp.bytes() + ao_blurred.bytes() +
-               staging.bytes() + reference.bytes() + packed_ao.bytes() + packed_temp.bytes();
+        return linear_depth.bytes() + normals.bytes() + ao.bytes() + blur_temp.bytes() + ao_blurred.bytes();
     }
 };
 
@@ -92,6 +87,12 @@ struct PassEnv {
     }
     void bind_uniforms(GLuint binding, const UniformRange& range) const {
         gl.BindBufferRange(GL_UNIFORM_BUFFER, binding, uniform_buffer, range.offset, range.size);
+    }
+    // A texture of the SDK's own. Creating one binds it on the active unit: make that a unit the StateGuard
+    // restores (obscura_prepare runs with the host's active unit, e.g. GL_TEXTURE5).
+    gl::Texture2D create_texture(GLenum internal_format, int width, int height, int levels = 1) const {
+        gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_SOURCE));
+        return gl::Texture2D::create(gl, internal_format, width, height, levels);
     }
     void dispatch(int width, int height, int group_x, int group_y) const {
         if (width <= 0 || height <= 0) return;

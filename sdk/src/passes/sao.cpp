@@ -7,6 +7,27 @@ namespace {
 constexpr double kTwoPi = 6.283185307179586;
 }  // namespace
 
+int default_spiral_turns(int samples) {
+    if (samples <= 2) return 1;
+    auto coprime = [samples](int t) {
+        int a = samples, b = t;
+        while (b != 0) {
+            int r = a % b;
+            a = b;
+            b = r;
+        }
+        return a == 1;
+    };
+    // Nearest to 7s/9 (the paper's ratio), the larger on a tie; 1 is coprime with everything.
+    const double target = 7.0 * samples / 9.0;
+    int best = 1;
+    for (int t = 1; t < samples; ++t) {
+        if (!coprime(t)) continue;
+        if (std::fabs(t - target) <= std::fabs(best - target)) best = t;
+    }
+    return best;
+}
+
 SpiralTap spiral_tap(int i, int samples, int turns) {
     const double alpha = (double(i) + 0.5) / double(samples);
     // Reduced to one turn here in double precision: the shader only rotates it.
@@ -67,12 +88,12 @@ SaoConstants SaoPass::constants(const obscura_sao_settings& settings, const Fram
 }
 
 void SaoPass::run(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
-                  FrameResources& resources) {
+                  const FrameResources& resources, const gl::Texture2D& packed_ao) {
     const gl::Table& gl = env.gl;
     gl.UseProgram(program_.name());
     env.bind_texture_mipmapped(OBSCURA_UNIT_LINEAR_DEPTH, resources.linear_depth.name());
     env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
-    gl.BindImageTexture(OBSCURA_IMAGE_OUT0, resources.packed_ao.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+    gl.BindImageTexture(OBSCURA_IMAGE_OUT0, packed_ao.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
     env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
     env.bind_uniforms(OBSCURA_UBO_PASS, pass);
     env.dispatch(region.width, region.height, OBSCURA_SAO_GROUP_X, OBSCURA_SAO_GROUP_Y);

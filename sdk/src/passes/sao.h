@@ -16,6 +16,10 @@ struct SpiralTap {
 };
 SpiralTap spiral_tap(int i, int samples, int turns);
 
+// The default spiral turns for s samples: the integer nearest 7s/9 sharing no factor with s (the paper's 7 for
+// s = 9), so the s angles are all different.
+int default_spiral_turns(int samples);
+
 // Eq. 8: the per-pixel rotation phi = 30 x ^ y + 10 x y in radians, reduced to [0, 2 pi) in double
 // precision, as the shader does.
 float spiral_rotation(int x, int y);
@@ -28,9 +32,9 @@ public:
     // Resolved settings (metres) -> the shader's constants (view units). `deepest_level`: the last level of
     // the z pyramid (0 without the hierarchy).
     static SaoConstants constants(const obscura_sao_settings& settings, const FrameInput& input, int deepest_level);
-    // Writes packed visibility into resources.packed_ao over `region` (which starts on even coordinates).
+    // Writes packed visibility into `packed_ao` (RGBA8) over `region` (which starts on even coordinates).
     void run(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
-             FrameResources& resources);
+             const FrameResources& resources, const gl::Texture2D& packed_ao);
 
 private:
     gl::Object program_;

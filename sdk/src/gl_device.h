@@ -1,0 +1,65 @@
+// GlDevice: the SDK's view of the host's GL context. It owns the private function table loaded through the
+// host's get_proc_address, knows the context's identity (so calls from another GL context are refused rather
+// than touching that context's objects), tracks context loss, and tells the host's pending errors from the
+// SDK's own.
+#ifndef OBSCURA_GL_DEVICE_H
+#define OBSCURA_GL_DEVICE_H
+
+#include "error.h"
+#include "gl/gl_objects.h"
+
+namespace obscura {
+
+class GlDevice {
+public:
+    static constexpr GLenum kContextLost = 0x0507;  // GL_CONTEXT_LOST (GL 4.5; the loader is generated for 4.3)
+
+    explicit GlDevice(const obscura_context_desc& desc);
+    GlDevice(const GlDevice&) = delete;
+    GlDevice& operator=(const GlDevice&) = delete;
+
+    // Loads GL from the current context and checks it: version, every function the SDK calls, no pending host
+    // error, no reset; then creates the identity object. Errors as obscura_create_context.
+    Error initialize();
+    const gl::Table& gl() const { return gl_; }
+    GLint uniform_alignment() const { return uniform_alignment_; }
+    GLint max_texture_size() const { return max_texture_size_; }
+    bool cpu_renderer() const { return cpu_renderer_; }  // GL_RENDERER names a CPU rasteriser (llvmpipe ...)
+
+    // WRONG_GL_CONTEXT unless the GL context this device was initialised on is current.
+    Error check_gl_context() const;
+    // CONTEXT_LOST once the GL context has reported a reset (sticky: a lost context never comes back).
+    Error check_context_lost();
+    bool lost() const { return lost_reason_ != 0; }
+    // check_context_lost, check_gl_context, then HOST_GL_ERROR if the host left an error pending (consumed and
+    // reported, never blamed on a pass), or CONTEXT_LOST if that error is GL_CONTEXT_LOST.
+    Error check_host_state(const char* call);
+    // Drains the GL error queue; returns the first error.
+    GLenum take_error() const;
+    // A GL error raised inside the SDK as a status: CONTEXT_LOST for GL_CONTEXT_LOST (the device is then
+    // lost), else GL_ERROR naming `where`.
+    Error error_status(GLenum error, const char* where);
+    // Whether initialize() got as far as the identity object (so the GL context can be recognised).
+    bool has_identity() const { return static_cast<bool>(identity_framebuffer_); }
+    // Turns the glDelete* entries into no-ops: destroying with another GL context current, or after a loss.
+    void disarm_deletes();
+
+    static const char* error_name(GLenum error);
+
+private:
+    using ResetStatusFn = GLenum(GLAD_API_PTR*)(void);
+    ObscuraGlLoader loader_ = {};
+    gl::Table gl_ = {};  // first: the objects below release through it
+    GLint uniform_alignment_ = 256;
+    GLint max_texture_size_ = 0;
+    bool cpu_renderer_ = false;
+    // glGetGraphicsResetStatus (GL 4.5) or its KHR/ARB_robustness form; null when the context has neither.
+    ResetStatusFn get_reset_status_ = nullptr;
+    GLenum lost_reason_ = 0;  // the reset status (or GL_CONTEXT_LOST) that marked the context lost; 0: alive
+    char identity_label_[32] = {};  // process-unique label of identity_framebuffer_
+    gl::Object identity_framebuffer_;
+};
+
+}  // namespace obscura
+
+#endif  // OBSCURA_GL_DEVICE_H

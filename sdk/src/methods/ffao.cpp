@@ -1,0 +1,199 @@
+// FFAO (Timonen, HPG 2013): its settings metadata, its derived values, the falloff it is compared with, its
+// technique (the estimator table when the falloff's shape changed, the scan and prefix sums or the mipmap
+// baseline's z pyramid, the obscurance, and with SAAO the box average, the gather and the blur) and its
+// registry row.
+#include <cstring>
+
+#include "method_registry.h"
+#include "passes/ffao.h"
+#include "passes/z_pyramid.h"
+#include "settings.h"
+#include "technique.h"
+
+namespace obscura {
+namespace {
+
+// FFAO (Timonen, HPG 2013). Defaults are the paper's: K = 16x2, B0 = 10, an exponential falloff. The falloff
+// fields mirror the reference's, so obscura_reference_settings_for() gives the screen-space reference FFAO
+// converges to (same falloff and thickness).
+const obscura_setting_info kFfaoSettings[] = {
+    {"radius", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 1e4, "m",
+     "where rho0 (with the default decay rate) and the falloff table reach zero", OBSCURA_SETTING_OFFSET(ffao, radius)},
+    {"falloff", OBSCURA_SETTING_INT, 3, 1, 4, "",
+     "1: rho0 (LSAO eq. 3); 2: inverse quadratic r/(r+d^2); 3: exponential exp(-d/sqrt(r)); 4: table",
+     OBSCURA_SETTING_OFFSET(ffao, falloff)},
+    {"falloff_c", OBSCURA_SETTING_FLOAT, 0.3, 1e-3, 0.999, "", "C of rho0(d) = max(0, r(1+C)/(r+d^2) - C)",
+     OBSCURA_SETTING_OFFSET(ffao, falloff_c)},
+    {"decay_rate", OBSCURA_SETTING_FLOAT, 0.0, 1e-10, 1e8, "m^2", "r of the falloff; 0 derives C*radius^2",
+     OBSCURA_SETTING_OFFSET(ffao, decay_rate)},
+    {"sectors", OBSCURA_SETTING_INT, 16, 4, 64, "", "K azimuthal sectors (even: one line orientation serves two)",
+     OBSCURA_SETTING_OFFSET(ffao, sectors)},
+    {"segments", OBSCURA_SETTING_INT, 2, 1, 4, "", "parts of a sector averaged and evaluated separately (K x this)",
+     OBSCURA_SETTING_OFFSET(ffao, segments)},
+    {"base_interval", OBSCURA_SETTING_INT, 10, 2, 64, "px",
+     "B0: scan steps per level-0 interval; the near field covers the first B0 to 2 B0 texels",
+     OBSCURA_SETTING_OFFSET(ffao, base_interval)},
+    {"geometry", OBSCURA_SETTING_INT, 1, 1, 2, "",
+     "far-field points: 1 scanned peaks (sec. 6-7); 2 depth MIP pyramid at distances x1.5 (sec. 5 baseline)",
+     OBSCURA_SETTING_OFFSET(ffao, geometry)},
+    {"thickness", OBSCURA_SETTING_FLOAT, 0.0, 0.0, 1e4, "m",
+     "solid behind every depth texel; 0: infinitely thick; > 0 reads single lines (no sector averages)",
+     OBSCURA_SETTING_OFFSET(ffao, thickness)},
+    {"jitter", OBSCURA_SETTING_TOGGLE, 0, 0, 1, "", "offset each sector's lines per pixel: banding becomes noise",
+     OBSCURA_SETTING_OFFSET(ffao, jitter)},
+    {"saao", OBSCURA_SETTING_TOGGLE, 0, 0, 1, "",
+     "SAAO: each pixel of a 3x3 group evaluates 1/9 of the far field; a gather adds its accepted neighbours'",
+     OBSCURA_SETTING_OFFSET(ffao, saao)},
+    {"saao_blur", OBSCURA_SETTING_TOGGLE, 1, 0, 1, "", "SAAO: 5x5 box blur over values within 7 % of the pixel's",
+     OBSCURA_SETTING_OFFSET(ffao, saao_blur)},
+    {"intensity", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "obscurance multiplier", OBSCURA_SETTING_OFFSET(ffao, intensity)},
+    {"power", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "exponent applied to the visibility",
+     OBSCURA_SETTING_OFFSET(ffao, power)},
+};
+
+// FFAO's derived values: the decay rate follows the radius; a line orientation serves two opposite sectors;
+// SAAO spreads the orientations over 3x3 pixels (sectors_given: whether the host set K).
+Error derive_ffao(const obscura_settings& in, obscura_settings* resolved) {
+    obscura_ffao_settings* ffao = &resolved->ffao;
+    const bool sectors_given = in.ffao.sectors != 0;
+    if (ffao->decay_rate == 0.0f) ffao->decay_rate = ffao->falloff_c * ffao->radius * ffao->radius;
+    if (ffao->saao == OBSCURA_TOGGLE_ON) {
+        if (!sectors_given) ffao->sectors = 18;
+        if (ffao->sectors % 18 != 0) {
+            return Error::make(OBSCURA_STATUS_INVALID_SETTING,
+                               "ffao.sectors = %d with saao: K must be a multiple of 18 (the 9 pixels of a 3x3 group "
+                               "share the K/2 line orientations); the paper uses 18",
+                               int(ffao->sectors));
+        }
+    }
+    if (ffao->sectors % 2 != 0) {
+        return Error::make(OBSCURA_STATUS_INVALID_SETTING,
+                           "ffao.sectors = %d: K must be even (each scanned line orientation serves two opposite "
+                           "sectors)",
+                           int(ffao->sectors));
+    }
+    return check_falloff_table("ffao", ffao->falloff, ffao->falloff_table);
+}
+
+void ffao_reference_falloff(const obscura_settings& resolved, obscura_reference_settings* reference) {
+    reference->falloff = resolved.ffao.falloff;
+    reference->radius = resolved.ffao.radius;
+    reference->falloff_c = resolved.ffao.falloff_c;
+    reference->decay_rate = resolved.ffao.decay_rate;
+    reference->thickness = resolved.ffao.thickness;
+    std::memcpy(reference->falloff_table, resolved.ffao.falloff_table, sizeof reference->falloff_table);
+}
+
+bool ffao_blurs(const obscura_ffao_settings& ffao, bool raw_view) {
+    return ffao_uses_saao(ffao) && !raw_view && ffao.saao_blur == OBSCURA_TOGGLE_ON;
+}
+
+class FfaoTechnique final : public Technique {
+public:
+    TechniquePlan plan(const obscura_settings& settings, int width, int height, bool raw_view) const override {
+        const obscura_ffao_settings& ffao = settings.ffao;
+        TechniquePlan plan;
+        plan.apron = ffao_blurs(ffao, raw_view) ? 2 : 0;  // the 5x5 box
+        if (ffao_uses_mipmap(ffao)) plan.depth_levels = ZPyramidPass::level_count(width, height, kFfaoMipmapLevels);
+        plan.radius = ffao.radius;
+        return plan;
+    }
+
+    Error prepare(const PassEnv& env, const obscura_settings& settings, FrameResources& resources) override {
+        Error error = ffao_.prepare(env, settings.ffao);
+        if (!error && ffao_uses_mipmap(settings.ffao)) error = pyramid_pass_.prepare(env);
+        if (!error) error = ffao_.ensure_layout(env, settings.ffao, resources.width, resources.height);
+        return error;
+    }
+
+    void write_constants(const Frame& frame, UniformWriter& uniforms) override {
+        const obscura_ffao_settings& ffao = frame.settings.ffao;
+        // SAAO's gather reads the 3x3 neighbours of its region: the box average and the obscurance cover one
+        // pixel more.
+        saao_region_ = frame.regions.ao.expanded(1, 1, frame.input.width, frame.input.height);
+        if (ffao_uses_saao(ffao)) saao_frame_ = uniforms.frame_constants(saao_region_);
+        levels_ = ffao_uses_mipmap(ffao) ? frame.resources.linear_depth.levels() : 1;
+        pyramid_dispatches_ = ZPyramidPass::dispatch_count(levels_);
+        for (int d = 0; d < pyramid_dispatches_ && d < kMaxPyramidDispatches; ++d) {
+            pyramid_[d] = uniforms.push(ZPyramidPass::constants(d, levels_, ffao_mipmap_filter(ffao)));
+        }
+        pass_ = uniforms.push(ffao_.constants(ffao, frame.input, levels_));
+        table_ = uniforms.push(FfaoPass::table_constants(ffao));
+    }
+
+    Error record(const Frame& frame, PassRecorder& recorder, TechniqueOutput* out) override {
+        const PassEnv& env = frame.env;
+        const obscura_ffao_settings& ffao = frame.settings.ffao;
+        FrameResources& r = frame.resources;
+        const bool mipmap = ffao_uses_mipmap(ffao), saao = ffao_uses_saao(ffao);
+        out->raw = out->result = &r.ao;
+        Error error;
+        if (ffao_.table_stale(ffao)) {
+            ffao_.run_table(env, ffao, table_);
+            if ((error = recorder.end(PassId::FfaoTable))) return error;
+        }
+        if (mipmap && levels_ > 1) {
+            pyramid_pass_.run(env, pyramid_, pyramid_dispatches_, r.linear_depth);
+            if ((error = recorder.end(PassId::ZPyramid))) return error;
+        }
+        if (!mipmap) {
+            ffao_.run_scan(env, frame.uniforms.whole, pass_, r);
+            if ((error = recorder.end(PassId::FfaoScan))) return error;
+        }
+        if (!mipmap && !ffao_single_lines(ffao)) {
+            ffao_.run_prefix(env, frame.uniforms.whole, pass_);
+            if ((error = recorder.end(PassId::FfaoPrefix))) return error;
+        }
+        if (saao) {
+            ffao_.run_box_average(env, saao_frame_, pass_, saao_region_, r);
+            if ((error = recorder.end(PassId::FfaoBoxAverage))) return error;
+        }
+        ffao_.run_obscurance(env, ffao, saao ? saao_frame_ : frame.uniforms.ao, pass_,
+                             saao ? saao_region_ : frame.regions.ao, r);
+        if ((error = recorder.end(PassId::FfaoObscurance))) return error;
+        if (saao) {
+            ffao_.run_gather(env, frame.uniforms.ao, pass_, frame.regions.ao, r);
+            if ((error = recorder.end(PassId::FfaoGather))) return error;
+        }
+        if (!ffao_blurs(ffao, frame.raw_view)) return error;
+        ffao_.run_saao_blur(env, frame.uniforms.output, pass_, frame.regions.output, r);
+        out->result = &r.ao_blurred;
+        return recorder.end(PassId::Blur);
+    }
+
+    uint64_t memory_bytes() const override { return ffao_.bytes(); }
+    void release() override {
+        ffao_.release();
+        ffao_.release_table();
+    }
+
+private:
+    static constexpr int kMaxPyramidDispatches = 4;
+    FfaoPass ffao_;
+    ZPyramidPass pyramid_pass_;  // the mipmap baseline's depth pyramid
+    Region saao_region_;
+    int levels_ = 1, pyramid_dispatches_ = 0;
+    UniformRange saao_frame_, pyramid_[kMaxPyramidDispatches], pass_, table_;
+};
+
+const PassId kFfaoPasses[] = {PassId::FfaoTable,      PassId::ZPyramid,       PassId::FfaoScan,
+                              PassId::FfaoPrefix,     PassId::FfaoBoxAverage, PassId::FfaoObscurance,
+                              PassId::FfaoGather,     PassId::Blur};
+
+}  // namespace
+
+extern const MethodDescriptor kFfaoMethod = {
+    OBSCURA_METHOD_FFAO,
+    "ffao",
+    offsetof(obscura_settings, ffao),
+    sizeof(obscura_ffao_settings),
+    kFfaoSettings,
+    uint32_t(sizeof kFfaoSettings / sizeof kFfaoSettings[0]),
+    derive_ffao,
+    ffao_reference_falloff,
+    kFfaoPasses,
+    uint32_t(sizeof kFfaoPasses / sizeof kFfaoPasses[0]),
+    create_technique<FfaoTechnique>,
+};
+
+}  // namespace obscura

@@ -1,0 +1,120 @@
+// HBAO (LSAO paper sec. 3 and 6): its settings metadata, its derived values, the falloff it is compared with,
+// its technique (the horizon search, then the separable bilateral blur) and its registry row.
+#include "method_registry.h"
+#include "passes/bilateral_blur.h"
+#include "passes/hbao.h"
+#include "settings.h"
+#include "technique.h"
+
+namespace obscura {
+namespace {
+
+// HBAO (LSAO paper sec. 3 and 6; the falloff rho0 is its eq. 3). Defaults follow the paper (C = 0.3)
+// and common HBAO practice (8 directions, 12 steps, 4-tap bilateral blur).
+const obscura_setting_info kHbaoSettings[] = {
+    {"radius", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 1e4, "m",
+     "distance where the falloff reaches zero; the steps cover it", OBSCURA_SETTING_OFFSET(hbao, radius)},
+    {"falloff_c", OBSCURA_SETTING_FLOAT, 0.3, 1e-3, 0.999, "",
+     "C of rho0(d) = max(0, r(1+C)/(r+d^2) - C): how far the falloff is sunk", OBSCURA_SETTING_OFFSET(hbao, falloff_c)},
+    {"decay_rate", OBSCURA_SETTING_FLOAT, 0.0, 1e-10, 1e8, "m^2",
+     "r of rho0; 0 derives C*radius^2 so rho0 reaches zero at the radius", OBSCURA_SETTING_OFFSET(hbao, decay_rate)},
+    {"directions", OBSCURA_SETTING_INT, 8, 1, 32, "", "K azimuthal directions per pixel",
+     OBSCURA_SETTING_OFFSET(hbao, directions)},
+    {"steps", OBSCURA_SETTING_INT, 12, 1, 128, "", "N ray-march steps per direction", OBSCURA_SETTING_OFFSET(hbao, steps)},
+    {"estimator", OBSCURA_SETTING_INT, 1, 1, 2, "",
+     "1: horizon-split integration (Bavoil 2008); 2: largest falloff-weighted occluder (LSAO eq. 1)",
+     OBSCURA_SETTING_OFFSET(hbao, estimator)},
+    {"bias", OBSCURA_SETTING_FLOAT, 0.0, 0.0, 0.5, "",
+     "subtracted from sin(h) - sin(t) to hide tessellation; the default is zero", OBSCURA_SETTING_OFFSET(hbao, bias)},
+    {"intensity", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "obscurance multiplier", OBSCURA_SETTING_OFFSET(hbao, intensity)},
+    {"power", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "exponent applied to the visibility",
+     OBSCURA_SETTING_OFFSET(hbao, power)},
+    {"max_radius_pixels", OBSCURA_SETTING_FLOAT, 256.0, 1.0, 4096.0, "px",
+     "cap of the radius on screen, bounding the cost of close-ups", OBSCURA_SETTING_OFFSET(hbao, max_radius_pixels)},
+    {"blur", OBSCURA_SETTING_TOGGLE, 1, 0, 1, "", "depth-aware bilateral blur of the AO", OBSCURA_SETTING_OFFSET(hbao, blur)},
+    {"blur_radius", OBSCURA_SETTING_INT, 4, 1, 16, "px", "blur taps on each side", OBSCURA_SETTING_OFFSET(hbao, blur_radius)},
+    {"blur_sharpness", OBSCURA_SETTING_FLOAT, 16.0, 1e-3, 1000.0, "",
+     "how strongly the blur stops at depth edges (relative depth difference scale)",
+     OBSCURA_SETTING_OFFSET(hbao, blur_sharpness)},
+};
+
+Error derive_hbao(const obscura_settings&, obscura_settings* resolved) {
+    // The decay rate defaults to C * radius^2, where rho0 reaches zero exactly at the radius.
+    obscura_hbao_settings& hbao = resolved->hbao;
+    if (hbao.decay_rate == 0.0f) hbao.decay_rate = hbao.falloff_c * hbao.radius * hbao.radius;
+    return Error();
+}
+
+void hbao_reference_falloff(const obscura_settings& resolved, obscura_reference_settings* reference) {
+    reference->falloff = OBSCURA_FALLOFF_RHO0;
+    reference->radius = resolved.hbao.radius;
+    reference->falloff_c = resolved.hbao.falloff_c;
+    reference->decay_rate = resolved.hbao.decay_rate;
+}
+
+bool hbao_blurs(const obscura_hbao_settings& hbao, bool raw_view) { return !raw_view && hbao.blur == OBSCURA_TOGGLE_ON; }
+
+class HbaoTechnique final : public Technique {
+public:
+    TechniquePlan plan(const obscura_settings& settings, int, int, bool raw_view) const override {
+        TechniquePlan plan;
+        plan.apron = hbao_blurs(settings.hbao, raw_view) ? settings.hbao.blur_radius : 0;
+        plan.radius = settings.hbao.radius;
+        return plan;
+    }
+
+    Error prepare(const PassEnv& env, const obscura_settings&, FrameResources&) override {
+        Error error = hbao_.prepare(env);
+        if (!error) error = blur_.prepare(env);
+        return error;
+    }
+
+    void write_constants(const Frame& frame, UniformWriter& uniforms) override {
+        const obscura_hbao_settings& hbao = frame.settings.hbao;
+        const int apron = hbao_blurs(hbao, frame.raw_view) ? hbao.blur_radius : 0;
+        pass_ = uniforms.push(HbaoPass::constants(hbao, frame.input));
+        blur_x_ = uniforms.push(BilateralBlurPass::constants(apron, hbao.blur_sharpness, 1, 0));
+        blur_y_ = uniforms.push(BilateralBlurPass::constants(apron, hbao.blur_sharpness, 0, 1));
+    }
+
+    Error record(const Frame& frame, PassRecorder& recorder, TechniqueOutput* out) override {
+        FrameResources& r = frame.resources;
+        hbao_.run(frame.env, frame.settings.hbao, frame.uniforms.ao, pass_, frame.regions.ao, r);
+        out->raw = out->result = &r.ao;
+        Error error = recorder.end(PassId::Hbao);
+        if (error || !hbao_blurs(frame.settings.hbao, frame.raw_view)) return error;
+        blur_.run(frame.env, frame.uniforms.blur_x, blur_x_, frame.regions.blur_x, r.linear_depth, r.ao, r.blur_temp);
+        blur_.run(frame.env, frame.uniforms.output, blur_y_, frame.regions.output, r.linear_depth, r.blur_temp,
+                  r.ao_blurred);
+        out->result = &r.ao_blurred;
+        return recorder.end(PassId::Blur);
+    }
+
+    uint64_t memory_bytes() const override { return 0; }  // the shared AO and blur textures only
+    void release() override {}
+
+private:
+    HbaoPass hbao_;
+    BilateralBlurPass blur_;
+    UniformRange pass_, blur_x_, blur_y_;
+};
+
+const PassId kHbaoPasses[] = {PassId::Hbao, PassId::Blur};
+
+}  // namespace
+
+extern const MethodDescriptor kHbaoMethod = {
+    OBSCURA_METHOD_HBAO,
+    "hbao",
+    offsetof(obscura_settings, hbao),
+    sizeof(obscura_hbao_settings),
+    kHbaoSettings,
+    uint32_t(sizeof kHbaoSettings / sizeof kHbaoSettings[0]),
+    derive_hbao,
+    hbao_reference_falloff,
+    kHbaoPasses,
+    uint32_t(sizeof kHbaoPasses / sizeof kHbaoPasses[0]),
+    create_technique<HbaoTechnique>,
+};
+
+}  // namespace obscura

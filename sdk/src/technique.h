@@ -1,0 +1,117 @@
+// Technique: one method's passes and resources behind one interface, which Context drives without knowing
+// the method. A frame is: plan (what the frame needs before anything is recorded) -> prepare (programs and
+// resources, created or reused) -> write_constants (the passes' uniform blocks, uploaded together) -> record
+// (the dispatches, each pass ended through the recorder). Each method's technique lives in
+// sdk/src/methods/<method>.cpp beside its settings metadata and registry row (method_registry.h).
+#ifndef OBSCURA_TECHNIQUE_H
+#define OBSCURA_TECHNIQUE_H
+
+#include "error.h"
+#include "frame_input.h"
+#include "host_allocator.h"
+#include "pass_id.h"
+#include "passes/pass_common.h"
+
+#include <new>
+
+namespace obscura {
+
+// What a technique needs of a frame before anything is allocated or recorded.
+struct TechniquePlan {
+    int apron = 0;             // texels its reconstruction reads beyond the output rectangle on each side
+    bool ao_on_quads = false;  // the AO region starts on even coordinates (a filter over absolute 2x2 quads)
+    int depth_levels = 1;      // MIP levels the linear depth needs (a z pyramid over level 0); 1: none
+    float radius = 1.0f;       // the method's radius in metres: the linear-depth debug view's scale
+};
+
+// The regions of a frame's passes, in depth-texture texels (frame_planner.h computes them from the plan).
+struct FrameRegions {
+    Region whole;   // the whole depth texture: depth preparation, sweeps, scans
+    Region output;  // the output rectangle: the last reconstruction pass and the composite
+    Region ao;      // where the AO pass computes: the output rectangle and the apron around it
+    Region blur_x;  // a separable reconstruction's horizontal pass: the output rectangle grown vertically
+};
+
+// The frame's shared constants (FrameConstants, work_rect = the region) for those regions.
+struct FrameUniforms {
+    UniformRange whole, output, ao, blur_x;
+};
+
+// A frame as a technique sees it while it writes its constants and records its passes.
+struct Frame {
+    const PassEnv& env;
+    const FrameInput& input;
+    const obscura_settings& settings;  // resolved
+    const FrameRegions& regions;
+    const FrameUniforms& uniforms;
+    FrameResources& resources;         // the shared per-size textures (depth, normals, AO, blur targets)
+    bool raw_view;                     // the debug view shows the AO pass's own output: no reconstruction
+};
+
+// Collects the frame's uniform blocks (one upload for the whole frame).
+class UniformWriter {
+public:
+    virtual ~UniformWriter() = default;
+    template <class Block>
+    UniformRange push(const Block& block) { return arena().push(block); }
+    // The frame's shared constants for a pass computing `work` (a region the planner does not provide).
+    virtual UniformRange frame_constants(const Region& work) = 0;
+
+protected:
+    virtual UniformArena& arena() = 0;
+};
+
+// Ends passes: marks the timer and, with OBSCURA_CONTEXT_FLAG_VALIDATE_PASSES, reports the pass that raised a
+// GL error. Once a pass failed every later end() returns that error, so a technique may record on and return
+// the last result.
+class PassRecorder {
+public:
+    virtual ~PassRecorder() = default;
+    virtual Error end(PassId pass) = 0;
+    // Starts the GPU on what was recorded so far (long passes split into dispatches).
+    virtual void flush() = 0;
+};
+
+// Where the technique left its result.
+struct TechniqueOutput {
+    const gl::Texture2D* raw = nullptr;     // the AO pass's own output (the raw debug views)
+    const gl::Texture2D* result = nullptr;  // after the reconstruction: what the composite shows
+};
+
+class Technique {
+public:
+    virtual ~Technique() = default;
+    // What a frame with these resolved settings needs at a width x height depth texture.
+    virtual TechniquePlan plan(const obscura_settings& settings, int width, int height, bool raw_view) const = 0;
+    // Builds the programs the settings run and creates or reuses the technique's resources for the size of
+    // `resources` (whose linear depth already has the plan's levels). Called by obscura_prepare and by every
+    // frame: cheap when nothing changed. Programs are kept; resources follow the latest settings only.
+    virtual Error prepare(const PassEnv& env, const obscura_settings& settings, FrameResources& resources) = 0;
+    // Pushes the uniform blocks of the passes record() will run.
+    virtual void write_constants(const Frame& frame, UniformWriter& uniforms) = 0;
+    // Records the passes, ending each through `recorder`.
+    virtual Error record(const Frame& frame, PassRecorder& recorder, TechniqueOutput* out) = 0;
+    // GPU memory of the technique's own resources.
+    virtual uint64_t memory_bytes() const = 0;
+    // Frees the technique's resources (not its programs): another method renders now, the size changed, or
+    // the host released the context's resources.
+    virtual void release() = 0;
+};
+
+// Techniques live in the host allocator's memory, like every CPU allocation of the SDK.
+template <class T>
+Technique* create_technique(const AllocatorCallbacks& alloc) {
+    void* memory = alloc.allocate(sizeof(T));
+    if (!memory) throw std::bad_alloc();
+    return new (memory) T();
+}
+
+inline void destroy_technique(Technique* technique, const AllocatorCallbacks& alloc) {
+    if (!technique) return;
+    technique->~Technique();
+    alloc.release(technique);
+}
+
+}  // namespace obscura
+
+#endif  // OBSCURA_TECHNIQUE_H
