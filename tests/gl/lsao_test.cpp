@@ -3,10 +3,11 @@
 //   - flat surfaces get no occlusion, with every projection, aligned and free patterns,
 //   - a concave corner gets occlusion near its crease, decreasing away from it,
 //   - the obscure hull gives the same picture as the brute-force largest occluder (the paper: 0.02-0.3 %),
-//   - every preset and tangent strategy renders cleanly.
+//   - every preset resolves to and renders its own K, D_S, D_L, and every tangent strategy renders cleanly.
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "ao_test_scene.h"
 #include "demo_scene.h"
@@ -83,11 +84,40 @@ TEST_F(Lsao, EveryPresetStrategyAndPatternRendersCleanly) {
         return stats(v, select(scene.hits, kWidth, kHeight, 8, [](const Hit& h) { return crease_distance(h) < 0.1; }))
             .mean;
     };
+    // K, D_S, D_L of each preset as obscura.h documents them (the paper's Table 2, Figures 1 and 13).
+    struct PresetValues {
+        int32_t directions;
+        float step_length, line_spacing;
+    };
+    const PresetValues kPresets[6] = {{8, 1.41f, 1.41f}, {16, 2.43f, 1.64f}, {24, 3.56f, 1.69f},
+                                      {32, 4.69f, 1.70f}, {8, 2.83f, 2.12f}, {16, 4.87f, 2.46f}};
+    std::vector<std::vector<float>> images;
     for (int preset = 1; preset <= 6; ++preset) {
+        SCOPED_TRACE("preset " + std::to_string(preset));
         obscura_settings settings = lsao_settings(1.0f);
         settings.lsao.preset = preset;
-        EXPECT_LT(near_mean(settings), 0.85) << "preset " << preset;
+        // 0: derive from the preset (defaults may come filled in from preset 2's values).
+        settings.lsao.directions = 0;
+        settings.lsao.step_length = 0.0f;
+        settings.lsao.line_spacing = 0.0f;
+        obscura_settings resolved;
+        ASSERT_EQ(obscura_resolve_settings(ctx(), &settings, &resolved), OBSCURA_OK) << obscura_get_last_error(ctx());
+        const PresetValues& expected = kPresets[preset - 1];
+        ASSERT_EQ(resolved.lsao.directions, expected.directions);
+        ASSERT_NEAR(resolved.lsao.step_length, expected.step_length, 0.01);
+        ASSERT_NEAR(resolved.lsao.line_spacing, expected.line_spacing, 0.01);
+        images.push_back(render_visibility(ctx(), scene.input, settings));
+        ASSERT_FALSE(images.back().empty());
+        EXPECT_LT(stats(images.back(), select(scene.hits, kWidth, kHeight, 8,
+                                              [](const Hit& h) { return crease_distance(h) < 0.1; }))
+                      .mean,
+                  0.85);
     }
+    // Every preset has its own K or D_L, so every image differs from every other (all six were preset 2's when
+    // the derived fields came in filled).
+    for (size_t a = 0; a < images.size(); ++a)
+        for (size_t b = a + 1; b < images.size(); ++b)
+            EXPECT_TRUE(images[a] != images[b]) << "presets " << a + 1 << " and " << b + 1 << " render the same image";
     for (int strategy = 1; strategy <= 3; ++strategy) {
         obscura_settings settings = lsao_settings(1.0f);
         settings.lsao.tangent_strategy = strategy;

@@ -1,4 +1,5 @@
 // Status strings, method names and the version query: pure C API, no GL.
+#include <cstdint>
 #include <cstring>
 #include <set>
 #include <string>
@@ -15,14 +16,76 @@ struct StatusEntry {
     const char* description;
 };
 
-// Generated from the header's own list, so every code the enum has is covered.
+// Generated from the header's own list (for the descriptions); EveryCodeIsCovered checks the codes against a
+// table written out by hand.
 #define OBSCURA_TEST_STATUS_ENTRY(name, value, desc) StatusEntry{OBSCURA_STATUS_##name, #name, desc},
 const StatusEntry kStatuses[] = {OBSCURA_STATUS_LIST(OBSCURA_TEST_STATUS_ENTRY)};
 #undef OBSCURA_TEST_STATUS_ENTRY
 
+// Written out by hand, independently of OBSCURA_STATUS_LIST: the codes are ABI, so a renumbered, renamed or
+// dropped code fails here, and a new code fails until it gets an entry (OBSCURA_STATUS_COUNT_ is checked).
+struct ExpectedStatus {
+    obscura_status status;
+    int value;
+    const char* name;
+};
+const ExpectedStatus kExpectedStatuses[] = {
+    {OBSCURA_STATUS_OK, 0, "OK"},
+    {OBSCURA_STATUS_NULL_ARGUMENT, 1, "NULL_ARGUMENT"},
+    {OBSCURA_STATUS_INVALID_STRUCT_SIZE, 2, "INVALID_STRUCT_SIZE"},
+    {OBSCURA_STATUS_VERSION_MISMATCH, 3, "VERSION_MISMATCH"},
+    {OBSCURA_STATUS_NO_GL_CONTEXT, 4, "NO_GL_CONTEXT"},
+    {OBSCURA_STATUS_GL_VERSION_UNSUPPORTED, 5, "GL_VERSION_UNSUPPORTED"},
+    {OBSCURA_STATUS_MISSING_GL_FUNCTION, 6, "MISSING_GL_FUNCTION"},
+    {OBSCURA_STATUS_WRONG_GL_CONTEXT, 7, "WRONG_GL_CONTEXT"},
+    {OBSCURA_STATUS_INVALID_SIZE, 8, "INVALID_SIZE"},
+    {OBSCURA_STATUS_INVALID_RECT, 9, "INVALID_RECT"},
+    {OBSCURA_STATUS_INVALID_TEXTURE, 10, "INVALID_TEXTURE"},
+    {OBSCURA_STATUS_UNSUPPORTED_FORMAT, 11, "UNSUPPORTED_FORMAT"},
+    {OBSCURA_STATUS_INVALID_PROJECTION, 12, "INVALID_PROJECTION"},
+    {OBSCURA_STATUS_PROJECTION_TRANSPOSED, 13, "PROJECTION_TRANSPOSED"},
+    {OBSCURA_STATUS_INVALID_SETTING, 14, "INVALID_SETTING"},
+    {OBSCURA_STATUS_INVALID_ENUM, 15, "INVALID_ENUM"},
+    {OBSCURA_STATUS_METHOD_NOT_AVAILABLE, 16, "METHOD_NOT_AVAILABLE"},
+    {OBSCURA_STATUS_INVALID_FRAMEBUFFER, 17, "INVALID_FRAMEBUFFER"},
+    {OBSCURA_STATUS_SHADER_COMPILE_FAILED, 18, "SHADER_COMPILE_FAILED"},
+    {OBSCURA_STATUS_OUT_OF_MEMORY, 19, "OUT_OF_MEMORY"},
+    {OBSCURA_STATUS_HOST_GL_ERROR, 20, "HOST_GL_ERROR"},
+    {OBSCURA_STATUS_GL_ERROR, 21, "GL_ERROR"},
+    {OBSCURA_STATUS_UNKNOWN_SETTING, 22, "UNKNOWN_SETTING"},
+    {OBSCURA_STATUS_INTERNAL_ERROR, 23, "INTERNAL_ERROR"},
+    {OBSCURA_STATUS_CONTEXT_LOST, 24, "CONTEXT_LOST"},
+};
+
+// Any int as a status, as a C caller may pass it, without forming an out-of-range value of the C++ enum.
+obscura_status raw_status(int32_t value) {
+    static_assert(sizeof(obscura_status) == sizeof(int32_t), "int-sized C enum");
+    obscura_status status;
+    std::memcpy(&status, &value, sizeof value);
+    return status;
+}
+
 TEST(StatusString, EveryCodeIsCovered) {
-    EXPECT_EQ(sizeof kStatuses / sizeof kStatuses[0], size_t(OBSCURA_STATUS_COUNT_));
-    for (size_t i = 0; i < sizeof kStatuses / sizeof kStatuses[0]; ++i) EXPECT_EQ(int(kStatuses[i].status), int(i));
+    const size_t expected_count = sizeof kExpectedStatuses / sizeof kExpectedStatuses[0];
+    EXPECT_EQ(size_t(OBSCURA_STATUS_COUNT_), expected_count)
+        << "a status code was added or removed: update this table (the values are ABI)";
+    const std::string unknown = "OBSCURA_STATUS_?: unknown status code";  // the fixed string for unknown codes
+    for (const ExpectedStatus& entry : kExpectedStatuses) {
+        EXPECT_EQ(int(entry.status), entry.value) << entry.name;
+        const char* text = obscura_status_string(raw_status(entry.value));
+        ASSERT_NE(text, nullptr) << entry.name;
+        const std::string prefix = std::string("OBSCURA_STATUS_") + entry.name + ": ";
+        EXPECT_EQ(std::string(text).rfind(prefix, 0), 0u) << "code " << entry.value << ": \"" << text << "\"";
+        EXPECT_GT(std::strlen(text), prefix.size()) << entry.name << " has no description";
+        EXPECT_NE(std::string(text), unknown) << entry.name;
+    }
+    // Out of range, on either side and just past the last code: the one fixed unknown string.
+    EXPECT_EQ(std::string(obscura_status_string(OBSCURA_STATUS_COUNT_)), unknown);
+    EXPECT_EQ(std::string(obscura_status_string(raw_status(int32_t(expected_count)))), unknown);
+    EXPECT_EQ(std::string(obscura_status_string(raw_status(-1))), unknown);
+    EXPECT_EQ(std::string(obscura_status_string(raw_status(1000))), unknown);
+    EXPECT_EQ(obscura_status_string(raw_status(int32_t(expected_count))), obscura_status_string(raw_status(-1)))
+        << "the unknown string is one fixed string";
 }
 
 TEST(StatusString, NameAndDescriptionForEveryCode) {
