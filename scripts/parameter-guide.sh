@@ -68,7 +68,7 @@ declare -A fixed_values=(
   # The range's end (10000 m) is as thick as 0 (infinitely thick).
   [ffao.thickness]="0 0.1 0.5"
   [reference.thickness]="0 0.1 0.5"
-  # 4 (table) needs falloff_table, an array the CLI has no key for: explained in the text.
+  # 4 (table) needs falloff_table, a table of its own: explained in the text.
   [ffao.falloff]="1 2 3"
   [reference.falloff]="1 2 3"
 )
@@ -77,8 +77,8 @@ declare -A text_only=(
   [reference.first_ray]="It only offsets each pixel's ray sequence, so a host can accumulate frames rendered with first_ray = 0, rays, 2 rays ... into one converged image: a single picture at another first_ray is the same picture with other noise (its error is the noise of \`rays\` rays, see \`rays\` above), and the cost does not depend on it."
 )
 declare -A notes=(
-  [ffao.falloff]="Not shown: 4 (table), the falloff \`falloff_table[i]\` = rho(i/(N-1) radius) given by the host in \`obscura_settings.ffao.falloff_table\` (linear in between, 0 beyond the radius). The table is an array with no \`--list-settings\` key, so the CLI cannot set it (\`ffao:falloff=4\` with the table all zero is refused); it costs what the other falloffs cost."
-  [reference.falloff]="Not shown: 4 (table), the host's \`obscura_settings.reference.falloff_table\`, which the CLI cannot set (see FFAO's \`falloff\`)."
+  [ffao.falloff]="Not shown: 4 (table), the falloff \`falloff_table[i]\` = rho(i/(N-1) radius) given in \`obscura_settings.ffao.falloff_table\` (linear in between, 0 beyond the radius); a spec gives it as \`ffao:falloff=table:falloff_table=V0/V1/.../V15\` or \`falloff_table=@FILE\` (\`falloff=table\` without it is refused). It costs what the other falloffs cost."
+  [reference.falloff]="Not shown: 4 (table), \`obscura_settings.reference.falloff_table\`, given as FFAO's is (see FFAO's \`falloff\`)."
 )
 
 # ---- Metadata ---------------------------------------------------------------------------------------
@@ -107,16 +107,17 @@ list_settings() {
         if (field[i] == "" && i != 6) fail("empty " columns[i])
         position += (length(field[i]) > width[i] ? length(field[i]) : width[i]) + 1
       }
-      if (field[2] !~ /^(float|int|toggle)$/) fail("type " field[2])
+      if (field[2] !~ /^(float|int|toggle|enum|float\[[0-9]+\])$/) fail("type " field[2])
       for (i = 4; i <= 5; ++i) if (field[i] !~ /^-?[0-9.]+(e[-+][0-9]+)?$/) fail(columns[i] " " field[i])
       printf "%s\x1f%s\x1f%s\x1f%s\x1f%s\x1f%s\x1f%s\n", field[1], field[2], field[3], field[4], field[5], field[6], substr($0, position)
     }
     END { if (!bad && !header) { print "no settings header from --list-settings " method > "/dev/stderr"; exit 1 } }'
 }
 
-# The values to show of a setting: TYPE DEFAULT MIN MAX EFFECTIVE (the resolved default, which differs
-# where 0 means "derived", e.g. HBAO's decay rate C*radius^2).
+# The values to show of a setting: TYPE DEFAULT MIN MAX EFFECTIVE (the resolved default: the value of a
+# "derived" setting, e.g. HBAO's decay rate C*radius^2, and an enum's number).
 #   toggle: off, on
+#   enum: as an int (by number)
 #   int with at most 6 values in its range: every value; other ints: default/4, default, default*4
 #     (rounded, clamped to the range), or min, default, max when the default is the minimum or below 1
 #   float: default/4, default, default*4 clamped to the range; min, default, max when the range is tiny
@@ -125,13 +126,13 @@ pick_values() {
   awk -v type="$1" -v def="$2" -v low="$3" -v high="$4" -v eff="$5" '
     function clamp(x) { return x < low ? low : (x > high ? high : x) }
     function add(x,    text) {
-      text = (type == "int") ? sprintf("%d", x) : sprintf("%.6g", x)
+      text = (type == "int" || type == "enum") ? sprintf("%d", x) : sprintf("%.6g", x)
       if (!(text in seen)) { seen[text] = 1; list = list (list == "" ? "" : " ") text }
     }
     BEGIN {
       if (type == "toggle") { print "off on"; exit }
       low += 0; high += 0; d = eff + 0
-      if (type == "int") {
+      if (type == "int" || type == "enum") {
         if (high - low + 1 <= 6) { for (v = low; v <= high; ++v) add(v) }
         else if (d <= low || d < 1) { add(low); add(d); add(high) }
         else { add(clamp(int(d / 4 + 0.5))); add(d); add(clamp(d * 4)) }
@@ -230,7 +231,11 @@ for method in "${methods[@]}"; do
     range="$min to $max$unit_text"
     [[ "$type" == "toggle" ]] && range="off or on"
     default_text="$default$unit_text"
-    if [[ "$type" != "toggle" && "$effective" != "$default" ]] && ! same_number "$effective" "$default"; then
+    if [[ "$default" == "derived" ]]; then
+      default_text="derived (here $effective$unit_text)"
+    elif [[ "$type" == "enum" ]]; then
+      default_text="$default ($effective)"
+    elif [[ "$type" != "toggle" && "$effective" != "$default" ]] && ! same_number "$effective" "$default"; then
       default_text="$default$unit_text (resolved here: $effective$unit_text)"
     fi
     {
@@ -244,6 +249,10 @@ for method in "${methods[@]}"; do
 
     if [[ -n "${text_only[$key]:-}" ]]; then
       printf '\n%s\n' "Not rendered. ${text_only[$key]}" >>"$body"
+      continue
+    fi
+    if [[ "$type" == float\[* ]]; then
+      printf '\n%s\n' "Not rendered: an array (the falloff table), read only with \`falloff=table\` (see \`falloff\`)." >>"$body"
       continue
     fi
 

@@ -234,7 +234,8 @@ int run_compare(ArgumentList& arguments) {
     result.orbit_degrees = config.orbit_degrees;
     result.all_pixels = config.all_pixels;
     // Resolved through the session first: obscura_reference_settings_for has no context to tell why it
-    // refuses settings (an all-zero falloff table, say), and this call's log and last error do.
+    // refuses settings, and this call's log and last error do. (The spec parser already refused the settings
+    // it could tell were wrong, an all-zero falloff table say, as usage errors.)
     for (const MethodSpec& spec : config.methods) {
         obscura_settings resolved{};
         session.check(obscura_resolve_settings(session.get(), &spec.settings, &resolved),

@@ -43,8 +43,12 @@ SCENE (render, compare, bench, truth):
 
 METHOD SPECS: NAME[:KEY=VALUE[:KEY=VALUE...]], e.g. hbao, hbao:directions=16:steps=48, reference:rays=512;
 lists separate specs with ',' (--methods hbao,hbao:blur=off). Keys, defaults and ranges come from the
-SDK's metadata (--list-settings); toggles take on/off. --set KEY=VALUE applies to every method that has
-KEY (a key in a spec wins). A method the library does not implement is an error (exit 1).
+SDK's metadata (--list-settings); a spec starts from the method's defaults, derived settings (decay rates,
+LSAO's K from its preset ...) follow the keys given unless given themselves (0: derive). Toggles take
+on/off, enums their names or numbers (ffao:falloff=exponential, lsao:preset=k32), the falloff table 16
+values V0/V1/.../V15 or @FILE (numbers separated by spaces, commas or newlines), needed with falloff=table.
+--set KEY=VALUE applies to every method that has KEY (a key in a spec wins). A method the library does not
+implement is an error (exit 1).
 Defaults: render --method hbao; compare every available method but the reference; bench hbao.
 
 render writes the AO (visibility) of the visible image. --json: scene, size, method, effective settings,

@@ -1,7 +1,9 @@
-// Method specs on the command line: NAME[:KEY=VALUE[:KEY=VALUE...]], e.g. "hbao:directions=16:steps=48"
-// or "reference:rays=512"; lists of them separated by ',' ("--methods hbao,hbao:blur=off"). Every key
-// goes through obscura_set_setting, so whatever the SDK's settings metadata declares works here, with
-// the ranges it declares. `--set KEY=VALUE` applies a key to every method of the command that has it.
+// Method specs on the command line: NAME[:KEY=VALUE[:KEY=VALUE...]], e.g. "hbao:directions=16:steps=48",
+// "lsao:preset=k32" or "ffao:falloff=table:falloff_table=@rho.txt"; lists of them separated by ','
+// ("--methods hbao,hbao:blur=off"). The parsing is samples/common/method_spec_parser.h's, which the viewer
+// and the golden tests share: this wraps it in the CLI's errors, UsageError (exit 2) for a wrong spec,
+// ApiError (exit 1) for what the library cannot do. `--set KEY=VALUE` applies a key to every method of the
+// command that has it.
 #ifndef OBSCURA_CLI_METHOD_SPEC_H
 #define OBSCURA_CLI_METHOD_SPEC_H
 
@@ -15,7 +17,7 @@ namespace obscura::cli {
 
 struct MethodSpec {
     std::string text;             // as given, for tables, JSON and CSV
-    obscura_settings settings{};  // zero (every default), then the --set keys it has, then the spec's keys
+    obscura_settings settings{};  // the editable defaults, then the --set keys it has, then the spec's keys
     obscura_method method() const { return settings.method; }
     const char* name() const { return obscura_method_name(settings.method); }
 };
@@ -29,9 +31,10 @@ obscura_method find_method(const std::string& name);
 // The settings metadata of `method` (an empty list when it has none).
 std::vector<obscura_setting_info> setting_infos(obscura_method method);
 
-// One spec. UsageError for an unknown method or key, a value that is not a number (toggles: on/off) or
-// out of its range; ApiError (exit code 1) for a method this library does not implement.
-// `set_options` are the values of --set (KEY=VALUE), applied where the method has the key.
+// One spec. UsageError for an unknown method or key, a value that is not one of the setting's (a number, a
+// value name, on/off, a table of the right length), out of its range, or settings the SDK refuses as a whole
+// (falloff=table without falloff_table, say); ApiError (exit code 1) for a method this library does not
+// implement. `set_options` are the values of --set (KEY=VALUE), applied where the method has the key.
 MethodSpec parse_method_spec(const std::string& text, const std::vector<std::string>& set_options = {});
 // A ','-separated list of specs (an empty entry is a UsageError), and --set applied to each. A --set key
 // that none of the methods has is a UsageError.
@@ -41,12 +44,14 @@ std::vector<MethodSpec> parse_method_specs(const std::string& option, const std:
 // The settings that obscura_resolve_settings says will be used, by metadata name, in table order.
 struct EffectiveSetting {
     obscura_setting_info info;
-    double value = 0.0;  // toggles: 0 off, 1 on
+    double value = 0.0;         // toggles: 0 off, 1 on; enums: their value; arrays: 0
+    std::vector<float> values;  // arrays: their values
+    bool derived = false;       // a derived field the settings leave to the SDK (0, "derive")
 };
 std::vector<EffectiveSetting> effective_settings(const obscura_settings& settings);
-// Prints effective_settings(), one per line.
+// Prints effective_settings(), one per line: enums by name, derived values marked, the falloff table inline.
 void print_effective_settings(std::FILE* out, const obscura_settings& settings);
-// "1.5 m", "on", "12".
+// "1.5 m", "on", "exponential", "12".
 std::string format_setting_value(const obscura_setting_info& info, double value);
 
 }  // namespace obscura::cli

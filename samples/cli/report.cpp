@@ -27,8 +27,13 @@ void write_settings_json(samples::JsonWriter& json, const obscura_settings& sett
     for (const EffectiveSetting& setting : effective_settings(settings)) {
         if (setting.info.type == OBSCURA_SETTING_TOGGLE) {
             json.field(setting.info.name, setting.value != 0.0);
-        } else if (setting.info.type == OBSCURA_SETTING_INT) {
+        } else if (setting.info.type == OBSCURA_SETTING_INT || setting.info.type == OBSCURA_SETTING_ENUM) {
+            // Enums by number, as the reports always had them (scripts compare them with spec values).
             json.field(setting.info.name, static_cast<long long>(setting.value));
+        } else if (setting.info.type == OBSCURA_SETTING_FLOAT_ARRAY) {
+            json.key(setting.info.name).begin_array();
+            for (float value : setting.values) json.value(float_as_decimal(value));
+            json.end_array();
         } else {
             json.field(setting.info.name, float_as_decimal(setting.value));
         }

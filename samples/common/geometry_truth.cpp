@@ -10,14 +10,13 @@
 #include <thread>
 
 #include <embree3/rtcore.h>
+#include <glm/gtc/constants.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "integer_hash.h"
 
 namespace obscura::samples {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // The R2 sequence's step: (1/g, 1/g^2) for the plastic number g, the real root of x^3 = x + 1.
 constexpr double kR2StepX = 0.75487766624669276005;
@@ -196,7 +195,7 @@ glm::vec3 truth_ray_direction(uint32_t i, glm::vec2 shift) {
     u -= std::floor(u);
     v -= std::floor(v);
     // Malley's method: a uniform point on the unit disc, lifted onto the hemisphere, is cosine-distributed.
-    const double radius = std::sqrt(u), phi = 2.0 * kPi * v;
+    const double radius = std::sqrt(u), phi = 2.0 * glm::pi<double>() * v;
     return glm::vec3(float(radius * std::cos(phi)), float(radius * std::sin(phi)), float(std::sqrt(std::max(0.0, 1.0 - u))));
 }
 

@@ -1,5 +1,6 @@
 #include "settings_document.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -9,9 +10,11 @@
 #include <fstream>
 #include <iterator>
 #include <utility>
+#include <vector>
 
 #include "json_reader.h"
 #include "json_writer.h"
+#include "method_spec_parser.h"
 
 namespace obscura::viewer {
 namespace {
@@ -127,7 +130,14 @@ std::string key_names(const SettingTable& table) {
     return names;
 }
 
-// The value of one entry of "settings", as obscura_set_setting takes it (toggles: 0 off, 1 on).
+std::string range_text(const obscura_setting_info& info) {
+    std::string range = "[" + shortest_double(info.min_value) + ", " + shortest_double(info.max_value) + "]";
+    if (info.unit && info.unit[0]) range += std::string(" ") + info.unit;
+    return range;
+}
+
+// The value of one entry of "settings", as obscura_set_setting takes it (toggles: 0 off, 1 on; enums their
+// number, from a name or a number). Arrays: array_value.
 double setting_value(obscura_method method, const obscura_setting_info& info, const JsonValue& value) {
     const std::string what = std::string("setting ") + quoted(info.name) + " of " + obscura_method_name(method);
     if (info.type == OBSCURA_SETTING_TOGGLE) {
@@ -137,21 +147,68 @@ double setting_value(obscura_method method, const obscura_setting_info& info, co
         throw SettingsDocumentError(what + " is a toggle: expected \"on\", \"off\", true or false, not " +
                                     describe(value));
     }
+    if (info.type == OBSCURA_SETTING_ENUM && value.is_string()) {
+        for (uint32_t i = 0; info.value_names && i < info.value_count; ++i) {
+            if (value.as_string() == info.value_names[i]) return info.min_value + i;
+        }
+        throw SettingsDocumentError(what + " = " + describe(value) + " is not one of its values: " +
+                                    samples::value_name_list(info));
+    }
     if (!value.is_number()) {
-        throw SettingsDocumentError(what + " must be a number, not " + describe(value));
+        const char* const expected =
+            info.type == OBSCURA_SETTING_ENUM ? " must be a value name or a number, not " : " must be a number, not ";
+        throw SettingsDocumentError(what + expected + describe(value));
     }
     const double number = value.as_number();
-    if (info.type == OBSCURA_SETTING_INT && number != std::floor(number)) {
+    if (info.type != OBSCURA_SETTING_FLOAT && number != std::floor(number)) {
         throw SettingsDocumentError(what + " must be a whole number, not " + shortest_double(number));
     }
-    // 0 means "default" to the SDK where the range excludes it (derived values such as decay_rate).
-    const bool zero_is_default = number == 0.0 && info.min_value > 0.0;
+    // 0 means "derive" to the SDK in derived fields, and "default" where the range excludes it.
+    const bool zero_is_default = number == 0.0 && (info.min_value > 0.0 || samples::is_derived(info));
     if (!zero_is_default && (number < info.min_value || number > info.max_value)) {
-        std::string range = "[" + shortest_double(info.min_value) + ", " + shortest_double(info.max_value) + "]";
-        if (info.unit && info.unit[0]) range += std::string(" ") + info.unit;
+        std::string range = range_text(info);
+        if (info.type == OBSCURA_SETTING_ENUM) range += " (" + samples::value_name_list(info) + ")";
         throw SettingsDocumentError(what + " = " + shortest_double(number) + " is outside its range " + range);
     }
     return number;
+}
+
+// An array setting's entry: value_count numbers, each in the row's range.
+std::vector<float> array_value(obscura_method method, const obscura_setting_info& info, const JsonValue& value) {
+    const std::string what = std::string("setting ") + quoted(info.name) + " of " + obscura_method_name(method);
+    if (!value.is_array()) {
+        throw SettingsDocumentError(what + " must be an array of " + std::to_string(info.value_count) +
+                                    " numbers, not " + describe(value));
+    }
+    if (value.items().size() != info.value_count) {
+        throw SettingsDocumentError(what + " has " + std::to_string(value.items().size()) + " values, expected " +
+                                    std::to_string(info.value_count));
+    }
+    std::vector<float> values;
+    for (const JsonValue& item : value.items()) {
+        const std::string element = what + "[" + std::to_string(values.size()) + "]";
+        if (!item.is_number()) throw SettingsDocumentError(element + " must be a number, not " + describe(item));
+        const float number = float(item.as_number());
+        if (!(number >= float(info.min_value) && number <= float(info.max_value))) {
+            throw SettingsDocumentError(element + " = " + shortest_double(item.as_number()) + " is outside its range " +
+                                        range_text(info));
+        }
+        values.push_back(number);
+    }
+    return values;
+}
+
+// Version 1 documents wrote every effective value, derived ones too (decay_rate 0.3 for the default radius).
+// Loaded as given, they would pin those values: moving the radius would then leave the falloff's end where it
+// was. A derived value that is what the document's other settings derive is loaded as "derive"; one that
+// differs was set by its author and stays.
+void derive_where_derived(obscura_settings& settings) {
+    for (const obscura_setting_info& info : setting_table(method_of(settings))) {
+        if (!samples::is_derived(info) || samples::derives(settings, info)) continue;
+        obscura_settings derived = settings;
+        if (obscura_set_setting(&derived, info.name, 0.0) != OBSCURA_OK) continue;
+        if (effective_value(derived, info.name) == effective_value(settings, info.name)) settings = derived;
+    }
 }
 
 }  // namespace
@@ -188,13 +245,33 @@ std::string settings_to_json(const obscura_settings& settings) {
         .field("method", obscura_method_name(method));
     json.key("settings").begin_object();
     for (const obscura_setting_info& info : table) {
-        const double value = effective_value(settings, info.name);
+        if (samples::is_array(info)) {
+            json.key(info.name).begin_array();
+            const float* values = samples::array_values(settings, info);
+            for (uint32_t i = 0; i < info.value_count; ++i) {
+                json.value(float_as_json_number(finite_float(method, info, values[i])));
+            }
+            json.end_array();
+            continue;
+        }
+        // A derived field left to the SDK is written as 0, "derive": the loaded document derives it again.
+        const double value = samples::derives(settings, info) ? 0.0 : effective_value(settings, info.name);
         switch (info.type) {
             case OBSCURA_SETTING_FLOAT:
                 json.field(info.name, float_as_json_number(finite_float(method, info, value)));
                 break;
             case OBSCURA_SETTING_INT: json.field(info.name, static_cast<long long>(std::llround(value))); break;
             case OBSCURA_SETTING_TOGGLE: json.field(info.name, value != 0.0 ? "on" : "off"); break;
+            case OBSCURA_SETTING_ENUM: {
+                const std::string name = samples::value_name(info, value);
+                if (name.empty()) {
+                    json.field(info.name, static_cast<long long>(std::llround(value)));
+                } else {
+                    json.field(info.name, name);
+                }
+                break;
+            }
+            case OBSCURA_SETTING_FLOAT_ARRAY: break;
         }
     }
     json.end_object().end_object();
@@ -225,6 +302,7 @@ obscura_settings settings_from_json(std::string_view text) {
                                         kSettingsFormat + "\"");
         }
     }
+    int version_number = kSettingsVersion;
     if (const JsonValue* version = document.find("version")) {
         if (!version->is_number() || version->as_number() < 1.0 ||
             version->as_number() != std::floor(version->as_number())) {
@@ -235,6 +313,7 @@ obscura_settings settings_from_json(std::string_view text) {
                                         " is newer than this viewer reads (" + std::to_string(kSettingsVersion) +
                                         ")");
         }
+        version_number = int(version->as_number());
     }
 
     const JsonValue* method_value = document.find("method");
@@ -269,6 +348,11 @@ obscura_settings settings_from_json(std::string_view text) {
             throw SettingsDocumentError("unknown setting " + quoted(member.first) + " for " +
                                         obscura_method_name(method) + "; its settings are: " + key_names(table));
         }
+        if (samples::is_array(*info)) {
+            const std::vector<float> elements = array_value(method, *info, member.second);
+            std::copy(elements.begin(), elements.end(), samples::array_values(settings, *info));
+            continue;
+        }
         const double value = setting_value(method, *info, member.second);
         const obscura_status set_status = obscura_set_setting(&settings, info->name, value);
         if (set_status != OBSCURA_OK) {
@@ -277,6 +361,7 @@ obscura_settings settings_from_json(std::string_view text) {
                                         " was rejected: " + obscura_status_string(set_status));
         }
     }
+    if (version_number < 2) derive_where_derived(settings);
     return settings;
 }
 
@@ -299,15 +384,37 @@ std::string settings_to_c(const obscura_settings& settings) {
     // its offset is taken from, under the same name; settings_document_test checks all of them against
     // offsetof), so the assignment is settings.<method>.<key>.
     for (const obscura_setting_info& info : setting_table(method)) {
+        const std::string field = "settings." + name + "." + info.name;
+        if (samples::is_array(info)) {
+            // Every element, where any differs: the table reads as one.
+            const float* values = samples::array_values(settings, info);
+            const float* default_values = samples::array_values(defaults, info);
+            if (std::equal(values, values + info.value_count, default_values)) continue;
+            for (uint32_t i = 0; i < info.value_count; ++i) {
+                const std::string literal = c_float_literal(finite_float(method, info, values[i]));
+                code += field + "[" + std::to_string(i) + "] = " + literal + ";\n";
+            }
+            continue;
+        }
+        // A derived field is written only where it is set: obscura_default_settings leaves it 0, "derive".
+        if (samples::derives(settings, info)) continue;
         const double value = effective_value(settings, info.name);
-        if (value == effective_value(defaults, info.name)) continue;
-        std::string literal;
+        if (!samples::is_derived(info) && value == effective_value(defaults, info.name)) continue;
+        std::string literal, comment;
         switch (info.type) {
             case OBSCURA_SETTING_FLOAT: literal = c_float_literal(finite_float(method, info, value)); break;
             case OBSCURA_SETTING_INT: literal = std::to_string(std::llround(value)); break;
             case OBSCURA_SETTING_TOGGLE: literal = value != 0.0 ? "OBSCURA_TOGGLE_ON" : "OBSCURA_TOGGLE_OFF"; break;
+            case OBSCURA_SETTING_ENUM: {
+                // By number: the SDK's enumerated fields are plain int32_t (only the falloff has C constants).
+                literal = std::to_string(std::llround(value));
+                const std::string value_name = samples::value_name(info, value);
+                if (!value_name.empty()) comment = " /* " + value_name + " */";
+                break;
+            }
+            case OBSCURA_SETTING_FLOAT_ARRAY: break;
         }
-        code += "settings." + name + "." + info.name + " = " + literal + ";\n";
+        code += field + " = " + literal + ";" + comment + "\n";
     }
     return code;
 }

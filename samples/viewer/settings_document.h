@@ -2,15 +2,18 @@
 // Everything is driven by the SDK's settings metadata (obscura_get_setting_infos, obscura_get_setting,
 // obscura_set_setting), so a setting added to the SDK appears here with no change.
 //
-//     std::string json = settings_to_json(settings);        // {"format": "obscura-settings", "version": 1,
+//     std::string json = settings_to_json(settings);        // {"format": "obscura-settings", "version": 2,
 //                                                           //  "method": "hbao", "settings": {"radius": 1.5, ...}}
 //     obscura_settings loaded = settings_from_json(json);   // SettingsDocumentError with a readable message
 //     std::string c = settings_to_c(settings);              // obscura_default_settings(...) + changed fields
 //
-// Values are the effective ones obscura_get_setting reports (derived defaults such as decay_rate written
-// out); floats in the shortest form that reads back to the same float, toggles as "on"/"off". Only the
-// metadata's settings are covered: the falloff tables of REFERENCE and FFAO (no metadata entry) are
-// neither saved nor loaded. settings_from_json checks each value against its metadata range, not the
+// Documents hold the editable form (obscura_default_settings): every setting in metadata order, floats in the
+// shortest form that reads back to the same float, toggles as "on"/"off", enums by their value names
+// ("falloff": "exponential"), the falloff tables of REFERENCE and FFAO as arrays of 16 numbers, and derived
+// settings as 0 ("derive": decay rates, LSAO's K, D_S and D_L, SAO's turns, FFAO's K) unless set, so a loaded
+// document derives them again from the settings it holds. Version 1 documents (the effective values: derived
+// ones written out, enums as numbers, no tables) still load; their derived values that are what the settings
+// derive load as "derive". settings_from_json checks each value against its metadata range, not the
 // constraints between settings (e.g. FFAO's sectors with saao), which obscura_resolve_settings and
 // obscura_render report.
 #ifndef OBSCURA_VIEWER_SETTINGS_DOCUMENT_H
@@ -26,7 +29,7 @@ namespace obscura::viewer {
 
 // The "format" and the highest "version" of the documents written and read here.
 inline constexpr const char* kSettingsFormat = "obscura-settings";
-inline constexpr int kSettingsVersion = 1;
+inline constexpr int kSettingsVersion = 2;
 
 // A document that cannot be loaded (or settings that cannot be written); what() says why, naming the key.
 class SettingsDocumentError : public std::runtime_error {
@@ -39,14 +42,17 @@ public:
 std::string settings_to_json(const obscura_settings& settings);
 
 // Parses a document written by settings_to_json (or by hand): starts from obscura_default_settings of its
-// "method" and applies each key of "settings" through obscura_set_setting; missing keys keep their default.
-// "format" and "version" are checked when present. Throws SettingsDocumentError: malformed JSON, a missing or
-// unknown method, an unknown key, a value of the wrong type or outside its range, a toggle other than
-// "on"/"off"/true/false. 0 is accepted where the SDK reads it as "default" (ranges that exclude 0).
+// "method" and applies each key of "settings" through obscura_set_setting (arrays through their offset);
+// missing keys keep their default. "format" and "version" are checked when present. Throws
+// SettingsDocumentError: malformed JSON, a missing or unknown method, an unknown key, a value of the wrong type
+// or outside its range, a toggle other than "on"/"off"/true/false, an enum value that is neither one of its
+// names nor one of its numbers, an array of the wrong length. 0 is accepted where the SDK reads it as
+// "default" or "derive" (derived fields, ranges that exclude 0).
 obscura_settings settings_from_json(std::string_view text);
 
 // C that rebuilds `settings`: obscura_default_settings(OBSCURA_METHOD_X, &settings) followed by one assignment
-// per setting whose effective value differs from the method's default, one statement per line.
+// per setting that differs from the method's default, one statement per line: enums by number with their
+// name in a comment, derived fields only where set, an array (all of its elements) where any differs.
 // Throws SettingsDocumentError if the method is not an obscura_method.
 std::string settings_to_c(const obscura_settings& settings);
 

@@ -15,6 +15,7 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 
+#include "method_spec_parser.h"
 #include "settings_document.h"
 #include "viewer_camera.h"
 #include "viewer_truth.h"
@@ -83,25 +84,30 @@ struct Preset {
     const char* label;
     const char* spec;
 };
+// (The specs start from obscura_default_settings: the preset moves LSAO's K, D_S and D_L, and SAAO FFAO's K.)
 const Preset kPresets[] = {
     {OBSCURA_METHOD_HBAO, "defaults (K=8, N=12)", "hbao"},
     {OBSCURA_METHOD_HBAO, "K=16, N=48: the docs' quality baseline", "hbao:directions=16:steps=48"},
     {OBSCURA_METHOD_SAO, "paper: s=9, tau=7, q'=8 (defaults)", "sao"},
-    {OBSCURA_METHOD_LSAO, "paper Table 2, K=8", "lsao:preset=1"},
-    {OBSCURA_METHOD_LSAO, "paper Table 2, K=16 (defaults)", "lsao:preset=2"},
-    {OBSCURA_METHOD_LSAO, "paper Table 2, K=24", "lsao:preset=3"},
-    {OBSCURA_METHOD_LSAO, "paper Table 2, K=32", "lsao:preset=4"},
+    {OBSCURA_METHOD_LSAO, "paper Table 2, K=8", "lsao:preset=k8"},
+    {OBSCURA_METHOD_LSAO, "paper Table 2, K=16 (defaults)", "lsao:preset=k16"},
+    {OBSCURA_METHOD_LSAO, "paper Table 2, K=24", "lsao:preset=k24"},
+    {OBSCURA_METHOD_LSAO, "paper Table 2, K=32", "lsao:preset=k32"},
+    {OBSCURA_METHOD_LSAO, "paper Figure 1, K=8", "lsao:preset=k8_figure1"},
+    {OBSCURA_METHOD_LSAO, "paper Figure 13, K=16", "lsao:preset=k16_figure13"},
     {OBSCURA_METHOD_FFAO, "paper: K=16x2, B0=10 (defaults)", "ffao"},
     {OBSCURA_METHOD_FFAO, "paper: K=8x2", "ffao:sectors=8"},
-    {OBSCURA_METHOD_FFAO, "paper: SAAO, K=18x2", "ffao:saao=on:sectors=18"},
-    {OBSCURA_METHOD_FFAO, "paper sec. 5: mipmap baseline", "ffao:geometry=2"},
+    {OBSCURA_METHOD_FFAO, "paper: SAAO, K=18x2", "ffao:saao=on"},
+    {OBSCURA_METHOD_FFAO, "paper sec. 5: mipmap baseline", "ffao:geometry=mipmap"},
     {OBSCURA_METHOD_REFERENCE, "256 rays (defaults)", "reference"},
 };
 
-// One method's panel state: its settings and the text boxes of save/load and copy-as-C.
+// One method's panel state: its settings and the text boxes of save/load, copy-as-C and the falloff table's
+// file.
 struct MethodPanel {
     obscura_settings settings{};
     std::array<char, 256> path{};
+    std::array<char, 256> table_path{};
     std::string c_code;
     std::string message;
 };
@@ -229,16 +235,104 @@ void ViewerApp::handle_input() {
     }
 }
 
-// A setting's control: a slider over its declared range, logarithmic over wide positive ranges, a drag box
-// where the range is wide and starts at 0, a checkbox for toggles; the tooltip carries the metadata.
-bool setting_control(obscura_settings& settings, const obscura_setting_info& info) {
-    double value = 0.0;
-    if (obscura_get_setting(&settings, info.name, &value) != OBSCURA_STATUS_OK) return false;
+// Switching to the table falloff with an empty table: the table starts as the falloff that was selected
+// (obscura_evaluate_falloff at d = i/(N-1) * radius), so the picture does not jump and every value is a start.
+void seed_falloff_table(obscura_settings& settings) {
+    const obscura_setting_info* table = samples::falloff_table_info(settings.method);
+    if (!table) return;
+    float* values = samples::array_values(settings, *table);
+    if (std::any_of(values, values + table->value_count, [](float v) { return v != 0.0f; })) return;
+    double radius = 0.0;
+    if (obscura_get_setting(&settings, "radius", &radius) != OBSCURA_STATUS_OK) return;
+    std::vector<float> distances(table->value_count), rho(table->value_count);
+    for (uint32_t i = 0; i < table->value_count; ++i) {
+        distances[i] = float(radius * double(i) / double(table->value_count - 1));
+    }
+    if (obscura_evaluate_falloff(&settings, distances.data(), rho.data(), table->value_count) != OBSCURA_STATUS_OK) {
+        return;
+    }
+    for (uint32_t i = 0; i < table->value_count; ++i) values[i] = std::clamp(rho[i], 0.0f, 1.0f);
+}
+
+// The falloff table (REFERENCE, FFAO), while the falloff is `table`: a slider per entry in a collapsible node,
+// and a file to load it from (what a spec's falloff_table=@FILE reads).
+bool array_control(MethodPanel& panel, const obscura_setting_info& info) {
+    obscura_settings& settings = panel.settings;
+    if (!samples::uses_falloff_table(settings)) return false;
     bool changed = false;
+    if (ImGui::TreeNode(info.name)) {
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", info.description);
+        float* values = samples::array_values(settings, info);
+        for (uint32_t i = 0; i < info.value_count; ++i) {
+            char label[48];
+            std::snprintf(label, sizeof label, "rho(%u/%u r)", i, info.value_count - 1);
+            changed |= ImGui::SliderFloat(label, &values[i], float(info.min_value), float(info.max_value), "%.3f",
+                                          ImGuiSliderFlags_AlwaysClamp);
+        }
+        if (panel.table_path[0] == 0) std::snprintf(panel.table_path.data(), panel.table_path.size(), "falloff.txt");
+        ImGui::InputText("table file", panel.table_path.data(), panel.table_path.size());
+        if (ImGui::IsItemHovered()) {
+            ImGui::SetTooltip("%u numbers in [%g, %g], separated by spaces, commas or newlines", info.value_count,
+                              info.min_value, info.max_value);
+        }
+        if (ImGui::Button("Load table")) {
+            try {
+                const std::vector<float> loaded = samples::read_array_file(info, panel.table_path.data(), info.name);
+                std::copy(loaded.begin(), loaded.end(), values);
+                changed = true;
+                panel.message = std::string("loaded the falloff table from ") + panel.table_path.data();
+            } catch (const std::exception& error) {
+                panel.message = error.what();
+            }
+        }
+        ImGui::TreePop();
+    }
+    return changed;
+}
+
+// A setting's control: a slider over its declared range, logarithmic over wide positive ranges, a drag box
+// where the range is wide and starts at 0, a checkbox for toggles, a combo box of the value names for enums;
+// derived settings get a "derive" checkbox before it (ticked: the control shows what the SDK derives, and
+// moving it sets a value). The tooltip carries the metadata.
+bool setting_control(MethodPanel& panel, const obscura_setting_info& info) {
+    obscura_settings& settings = panel.settings;
+    if (samples::is_array(info)) return array_control(panel, info);
+    double value = 0.0;  // the effective value: derived fields show what they derive to
+    if (obscura_get_setting(&settings, info.name, &value) != OBSCURA_STATUS_OK) return false;
+    ImGui::PushID(info.name);
+    bool changed = false;
+    bool derive = samples::derives(settings, info);
+    if (samples::is_derived(info)) {
+        if (ImGui::Checkbox("derive", &derive)) {
+            // Ticked: back to 0, "derive". Unticked: the derived value, now set, is where editing starts.
+            ImGui::PopID();
+            return obscura_set_setting(&settings, info.name, derive ? 0.0 : value) == OBSCURA_STATUS_OK;
+        }
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("ticked: the SDK derives %s (%s)", info.name, info.description);
+        ImGui::SameLine();
+        ImGui::SetNextItemWidth(ImGui::CalcItemWidth() - ImGui::GetItemRectSize().x - ImGui::GetStyle().ItemSpacing.x);
+    }
     if (info.type == OBSCURA_SETTING_TOGGLE) {
         bool on = value != 0.0;
         changed = ImGui::Checkbox(info.name, &on);
         value = on ? 1.0 : 0.0;
+    } else if (info.type == OBSCURA_SETTING_ENUM) {
+        const std::string current = samples::format_setting_value(info, value);
+        if (ImGui::BeginCombo(info.name, current.c_str())) {
+            for (uint32_t i = 0; i < info.value_count; ++i) {
+                const double option = info.min_value + i;
+                const std::string name = samples::value_name(info, option);
+                if (ImGui::Selectable(name.c_str(), option == value)) {
+                    changed = option != value;
+                    value = option;
+                }
+                if (option == value) ImGui::SetItemDefaultFocus();
+            }
+            ImGui::EndCombo();
+        }
+        if (changed && info.name == std::string("falloff") && samples::value_name(info, value) == "table") {
+            seed_falloff_table(settings);
+        }
     } else if (info.type == OBSCURA_SETTING_INT) {
         int v = int(value);
         const int lo = int(info.min_value), hi = int(info.max_value);
@@ -259,9 +353,19 @@ bool setting_control(obscura_settings& settings, const obscura_setting_info& inf
         }
     }
     if (ImGui::IsItemHovered()) {
-        ImGui::SetTooltip("%s\nrange [%g, %g] %s, default %g", info.description, info.min_value, info.max_value,
-                          info.unit, info.default_value);
+        const std::string names = samples::value_name_list(info);
+        if (samples::is_derived(info)) {
+            ImGui::SetTooltip("%s\nrange [%g, %g] %s, %s", info.description, info.min_value, info.max_value, info.unit,
+                              derive ? "derived: moving it sets a value" : "set (tick derive to derive it)");
+        } else if (info.type == OBSCURA_SETTING_ENUM) {
+            ImGui::SetTooltip("%s\nvalues %s, default %s", info.description, names.c_str(),
+                              samples::value_name(info, info.default_value).c_str());
+        } else {
+            ImGui::SetTooltip("%s\nrange [%g, %g] %s, default %g", info.description, info.min_value, info.max_value,
+                              info.unit, info.default_value);
+        }
     }
+    ImGui::PopID();
     return changed && obscura_set_setting(&settings, info.name, value) == OBSCURA_STATUS_OK;
 }
 
@@ -290,7 +394,7 @@ bool ViewerApp::method_panel(const char* id, MethodPanel& panel) {
         }
         ImGui::EndCombo();
     }
-    for (const obscura_setting_info& info : infos_of(settings.method)) changed |= setting_control(settings, info);
+    for (const obscura_setting_info& info : infos_of(settings.method)) changed |= setting_control(panel, info);
     if (ImGui::Button("Reset to defaults")) {
         obscura_default_settings(settings.method, &settings);
         changed = true;
@@ -841,37 +945,13 @@ int ViewerApp::run() {
 }  // namespace
 
 obscura_settings settings_from_spec(const std::string& spec) {
-    const size_t colon = spec.find(':');
-    const std::string name = spec.substr(0, colon);
-    obscura_settings settings{};
-    obscura_method method = OBSCURA_METHOD_DEFAULT;
-    if (!method_from_name(name, &method)) {
-        throw std::invalid_argument("unknown method '" + name + "' (methods: " + method_names() + ")");
+    try {
+        return samples::parse_method_spec(spec);
+    } catch (const samples::MethodSpecError& error) {
+        throw std::invalid_argument(error.what());
+    } catch (const samples::SettingsLibraryError& error) {
+        throw std::invalid_argument(error.what());
     }
-    obscura_default_settings(method, &settings);
-    size_t start = colon;
-    while (start != std::string::npos) {
-        const size_t end = spec.find(':', start + 1);
-        const std::string item = spec.substr(start + 1, end == std::string::npos ? std::string::npos : end - start - 1);
-        start = end;
-        const size_t equals = item.find('=');
-        if (equals == std::string::npos) throw std::invalid_argument("'" + item + "' in '" + spec + "' is not KEY=VALUE");
-        const std::string key = item.substr(0, equals), text = item.substr(equals + 1);
-        double value = 0.0;
-        if (text == "on" || text == "off") {
-            value = text == "on" ? 1.0 : 0.0;
-        } else {
-            char* rest = nullptr;
-            value = std::strtod(text.c_str(), &rest);
-            if (text.empty() || *rest != 0) throw std::invalid_argument("'" + text + "' for " + key + " is not a number");
-        }
-        const obscura_status status = obscura_set_setting(&settings, key.c_str(), value);
-        if (status != OBSCURA_STATUS_OK) {
-            throw std::invalid_argument("'" + item + "': " + obscura_status_string(status) + " (obscura --list-settings " +
-                                        name + " lists the keys and ranges)");
-        }
-    }
-    return settings;
 }
 
 int run_viewer(const ViewerOptions& options) { return ViewerApp(options).run(); }

@@ -25,7 +25,8 @@ struct ViewerOptions {
     int frames = 0;
 };
 
-// Parses NAME[:KEY=VALUE...] (toggles on/off) through the settings metadata. Throws std::invalid_argument.
+// Parses NAME[:KEY=VALUE...] as the CLI does (samples/common/method_spec_parser.h: value names, the falloff
+// table, derived settings left to the SDK). Throws std::invalid_argument with the parser's message.
 obscura_settings settings_from_spec(const std::string& spec);
 
 // Runs the window until it is closed (or the screenshot is written). Returns the process exit code; errors

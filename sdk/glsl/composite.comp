@@ -11,10 +11,6 @@ layout(binding = OBSCURA_UNIT_LINEAR_DEPTH) uniform sampler2D u_linear_depth;
 layout(binding = OBSCURA_UNIT_NORMALS) uniform sampler2D u_normals;
 layout(binding = OBSCURA_IMAGE_OUT0, OUTPUT_FORMAT) uniform image2D u_target;
 
-const int kDebugLinearDepth = 1;
-const int kDebugNormals = 2;
-const int kBlendMultiply = 1;
-
 void main() {
     ivec2 i = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(i, output_rect.zw))) return;
@@ -23,18 +19,18 @@ void main() {
     int debug_view = target_params.w;
 
     vec4 value;
-    if (debug_view == kDebugLinearDepth) {
+    if (debug_view == OBSCURA_DEBUG_VIEW_LINEAR_DEPTH) {
         float depth = texelFetch(u_linear_depth, source, 0).r;
         float v = obscura_is_sky(depth) ? 1.0 : clamp(depth * debug_params.x, 0.0, 1.0);
         value = vec4(v, v, v, 1.0);
-    } else if (debug_view == kDebugNormals) {
+    } else if (debug_view == OBSCURA_DEBUG_VIEW_NORMALS) {
         vec3 n = obscura_decode_normal(texelFetch(u_normals, source, 0).xy) * 0.5 + 0.5;
         value = OUTPUT_CHANNELS == 1 ? vec4(n.z) : vec4(n, 1.0);
     } else {
         float v = texelFetch(u_ao, source, 0).r;
         value = vec4(v, v, v, 1.0);
     }
-    if (target_params.z == kBlendMultiply) {
+    if (target_params.z == OBSCURA_BLEND_MODE_MULTIPLY) {
         vec4 previous = imageLoad(u_target, destination);
         value = vec4(previous.rgb * value.r, previous.a);
     }

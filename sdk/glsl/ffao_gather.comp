@@ -12,7 +12,6 @@ layout(binding = OBSCURA_UNIT_SOURCE) uniform sampler2D u_box;
 layout(binding = OBSCURA_UNIT_NORMALS) uniform sampler2D u_terms;  // (near sum, far sum) of each pixel
 layout(binding = OBSCURA_IMAGE_OUT0, r16f) uniform writeonly image2D u_ao;
 
-const float kPi = 3.14159265358979;
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy) + work_rect.xy;
@@ -31,6 +30,6 @@ void main() {
         count += 1.0;
     }
     float near_sum = texelFetch(u_terms, pixel, 0).x;
-    float obscurance = clamp((near_sum + 9.0 * far_sum / max(count, 1.0)) / kPi * ffao.shape.y, 0.0, 1.0);
+    float obscurance = clamp((near_sum + 9.0 * far_sum / max(count, 1.0)) / OBSCURA_PI * ffao.shape.y, 0.0, 1.0);
     imageStore(u_ao, pixel, vec4(pow(1.0 - obscurance, ffao.shape.z)));
 }

@@ -51,8 +51,6 @@ vec4 ffao_peak(int index) { return ffao_peaks[index]; }
 #error "OBSCURA_FFAO_MIPMAP must be defined"
 #endif
 
-const float kPi = 3.14159265358979;
-
 // ---- The receiver's plane for the current sector ----------------------------------------------------------
 vec2 g_p;        // the receiver in the plane
 vec2 g_zenith;   // unit, towards the eye
@@ -66,10 +64,10 @@ float zenith_angle(vec2 v) { return atan(dot(v, g_out), dot(v, g_zenith)); }
 
 // L(a, b, c, d) from the table (its a axis is a - d, see ffao_table.comp): a, c in radians, beta = b / s.
 float table_l(float a, float beta, float c) {
-    float ta = clamp((a - g_d) / kPi + 0.5, 0.0, 1.0);
+    float ta = clamp((a - g_d) / OBSCURA_PI + 0.5, 0.0, 1.0);
     float tb = beta / (1.0 + beta);
-    float tc = clamp(c / (0.5 * kPi) - 1.0, 0.0, 1.0);
-    float td = clamp(g_d / kPi + 0.5, 0.0, 1.0);
+    float tc = clamp(c / (0.5 * OBSCURA_PI) - 1.0, 0.0, 1.0);
+    float td = clamp(g_d / OBSCURA_PI + 0.5, 0.0, 1.0);
     float dz = floor(td * float(OBSCURA_FFAO_TABLE_D - 1) + 0.5);
     vec3 coord = vec3((ta * float(OBSCURA_FFAO_TABLE_A - 1) + 0.5) / float(OBSCURA_FFAO_TABLE_A),
                       (tb * float(OBSCURA_FFAO_TABLE_B - 1) + 0.5) / float(OBSCURA_FFAO_TABLE_B),
@@ -101,7 +99,7 @@ void raise_horizon(vec2 h, float cosine, inout float ao, inout vec2 horizon) {
     float b = g_perspective ? abs(g_p.x * u.y - g_p.y * u.x) : abs(dot(v, g_out));
     // |angle|: a slab whose ray leans past the zenith's other side (h just behind p) mirrors, and atan(-0, -1)
     // would read -pi for the orthographic pi.
-    float c = g_perspective ? abs(zenith_angle(u)) : kPi;
+    float c = g_perspective ? abs(zenith_angle(u)) : OBSCURA_PI;
     float beta = b / ffao.shape.x;
     float lowest = horizon.x;
     float thickness = ffao.shape.w;
@@ -120,7 +118,7 @@ void add_slab(vec2 h, inout float ao, inout vec2 horizon) {
 }
 
 // No horizon yet: straight down (angle pi, cosine -1).
-const vec2 kNoHorizon = vec2(3.14159265358979, -1.0);
+const vec2 kNoHorizon = vec2(OBSCURA_PI, -1.0);
 
 // Azimuth of screen direction `sd` around the zenith z3 of view point p3: its view-space vector made
 // perpendicular to z3, normalised.
@@ -247,7 +245,7 @@ void evaluate_orientation(int k, ivec2 pixel, vec3 p, vec3 n, float depth, bool 
     vec2 centre = vec2(pixel) + 0.5;
     ivec2 size = depth_size.xy;
     int sectors = ffao.config.x, segments = ffao.config.y, b0 = ffao.config.z, levels = ffao.config.w;
-    float half_sector = kPi / float(sectors);
+    float half_sector = OBSCURA_PI / float(sectors);
     // Jitter (sec. 11.1): every sector's lines move by the same fraction of the segment's width at each
     // distance, per pixel.
     float jitter = ffao.options.x != 0 ? obscura_pixel_noise(pixel).x - 0.5 : 0.0;
@@ -398,7 +396,7 @@ void main() {
     vec3 n = obscura_decode_normal(texelFetch(u_normals, pixel, 0).xy);
     float near_sum = 0.0, far_sum = 0.0;
     for (int k = 0; k < orientations; ++k) evaluate_orientation(k, pixel, p, n, depth, true, near_sum, far_sum);
-    float obscurance = clamp((near_sum + far_sum) / kPi * ffao.shape.y, 0.0, 1.0);
+    float obscurance = clamp((near_sum + far_sum) / OBSCURA_PI * ffao.shape.y, 0.0, 1.0);
     imageStore(u_ao, pixel, vec4(pow(1.0 - obscurance, ffao.shape.z)));
 #endif
 }

@@ -23,7 +23,6 @@
 layout(local_size_x = OBSCURA_FFAO_TABLE_GROUP) in;
 layout(binding = OBSCURA_IMAGE_OUT0, r32f) uniform writeonly image3D u_table;
 
-const float kPi = 3.14159265358979;
 const int kSubintervals = 16;  // Simpson's rule per a-cell (even)
 
 float g_beta, g_c, g_d;
@@ -44,14 +43,14 @@ void main() {
     int md = index / (OBSCURA_FFAO_TABLE_B * OBSCURA_FFAO_TABLE_C);
     float t = float(jb) / float(OBSCURA_FFAO_TABLE_B - 1);
     g_beta = t / max(1.0 - t, 1e-30);
-    g_c = 0.5 * kPi * (1.0 + float(kc) / float(OBSCURA_FFAO_TABLE_C - 1));
-    g_d = kPi * (float(md) / float(OBSCURA_FFAO_TABLE_D - 1) - 0.5);
+    g_c = 0.5 * OBSCURA_PI * (1.0 + float(kc) / float(OBSCURA_FFAO_TABLE_C - 1));
+    g_d = OBSCURA_PI * (float(md) / float(OBSCURA_FFAO_TABLE_D - 1) - 0.5);
     int z = md * OBSCURA_FFAO_TABLE_C + kc;
     float sum = 0.0;
     imageStore(u_table, ivec3(OBSCURA_FFAO_TABLE_A - 1, jb, z), vec4(0.0));
     for (int i = OBSCURA_FFAO_TABLE_A - 2; i >= 0; --i) {
-        float lo = max(g_d + kPi * (float(i) / float(OBSCURA_FFAO_TABLE_A - 1) - 0.5), 0.0);
-        float hi = min(g_d + kPi * (float(i + 1) / float(OBSCURA_FFAO_TABLE_A - 1) - 0.5), g_c);
+        float lo = max(g_d + OBSCURA_PI * (float(i) / float(OBSCURA_FFAO_TABLE_A - 1) - 0.5), 0.0);
+        float hi = min(g_d + OBSCURA_PI * (float(i + 1) / float(OBSCURA_FFAO_TABLE_A - 1) - 0.5), g_c);
         if (jb < OBSCURA_FFAO_TABLE_B - 1 && hi > lo) {
             float h = (hi - lo) / float(kSubintervals);
             float cell = integrand(lo) + integrand(hi);

@@ -13,21 +13,13 @@
 #include "common/depth.glsl"
 #include "common/normal_encoding.glsl"
 #include "common/hash.glsl"
+#include "common/falloff.glsl"
 
 layout(local_size_x = OBSCURA_HBAO_GROUP_X, local_size_y = OBSCURA_HBAO_GROUP_Y) in;
 
 layout(binding = OBSCURA_UNIT_LINEAR_DEPTH) uniform sampler2D u_linear_depth;
 layout(binding = OBSCURA_UNIT_NORMALS) uniform sampler2D u_normals;
 layout(binding = OBSCURA_IMAGE_OUT0, r16f) writeonly uniform image2D u_ao;
-
-
-const float kTwoPi = 6.28318530718;
-
-// rho0(d) = max(0, r(1+C)/(r+d^2) - C)  (LSAO paper eq. 3), d^2 in view units^2.
-float falloff_rho0(float distance_sq) {
-    float r = hbao.falloff.x, c = hbao.falloff.y;
-    return max(0.0, r * (1.0 + c) / (r + distance_sq) - c);
-}
 
 void main() {
     ivec2 p = work_rect.xy + ivec2(gl_GlobalInvocationID.xy);
@@ -60,7 +52,7 @@ void main() {
 
     float obscurance = 0.0;
     for (int k = 0; k < directions; ++k) {
-        float angle = (float(k) + noise.x) * (kTwoPi / float(directions));
+        float angle = (float(k) + noise.x) * (2.0 * OBSCURA_PI / float(directions));
         vec2 dir = vec2(cos(angle), sin(angle));
         // The slice's horizontal axis: the screen direction in view space, made orthogonal to the zenith.
         vec3 line = vec3(normalize(dir * view_per_pixel), 0.0);
@@ -90,7 +82,7 @@ void main() {
             float distance_sq = dot(h, h);
             if (distance_sq <= 0.0) continue;
             float sin_h = dot(h, zenith) * inversesqrt(distance_sq);
-            float rho = falloff_rho0(distance_sq);
+            float rho = obscura_rho0(hbao.falloff.x, hbao.falloff.y, distance_sq);  // d^2 in view units^2
             if (OBSCURA_HBAO_ESTIMATOR == 1) {  // compiled in
                 if (sin_h > horizon) {
                     direction_obscurance += rho * (sin_h - horizon);

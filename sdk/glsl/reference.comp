@@ -43,7 +43,6 @@ layout(binding = OBSCURA_IMAGE_OUT0, r32f) uniform image2D u_accumulator;
 // 1 if it is the frame's first batch, 1 if it is the frame's last.
 layout(location = 0) uniform ivec4 u_batch;
 
-const float kTwoPi = 6.28318530718;
 const float kMiss = -1.0;
 
 // ---- Falloff ---------------------------------------------------------------------------------------
@@ -233,7 +232,7 @@ void main() {
             uvec2 lattice = rotation + index * uvec2(3242174889u, 2447445414u);
             vec2 u = vec2(lattice >> 8u) * (1.0 / 16777216.0);
             float r = sqrt(u.x);
-            float phi = kTwoPi * u.y;
+            float phi = 2.0 * OBSCURA_PI * u.y;
             vec3 direction = tangent * (r * cos(phi)) + bitangent * (r * sin(phi)) + normal * sqrt(max(0.0, 1.0 - u.x));
             float d = reference_trace(origin, direction);
             if (d >= 0.0) sum += reference_falloff(d);

@@ -20,6 +20,15 @@ const char* const kStatusStrings[] = {OBSCURA_STATUS_LIST(OBSCURA_STATUS_STRING_
 
 Context* as_context(obscura_context* context) { return static_cast<Context*>(context); }
 
+// The message of this thread's last call made without a context (obscura_get_last_error(NULL)): the settings
+// functions need none, and tools that have no GL context still get the reason for a refusal.
+thread_local char t_last_error[1024] = "";
+
+obscura_status report_without_context(const Error& error) {
+    std::snprintf(t_last_error, sizeof t_last_error, "%s", error.ok() ? "" : error.message());
+    return error.status();
+}
+
 // The method argument resolved (DEFAULT -> HBAO), or OBSCURA_METHOD_COUNT_ for a value the API does not know.
 obscura_method method_argument(const obscura_method& method) {
     const obscura::MethodDescriptor* row = obscura::find_method(method);
@@ -37,7 +46,7 @@ obscura_status guarded(Context* context, Body&& body) {
     } catch (...) {
         error = Error::make(OBSCURA_STATUS_INTERNAL_ERROR, "unexpected exception inside Obscura");
     }
-    return context ? context->report(error) : error.status();
+    return context ? context->report(error) : report_without_context(error);
 }
 
 Error check_struct(uint32_t struct_size, size_t expected, const char* name) {
@@ -74,7 +83,7 @@ OBSCURA_API obscura_status obscura_create_context(const obscura_context_desc* de
     if (out_context) *out_context = nullptr;
     auto fail = [&](const Error& error) {
         if (desc && desc->log) desc->log(OBSCURA_LOG_ERROR, error.status(), error.message(), desc->log_user_data);
-        return error.status();
+        return report_without_context(error);
     };
     if (!desc || !out_context) {
         return fail(Error::make(OBSCURA_STATUS_NULL_ARGUMENT, "obscura_create_context: desc and out_context are required"));
@@ -105,34 +114,70 @@ OBSCURA_API obscura_status obscura_create_context(const obscura_context_desc* de
     }
     if (error) return fail(error);
     *out_context = context;
-    return OBSCURA_OK;
+    return report_without_context(Error());
 }
 
 OBSCURA_API void obscura_destroy_context(obscura_context* context) { Context::destroy(as_context(context)); }
 
 OBSCURA_API const char* obscura_get_last_error(const obscura_context* context) {
-    if (!context) return "obscura_get_last_error: context is NULL";
+    if (!context) return t_last_error;
     return static_cast<const Context*>(context)->last_error();
 }
 
-OBSCURA_API obscura_status obscura_default_settings(obscura_method method, obscura_settings* out) {
-    if (!out) return OBSCURA_STATUS_NULL_ARGUMENT;
+OBSCURA_API obscura_status obscura_default_settings_sized(obscura_method method, obscura_settings* out,
+                                                          uint32_t out_size) {
+    if (!out) return report_without_context(Error::make(OBSCURA_STATUS_NULL_ARGUMENT, "obscura_default_settings: out is NULL"));
+    if (!obscura::is_known_settings_size(out_size)) {
+        return report_without_context(Error::make(OBSCURA_STATUS_INVALID_STRUCT_SIZE,
+                                                  "obscura_default_settings: %u is the obscura_settings size of no "
+                                                  "released obscura.h",
+                                                  out_size));
+    }
+    obscura_settings defaults;
+    const Error error = obscura::default_settings(method, &defaults);
+    if (!error) obscura::write_host_settings(defaults, out, out_size);
+    return report_without_context(error);
+}
+
+// The 0.3 ABI: binaries built against 0.3 call these names; the header's macros of the same names call the
+// sized entry points.
+#undef obscura_default_settings
+OBSCURA_API obscura_status(obscura_default_settings)(obscura_method method, obscura_settings* out) {
+    return obscura_default_settings_sized(method, out, obscura::settings_size_03());
+}
+
+#undef obscura_get_setting_infos
+OBSCURA_API obscura_status(obscura_get_setting_infos)(obscura_method method, const obscura_setting_info** out_infos,
+                                                      uint32_t* out_count) {
+    if (!out_infos || !out_count) return OBSCURA_STATUS_NULL_ARGUMENT;
+    const obscura::SettingInfo03* infos = obscura::setting_infos_03(method, out_count);
+    if (!infos) return OBSCURA_STATUS_INVALID_ENUM;
+    // The caller's obscura_setting_info is the 0.3 struct, which is what the table holds.
+    *out_infos = reinterpret_cast<const obscura_setting_info*>(infos);
+    return OBSCURA_OK;
+}
+
+OBSCURA_API obscura_status obscura_get_setting_infos_sized(obscura_method method,
+                                                           const obscura_setting_info** out_infos,
+                                                           uint32_t* out_count, uint32_t info_size) {
+    if (!out_infos || !out_count) return OBSCURA_STATUS_NULL_ARGUMENT;
+    if (info_size == sizeof(obscura::SettingInfo03)) return (obscura_get_setting_infos)(method, out_infos, out_count);
+    if (info_size != sizeof(obscura_setting_info)) return OBSCURA_STATUS_INVALID_STRUCT_SIZE;
     const obscura_method resolved = method_argument(method);
     if (resolved == OBSCURA_METHOD_COUNT_) return OBSCURA_STATUS_INVALID_ENUM;
-    obscura_settings zero;
-    std::memset(&zero, 0, sizeof zero);
-    zero.struct_size = sizeof zero;
-    zero.method = resolved;
-    return obscura::resolve_settings(zero, out).status();
+    *out_infos = obscura::setting_infos(resolved, out_count);
+    return OBSCURA_OK;
 }
 
 OBSCURA_API obscura_status obscura_resolve_settings(obscura_context* context, const obscura_settings* in,
                                                     obscura_settings* out) {
     return guarded(as_context(context), [&]() -> Error {
         if (!in || !out) return Error::make(OBSCURA_STATUS_NULL_ARGUMENT, "obscura_resolve_settings: in and out are required");
-        obscura_settings resolved;
-        Error error = obscura::resolve_settings(*in, &resolved);
-        if (!error) *out = resolved;
+        const uint32_t size = in->struct_size;
+        obscura_settings whole, resolved;
+        Error error = obscura::read_host_settings(in, &whole, "obscura_resolve_settings");
+        if (!error) error = obscura::resolve_settings(whole, &resolved);
+        if (!error) obscura::write_host_settings(resolved, out, size);
         return error;
     });
 }
@@ -140,45 +185,47 @@ OBSCURA_API obscura_status obscura_resolve_settings(obscura_context* context, co
 OBSCURA_API obscura_status obscura_reference_settings_for(const obscura_settings* method_settings,
                                                           obscura_settings* out) {
     if (!method_settings || !out) return OBSCURA_STATUS_NULL_ARGUMENT;
-    obscura_settings reference;
-    Error error = obscura::reference_settings_for(*method_settings, &reference);
-    if (!error) *out = reference;
-    return error.status();
+    const uint32_t size = method_settings->struct_size;
+    obscura_settings whole, reference;
+    Error error = obscura::read_host_settings(method_settings, &whole, "obscura_reference_settings_for");
+    if (!error) error = obscura::reference_settings_for(whole, &reference);
+    if (!error) obscura::write_host_settings(reference, out, size);
+    return report_without_context(error);
 }
 
 OBSCURA_API obscura_status obscura_evaluate_falloff(const obscura_settings* method_settings, const float* distances,
                                                     float* rho, uint32_t count) {
     if (!method_settings || (count > 0 && (!distances || !rho))) return OBSCURA_STATUS_NULL_ARGUMENT;
-    obscura_settings reference;
-    Error error = obscura::reference_settings_for(*method_settings, &reference);
-    if (error) return error.status();
+    obscura_settings whole, reference;
+    Error error = obscura::read_host_settings(method_settings, &whole, "obscura_evaluate_falloff");
+    if (!error) error = obscura::reference_settings_for(whole, &reference);
+    if (error) return report_without_context(error);
     const obscura::FalloffParameters falloff = obscura::falloff_parameters(reference.reference);
     for (uint32_t i = 0; i < count; ++i) rho[i] = float(obscura::falloff_value(falloff, double(distances[i])));
-    return OBSCURA_OK;
-}
-
-OBSCURA_API obscura_status obscura_get_setting_infos(obscura_method method, const obscura_setting_info** out_infos,
-                                                     uint32_t* out_count) {
-    if (!out_infos || !out_count) return OBSCURA_STATUS_NULL_ARGUMENT;
-    const obscura_method resolved = method_argument(method);
-    if (resolved == OBSCURA_METHOD_COUNT_) return OBSCURA_STATUS_INVALID_ENUM;
-    *out_infos = obscura::setting_infos(resolved, out_count);
-    return OBSCURA_OK;
+    return report_without_context(Error());
 }
 
 OBSCURA_API obscura_status obscura_set_setting(obscura_settings* settings, const char* name, double value) {
     if (!settings || !name) return OBSCURA_STATUS_NULL_ARGUMENT;
-    return obscura::set_setting(settings, name, value).status();
+    const uint32_t size = settings->struct_size;
+    obscura_settings whole;
+    Error error = obscura::read_host_settings(settings, &whole, "obscura_set_setting");
+    if (!error) error = obscura::set_setting(&whole, name, value, size);
+    if (!error) obscura::write_host_settings(whole, settings, size);
+    return report_without_context(error);
 }
 
 OBSCURA_API obscura_status obscura_get_setting(const obscura_settings* settings, const char* name, double* out_value) {
     if (!settings || !name || !out_value) return OBSCURA_STATUS_NULL_ARGUMENT;
-    return obscura::get_setting(*settings, name, out_value).status();
+    obscura_settings whole;
+    Error error = obscura::read_host_settings(settings, &whole, "obscura_get_setting");
+    if (!error) error = obscura::get_setting(whole, name, out_value);
+    return report_without_context(error);
 }
 
 OBSCURA_API obscura_status obscura_render(obscura_context* context, const obscura_input* input,
                                           const obscura_settings* settings, const obscura_output* output) {
-    if (!context) return OBSCURA_STATUS_NULL_ARGUMENT;
+    if (!context) return report_without_context(Error::make(OBSCURA_STATUS_NULL_ARGUMENT, "obscura_render: context is NULL"));
     Context* ctx = as_context(context);
     return guarded(ctx, [&]() -> Error {
         if (!input || !settings || !output) {
@@ -186,19 +233,23 @@ OBSCURA_API obscura_status obscura_render(obscura_context* context, const obscur
         }
         Error error = check_struct(input->struct_size, sizeof(obscura_input), "obscura_input");
         if (!error) error = check_struct(output->struct_size, sizeof(obscura_output), "obscura_output");
-        if (!error) error = check_struct(settings->struct_size, sizeof(obscura_settings), "obscura_settings");
+        obscura_settings whole;
+        if (!error) error = obscura::read_host_settings(settings, &whole, "obscura_render");
         if (error) return error;
-        return ctx->render(*input, *settings, *output);
+        return ctx->render(*input, whole, *output);
     });
 }
 
 OBSCURA_API obscura_status obscura_prepare(obscura_context* context, int32_t depth_width, int32_t depth_height,
                                            const obscura_settings* settings) {
-    if (!context) return OBSCURA_STATUS_NULL_ARGUMENT;
+    if (!context) return report_without_context(Error::make(OBSCURA_STATUS_NULL_ARGUMENT, "obscura_prepare: context is NULL"));
     Context* ctx = as_context(context);
     return guarded(ctx, [&]() -> Error {
         if (!settings) return Error::make(OBSCURA_STATUS_NULL_ARGUMENT, "obscura_prepare: settings is required");
-        return ctx->prepare(depth_width, depth_height, *settings);
+        obscura_settings whole;
+        Error error = obscura::read_host_settings(settings, &whole, "obscura_prepare");
+        if (error) return error;
+        return ctx->prepare(depth_width, depth_height, whole);
     });
 }
 

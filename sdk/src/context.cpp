@@ -218,27 +218,23 @@ Error Context::prepare(int width, int height, const obscura_settings& settings) 
 }
 
 Error Context::render(const obscura_input& input, const obscura_settings& settings, const obscura_output& output) {
-    Error error = device_.check_host_state("obscura_render");
-    if (error) return error;
+    // Stage 1: what needs no GL.
     obscura_settings resolved;
-    error = resolve_settings(settings, &resolved);
+    Error error = resolve_settings(settings, &resolved);
+    FrameInput frame;
+    OutputTarget target;
+    if (!error) error = check_input_fields(input, device_.max_texture_size(), &frame);
+    if (!error) error = check_output_fields(output, &target);
+    if (error) return error;
+    // Stage 2: the GL context, then the objects the input and output name.
+    error = device_.check_host_state("obscura_render");
     if (error) return error;
     const gl::Table& gl = device_.gl();
     {
         gl::StateGuard guard(gl);
-        FrameInput frame;
-        error = validate_input(gl, input, device_.max_texture_size(), &frame);
-        if (!error) {
-            // Undoes validate_input's texture-parameter change even if a pass throws (allocation failure).
-            struct InputStateRestorer {
-                const gl::Table& gl;
-                const FrameInput& frame;
-                ~InputStateRestorer() { restore_input_state(gl, frame); }
-            } restorer{gl, frame};
-            OutputTarget target;
-            error = validate_output(gl, output, frame.output_rect, &target);
-            if (!error) error = record_frame(frame, resolved, target);
-        }
+        error = check_input_textures(gl, input, &frame);
+        if (!error) error = check_output_target(gl, output, frame.output_rect, &target);
+        if (!error) error = record_frame(frame, resolved, target);
         // A failed validation may leave a probing error (wrong texture target) behind: drain it.
         const GLenum gl_error = device_.take_error();
         if (gl_error == GlDevice::kContextLost || (!error && gl_error != GL_NO_ERROR)) {

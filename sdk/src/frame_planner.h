@@ -4,6 +4,7 @@
 #define OBSCURA_FRAME_PLANNER_H
 
 #include "frame_input.h"
+#include "output_writer.h"
 #include "technique.h"
 
 namespace obscura {

@@ -3,12 +3,226 @@
 #include <optional>
 
 #include "gl/state_guard.h"
+#include "gl/texture_probe.h"
+#include "host_enum.h"
 
 namespace obscura {
 namespace {
+
+using gl::ScopedTextureProbe;
+using gl::texture_has_target;
+
+// The target of an attached texture (GL_NONE if none binds), probed in the order hosts most often use.
+GLenum attached_texture_target(const gl::Table& gl, GLuint texture, GLenum cube_face) {
+    // Mesa reports a face for a cube-map-array layer too: only a cube map proper is attached by face.
+    if (cube_face != GL_NONE && ScopedTextureProbe(gl, texture, GL_TEXTURE_CUBE_MAP).bound()) return GL_TEXTURE_CUBE_MAP;
+    for (GLenum target : {GL_TEXTURE_2D, GL_TEXTURE_2D_ARRAY, GL_TEXTURE_3D, GL_TEXTURE_CUBE_MAP_ARRAY,
+                          GL_TEXTURE_RECTANGLE, GL_TEXTURE_1D, GL_TEXTURE_1D_ARRAY, GL_TEXTURE_2D_MULTISAMPLE,
+                          GL_TEXTURE_2D_MULTISAMPLE_ARRAY}) {
+        if (ScopedTextureProbe(gl, texture, target).bound()) return target;
+    }
+    return GL_NONE;
+}
+
+// Whether an image of a texture of `target` is attached by layer (glFramebufferTextureLayer).
+bool is_layered_target(GLenum target) {
+    return target == GL_TEXTURE_2D_ARRAY || target == GL_TEXTURE_3D || target == GL_TEXTURE_CUBE_MAP_ARRAY ||
+           target == GL_TEXTURE_1D_ARRAY || target == GL_TEXTURE_2D_MULTISAMPLE_ARRAY;
+}
+
 // Blit targets compose into a staging texture: RGBA16F for float attachments (MULTIPLY keeps HDR).
 GLenum staging_format(const OutputTarget& target) { return target.attachment_float ? GL_RGBA16F : GL_RGBA8; }
 }  // namespace
+
+const char* image_format_qualifier(GLenum internal_format, int* channels) {
+    struct Entry { GLenum format; const char* qualifier; int channels; };
+    static const Entry kFormats[] = {
+        {GL_R8, "r8", 1}, {GL_R16, "r16", 1}, {GL_R16F, "r16f", 1}, {GL_R32F, "r32f", 1},
+        {GL_RG8, "rg8", 2}, {GL_RG16, "rg16", 2}, {GL_RG16F, "rg16f", 2}, {GL_RG32F, "rg32f", 2},
+        {GL_RGBA8, "rgba8", 4}, {GL_RGBA16, "rgba16", 4}, {GL_RGBA16F, "rgba16f", 4}, {GL_RGBA32F, "rgba32f", 4},
+        {GL_RGB10_A2, "rgb10_a2", 4}, {GL_R11F_G11F_B10F, "r11f_g11f_b10f", 3},
+    };
+    for (const Entry& entry : kFormats) {
+        if (entry.format == internal_format) {
+            if (channels) *channels = entry.channels;
+            return entry.qualifier;
+        }
+    }
+    return nullptr;
+}
+
+Error check_output_fields(const obscura_output& output, OutputTarget* out) {
+    OutputTarget target;
+    const int32_t blend = stored_enum(output.blend);
+    const int32_t debug_view = stored_enum(output.debug_view);
+    if (blend != OBSCURA_BLEND_OVERWRITE && blend != OBSCURA_BLEND_MULTIPLY) {
+        return Error::make(OBSCURA_STATUS_INVALID_ENUM, "output.blend = %d is not an obscura_blend_mode", int(blend));
+    }
+    if (debug_view < OBSCURA_DEBUG_NONE || debug_view > OBSCURA_DEBUG_TAP_COUNT) {
+        return Error::make(OBSCURA_STATUS_INVALID_ENUM, "output.debug_view = %d is not an obscura_debug_view",
+                           int(debug_view));
+    }
+    if (output.x < 0 || output.y < 0) {
+        return Error::make(OBSCURA_STATUS_INVALID_RECT, "output position (%d, %d) must not be negative", output.x,
+                           output.y);
+    }
+    target.x = output.x;
+    target.y = output.y;
+    target.blend = output.blend;
+    target.debug_view = output.debug_view;
+    *out = target;
+    return Error();
+}
+
+Error check_output_target(const gl::Table& gl, const obscura_output& output, const obscura_rect& rect,
+                          OutputTarget* out) {
+    OutputTarget target = *out;
+    GLuint texture = output.texture;
+    if (texture == 0 && output.framebuffer != 0) {
+        // A framebuffer object: write its colour attachment 0 directly when that is a 2D texture level 0.
+        if (!gl.IsFramebuffer(output.framebuffer)) {
+            return Error::make(OBSCURA_STATUS_INVALID_FRAMEBUFFER, "output.framebuffer %u is not a framebuffer",
+                               output.framebuffer);
+        }
+        gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, output.framebuffer);
+        GLenum status = gl.CheckFramebufferStatus(GL_DRAW_FRAMEBUFFER);
+        GLint type = GL_NONE, name = 0, level = 0, layered = GL_FALSE;
+        gl.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
+                                               GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
+        if (type == GL_TEXTURE) {
+            gl.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
+                                                   GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &name);
+            gl.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
+                                                   GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL, &level);
+            gl.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
+                                                   GL_FRAMEBUFFER_ATTACHMENT_LAYERED, &layered);
+        }
+        if (status != GL_FRAMEBUFFER_COMPLETE || type == GL_NONE) {
+            return Error::make(OBSCURA_STATUS_INVALID_FRAMEBUFFER,
+                               "output.framebuffer %u is incomplete (status 0x%04X) or has no colour attachment 0",
+                               output.framebuffer, unsigned(status));
+        }
+        gl.ActiveTexture(GL_TEXTURE0 + OBSCURA_UNIT_SOURCE);
+        if (type == GL_TEXTURE && level == 0 && !layered && texture_has_target(gl, GLuint(name), GL_TEXTURE_2D)) {
+            gl.BindTexture(GL_TEXTURE_2D, 0);
+            GLint format = 0;
+            gl.BindTexture(GL_TEXTURE_2D, GLuint(name));
+            gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+            gl.BindTexture(GL_TEXTURE_2D, 0);
+            if (image_format_qualifier(GLenum(format), nullptr)) texture = GLuint(name);
+        }
+        if (texture == 0) {
+            // Blit path: the attachment must accept a blit from the RGBA8 staging texture, and the result
+            // must fit it (checked where the attachment size can be queried: renderbuffers, 2D textures).
+            GLint component_type = GL_NONE;
+            gl.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
+                                                   GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE, &component_type);
+            if (component_type == GL_INT || component_type == GL_UNSIGNED_INT) {
+                return Error::make(OBSCURA_STATUS_UNSUPPORTED_FORMAT,
+                                   "output.framebuffer %u has an integer colour attachment 0, which a blit of "
+                                   "normalised visibility cannot write",
+                                   output.framebuffer);
+            }
+            GLint width = -1, height = -1;
+            GLenum texture_target = GL_NONE;
+            GLint cube_face = GL_NONE;
+            if (type == GL_TEXTURE) {
+                gl.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
+                                                       GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_CUBE_MAP_FACE, &cube_face);
+                texture_target = attached_texture_target(gl, GLuint(name), GLenum(cube_face));
+            }
+            if (type == GL_RENDERBUFFER) {
+                GLint renderbuffer = 0, previous = 0;
+                gl.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
+                                                       GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &renderbuffer);
+                gl.GetIntegerv(GL_RENDERBUFFER_BINDING, &previous);
+                gl.BindRenderbuffer(GL_RENDERBUFFER, GLuint(renderbuffer));
+                gl.GetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_WIDTH, &width);
+                gl.GetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_HEIGHT, &height);
+                gl.BindRenderbuffer(GL_RENDERBUFFER, GLuint(previous));
+            } else if (type == GL_TEXTURE && !layered && texture_target != GL_NONE) {
+                // The attached image's size: a cube map's per face, a 1D array layer's is one row.
+                const ScopedTextureProbe bound(gl, GLuint(name), texture_target);
+                const GLenum level_target = texture_target == GL_TEXTURE_CUBE_MAP ? GLenum(cube_face) : texture_target;
+                gl.GetTexLevelParameteriv(level_target, level, GL_TEXTURE_WIDTH, &width);
+                gl.GetTexLevelParameteriv(level_target, level, GL_TEXTURE_HEIGHT, &height);
+                if (texture_target == GL_TEXTURE_1D_ARRAY) height = 1;
+            }
+            if (layered) {
+                return Error::make(OBSCURA_STATUS_INVALID_FRAMEBUFFER,
+                                   "output.framebuffer %u has a layered colour attachment 0; attach one layer",
+                                   output.framebuffer);
+            }
+            if (width >= 0 && (rect.width > width - target.x || rect.height > height - target.y)) {
+                return Error::make(OBSCURA_STATUS_INVALID_RECT,
+                                   "a %dx%d result at (%d, %d) does not fit the %dx%d colour attachment of "
+                                   "output.framebuffer %u",
+                                   rect.width, rect.height, target.x, target.y, width, height, output.framebuffer);
+            }
+            target.kind = TargetKind::Blit;
+            target.framebuffer = output.framebuffer;
+            target.attachment_type = GLenum(type);
+            target.attachment_name = GLuint(name != 0 ? name : 0);
+            if (type == GL_RENDERBUFFER) {
+                GLint renderbuffer = 0;
+                gl.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
+                                                       GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &renderbuffer);
+                target.attachment_name = GLuint(renderbuffer);
+            }
+            target.attachment_level = level;
+            target.attachment_face = texture_target == GL_TEXTURE_CUBE_MAP ? GLenum(cube_face) : GL_NONE;
+            target.attachment_by_layer = is_layered_target(texture_target);
+
+            target.attachment_float = component_type == GL_FLOAT;
+            *out = target;
+            return Error();
+        }
+    } else if (texture == 0) {
+        // The default framebuffer can only be reached by a blit, and a surfaceless context has none.
+        gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+        GLenum status = gl.CheckFramebufferStatus(GL_DRAW_FRAMEBUFFER);
+        if (status != GL_FRAMEBUFFER_COMPLETE) {
+            return Error::make(OBSCURA_STATUS_INVALID_FRAMEBUFFER,
+                               "the default framebuffer is not complete (status 0x%04X); a context without a "
+                               "surface has none: name an output texture or framebuffer object",
+                               unsigned(status));
+        }
+        // GL cannot report the window's size; at least keep the blit's end coordinates representable.
+        if (target.x > INT32_MAX - rect.width || target.y > INT32_MAX - rect.height) {
+            return Error::make(OBSCURA_STATUS_INVALID_RECT, "output position (%d, %d) overflows with a %dx%d result",
+                               target.x, target.y, rect.width, rect.height);
+        }
+        target.kind = TargetKind::Blit;
+        target.framebuffer = 0;
+        *out = target;
+        return Error();
+    }
+
+    gl.ActiveTexture(GL_TEXTURE0 + OBSCURA_UNIT_SOURCE);
+    if (!gl.IsTexture(texture) || !texture_has_target(gl, texture, GL_TEXTURE_2D)) {
+        return Error::make(OBSCURA_STATUS_INVALID_TEXTURE, "output texture %u is not a GL_TEXTURE_2D", texture);
+    }
+    GLint width = 0, height = 0, format = 0;
+    gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &width);
+    gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &height);
+    gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+    gl.BindTexture(GL_TEXTURE_2D, 0);
+    if (!image_format_qualifier(GLenum(format), nullptr)) {
+        return Error::make(OBSCURA_STATUS_UNSUPPORTED_FORMAT,
+                           "output texture %u has format 0x%04X; use R8, R16F, R32F, RG8/16F/32F, RGBA8/16F/32F, "
+                           "RGB10_A2 or R11F_G11F_B10F",
+                           texture, unsigned(format));
+    }
+    if (rect.width > width - target.x || rect.height > height - target.y) {
+        return Error::make(OBSCURA_STATUS_INVALID_RECT, "a %dx%d result at (%d, %d) does not fit the %dx%d output texture",
+                           rect.width, rect.height, target.x, target.y, width, height);
+    }
+    target.kind = TargetKind::Image;
+    target.texture = texture;
+    target.format = GLenum(format);
+    *out = target;
+    return Error();
+}
 
 Error OutputWriter::prepare(const PassEnv& env, const OutputTarget& target, const obscura_rect& rect) {
     const gl::Table& gl = env.gl;

@@ -1,4 +1,5 @@
-// OutputWriter: the last step of a frame, the output rectangle's AO (or a debug view) into the host's target.
+// The output: its validation in two stages (the fields without GL, then the texture or framebuffer they name),
+// and OutputWriter, the last step of a frame: the output rectangle's AO (or a debug view) into the host's target.
 // Texture targets (and framebuffer attachments a compute shader can write) are written by the composite pass
 // directly; renderbuffers and the default framebuffer get the composite in a staging texture, blitted there.
 #ifndef OBSCURA_OUTPUT_WRITER_H
@@ -9,6 +10,42 @@
 #include "passes/pass_common.h"
 
 namespace obscura {
+
+enum class TargetKind {
+    Image, // compute writes the host texture (or the FBO's texture attachment) directly
+    Blit   // renderbuffer or default framebuffer: compose into a staging texture, blit into the FBO
+};
+
+struct OutputTarget {
+    TargetKind kind = TargetKind::Image;
+    GLuint texture = 0;        // Image: the host texture
+    GLenum format = 0;         // Image: its internal format
+    GLuint framebuffer = 0;    // Blit: the host framebuffer (0 = default)
+    // Blit into a host framebuffer object: its colour attachment 0, which the SDK attaches to a framebuffer
+    // of its own so the blit reaches that attachment alone (not every draw buffer of the host's FBO).
+    GLenum attachment_type = GL_NONE;  // GL_RENDERBUFFER or GL_TEXTURE (0 for the default framebuffer)
+    GLuint attachment_name = 0;
+    GLint attachment_level = 0;
+    // Which image of that texture level the host attached: a cube map face (GL_TEXTURE_CUBE_MAP_POSITIVE_X...),
+    // or a layer of an array / 3D / cube-map-array texture (attachment_by_layer: the blit then goes to the
+    // host's framebuffer itself, since drivers do not all report the layer).
+    GLenum attachment_face = GL_NONE;
+    bool attachment_by_layer = false;
+    bool attachment_float = false;     // float attachment: stage in RGBA16F so MULTIPLY keeps HDR values
+    int x = 0, y = 0;
+    obscura_blend_mode blend = OBSCURA_BLEND_OVERWRITE;
+    obscura_debug_view debug_view = OBSCURA_DEBUG_NONE;
+};
+
+// Stage 1, no GL: the fields of `output` (blend, debug view, position). Errors: INVALID_ENUM, INVALID_RECT.
+Error check_output_fields(const obscura_output& output, OutputTarget* out);
+// Stage 2: the texture, or the framebuffer and its attachment, for a result of `rect`'s size, completing `*out`
+// from stage 1. Errors: INVALID_TEXTURE, UNSUPPORTED_FORMAT, INVALID_RECT, INVALID_FRAMEBUFFER.
+Error check_output_target(const gl::Table& gl, const obscura_output& output, const obscura_rect& rect,
+                          OutputTarget* out);
+
+// GLSL image format qualifier for a texture internal format the composite pass can write, or nullptr.
+const char* image_format_qualifier(GLenum internal_format, int* channels);
 
 class OutputWriter {
 public:

@@ -37,15 +37,32 @@ const obscura_setting_info* find_info(obscura_method method, const char* name) {
     return nullptr;
 }
 
-// Stored value of a field as a double, with 0 meaning "default" (toggles: 0 default, 1 on, 2 off).
+// The field's bytes end within a struct of `size` bytes (an older header's obscura_settings).
+bool field_fits(const obscura_setting_info& info, size_t size) {
+    const size_t bytes = info.type == OBSCURA_SETTING_FLOAT_ARRAY ? info.value_count * sizeof(float) : 4;
+    return info.offset + bytes <= size;
+}
+
+bool is_derived(const obscura_setting_info& info) { return (info.flags & OBSCURA_SETTING_FLAG_DERIVED) != 0; }
+
+// A zero that, with OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE, is the value 0 rather than the default.
+bool zero_can_be_value(const obscura_setting_info& info) {
+    return !is_derived(info) && info.min_value <= 0.0 && info.max_value >= 0.0 && info.default_value != 0.0 &&
+           (info.type == OBSCURA_SETTING_FLOAT || info.type == OBSCURA_SETTING_INT);
+}
+
+// Stored value of a field as a double, with 0 meaning "default" (toggles: 0 default, 1 on, 2 off). Array
+// settings read 0 (their values are checked by the method's derive step).
 double stored_value(const obscura_settings& settings, const obscura_setting_info& info) {
     switch (info.type) {
         case OBSCURA_SETTING_FLOAT: return *field_at<float>(&settings, info.offset);
-        case OBSCURA_SETTING_INT: return *field_at<int32_t>(&settings, info.offset);
+        case OBSCURA_SETTING_INT:
+        case OBSCURA_SETTING_ENUM: return *field_at<int32_t>(&settings, info.offset);
         case OBSCURA_SETTING_TOGGLE: {
             int32_t toggle = *field_at<int32_t>(&settings, info.offset);
             return toggle == OBSCURA_TOGGLE_DEFAULT ? 0.0 : toggle == OBSCURA_TOGGLE_ON ? 1.0 : -1.0;
         }
+        case OBSCURA_SETTING_FLOAT_ARRAY: return 0.0;
     }
     return 0.0;
 }
@@ -79,12 +96,21 @@ Error check_value(const obscura_setting_info& info, obscura_method method, doubl
 void store_value(obscura_settings* settings, const obscura_setting_info& info, double value) {
     switch (info.type) {
         case OBSCURA_SETTING_FLOAT: *field_at<float>(settings, info.offset) = float(value); break;
-        case OBSCURA_SETTING_INT: *field_at<int32_t>(settings, info.offset) = int32_t(std::lround(value)); break;
+        case OBSCURA_SETTING_INT:
+        case OBSCURA_SETTING_ENUM: *field_at<int32_t>(settings, info.offset) = int32_t(std::lround(value)); break;
         case OBSCURA_SETTING_TOGGLE:
             *field_at<int32_t>(settings, info.offset) = value != 0.0 ? OBSCURA_TOGGLE_ON : OBSCURA_TOGGLE_OFF;
             break;
+        case OBSCURA_SETTING_FLOAT_ARRAY: break;
     }
 }
+
+// The sizes of obscura_settings in the released headers: each appended a block (or a field) at the end.
+constexpr uint32_t kSettingsSize01 = uint32_t(offsetof(obscura_settings, reference));  // HBAO only
+constexpr uint32_t kSettingsSize02 = uint32_t(offsetof(obscura_settings, sao));        // + REFERENCE
+constexpr uint32_t kSettingsSize03 = uint32_t(offsetof(obscura_settings, flags));      // + SAO, LSAO, FFAO
+constexpr uint32_t kSettingsSizes[] = {kSettingsSize01, kSettingsSize02, kSettingsSize03,
+                                       uint32_t(sizeof(obscura_settings))};
 
 }  // namespace
 
@@ -116,10 +142,92 @@ const obscura_setting_info* setting_infos(obscura_method method, uint32_t* count
     return row ? row->settings : nullptr;
 }
 
-bool is_known_settings_size(uint32_t struct_size) { return struct_size == sizeof(obscura_settings); }
+const SettingInfo03* setting_infos_03(obscura_method method, uint32_t* count) {
+    // Built once from the rows (C++11 initialises a local static once, thread-safely); no heap.
+    constexpr uint32_t kMaxRows = 48;
+    struct Tables {
+        SettingInfo03 rows[OBSCURA_METHOD_COUNT_][kMaxRows] = {};
+        uint32_t counts[OBSCURA_METHOD_COUNT_] = {};
+    };
+    static const Tables tables = [] {
+        Tables t;
+        uint32_t method_count = 0;
+        const MethodDescriptor* const* methods = method_descriptors(&method_count);
+        for (uint32_t m = 0; m < method_count; ++m) {
+            const MethodDescriptor& row = *methods[m];
+            uint32_t& n = t.counts[row.method];
+            for (uint32_t i = 0; i < row.setting_count && n < kMaxRows; ++i) {
+                const obscura_setting_info& info = row.settings[i];
+                if (info.type == OBSCURA_SETTING_FLOAT_ARRAY) continue;
+                const obscura_setting_type type = info.type == OBSCURA_SETTING_ENUM ? OBSCURA_SETTING_INT : info.type;
+                t.rows[row.method][n++] = SettingInfo03{info.name,      type,      info.default_value,
+                                                        info.min_value, info.max_value, info.unit,
+                                                        info.description, info.offset};
+            }
+        }
+        return t;
+    }();
+    const MethodDescriptor* row = find_method(method);
+    *count = row ? tables.counts[row->method] : 0;
+    return row ? tables.rows[row->method] : nullptr;
+}
+
+bool is_known_settings_size(uint32_t struct_size) {
+    for (uint32_t size : kSettingsSizes) {
+        if (struct_size == size) return true;
+    }
+    return false;
+}
+
+uint32_t settings_size_03() { return kSettingsSize03; }
+
+Error read_host_settings(const obscura_settings* host, obscura_settings* out, const char* what) {
+    uint32_t size = 0;
+    std::memcpy(&size, host, sizeof size);
+    if (!is_known_settings_size(size)) {
+        return Error::make(OBSCURA_STATUS_INVALID_STRUCT_SIZE,
+                           "%s: obscura_settings.struct_size is %u, the size of no released obscura.h (this one's is "
+                           "%u: set it to sizeof(obscura_settings))",
+                           what, size, unsigned(sizeof(obscura_settings)));
+    }
+    obscura_settings whole;
+    std::memset(&whole, 0, sizeof whole);
+    std::memcpy(&whole, host, size);  // an older header's struct: the fields it lacks read 0, their defaults
+    whole.struct_size = sizeof whole;
+    *out = whole;
+    return Error();
+}
+
+void write_host_settings(const obscura_settings& settings, obscura_settings* host, uint32_t size) {
+    obscura_settings copy = settings;
+    copy.struct_size = size;
+    std::memcpy(host, &copy, size);
+}
+
+Error default_settings(obscura_method method, obscura_settings* out) {
+    const MethodDescriptor* selected = find_method(method);
+    if (!selected) return Error::make(OBSCURA_STATUS_INVALID_ENUM, "%d is not an obscura_method", int(stored_enum(method)));
+    obscura_settings settings;
+    std::memset(&settings, 0, sizeof settings);
+    settings.struct_size = sizeof settings;
+    settings.method = selected->method;
+    settings.flags = OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE;
+    // Every method's block, so that switching `method` later starts from its defaults too. Derived fields and
+    // arrays stay 0 ("derive", and a table that only the TABLE falloff reads).
+    uint32_t method_count = 0;
+    const MethodDescriptor* const* methods = method_descriptors(&method_count);
+    for (uint32_t m = 0; m < method_count; ++m) {
+        for (uint32_t i = 0; i < methods[m]->setting_count; ++i) {
+            const obscura_setting_info& info = methods[m]->settings[i];
+            if (!is_derived(info) && info.type != OBSCURA_SETTING_FLOAT_ARRAY) store_value(&settings, info, info.default_value);
+        }
+    }
+    *out = settings;
+    return Error();
+}
 
 Error resolve_settings(const obscura_settings& in, obscura_settings* out) {
-    if (!is_known_settings_size(in.struct_size)) {
+    if (in.struct_size != sizeof(obscura_settings)) {
         return Error::make(OBSCURA_STATUS_INVALID_STRUCT_SIZE, "obscura_settings.struct_size is %u; expected %u",
                            in.struct_size, unsigned(sizeof(obscura_settings)));
     }
@@ -128,6 +236,11 @@ Error resolve_settings(const obscura_settings& in, obscura_settings* out) {
         return Error::make(OBSCURA_STATUS_INVALID_ENUM, "obscura_settings.method = %d is not an obscura_method",
                            int(stored_method(in)));
     }
+    if ((in.flags & ~uint32_t(OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE)) != 0) {
+        return Error::make(OBSCURA_STATUS_INVALID_SETTING, "obscura_settings.flags = 0x%x has unknown bits",
+                           unsigned(in.flags));
+    }
+    const bool zero_is_value = (in.flags & OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE) != 0;
     obscura_settings resolved = in;
     resolved.method = method;
     // Every method's block is defaulted and validated, so a later method switch cannot surprise.
@@ -137,6 +250,7 @@ Error resolve_settings(const obscura_settings& in, obscura_settings* out) {
         const MethodDescriptor& row = *methods[m];
         for (uint32_t i = 0; i < row.setting_count; ++i) {
             const obscura_setting_info& info = row.settings[i];
+            if (info.type == OBSCURA_SETTING_FLOAT_ARRAY) continue;  // the method's derive step checks it
             if (info.type == OBSCURA_SETTING_TOGGLE) {
                 int32_t toggle = *field_at<int32_t>(&resolved, info.offset);
                 if (toggle < OBSCURA_TOGGLE_DEFAULT || toggle > OBSCURA_TOGGLE_OFF) {
@@ -150,8 +264,8 @@ Error resolve_settings(const obscura_settings& in, obscura_settings* out) {
                 continue;
             }
             double value = stored_value(resolved, info);
-            if (value == 0.0) {
-                store_value(&resolved, info, info.default_value);
+            if (value == 0.0 && !(zero_is_value && zero_can_be_value(info))) {
+                store_value(&resolved, info, info.default_value);  // derived fields: 0 until the derive step
                 continue;
             }
             Error error = check_value(info, row.method, value);
@@ -194,37 +308,75 @@ Error get_setting(const obscura_settings& settings, const char* name, double* va
         return Error::make(OBSCURA_STATUS_UNKNOWN_SETTING, "%s has no setting named '%s'", obscura_method_name(method),
                            name);
     }
-    double stored = stored_value(settings, *info);
+    if (info->type == OBSCURA_SETTING_FLOAT_ARRAY) {
+        return Error::make(OBSCURA_STATUS_INVALID_SETTING, "%s.%s is an array of %u values: read it through its offset",
+                           obscura_method_name(method), info->name, unsigned(info->value_count));
+    }
+    // Reported as it will be used: derived values for derived fields, and what resolve makes of a set value
+    // (LSAO rounds segment_steps up to a multiple of 8).
+    obscura_settings resolved;
+    if (resolve_settings(settings, &resolved).ok()) {
+        const double stored = stored_value(resolved, *info);
+        *value = info->type == OBSCURA_SETTING_TOGGLE ? (stored > 0.0 ? 1.0 : 0.0) : stored;
+        return Error();
+    }
+    // Settings that do not resolve read as stored, zero fields as their defaults.
+    const double stored = stored_value(settings, *info);
     if (info->type == OBSCURA_SETTING_TOGGLE) {
         *value = stored == 0.0 ? info->default_value : (stored > 0.0 ? 1.0 : 0.0);
     } else {
-        // Reported as it will be used: derived defaults for zero fields, and what resolve makes of a set
-        // value (LSAO rounds segment_steps up to a multiple of 8). Settings that do not resolve read as stored.
-        obscura_settings resolved;
-        if (resolve_settings(settings, &resolved).ok()) stored = stored_value(resolved, *info);
-        *value = stored != 0.0 ? stored : info->default_value;
+        const bool literal_zero = (settings.flags & OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE) && zero_can_be_value(*info);
+        *value = stored != 0.0 || literal_zero ? stored : info->default_value;
     }
     return Error();
 }
 
-Error set_setting(obscura_settings* settings, const char* name, double value) {
+Error set_setting(obscura_settings* settings, const char* name, double value, uint32_t host_size) {
     obscura_method method = resolve_method_value(stored_method(*settings));
     if (method == OBSCURA_METHOD_COUNT_) {
         return Error::make(OBSCURA_STATUS_INVALID_ENUM, "settings.method = %d is not an obscura_method",
                            int(stored_method(*settings)));
     }
     const obscura_setting_info* info = find_info(method, name);
-    if (!info) {
-        return Error::make(OBSCURA_STATUS_UNKNOWN_SETTING, "%s has no setting named '%s'", obscura_method_name(method),
-                           name);
+    if (!info || !field_fits(*info, host_size)) {
+        return Error::make(OBSCURA_STATUS_UNKNOWN_SETTING, "%s has no setting named '%s'%s",
+                           obscura_method_name(method), name,
+                           info ? " in the caller's (older) obscura_settings" : "");
+    }
+    if (info->type == OBSCURA_SETTING_FLOAT_ARRAY) {
+        return Error::make(OBSCURA_STATUS_INVALID_SETTING,
+                           "%s.%s is an array of %u values: write it through its offset", obscura_method_name(method),
+                           info->name, unsigned(info->value_count));
     }
     if (info->type == OBSCURA_SETTING_TOGGLE) {
         if (value != 0.0 && value != 1.0) {
             return Error::make(OBSCURA_STATUS_INVALID_SETTING, "%s.%s is a toggle: 0 (off) or 1 (on), not %g",
                                obscura_method_name(method), info->name, value);
         }
-    } else if (!(value == 0.0 && info->min_value > 0.0)) {
-        // 0 always means "default" for fields whose range excludes it.
+    } else if (value == 0.0 && zero_can_be_value(*info)) {
+        // A literal 0 where 0 would mean "default": the struct switches to OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE,
+        // whose other such fields then hold their defaults explicitly, so they keep meaning what they meant.
+        if (!(settings->flags & OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE)) {
+            if (host_size <= offsetof(obscura_settings, flags)) {
+                return Error::make(OBSCURA_STATUS_INVALID_SETTING,
+                                   "%s.%s = 0 needs OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE, which the caller's (older) "
+                                   "obscura_settings has no field for",
+                                   obscura_method_name(method), info->name);
+            }
+            uint32_t method_count = 0;
+            const MethodDescriptor* const* methods = method_descriptors(&method_count);
+            for (uint32_t m = 0; m < method_count; ++m) {
+                for (uint32_t i = 0; i < methods[m]->setting_count; ++i) {
+                    const obscura_setting_info& other = methods[m]->settings[i];
+                    if (zero_can_be_value(other) && stored_value(*settings, other) == 0.0) {
+                        store_value(settings, other, other.default_value);
+                    }
+                }
+            }
+            settings->flags |= OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE;
+        }
+    } else if (!(value == 0.0 && (info->min_value > 0.0 || is_derived(*info)))) {
+        // 0 means "default" (or "derive") for fields whose range excludes it.
         Error error = check_value(*info, method, value);
         if (error) return error;
     }

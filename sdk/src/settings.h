@@ -14,24 +14,78 @@ namespace obscura {
 #define OBSCURA_SETTING_OFFSET(block, field) \
     (offsetof(obscura_settings, block) + offsetof(obscura_##block##_settings, field))
 
+// One metadata row (the methods' tables, sdk/src/methods/). Toggles get their value names here.
+constexpr const char* const kToggleNames[] = {"off", "on"};
+constexpr obscura_setting_info setting_row(const char* name, obscura_setting_type type, double default_value,
+                                           double min_value, double max_value, const char* unit,
+                                           const char* description, size_t offset, uint32_t flags = 0) {
+    return obscura_setting_info{name, type, default_value, min_value, max_value, unit, description, offset, flags,
+                                type == OBSCURA_SETTING_TOGGLE ? 2u : 0u,
+                                type == OBSCURA_SETTING_TOGGLE ? kToggleNames : nullptr};
+}
+// An ENUM row: `names` name the values min_value, min_value + 1, ... (N of them).
+template <size_t N>
+constexpr obscura_setting_info enum_row(const char* name, double default_value, double min_value, const char* description,
+                                        size_t offset, const char* const (&names)[N], uint32_t count = N) {
+    return obscura_setting_info{name,        OBSCURA_SETTING_ENUM, default_value, min_value, min_value + count - 1,
+                                "",          description,          offset,        0,         count,
+                                names};
+}
+// A FLOAT_ARRAY row of N floats in [min, max]. Arrays have no default: 0 everywhere.
+constexpr obscura_setting_info array_row(const char* name, uint32_t length, double min_value, double max_value,
+                                         const char* description, size_t offset) {
+    return obscura_setting_info{name, OBSCURA_SETTING_FLOAT_ARRAY, 0.0, min_value, max_value, "", description,
+                                offset, 0, length, nullptr};
+}
+
+// The names of obscura_falloff's values from OBSCURA_FALLOFF_RHO0 on.
+constexpr const char* const kFalloffNames[] = {"rho0", "inverse_quadratic", "exponential", "table"};
+
 // The table for `method` (OBSCURA_METHOD_DEFAULT maps to HBAO); null and count 0 for a value that is no method.
 const obscura_setting_info* setting_infos(obscura_method method, uint32_t* count);
+
+// obscura_setting_info as the 0.3 header declared it (the binaries built against 0.3 read this layout).
+struct SettingInfo03 {
+    const char* name;
+    obscura_setting_type type;
+    double default_value, min_value, max_value;
+    const char* unit;
+    const char* description;
+    size_t offset;
+};
+static_assert(sizeof(SettingInfo03) == offsetof(obscura_setting_info, flags), "0.4 appended to the 0.3 layout");
+// The method's table in the 0.3 layout: ENUM rows read as INT, array rows (new in 0.4) left out.
+const SettingInfo03* setting_infos_03(obscura_method method, uint32_t* count);
 
 // Resolved method (DEFAULT -> HBAO); OBSCURA_METHOD_COUNT_ for unknown values.
 obscura_method resolve_method(obscura_method method);
 
-// Sizes of every released version of obscura_settings that the library accepts.
+// Sizes of every released version of obscura_settings that the library accepts (0.1 ... this header).
 bool is_known_settings_size(uint32_t struct_size);
+uint32_t settings_size_03();  // the 0.3 header's sizeof(obscura_settings)
+
+// The caller's struct (any released size) as a whole obscura_settings: its bytes, then zeros (the defaults
+// of the fields its header did not have). INVALID_STRUCT_SIZE for a size no header had; `what` names the call.
+Error read_host_settings(const obscura_settings* host, obscura_settings* out, const char* what);
+// Writes whole settings back into a caller's struct of `size` bytes (a known size), struct_size = size.
+void write_host_settings(const obscura_settings& settings, obscura_settings* host, uint32_t size);
+
+// The editable form of `method`'s defaults (obscura_default_settings): every field its default, derived fields
+// 0, OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE set. INVALID_ENUM for a value that is no method.
+Error default_settings(obscura_method method, obscura_settings* out);
 
 // Defaults every zero field, validates every field, and derives dependent values (each method's `derive`).
+// `in` is whole (read_host_settings).
 Error resolve_settings(const obscura_settings& in, obscura_settings* out);
 
 // REFERENCE settings with the falloff of `method_settings`'s method (obscura_reference_settings_for).
 Error reference_settings_for(const obscura_settings& method_settings, obscura_settings* out);
 
-// Reads / writes one field through the table (the value a UI shows: defaults for zero fields).
+// Reads / writes one field of whole settings through the table (the value a UI shows: what resolve will use).
+// `host_size`: the caller's struct size; fields beyond it are UNKNOWN_SETTING.
 Error get_setting(const obscura_settings& settings, const char* name, double* value);
-Error set_setting(obscura_settings* settings, const char* name, double value);
+Error set_setting(obscura_settings* settings, const char* name, double value,
+                  uint32_t host_size = sizeof(obscura_settings));
 
 // For the methods' `derive`: a falloff table is read only with OBSCURA_FALLOFF_TABLE, where it must describe
 // a falloff (values in [0, 1], not all 0). `method` names it in the message.

@@ -78,10 +78,25 @@ obscura_cli_command_test(bench_two_sizes 0
 obscura_cli_command_test(bench_refused_configuration 1
   "bench|--scene|analytic|--sizes|2560x1440|--methods|ffao:sectors=64:base_interval=2,hbao:directions=4:steps=4|--frames|1|--warmup|0|--json|bench.json|--csv|bench.csv"
   GL CHECK bench_refused EXPECT_FILES "bench.csv")
-# A method the SDK refuses is named with the SDK's reason (obscura_reference_settings_for alone gives none).
-obscura_cli_command_test(compare_refused_settings_say_why 1
+# Settings the SDK refuses as a whole are a usage error saying why, before any GL: the table falloff without
+# its table says to give falloff_table.
+obscura_cli_command_test(compare_refused_settings_say_why 2
   "compare|--scene|analytic|--size|160x90|--reference-rays|1|--methods|hbao,ffao:falloff=4"
-  GL EXPECT_STDERR "obscura: error: obscura_resolve_settings[(]ffao:falloff=4[)] failed: OBSCURA_STATUS_INVALID_SETTING: [^\n]*ffao.falloff is TABLE but ffao.falloff_table is all zero")
+  EXPECT_STDERR "^obscura: method spec 'ffao:falloff=4': falloff=table needs falloff_table, which is all zero: give it as falloff_table=V0/V1/.../V15 [^\n]*or falloff_table=@FILE[^\n]*\n$")
+# Value names, derived settings and the falloff table through the CLI's specs: K = 32 from the preset's name,
+# the table inline and from a file (tests/cli/data/falloff_table.txt: commas, spaces and newlines).
+obscura_cli_command_test(render_enum_names_and_derived 0
+  "render|${scene}|--method|lsao:preset=k32:pattern=aligned:tangent_strategy=fixed|--out|ao.png|--json|render.json"
+  GL CHECK preset EXPECT_FILES "ao.png"
+  EXPECT_STDOUT "preset +k32\n +pattern +aligned\n +directions +32 [(]derived[)]\n +step_length +4.69 px [(]derived[)]")
+obscura_cli_command_test(render_falloff_table_inline 0
+  "render|${scene}|--method|reference:rays=4:falloff=table:falloff_table=1/0.95/0.9/0.8/0.7/0.6/0.5/0.4/0.3/0.2/0.15/0.1/0.05/0.02/0.01/0|--out|ao.png"
+  GL EXPECT_FILES "ao.png"
+  EXPECT_STDOUT "falloff +table\n.*falloff_table +1/0.95/0.9/0.8/0.7/0.6/0.5/0.4/0.3/0.2/0.15/0.1/0.05/0.02/0.01/0\n")
+obscura_cli_command_test(render_falloff_table_file 0
+  "render|${scene}|--method|ffao:falloff=table:falloff_table=@${OBSCURA_CLI_COMMANDS_DIR}/data/falloff_table.txt|--out|ao.png|--json|render.json"
+  GL CHECK table EXPECT_FILES "ao.png"
+  EXPECT_STDOUT "falloff_table +1/0.95/0.9/0.8/0.7/0.6/0.5/0.4/0.3/0.2/0.15/0.1/0.05/0.02/0.01/0\n")
 obscura_cli_command_test(demo 0 "demo|--truth-rays|4|--out-dir|demo"
   GL EXPECT_FILES "demo/1_hbao.png|demo/1_hbao_error_geometry.png|demo/geometry_truth_1.png|demo/contact_sheet.png"
   EXPECT_STDOUT "scene: atrium[^\n]*640x360.*errors against the geometry truth")
@@ -95,6 +110,11 @@ obscura_cli_command_test(list_scenes 0 "--list-scenes" EXPECT_STDOUT "atrium +av
 obscura_cli_command_test(list_methods 0 "--list-methods" EXPECT_STDOUT "hbao +available\n")
 obscura_cli_command_test(list_settings 0 "--list-settings" EXPECT_STDOUT "hbao\n[^\n]*default[^\n]*\n +radius +float +1 ")
 obscura_cli_command_test(list_settings_method 0 "--list-settings|reference" EXPECT_STDOUT "^reference\n[^\n]*\n +radius")
+# Enums show their default by name and list their names; derived settings say so; arrays are float[N].
+obscura_cli_command_test(list_settings_enums_derived_arrays 0 "--list-settings|ffao"
+  EXPECT_STDOUT "\n +falloff +enum +exponential +1 +4 +[{]rho0, inverse_quadratic, exponential, table[}] .*\n +decay_rate +float +derived +1e-10 +1e[+]08 +m\\^2 .*\n +geometry +enum +peaks +1 +2 +[{]peaks, mipmap[}] .*\n +falloff_table +float\\[16\\] +none +0 +1 +16 values, V0/V1/.../V15 or @FILE: ")
+obscura_cli_command_test(list_settings_lsao_preset 0 "--list-settings|lsao"
+  EXPECT_STDOUT "\n +preset +enum +k16 +1 +6 +[{]k8, k16, k24, k32, k8_figure1, k16_figure13[}].*\n +directions +int +derived +1 +64 ")
 obscura_cli_command_test(help 0 "--help" EXPECT_STDOUT "obscura compare[^\n]*--methods")
 
 # ---- Bad arguments: exit 2 and one line on stderr, before any GL -----------------------------------------
@@ -105,6 +125,21 @@ obscura_cli_command_test(unknown_key 2 "render|--method|hbao:directions=8:no_suc
 obscura_cli_command_test(out_of_range 2 "render|--method|hbao:directions=99|--out|ao.png")
 obscura_cli_command_test(not_whole_number 2 "render|--method|hbao:steps=2.5|--out|ao.png")
 obscura_cli_command_test(bad_toggle 2 "render|--method|hbao:blur=maybe|--out|ao.png")
+obscura_cli_command_test(unknown_enum_name 2 "render|--method|ffao:falloff=expo|--out|ao.png"
+  EXPECT_STDERR "^obscura: ffao falloff: 'expo' is not one of its values [(]valid: rho0, inverse_quadratic, exponential, table, or their numbers 1 to 4[)][^\n]*\n$")
+obscura_cli_command_test(enum_out_of_range 2 "render|--method|lsao:preset=7|--out|ao.png"
+  EXPECT_STDERR "^obscura: lsao preset=7 is outside \\[1, 6\\] [(]k8, k16, k24, k32, k8_figure1, k16_figure13[)][^\n]*\n$")
+obscura_cli_command_test(falloff_table_wrong_count 2 "render|--method|ffao:falloff=table:falloff_table=1/0.5/0|--out|ao.png"
+  EXPECT_STDERR "^obscura: ffao falloff_table: 3 values, expected 16 [(]falloff_table=V0/V1/.../V15 or falloff_table=@FILE[)][^\n]*\n$")
+obscura_cli_command_test(falloff_table_out_of_range 2
+  "render|--method|reference:falloff=table:falloff_table=1/1.5/1/1/1/1/1/1/1/1/1/1/1/1/1/1|--out|ao.png"
+  EXPECT_STDERR "^obscura: reference falloff_table\\[1\\] = 1.5 is outside \\[0, 1\\][^\n]*\n$")
+obscura_cli_command_test(falloff_table_missing_file 2 "render|--method|ffao:falloff=table:falloff_table=@no_such_table.txt|--out|ao.png"
+  EXPECT_STDERR "^obscura: ffao falloff_table: cannot open 'no_such_table.txt'[^\n]*\n$")
+obscura_cli_command_test(table_falloff_without_table 2 "render|--method|reference:falloff=table|--out|ao.png"
+  EXPECT_STDERR "^obscura: method spec 'reference:falloff=table': falloff=table needs falloff_table[^\n]*\n$")
+obscura_cli_command_test(settings_that_do_not_go_together 2 "render|--method|ffao:sectors=9|--out|ao.png"
+  EXPECT_STDERR "^obscura: method spec 'ffao:sectors=9' is refused: ffao.sectors = 9: K must be even[^\n]*\n$")
 obscura_cli_command_test(empty_method_entry 2 "compare|--methods|hbao,,hbao:blur=off")
 obscura_cli_command_test(set_key_of_no_method 2 "compare|--methods|hbao|--set|no_such_key=1")
 obscura_cli_command_test(unknown_scene 2 "render|--scene|no_such_scene|--out|ao.png")

@@ -10,6 +10,7 @@
 #include "frame_input.h"
 #include "pass_test_support.h"
 #include "passes/ffao.h"
+#include "testing/pass_inspection.h"
 #include "settings.h"
 
 namespace {
@@ -116,7 +117,7 @@ TEST_F(FfaoPasses, TableMatchesNumericIntegration) {
         for (int i = 0; i < OBSCURA_FALLOFF_TABLE_SIZE; ++i) settings.falloff_table[i] = 1.0f - float(i) / 15.0f;
         settings = resolved(settings);
         run(settings, false);
-        const std::vector<float> table = pass_.read_table(gl_);
+        const std::vector<float> table = obscura::FfaoPassInspection::read_table(pass_, gl_);
         const obscura::FfaoFalloffShape shape = obscura::ffao_falloff_shape(settings);
         const int na = OBSCURA_FFAO_TABLE_A, nb = OBSCURA_FFAO_TABLE_B, nc = OBSCURA_FFAO_TABLE_C;
         double worst = 0.0, largest = 0.0;
@@ -152,7 +153,7 @@ TEST_F(FfaoPasses, ScanAndPrefixSumsMatchACpuScan) {
     upload_depth(false);
     const obscura_ffao_settings settings = resolved(defaults());
     run(settings, false);
-    const std::vector<float> gpu = pass_.read_peaks(gl_);
+    const std::vector<float> gpu = obscura::FfaoPassInspection::read_peaks(pass_, gl_);
     const obscura::FfaoLayout& layout = pass_.layout();
     const FfaoConstants constants = pass_.constants(settings, input_);
     std::vector<float> cpu(gpu.size(), 0.0f);

@@ -45,6 +45,7 @@
 #include "scene_library.h"
 #include "gl_test_support.h"
 #include "image_io.h"
+#include "method_spec_parser.h"
 #include "metrics.h"
 
 #ifndef OBSCURA_GOLDEN_DIR
@@ -75,7 +76,7 @@ using SceneSetup = std::function<RenderedScene(int width, int height)>;
 struct GoldenCase {
     std::string name;         // test name and golden file tests/golden/<name>.png
     SceneSetup scene;
-    std::string method;       // CLI method spec: "hbao" or "hbao:directions=4:blur=off"
+    std::string method;       // method spec (samples/common/method_spec_parser.h): "hbao:directions=4:blur=off"
     bool use_normals = false; // pass the scene's normals instead of reconstructing them from depth
     GoldenTolerance tolerance = kGoldenTolerance;
 };
@@ -114,7 +115,7 @@ const std::vector<GoldenCase>& golden_cases() {
         {"lsao_atrium", library_scene("atrium"), "lsao"},
         {"lsao_clutter_k32", library_scene("clutter"), "lsao:preset=4"},
         {"ffao_atrium", library_scene("atrium"), "ffao"},
-        // (These specs start from obscura_default_settings, whose fields are explicit: K and r are given.)
+        // (sectors=18 and decay_rate=4.8 are what these specs derive: kept from when specs gave every value.)
         {"ffao_atrium_saao", library_scene("atrium"), "ffao:saao=on:sectors=18"},
         {"ffao_terrain_r4", library_scene("terrain"), "ffao:radius=4:decay_rate=4.8"},
         {"ffao_terrain_r4_saao", library_scene("terrain"), "ffao:radius=4:decay_rate=4.8:saao=on:sectors=18"},
@@ -125,39 +126,6 @@ const std::vector<GoldenCase>& golden_cases() {
 }
 
 void PrintTo(const GoldenCase& golden_case, std::ostream* out) { *out << golden_case.name; }
-
-// "hbao:directions=4:steps=6:blur=off" (the CLI's method specs) -> settings through obscura_set_setting (on/off -> 1/0).
-obscura_settings parse_method(const std::string& spec) {
-    const size_t colon = spec.find(':');
-    const std::string method_name = spec.substr(0, colon);
-    obscura_method method = OBSCURA_METHOD_DEFAULT;
-    for (int m = OBSCURA_METHOD_HBAO; m < OBSCURA_METHOD_COUNT_; ++m) {
-        const char* name = obscura_method_name(static_cast<obscura_method>(m));
-        if (name && method_name == name) method = static_cast<obscura_method>(m);
-    }
-    if (method == OBSCURA_METHOD_DEFAULT) throw std::invalid_argument("unknown method '" + method_name + "'");
-    obscura_settings settings{};
-    if (obscura_default_settings(method, &settings) != OBSCURA_OK) throw std::runtime_error("obscura_default_settings");
-    size_t start = colon == std::string::npos ? spec.size() : colon + 1;
-    while (start < spec.size()) {
-        const size_t end = std::min(spec.find(':', start), spec.size());
-        const std::string item = spec.substr(start, end - start);
-        const size_t equals = item.find('=');
-        const std::string key = item.substr(0, equals);
-        const std::string text = equals == std::string::npos ? "" : item.substr(equals + 1);
-        char* number_end = nullptr;
-        const double value = text == "on" ? 1.0 : text == "off" ? 0.0 : std::strtod(text.c_str(), &number_end);
-        if (number_end && (text.empty() || *number_end != '\0')) {
-            throw std::invalid_argument("'" + item + "' is not KEY=NUMBER or KEY=on/off");
-        }
-        const obscura_status status = obscura_set_setting(&settings, key.c_str(), value);
-        if (status != OBSCURA_OK) {
-            throw std::invalid_argument("'" + item + "': " + obscura_status_string(status));
-        }
-        start = end + 1;
-    }
-    return settings;
-}
 
 bool update_requested() {
     const char* value = std::getenv("OBSCURA_UPDATE_GOLDENS");
@@ -205,7 +173,7 @@ class Golden : public GLTest, public ::testing::WithParamInterface<GoldenCase> {
 
 TEST_P(Golden, MatchesGolden) {
     const GoldenCase& golden_case = GetParam();
-    const obscura_settings settings = parse_method(golden_case.method);
+    const obscura_settings settings = obscura::samples::parse_method_spec(golden_case.method);
     RenderedScene scene = golden_case.scene(kWidth, kHeight);
     const obscura_input input = scene->make_input(golden_case.use_normals);
     const std::vector<float> values = render_to_new_texture(ctx(), input, settings, GL_R32F, 1);

@@ -11,6 +11,7 @@
 #include "frame_input.h"
 #include "pass_test_support.h"
 #include "passes/lsao.h"
+#include "testing/pass_inspection.h"
 #include "settings.h"
 
 namespace {
@@ -54,7 +55,7 @@ protected:
         obscura_settings resolved;
         EXPECT_FALSE(obscura::resolve_settings(settings, &resolved));
         EXPECT_FALSE(pass_.prepare(env(), resolved.lsao));
-        pass_.collect_stats(true);
+        obscura::LsaoPassInspection::collect_stats(pass_, true);
         EXPECT_FALSE(pass_.ensure_layout(env(), resolved.lsao, kWidth, kHeight));
         GLint alignment = 256;
         gl_.GetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);
@@ -62,16 +63,16 @@ protected:
         obscura::UniformRange frame = arena_.push(frame_);
         obscura::UniformRange pass = arena_.push(pass_.constants(resolved.lsao, input_, env().cpu_renderer));
         arena_.upload(gl_, uniforms_.name());
-        pass_.fill_values(gl_, kPoison);  // what the sweep does not write keeps it
+        obscura::LsaoPassInspection::fill_values(pass_, gl_, kPoison);  // what the sweep does not write keeps it
         pass_.run_sweeps(env(), resolved.lsao, frame, pass, resources_);
         gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
         Sweep out;
         uint32_t stats[3] = {};
-        pass_.read_stats(gl_, stats);
+        obscura::LsaoPassInspection::read_stats(pass_, gl_, stats);
         out.steps = stats[0];
         out.pops = stats[1];
         out.dropped = stats[2];
-        out.values = pass_.read_values(gl_);
+        out.values = obscura::LsaoPassInspection::read_values(pass_, gl_);
         if (gather) {
             if (!resources_.ao.name()) resources_.ao = gl::Texture2D::create(gl_, GL_R16F, kWidth, kHeight);
             pass_.run_gather(env(), frame, pass, obscura::Region{0, 0, kWidth, kHeight}, resources_);

@@ -104,6 +104,13 @@ obscura_settings random_settings(obscura_method method, int pixels, std::mt19937
     for (uint32_t i = 0; i < count; ++i) {
         if (unit(rng) < 0.5) continue;
         const obscura_setting_info& info = infos[i];
+        if (info.type == OBSCURA_SETTING_FLOAT_ARRAY) {
+            // A falloff table: written through its offset (never all zero, so falloff=table resolves).
+            float* values = reinterpret_cast<float*>(reinterpret_cast<unsigned char*>(&s) + info.offset);
+            for (uint32_t v = 0; v < info.value_count; ++v) values[v] = float(unit(rng));
+            values[0] = 1.0f;
+            continue;
+        }
         double value = 0.0;
         if (info.type == OBSCURA_SETTING_FLOAT) {
             if (info.min_value > 0.0 && info.max_value / info.min_value > 100.0) {

@@ -1,5 +1,6 @@
 // The viewer's settings documents (samples/viewer/settings_document.h): JSON save/load round trips for
-// every method of the metadata, the load errors, and copy-as-C. No GL.
+// every method of the metadata (enums by name, derived settings left to the SDK, the falloff tables), the load
+// errors, documents of version 1, and copy-as-C. No GL.
 #include <cstddef>
 #include <cstdio>
 #include <cstdlib>
@@ -12,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "json_reader.h"
+#include "method_spec_parser.h"
 #include "obscura/obscura.h"
 #include "settings_document.h"
 
@@ -49,11 +51,18 @@ double get(const obscura_settings& settings, const char* name) {
     return value;
 }
 
-// An in-range value other than the default: ints take min or max (whichever differs), floats the middle
-// between the default and the max (or the min when the default is the max), toggles flip.
+// An array setting's values (the falloff tables), read through its offset.
+std::vector<float> table_of(const obscura_settings& settings, const obscura_setting_info& info) {
+    const float* values = obscura::samples::array_values(settings, info);
+    return std::vector<float>(values, values + info.value_count);
+}
+
+// An in-range value other than the default: ints and enums take min or max (whichever differs), floats the
+// middle between the default and the max (or the min when the default is the max), toggles flip.
 double non_default_value(const obscura_setting_info& info, double default_value) {
     switch (info.type) {
-        case OBSCURA_SETTING_INT: return default_value != info.min_value ? info.min_value : info.max_value;
+        case OBSCURA_SETTING_INT:
+        case OBSCURA_SETTING_ENUM: return default_value != info.min_value ? info.min_value : info.max_value;
         case OBSCURA_SETTING_TOGGLE: return default_value != 0.0 ? 0.0 : 1.0;
         case OBSCURA_SETTING_FLOAT:
         default:
@@ -62,10 +71,20 @@ double non_default_value(const obscura_setting_info& info, double default_value)
     }
 }
 
-// Every setting of `method` moved off its default.
+// A falloff table that is no falloff's: 1, 15/16 ... 1/16 (every value in [0, 1], not all 0).
+void fill_table(obscura_settings& settings, const obscura_setting_info& info) {
+    float* values = obscura::samples::array_values(settings, info);
+    for (uint32_t i = 0; i < info.value_count; ++i) values[i] = 1.0f - float(i) / float(info.value_count);
+}
+
+// Every setting of `method` moved off its default (derived ones set to a value; arrays filled).
 obscura_settings changed_settings(obscura_method method) {
     obscura_settings settings = defaults_of(method);
     for (const obscura_setting_info& info : infos_of(method)) {
+        if (obscura::samples::is_array(info)) {
+            fill_table(settings, info);
+            continue;
+        }
         const double default_value = get(settings, info.name);
         const double value = non_default_value(info, default_value);
         EXPECT_EQ(obscura_set_setting(&settings, info.name, value), OBSCURA_OK) << info.name << " = " << value;
@@ -74,11 +93,30 @@ obscura_settings changed_settings(obscura_method method) {
     return settings;
 }
 
+// The same effective values, the same derived fields left to the SDK, the same arrays.
 void expect_same_settings(obscura_method method, const obscura_settings& expected, const obscura_settings& actual) {
     EXPECT_EQ(actual.method, method);
     for (const obscura_setting_info& info : infos_of(method)) {
+        if (obscura::samples::is_array(info)) {
+            EXPECT_EQ(table_of(actual, info), table_of(expected, info))
+                << obscura_method_name(method) << "." << info.name;
+            continue;
+        }
         EXPECT_EQ(get(actual, info.name), get(expected, info.name)) << obscura_method_name(method) << "." << info.name;
+        EXPECT_EQ(obscura::samples::derives(actual, info), obscura::samples::derives(expected, info))
+            << obscura_method_name(method) << "." << info.name;
     }
+}
+
+const obscura_setting_info& info_of(obscura_method method, const char* name) {
+    const obscura_setting_info* infos = nullptr;
+    uint32_t count = 0;
+    EXPECT_EQ(obscura_get_setting_infos(method, &infos, &count), OBSCURA_OK);
+    for (uint32_t i = 0; i < count; ++i) {
+        if (std::strcmp(infos[i].name, name) == 0) return infos[i];
+    }
+    ADD_FAILURE() << obscura_method_name(method) << " has no setting " << name;
+    return infos[0];
 }
 
 // settings_from_json(text) throws a SettingsDocumentError whose message contains every one of `parts`.
@@ -94,9 +132,11 @@ void expect_load_error(const std::string& text, std::initializer_list<const char
     }
 }
 
-std::string hbao_document(const std::string& settings_members) {
-    return R"({"format": "obscura-settings", "version": 1, "method": "hbao", "settings": {)" + settings_members + "}}";
+std::string document_of(const char* method, const std::string& settings_members, int version = 2) {
+    return R"({"format": "obscura-settings", "version": )" + std::to_string(version) + R"(, "method": ")" + method +
+           R"(", "settings": {)" + settings_members + "}}";
 }
+std::string hbao_document(const std::string& settings_members) { return document_of("hbao", settings_members); }
 
 std::vector<std::string> lines_of(const std::string& text) {
     std::vector<std::string> lines;
@@ -114,25 +154,37 @@ TEST(SettingsDocument, MetadataCoversEveryMethod) {
 
 TEST(SettingsDocument, JsonHasEverySettingInMetadataOrder) {
     for (obscura_method method : all_methods()) {
-        const std::string text = settings_to_json(defaults_of(method));
+        const obscura_settings defaults = defaults_of(method);
+        const std::string text = settings_to_json(defaults);
         const obscura::samples::JsonValue document = obscura::samples::parse_json(text);
         EXPECT_EQ(document.find("format")->as_string(), "obscura-settings");
-        EXPECT_EQ(document.find("version")->as_number(), 1.0);
+        EXPECT_EQ(document.find("version")->as_number(), 2.0);
         EXPECT_EQ(document.find("method")->as_string(), obscura_method_name(method));
         const obscura::samples::JsonValue::Object& members = document.find("settings")->members();
         const std::vector<obscura_setting_info> infos = infos_of(method);
         ASSERT_EQ(members.size(), infos.size()) << text;
         for (size_t i = 0; i < infos.size(); ++i) {
-            EXPECT_EQ(members[i].first, infos[i].name);
-            const double value = get(defaults_of(method), infos[i].name);
-            if (infos[i].type == OBSCURA_SETTING_TOGGLE) {
-                EXPECT_EQ(members[i].second.as_string(), value != 0.0 ? "on" : "off") << infos[i].name;
+            const obscura_setting_info& info = infos[i];
+            const obscura::samples::JsonValue& member = members[i].second;
+            EXPECT_EQ(members[i].first, info.name);
+            if (obscura::samples::is_array(info)) {
+                ASSERT_TRUE(member.is_array()) << info.name;
+                EXPECT_EQ(member.items().size(), size_t(info.value_count)) << info.name;
+                continue;
+            }
+            const double value = get(defaults, info.name);
+            if (info.type == OBSCURA_SETTING_TOGGLE) {
+                EXPECT_EQ(member.as_string(), value != 0.0 ? "on" : "off") << info.name;
+            } else if (info.type == OBSCURA_SETTING_ENUM) {
+                EXPECT_EQ(member.as_string(), obscura::samples::value_name(info, value)) << info.name;
+            } else if (obscura::samples::is_derived(info)) {
+                EXPECT_EQ(member.as_number(), 0.0) << info.name << ": the defaults derive it";
             } else {
-                EXPECT_EQ(float(members[i].second.as_number()), float(value)) << infos[i].name;
+                EXPECT_EQ(float(member.as_number()), float(value)) << info.name;
             }
         }
     }
-    // Floats in their shortest form, ints as integers, toggles as words.
+    // Floats in their shortest form, ints as integers, toggles as words, derived settings 0 ("derive").
     obscura_settings hbao = defaults_of(OBSCURA_METHOD_HBAO);
     ASSERT_EQ(obscura_set_setting(&hbao, "radius", 1.5), OBSCURA_OK);
     ASSERT_EQ(obscura_set_setting(&hbao, "falloff_c", 0.3), OBSCURA_OK);
@@ -141,7 +193,9 @@ TEST(SettingsDocument, JsonHasEverySettingInMetadataOrder) {
     EXPECT_NE(text.find("\"method\": \"hbao\""), std::string::npos) << text;
     EXPECT_NE(text.find("\"radius\": 1.5,"), std::string::npos) << text;
     EXPECT_NE(text.find("\"falloff_c\": 0.3,"), std::string::npos) << text;
+    EXPECT_NE(text.find("\"decay_rate\": 0,"), std::string::npos) << text;
     EXPECT_NE(text.find("\"directions\": 8,"), std::string::npos) << text;
+    EXPECT_NE(text.find("\"estimator\": \"horizon_split\","), std::string::npos) << text;
     EXPECT_NE(text.find("\"blur\": \"off\","), std::string::npos) << text;
 }
 
@@ -162,7 +216,11 @@ TEST(SettingsDocument, ChangedSettingsRoundTripForEveryMethod) {
         // And no key still equals its default (the round trip did not fall back to defaults).
         const obscura_settings defaults = defaults_of(method);
         for (const obscura_setting_info& info : infos_of(method)) {
-            EXPECT_NE(get(loaded, info.name), get(defaults, info.name)) << info.name;
+            if (obscura::samples::is_array(info)) {
+                EXPECT_NE(table_of(loaded, info), table_of(defaults, info)) << info.name;
+            } else {
+                EXPECT_NE(get(loaded, info.name), get(defaults, info.name)) << info.name;
+            }
         }
         EXPECT_EQ(settings_to_json(loaded), text);
     }
@@ -180,6 +238,100 @@ TEST(SettingsDocument, FloatsThatAreNotDecimalRoundTrip) {
     EXPECT_EQ(get(loaded, "falloff_c"), double(0.999f));
 }
 
+TEST(SettingsDocument, EnumsAreWrittenAsNamesAndReadAsNamesOrNumbers) {
+    obscura_settings ffao = defaults_of(OBSCURA_METHOD_FFAO);
+    ASSERT_EQ(obscura_set_setting(&ffao, "falloff", OBSCURA_FALLOFF_INVERSE_QUADRATIC), OBSCURA_OK);
+    ASSERT_EQ(obscura_set_setting(&ffao, "geometry", 2), OBSCURA_OK);
+    const std::string text = settings_to_json(ffao);
+    EXPECT_NE(text.find("\"falloff\": \"inverse_quadratic\","), std::string::npos) << text;
+    EXPECT_NE(text.find("\"geometry\": \"mipmap\","), std::string::npos) << text;
+    expect_same_settings(OBSCURA_METHOD_FFAO, ffao, settings_from_json(text));
+    // Names and numbers read alike.
+    const obscura_settings by_name = settings_from_json(document_of("lsao", R"("preset": "k24", "pattern": "free")"));
+    const obscura_settings by_number = settings_from_json(document_of("lsao", R"("preset": 3, "pattern": 2)"));
+    EXPECT_EQ(get(by_name, "preset"), 3.0);
+    EXPECT_EQ(get(by_name, "pattern"), 2.0);
+    expect_same_settings(OBSCURA_METHOD_LSAO, by_name, by_number);
+}
+
+TEST(SettingsDocument, DerivedSettingsAreWrittenAsZeroUnlessSet) {
+    // The preset's K is derived: written 0, loaded as "derive", so the loaded document is K = 32 ...
+    obscura_settings lsao = defaults_of(OBSCURA_METHOD_LSAO);
+    ASSERT_EQ(obscura_set_setting(&lsao, "preset", 4), OBSCURA_OK);
+    std::string text = settings_to_json(lsao);
+    EXPECT_NE(text.find("\"preset\": \"k32\","), std::string::npos) << text;
+    EXPECT_NE(text.find("\"directions\": 0,"), std::string::npos) << text;
+    obscura_settings loaded = settings_from_json(text);
+    EXPECT_EQ(get(loaded, "directions"), 32.0);
+    // ... and another preset chosen after loading moves K with it.
+    ASSERT_EQ(obscura_set_setting(&loaded, "preset", 1), OBSCURA_OK);
+    EXPECT_EQ(get(loaded, "directions"), 8.0);
+    // A K that was set stays set.
+    ASSERT_EQ(obscura_set_setting(&lsao, "directions", 24), OBSCURA_OK);
+    text = settings_to_json(lsao);
+    EXPECT_NE(text.find("\"directions\": 24,"), std::string::npos) << text;
+    loaded = settings_from_json(text);
+    ASSERT_EQ(obscura_set_setting(&loaded, "preset", 1), OBSCURA_OK);
+    EXPECT_EQ(get(loaded, "directions"), 24.0);
+    // HBAO's decay rate follows the radius of a loaded document.
+    loaded = settings_from_json(settings_to_json(defaults_of(OBSCURA_METHOD_HBAO)));
+    ASSERT_EQ(obscura_set_setting(&loaded, "radius", 2.0), OBSCURA_OK);
+    EXPECT_EQ(get(loaded, "decay_rate"), double(0.3f * 2.0f * 2.0f));
+}
+
+TEST(SettingsDocument, FalloffTablesRoundTrip) {
+    for (obscura_method method : {OBSCURA_METHOD_FFAO, OBSCURA_METHOD_REFERENCE}) {
+        SCOPED_TRACE(obscura_method_name(method));
+        obscura_settings settings = defaults_of(method);
+        ASSERT_EQ(obscura_set_setting(&settings, "falloff", OBSCURA_FALLOFF_TABLE), OBSCURA_OK);
+        const obscura_setting_info& table = info_of(method, "falloff_table");
+        fill_table(settings, table);
+        obscura::samples::array_values(settings, table)[3] = 0.3f;  // a float that is not a short decimal
+        const std::string text = settings_to_json(settings);
+        EXPECT_NE(text.find("\"falloff\": \"table\""), std::string::npos) << text;
+        const obscura_settings loaded = settings_from_json(text);
+        expect_same_settings(method, settings, loaded);
+        EXPECT_EQ(table_of(loaded, table)[3], 0.3f);
+        obscura_settings resolved;
+        EXPECT_EQ(obscura_resolve_settings(nullptr, &loaded, &resolved), OBSCURA_OK);
+    }
+    // Written by hand.
+    const obscura_settings loaded = settings_from_json(document_of("ffao", R"("falloff": "table",
+        "falloff_table": [1, 1, 0.9, 0.8, 0.7, 0.6, 0.5, 0.4, 0.3, 0.2, 0.1, 0, 0, 0, 0, 0])"));
+    EXPECT_EQ(get(loaded, "falloff"), double(OBSCURA_FALLOFF_TABLE));
+    EXPECT_EQ(table_of(loaded, info_of(OBSCURA_METHOD_FFAO, "falloff_table"))[2], 0.9f);
+}
+
+// Version 1 (the viewer before the editable form): effective values everywhere, derived ones written out,
+// enums as numbers, no tables. Such documents load; the derived values that are what the document's other
+// settings derive load as "derive", other ones as set.
+TEST(SettingsDocument, Version1DocumentsLoad) {
+    const obscura_settings hbao = settings_from_json(document_of("hbao", R"("radius": 1, "falloff_c": 0.3,
+        "decay_rate": 0.3, "directions": 8, "steps": 12, "estimator": 1, "bias": 0, "intensity": 1, "power": 1,
+        "max_radius_pixels": 256, "blur": "on", "blur_radius": 4, "blur_sharpness": 16)", 1));
+    expect_same_settings(OBSCURA_METHOD_HBAO, defaults_of(OBSCURA_METHOD_HBAO), hbao);
+    obscura_settings moved = hbao;
+    ASSERT_EQ(obscura_set_setting(&moved, "radius", 2.0), OBSCURA_OK);
+    EXPECT_EQ(get(moved, "decay_rate"), double(0.3f * 2.0f * 2.0f));
+    // A decay rate of its own stays.
+    const obscura_settings own = settings_from_json(document_of("hbao", R"("radius": 1, "decay_rate": 0.5)", 1));
+    EXPECT_EQ(get(own, "decay_rate"), double(0.5f));
+    EXPECT_FALSE(obscura::samples::derives(own, info_of(OBSCURA_METHOD_HBAO, "decay_rate")));
+    // LSAO's K, D_S and D_L as the preset derives them load as "derive"; a K the preset does not give stays
+    // (version 1 wrote K = 16 with preset 4, and rendered K = 16).
+    const obscura_settings lsao = settings_from_json(document_of("lsao", R"("falloff": 2, "preset": 3,
+        "directions": 24, "step_length": 3.56, "line_spacing": 1.69)", 1));
+    EXPECT_TRUE(obscura::samples::derives(lsao, info_of(OBSCURA_METHOD_LSAO, "directions")));
+    EXPECT_TRUE(obscura::samples::derives(lsao, info_of(OBSCURA_METHOD_LSAO, "step_length")));
+    EXPECT_TRUE(obscura::samples::derives(lsao, info_of(OBSCURA_METHOD_LSAO, "line_spacing")));
+    EXPECT_EQ(get(lsao, "directions"), 24.0);
+    const obscura_settings pinned = settings_from_json(document_of("lsao", R"("preset": 4, "directions": 16)", 1));
+    EXPECT_EQ(get(pinned, "directions"), 16.0);
+    // A document without a version reads as this version: its values as given.
+    const obscura_settings unversioned = settings_from_json(R"({"method": "hbao", "settings": {"decay_rate": 0.3}})");
+    EXPECT_FALSE(obscura::samples::derives(unversioned, info_of(OBSCURA_METHOD_HBAO, "decay_rate")));
+}
+
 TEST(SettingsDocument, MissingKeysKeepTheirDefaultsAndTogglesTakeBooleans) {
     const obscura_settings loaded = settings_from_json(R"({"method": "sao", "settings": {"samples": 16, "mip": false,
         "blur": true, "quad_filter": "off"}})");
@@ -189,6 +341,8 @@ TEST(SettingsDocument, MissingKeysKeepTheirDefaultsAndTogglesTakeBooleans) {
         const std::string name = info.name;
         double expected = get(defaults, info.name);
         if (name == "samples") expected = 16.0;
+        // Derived, the spiral's turns follow the taps: 7 * 16 / 9 = 12.4, and 12 shares a factor with 16.
+        if (name == "turns") expected = 13.0;
         if (name == "mip" || name == "quad_filter") expected = 0.0;
         if (name == "blur") expected = 1.0;
         EXPECT_EQ(get(loaded, info.name), expected) << name;
@@ -227,9 +381,24 @@ TEST(SettingsDocument, LoadErrorsNameTheProblem) {
     expect_load_error(hbao_document(R"("blur": "yes")"), {"\"blur\"", "toggle", "\"yes\""});
     expect_load_error(hbao_document(R"("blur": 1)"), {"\"blur\"", "toggle"});
     expect_load_error(hbao_document(R"("blur": null)"), {"\"blur\"", "toggle"});
+    // Enums: a name or a number of theirs.
+    expect_load_error(document_of("ffao", R"("falloff": "expo")"),
+                      {"\"falloff\"", "\"expo\"", "rho0, inverse_quadratic, exponential, table"});
+    expect_load_error(document_of("ffao", R"("falloff": 5)"), {"\"falloff\"", "5", "[1, 4]", "rho0"});
+    expect_load_error(document_of("ffao", R"("falloff": 2.5)"), {"\"falloff\"", "whole", "2.5"});
+    expect_load_error(document_of("lsao", R"("preset": true)"), {"\"preset\"", "value name or a number"});
+    // Arrays: 16 numbers in [0, 1].
+    expect_load_error(document_of("ffao", R"("falloff_table": 1)"), {"\"falloff_table\"", "array of 16 numbers"});
+    expect_load_error(document_of("ffao", R"("falloff_table": [1, 0.5])"), {"\"falloff_table\"", "2 values", "16"});
+    expect_load_error(document_of("reference", R"("falloff_table": [1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 2])"),
+                      {"\"falloff_table\"", "[15]", "2", "[0, 1]"});
+    expect_load_error(document_of("ffao", R"("falloff_table": [1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, "x"])"),
+                      {"\"falloff_table\"", "[15]", "number", "\"x\""});
+    // Derived settings: 0 derives, other values keep their range.
+    expect_load_error(document_of("lsao", R"("directions": 65)"), {"\"directions\"", "65", "[1, 64]"});
     // Format and version.
     expect_load_error(R"({"format": "other", "method": "hbao"})", {"\"format\"", "\"other\"", "obscura-settings"});
-    expect_load_error(R"({"version": 2, "method": "hbao"})", {"\"version\"", "2", "newer"});
+    expect_load_error(R"({"version": 3, "method": "hbao"})", {"\"version\"", "3", "newer"});
     expect_load_error(R"({"version": "1", "method": "hbao"})", {"\"version\""});
     expect_load_error(R"({"version": 0, "method": "hbao"})", {"\"version\""});
     // And the error is a std::runtime_error.
@@ -283,25 +452,38 @@ TEST(SettingsDocument, CListsExactlyTheChangedSettings) {
               "settings.lsao.normal_test = OBSCURA_TOGGLE_ON;\n");
 }
 
-// Reads the C back as a compiler would (literal by literal) and checks it rebuilds every method's changed
-// settings exactly.
+// Reads the C back as a compiler would (literal by literal; enums' comments and arrays' elements too) and
+// checks it rebuilds every method's changed settings exactly.
 TEST(SettingsDocument, CRebuildsTheSettingsOfEveryMethod) {
     for (obscura_method method : all_methods()) {
         SCOPED_TRACE(obscura_method_name(method));
         const obscura_settings changed = changed_settings(method);
         const std::vector<std::string> lines = lines_of(settings_to_c(changed));
         const std::vector<obscura_setting_info> infos = infos_of(method);
-        ASSERT_EQ(lines.size(), 2 + infos.size());
+        std::vector<std::string> expected_keys;  // metadata order, each array element on a line of its own
+        for (const obscura_setting_info& info : infos) {
+            if (!obscura::samples::is_array(info)) expected_keys.push_back(info.name);
+            for (uint32_t e = 0; obscura::samples::is_array(info) && e < info.value_count; ++e) {
+                expected_keys.push_back(std::string(info.name) + "[" + std::to_string(e) + "]");
+            }
+        }
+        ASSERT_EQ(lines.size(), 2 + expected_keys.size());
         obscura_settings rebuilt = defaults_of(method);
         const std::string prefix = std::string("settings.") + obscura_method_name(method) + ".";
         for (size_t i = 2; i < lines.size(); ++i) {
-            const std::string& line = lines[i];
+            std::string line = lines[i];
+            // An enum's value name follows as a comment: /* exponential */.
+            const size_t comment = line.find(" /* ");
+            if (comment != std::string::npos) {
+                ASSERT_EQ(line.compare(line.size() - 3, 3, " */"), 0) << line;
+                line.erase(comment);
+            }
             ASSERT_EQ(line.compare(0, prefix.size(), prefix), 0) << line;
             const size_t equals = line.find(" = ");
             ASSERT_NE(equals, std::string::npos) << line;
             ASSERT_EQ(line.back(), ';') << line;
             const std::string key = line.substr(prefix.size(), equals - prefix.size());
-            EXPECT_EQ(key, infos[i - 2].name);  // metadata order
+            EXPECT_EQ(key, expected_keys[i - 2]);
             const std::string literal = line.substr(equals + 3, line.size() - equals - 4);
             double value = 0.0;
             if (literal == "OBSCURA_TOGGLE_ON") value = 1.0;
@@ -314,10 +496,51 @@ TEST(SettingsDocument, CRebuildsTheSettingsOfEveryMethod) {
                 value = double(std::strtol(literal.c_str(), &end, 10));
                 EXPECT_EQ(*end, '\0') << literal;
             }
+            const size_t bracket = key.find('[');
+            if (bracket != std::string::npos) {
+                const obscura_setting_info& info = info_of(method, key.substr(0, bracket).c_str());
+                obscura::samples::array_values(rebuilt, info)[std::stoul(key.substr(bracket + 1))] = float(value);
+                continue;
+            }
+            const obscura_setting_info& info = info_of(method, key.c_str());
+            if (info.type == OBSCURA_SETTING_ENUM) {
+                EXPECT_NE(comment, std::string::npos) << "no value name after " << line;
+                EXPECT_EQ(lines[i].substr(comment + 4, lines[i].size() - comment - 7),
+                          obscura::samples::value_name(info, value));
+            }
             ASSERT_EQ(obscura_set_setting(&rebuilt, key.c_str(), value), OBSCURA_OK) << line;
         }
         expect_same_settings(method, changed, rebuilt);
     }
+}
+
+TEST(SettingsDocument, CNamesEnumsAndWritesTablesAndOnlySetDerivedFields) {
+    obscura_settings ffao = defaults_of(OBSCURA_METHOD_FFAO);
+    ASSERT_EQ(obscura_set_setting(&ffao, "falloff", OBSCURA_FALLOFF_TABLE), OBSCURA_OK);
+    ASSERT_EQ(obscura_set_setting(&ffao, "radius", 2.0), OBSCURA_OK);  // moves the derived decay rate: not written
+    const obscura_setting_info& table = info_of(OBSCURA_METHOD_FFAO, "falloff_table");
+    fill_table(ffao, table);
+    std::string expected = "obscura_settings settings;\n"
+                           "obscura_default_settings(OBSCURA_METHOD_FFAO, &settings);\n"
+                           "settings.ffao.radius = 2.0f;\n"
+                           "settings.ffao.falloff = 4; /* table */\n";
+    const char* const elements[] = {"1.0f",    "0.9375f", "0.875f", "0.8125f", "0.75f",  "0.6875f",
+                                    "0.625f",  "0.5625f", "0.5f",   "0.4375f", "0.375f", "0.3125f",
+                                    "0.25f",   "0.1875f", "0.125f", "0.0625f"};
+    for (int i = 0; i < 16; ++i) {
+        expected += "settings.ffao.falloff_table[" + std::to_string(i) + "] = " + elements[i] + ";\n";
+    }
+    EXPECT_EQ(settings_to_c(ffao), expected);
+
+    // A derived field set to a value is written, even the value it would derive.
+    obscura_settings lsao = defaults_of(OBSCURA_METHOD_LSAO);
+    ASSERT_EQ(obscura_set_setting(&lsao, "preset", 4), OBSCURA_OK);
+    ASSERT_EQ(obscura_set_setting(&lsao, "line_spacing", 1.7), OBSCURA_OK);
+    EXPECT_EQ(settings_to_c(lsao),
+              "obscura_settings settings;\n"
+              "obscura_default_settings(OBSCURA_METHOD_LSAO, &settings);\n"
+              "settings.lsao.preset = 4; /* k32 */\n"
+              "settings.lsao.line_spacing = 1.7f;\n");
 }
 
 // settings_to_c writes settings.<method>.<key>: every metadata key must be its C field's name, and every
@@ -340,6 +563,7 @@ TEST(SettingsDocument, MetadataKeysAreTheCFieldNames) {
         OBSCURA_TEST_FIELD(reference, falloff_c), OBSCURA_TEST_FIELD(reference, decay_rate),
         OBSCURA_TEST_FIELD(reference, thickness), OBSCURA_TEST_FIELD(reference, rays),
         OBSCURA_TEST_FIELD(reference, rays_per_dispatch), OBSCURA_TEST_FIELD(reference, first_ray),
+        OBSCURA_TEST_FIELD(reference, falloff_table),
         OBSCURA_TEST_FIELD(sao, radius), OBSCURA_TEST_FIELD(sao, samples), OBSCURA_TEST_FIELD(sao, turns),
         OBSCURA_TEST_FIELD(sao, mip), OBSCURA_TEST_FIELD(sao, mip_filter), OBSCURA_TEST_FIELD(sao, log_q),
         OBSCURA_TEST_FIELD(sao, intensity), OBSCURA_TEST_FIELD(sao, bias), OBSCURA_TEST_FIELD(sao, contrast),
@@ -362,6 +586,7 @@ TEST(SettingsDocument, MetadataKeysAreTheCFieldNames) {
         OBSCURA_TEST_FIELD(ffao, base_interval), OBSCURA_TEST_FIELD(ffao, geometry),
         OBSCURA_TEST_FIELD(ffao, thickness), OBSCURA_TEST_FIELD(ffao, jitter), OBSCURA_TEST_FIELD(ffao, saao),
         OBSCURA_TEST_FIELD(ffao, saao_blur), OBSCURA_TEST_FIELD(ffao, intensity), OBSCURA_TEST_FIELD(ffao, power),
+        OBSCURA_TEST_FIELD(ffao, falloff_table),
     };
 #undef OBSCURA_TEST_FIELD
     for (obscura_method method : all_methods()) {

@@ -13,6 +13,8 @@
 #include <gtest/gtest.h>
 
 #include "obscura/obscura.h"
+#include "passes/sao.h"
+#include "settings.h"
 
 namespace {
 
@@ -130,13 +132,145 @@ TEST(SettingsDefaults, NonZeroFieldsAreKept) {
     EXPECT_EQ(r.hbao.blur, OBSCURA_TOGGLE_OFF);
 }
 
-TEST(SettingsDefaults, DefaultSettingsEqualsResolvedZero) {
+// The editable form: obscura_default_settings resolves to exactly what a zero struct resolves to, but leaves
+// the derived fields 0 ("derive"), so that editing what they derive from moves them.
+TEST(SettingsDefaults, DefaultSettingsAreTheEditableForm) {
     obscura_settings d;
     std::memset(&d, 0, sizeof d);
     ASSERT_EQ(obscura_default_settings(OBSCURA_METHOD_HBAO, &d), OBSCURA_OK);
     EXPECT_EQ(d.struct_size, sizeof(obscura_settings));
-    obscura_settings r = resolved(zero_settings());
-    EXPECT_EQ(std::memcmp(&d, &r, sizeof d), 0);
+    EXPECT_EQ(d.flags, uint32_t(OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE));
+    // Derived fields are left to derive ...
+    EXPECT_EQ(d.hbao.decay_rate, 0.0f);
+    EXPECT_EQ(d.reference.decay_rate, 0.0f);
+    EXPECT_EQ(d.sao.turns, 0);
+    EXPECT_EQ(d.lsao.directions, 0);
+    EXPECT_EQ(d.lsao.step_length, 0.0f);
+    EXPECT_EQ(d.lsao.line_spacing, 0.0f);
+    EXPECT_EQ(d.ffao.sectors, 0);
+    // ... the others hold their defaults explicitly.
+    EXPECT_EQ(d.hbao.radius, 1.0f);
+    EXPECT_EQ(d.hbao.directions, 8);
+    EXPECT_EQ(d.hbao.blur, OBSCURA_TOGGLE_ON);
+    EXPECT_EQ(d.lsao.preset, 2);
+    EXPECT_EQ(d.lsao.tangent, -0.85f);
+    EXPECT_EQ(d.ffao.falloff, OBSCURA_FALLOFF_EXPONENTIAL);
+    // The same effective settings as a zero struct (the flag aside).
+    obscura_settings from_defaults = resolved(d);
+    obscura_settings from_zero = resolved(zero_settings());
+    from_zero.flags = from_defaults.flags;
+    EXPECT_EQ(std::memcmp(&from_defaults, &from_zero, sizeof from_zero), 0);
+}
+
+TEST(SettingsDefaults, EditingMovesWhatIsDerived) {
+    obscura_settings s;
+    ASSERT_EQ(obscura_default_settings(OBSCURA_METHOD_LSAO, &s), OBSCURA_OK);
+    s.hbao.radius = 1.5f;  // the README's example
+    s.lsao.preset = 4;     // K = 32, D_S = 4.69, D_L = 1.70
+    s.lsao.radius = 2.0f;
+    s.sao.samples = 16;
+    s.ffao.saao = OBSCURA_TOGGLE_ON;
+    const obscura_settings r = resolved(s);
+    EXPECT_FLOAT_EQ(r.hbao.decay_rate, 0.3f * 1.5f * 1.5f);
+    EXPECT_EQ(r.lsao.directions, 32);
+    EXPECT_NEAR(r.lsao.step_length, 4.69f, 1e-6f);
+    EXPECT_NEAR(r.lsao.line_spacing, 1.70f, 1e-6f);
+    EXPECT_FLOAT_EQ(r.lsao.decay_rate, 0.3f * 2.0f * 2.0f);
+    EXPECT_EQ(r.sao.turns, obscura::default_spiral_turns(16));
+    EXPECT_EQ(r.ffao.sectors, 18);  // SAAO's K
+    // A value written into a derived field fixes it.
+    s.lsao.directions = 8;
+    EXPECT_EQ(resolved(s).lsao.directions, 8);
+}
+
+// Zero is a value where the range includes it: in the editable form 0 means 0; in a zero struct it still
+// means the default; obscura_set_setting moves a zero struct to the editable form without changing the others.
+TEST(SettingsDefaults, ZeroCanBeSetWhereTheRangeIncludesIt) {
+    obscura_settings editable;
+    ASSERT_EQ(obscura_default_settings(OBSCURA_METHOD_LSAO, &editable), OBSCURA_OK);
+    editable.lsao.tangent = 0.0f;
+    editable.lsao.normal_threshold = 0.0f;
+    EXPECT_EQ(resolved(editable).lsao.tangent, 0.0f);
+    EXPECT_EQ(resolved(editable).lsao.normal_threshold, 0.0f);
+
+    obscura_settings zero = zero_settings();
+    zero.method = OBSCURA_METHOD_LSAO;
+    EXPECT_FLOAT_EQ(resolved(zero).lsao.tangent, -0.85f);
+    EXPECT_FLOAT_EQ(resolved(zero).lsao.normal_threshold, 0.8f);
+    ASSERT_EQ(obscura_set_setting(&zero, "tangent", 0.0), OBSCURA_OK);
+    EXPECT_TRUE(zero.flags & OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE);
+    const obscura_settings r = resolved(zero);
+    EXPECT_EQ(r.lsao.tangent, 0.0f);
+    EXPECT_FLOAT_EQ(r.lsao.normal_threshold, 0.8f);  // still its default, now written out
+    double value = 1.0;
+    ASSERT_EQ(obscura_get_setting(&zero, "tangent", &value), OBSCURA_OK);
+    EXPECT_EQ(value, 0.0);
+    // Derived fields still derive from 0, in either form.
+    ASSERT_EQ(obscura_set_setting(&zero, "directions", 0.0), OBSCURA_OK);
+    EXPECT_EQ(resolved(zero).lsao.directions, 16);
+}
+
+// Every released header's obscura_settings is accepted, its missing fields reading as their defaults; a size
+// no header had is refused; nothing is written past the caller's size.
+TEST(SettingsDefaults, EveryReleasedStructSizeIsAccepted) {
+    const uint32_t sizes[] = {uint32_t(offsetof(obscura_settings, reference)),  // 0.1: HBAO
+                              uint32_t(offsetof(obscura_settings, sao)),        // 0.2: + REFERENCE
+                              uint32_t(offsetof(obscura_settings, flags)),      // 0.3: + SAO, LSAO, FFAO
+                              uint32_t(sizeof(obscura_settings))};
+    for (uint32_t size : sizes) {
+        SCOPED_TRACE(size);
+        unsigned char bytes[sizeof(obscura_settings) + 16];
+        std::memset(bytes, 0xAB, sizeof bytes);
+        obscura_settings* s = reinterpret_cast<obscura_settings*>(bytes);
+        ASSERT_EQ(obscura_default_settings_sized(OBSCURA_METHOD_HBAO, s, size), OBSCURA_OK);
+        EXPECT_EQ(s->struct_size, size);
+        for (size_t i = size; i < sizeof bytes; ++i) ASSERT_EQ(bytes[i], 0xAB) << "written past the struct at " << i;
+        s->hbao.radius = 2.0f;
+        ASSERT_EQ(obscura_resolve_settings(nullptr, s, s), OBSCURA_OK);
+        EXPECT_EQ(s->struct_size, size);
+        EXPECT_FLOAT_EQ(s->hbao.decay_rate, 0.3f * 4.0f);
+        for (size_t i = size; i < sizeof bytes; ++i) ASSERT_EQ(bytes[i], 0xAB) << "written past the struct at " << i;
+        double value = 0.0;
+        EXPECT_EQ(obscura_get_setting(s, "radius", &value), OBSCURA_OK);
+        EXPECT_EQ(value, 2.0);
+    }
+    obscura_settings s = zero_settings();
+    for (uint32_t bad : {0u, 4u, sizes[0] - 4, sizes[1] + 4, uint32_t(sizeof(obscura_settings)) + 4}) {
+        s.struct_size = bad;
+        EXPECT_EQ(obscura_resolve_settings(nullptr, &s, &s), OBSCURA_STATUS_INVALID_STRUCT_SIZE) << bad;
+        obscura_settings d;
+        EXPECT_EQ(obscura_default_settings_sized(OBSCURA_METHOD_HBAO, &d, bad), OBSCURA_STATUS_INVALID_STRUCT_SIZE);
+    }
+    // A 0.1 struct has no SAO block: its settings are not there to set.
+    unsigned char v01[sizeof(obscura_settings)];
+    obscura_settings* old = reinterpret_cast<obscura_settings*>(v01);
+    ASSERT_EQ(obscura_default_settings_sized(OBSCURA_METHOD_SAO, old, sizes[0]), OBSCURA_OK);
+    EXPECT_EQ(obscura_set_setting(old, "samples", 12.0), OBSCURA_STATUS_UNKNOWN_SETTING);
+}
+
+// Binaries built against 0.3 call the plain symbols: a 0.3-sized struct, the 0.3 table layout.
+TEST(SettingsDefaults, TheZeroThreeSymbolsKeepTheZeroThreeLayout) {
+    unsigned char bytes[sizeof(obscura_settings)];
+    std::memset(bytes, 0xAB, sizeof bytes);
+    obscura_settings* s = reinterpret_cast<obscura_settings*>(bytes);
+    ASSERT_EQ((obscura_default_settings)(OBSCURA_METHOD_HBAO, s), OBSCURA_OK);
+    EXPECT_EQ(s->struct_size, uint32_t(offsetof(obscura_settings, flags)));
+    for (size_t i = offsetof(obscura_settings, flags); i < sizeof bytes; ++i) ASSERT_EQ(bytes[i], 0xAB);
+
+    const obscura_setting_info* table = nullptr;
+    uint32_t count = 0;
+    ASSERT_EQ((obscura_get_setting_infos)(OBSCURA_METHOD_FFAO, &table, &count), OBSCURA_OK);
+    const obscura::SettingInfo03* rows = reinterpret_cast<const obscura::SettingInfo03*>(table);
+    const obscura_setting_info* infos = nullptr;
+    uint32_t current = 0;
+    ASSERT_EQ(obscura_get_setting_infos(OBSCURA_METHOD_FFAO, &infos, &current), OBSCURA_OK);
+    EXPECT_EQ(count, current - 1);  // falloff_table is new in 0.4
+    for (uint32_t i = 0; i < count; ++i) {
+        EXPECT_STREQ(rows[i].name, infos[i].name);
+        EXPECT_EQ(rows[i].offset, infos[i].offset);
+        EXPECT_EQ(rows[i].type, infos[i].type == OBSCURA_SETTING_ENUM ? OBSCURA_SETTING_INT : infos[i].type);
+    }
+    EXPECT_EQ(obscura_get_setting_infos_sized(OBSCURA_METHOD_FFAO, &infos, &current, 12), OBSCURA_STATUS_INVALID_STRUCT_SIZE);
 }
 
 TEST(SettingsDefaults, DefaultSettingsForDefaultMethodIsHbao) {
@@ -271,7 +405,8 @@ TEST(SettingsValidation, BadToggleIsInvalidEnum) {
 
 TEST(SettingsValidation, WrongStructSize) {
     obscura_settings s = zero_settings();
-    for (uint32_t size : {0u, uint32_t(sizeof(obscura_settings) - 4), uint32_t(sizeof(obscura_settings) + 4)}) {
+    // Sizes no released header had (EveryReleasedStructSizeIsAccepted covers the ones they had).
+    for (uint32_t size : {0u, uint32_t(sizeof(obscura_settings) - 8), uint32_t(sizeof(obscura_settings) + 4)}) {
         s.struct_size = size;
         EXPECT_EQ(resolve_status(s), OBSCURA_STATUS_INVALID_STRUCT_SIZE) << size;
     }
@@ -304,8 +439,10 @@ TEST(SettingsSetGet, RoundTripEveryTableEntry) {
         double value;
         if (info.type == OBSCURA_SETTING_TOGGLE) {
             value = 0.0;  // off: the non-default state
-        } else if (info.type == OBSCURA_SETTING_INT) {
+        } else if (info.type == OBSCURA_SETTING_INT || info.type == OBSCURA_SETTING_ENUM) {
             value = std::floor((info.min_value + info.max_value) / 2);
+        } else if (info.type == OBSCURA_SETTING_FLOAT_ARRAY) {
+            continue;  // written through the offset (SettingsSetGet.ArraysAreRefusedByName)
         } else {
             value = double(float(info.min_value + (info.max_value - info.min_value) * 0.375));
         }
@@ -317,6 +454,29 @@ TEST(SettingsSetGet, RoundTripEveryTableEntry) {
         // The value set is also what resolving uses.
         EXPECT_EQ(resolve_status(s), OBSCURA_OK) << info.name;
     }
+}
+
+// Arrays (the falloff tables) have a metadata row but no scalar value: they are written through the offset.
+TEST(SettingsSetGet, ArraysAreRefusedByName) {
+    obscura_settings s;
+    ASSERT_EQ(obscura_default_settings(OBSCURA_METHOD_FFAO, &s), OBSCURA_OK);
+    double value = 0.0;
+    EXPECT_EQ(obscura_set_setting(&s, "falloff_table", 0.5), OBSCURA_STATUS_INVALID_SETTING);
+    EXPECT_EQ(obscura_get_setting(&s, "falloff_table", &value), OBSCURA_STATUS_INVALID_SETTING);
+    const obscura_setting_info* infos = nullptr;
+    uint32_t count = 0;
+    ASSERT_EQ(obscura_get_setting_infos(OBSCURA_METHOD_FFAO, &infos, &count), OBSCURA_OK);
+    const obscura_setting_info* table = nullptr;
+    for (uint32_t i = 0; i < count; ++i) {
+        if (std::strcmp(infos[i].name, "falloff_table") == 0) table = &infos[i];
+    }
+    ASSERT_NE(table, nullptr);
+    EXPECT_EQ(table->offset, offsetof(obscura_settings, ffao) + offsetof(obscura_ffao_settings, falloff_table));
+    ASSERT_EQ(obscura_set_setting(&s, "falloff", OBSCURA_FALLOFF_TABLE), OBSCURA_OK);
+    EXPECT_EQ(resolve_status(s), OBSCURA_STATUS_INVALID_SETTING);  // all zero
+    float* values = reinterpret_cast<float*>(reinterpret_cast<unsigned char*>(&s) + table->offset);
+    for (uint32_t i = 0; i < table->value_count; ++i) values[i] = 1.0f - float(i) / 15.0f;
+    EXPECT_EQ(resolve_status(s), OBSCURA_OK);
 }
 
 TEST(SettingsSetGet, SetWritesTheStructField) {
@@ -500,7 +660,7 @@ TEST(SettingsTable, EveryHbaoFieldAppearsWithItsType) {
     const std::vector<Field> fields = {
         HBAO_FIELD(radius, OBSCURA_SETTING_FLOAT),        HBAO_FIELD(falloff_c, OBSCURA_SETTING_FLOAT),
         HBAO_FIELD(decay_rate, OBSCURA_SETTING_FLOAT),    HBAO_FIELD(directions, OBSCURA_SETTING_INT),
-        HBAO_FIELD(steps, OBSCURA_SETTING_INT),           HBAO_FIELD(estimator, OBSCURA_SETTING_INT),
+        HBAO_FIELD(steps, OBSCURA_SETTING_INT),           HBAO_FIELD(estimator, OBSCURA_SETTING_ENUM),
         HBAO_FIELD(bias, OBSCURA_SETTING_FLOAT),          HBAO_FIELD(intensity, OBSCURA_SETTING_FLOAT),
         HBAO_FIELD(power, OBSCURA_SETTING_FLOAT),         HBAO_FIELD(max_radius_pixels, OBSCURA_SETTING_FLOAT),
         HBAO_FIELD(blur, OBSCURA_SETTING_TOGGLE),         HBAO_FIELD(blur_radius, OBSCURA_SETTING_INT),
@@ -784,4 +944,21 @@ TEST(EvaluateFalloff, RefusesBadArgumentsAndSettings) {
     EXPECT_EQ(obscura_evaluate_falloff(&settings, &distance, &rho, 1), OBSCURA_STATUS_INVALID_SETTING);
     settings.struct_size = 4;
     EXPECT_EQ(obscura_evaluate_falloff(&settings, &distance, &rho, 1), OBSCURA_STATUS_INVALID_STRUCT_SIZE);
+}
+
+// Calls without a context leave their reason where obscura_get_last_error(NULL) reads it, on this thread.
+TEST(SettingsMessages, CallsWithoutAContextSayWhy) {
+    obscura_settings s;
+    ASSERT_EQ(obscura_default_settings(OBSCURA_METHOD_FFAO, &s), OBSCURA_OK);
+    EXPECT_STREQ(obscura_get_last_error(nullptr), "");
+    s.ffao.sectors = 9;
+    obscura_settings r;
+    ASSERT_EQ(obscura_resolve_settings(nullptr, &s, &r), OBSCURA_STATUS_INVALID_SETTING);
+    EXPECT_NE(std::string(obscura_get_last_error(nullptr)).find("ffao.sectors = 9"), std::string::npos)
+        << obscura_get_last_error(nullptr);
+    EXPECT_EQ(obscura_set_setting(&s, "no_such_setting", 1.0), OBSCURA_STATUS_UNKNOWN_SETTING);
+    EXPECT_NE(std::string(obscura_get_last_error(nullptr)).find("no_such_setting"), std::string::npos);
+    s.ffao.sectors = 0;
+    ASSERT_EQ(obscura_resolve_settings(nullptr, &s, &r), OBSCURA_OK);
+    EXPECT_STREQ(obscura_get_last_error(nullptr), "");
 }

@@ -1,11 +1,17 @@
-// The falloff rho(d) of the obscurance integral (FFAO paper eq. 1) for every obscura_falloff kind, shared by
-// the reference and FFAO's table. `params`: r (decay rate), C, radius, in the same units as d.
+// The falloff rho(d) of the obscurance integral (FFAO paper eq. 1): the GPU's one definition of each kind, as
+// sdk/src/falloff.h is the CPU's.
+
+// rho0(d) = max(0, r(1+C)/(r+d^2) - C) (LSAO paper eq. 3), taking d^2: HBAO and LSAO have the squared length
+// and no reason to take its root. C = 0 gives LSAO eq. 2, r / (r + d^2). r in the units of d^2.
+float obscura_rho0(float r, float c, float distance_sq) {
+    return max(0.0, r * (1.0 + c) / (r + distance_sq) - c);
+}
+
+// Every obscura_falloff kind, shared by the reference and FFAO's table. `params`: r (decay rate), C, radius, in
+// the same units as d.
 float obscura_falloff(int kind, float d, vec4 params, vec4 table[4]) {
     float r = params.x;
-    if (kind == OBSCURA_FALLOFF_KIND_RHO0) {
-        float c = params.y;
-        return max(0.0, r * (1.0 + c) / (r + d * d) - c);
-    }
+    if (kind == OBSCURA_FALLOFF_KIND_RHO0) return obscura_rho0(r, params.y, d * d);
     if (kind == OBSCURA_FALLOFF_KIND_INVERSE_QUADRATIC) return r / (r + d * d);
     if (kind == OBSCURA_FALLOFF_KIND_EXPONENTIAL) return exp(-d * inversesqrt(r));
     // Table: 16 values over [0, radius], linear in between, 0 beyond.

@@ -1,6 +1,7 @@
 // Shared by line_sweep.comp and lsao_gather.comp: the line layout's data, where a line's sample j lies,
 // and the 2D frame of a line's slice (the plane through the eye that contains the screen line).
 // Needs FrameConstants, LsaoConstants and depth.glsl.
+#include "common/falloff.glsl"
 
 // Compiled in (LsaoPass::prepare): which memory paths the program takes. CPU rasterisers (1) fetch texels
 // with vector gathers but load storage buffers and shared memory one invocation at a time; GPUs (0) load
@@ -82,11 +83,8 @@ float lsao_receiver_sin_t_3d(vec3 n, vec3 z, vec3 a) {
     return (nz >= 0.0 ? nh : -nh) * inversesqrt(len_sq);
 }
 
-// rho(d) from d^2 (view units): r(1+C)/(r+d^2) - C clipped at 0; C = 0 gives LSAO eq. 2, r / (r + d^2).
-float lsao_falloff(float distance_sq) {
-    float r = lsao.falloff.x, c = lsao.falloff.y;
-    return max(0.0, r * (1.0 + c) / (r + distance_sq) - c);
-}
+// rho(d) from d^2 (view units): rho0, or with C = 0 LSAO eq. 2.
+float lsao_falloff(float distance_sq) { return obscura_rho0(lsao.falloff.x, lsao.falloff.y, distance_sq); }
 
 // Algorithm 1's occlusion(): sin t + max(0, sin h - sin t) rho(|h|).
 float lsao_occlusion(vec2 h, vec2 u, float sin_t) {

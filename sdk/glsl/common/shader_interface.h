@@ -106,7 +106,17 @@
 #define OBSCURA_NORMALS_UNSIGNED 2 // unorm texture, decoded as n * 2 - 1
 
 // Debug views the passes themselves act on (FrameConstants.target_params.w; values of obscura_debug_view).
+// The names differ from the API's so that both headers fit in one translation unit (shader_interface_checks.cpp).
+#define OBSCURA_DEBUG_VIEW_LINEAR_DEPTH 1
+#define OBSCURA_DEBUG_VIEW_NORMALS 2
 #define OBSCURA_DEBUG_VIEW_TAP_COUNT 4
+
+// Blend modes of the composite (FrameConstants.target_params.z; values of obscura_blend_mode).
+#define OBSCURA_BLEND_MODE_OVERWRITE 0
+#define OBSCURA_BLEND_MODE_MULTIPLY 1
+
+// pi for both languages from one literal: GLSL reads it as a float, C++ as a double (math_constants.h).
+#define OBSCURA_PI 3.14159265358979323846
 
 // ---- Uniform block: per-frame constants every pass sees (std140, vec4/ivec4 members only) -------
 #ifdef __cplusplus

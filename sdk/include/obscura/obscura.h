@@ -37,7 +37,7 @@
  *      desc.get_proc_address = eglGetProcAddress;             // or glfwGetProcAddress, SDL_GL_GetProcAddress
  *   2. obscura_context* ctx; if (obscura_create_context(&desc, &ctx) != OBSCURA_OK) ... ;
  *   3. obscura_settings settings; obscura_default_settings(OBSCURA_METHOD_HBAO, &settings);
- *      settings.hbao.radius = 1.5f;                           // metres
+ *      settings.hbao.radius = 1.5f;                           // metres: the falloff now ends at 1.5 m
  *   4. each frame: obscura_input in = {0}; in.struct_size = sizeof in;
  *      in.depth_texture = depth_tex; in.projection = proj (column-major, as given to GL);
  *      in.depth_width/height = depth size; in.output_rect = the visible part (guard band around it);
@@ -103,7 +103,7 @@ extern "C" {
 
 /* ---- Version --------------------------------------------------------------------------------- */
 #define OBSCURA_VERSION_MAJOR 0
-#define OBSCURA_VERSION_MINOR 3
+#define OBSCURA_VERSION_MINOR 4
 #define OBSCURA_VERSION_PATCH 0
 /* Packed version: major * 10000 + minor * 100 + patch. */
 #define OBSCURA_VERSION (OBSCURA_VERSION_MAJOR * 10000 + OBSCURA_VERSION_MINOR * 100 + OBSCURA_VERSION_PATCH)
@@ -199,7 +199,8 @@ typedef struct obscura_context_desc {
     uint32_t flags;                             /* OBSCURA_CONTEXT_FLAG_* */
 } obscura_context_desc;
 
-/* Creates a context for the GL context current on this thread and compiles the shaders.
+/* Creates a context for the GL context current on this thread (programs are built by obscura_prepare() or by
+   the first render that needs them).
    Returns OK, NULL_ARGUMENT, INVALID_STRUCT_SIZE, VERSION_MISMATCH, NO_GL_CONTEXT,
    GL_VERSION_UNSUPPORTED, MISSING_GL_FUNCTION, HOST_GL_ERROR, SHADER_COMPILE_FAILED, OUT_OF_MEMORY,
    GL_ERROR, CONTEXT_LOST, INTERNAL_ERROR. On failure the message goes to desc->log (there is no context to ask). */
@@ -209,7 +210,10 @@ OBSCURA_API obscura_status obscura_create_context(const obscura_context_desc* de
    current the GL objects are leaked (a warning is logged) rather than deleted there. NULL is a no-op. */
 OBSCURA_API void obscura_destroy_context(obscura_context* context);
 
-/* Returns the message of the last error on this context ("" if none). Valid until the next call. */
+/* Returns the message of the last error on this context ("" if none). Valid until the next call. With NULL:
+   the message of the calling thread's last call made without a context: obscura_create_context,
+   obscura_resolve_settings(NULL, ...), the other settings functions and a call given a NULL context ("" if it
+   succeeded), so tools without a GL context still learn why settings were refused. */
 OBSCURA_API const char* obscura_get_last_error(const obscura_context* context);
 
 /* ---- Methods and settings -------------------------------------------------------------------- */
@@ -235,11 +239,11 @@ typedef enum obscura_toggle {
     OBSCURA_TOGGLE_OFF = 2
 } obscura_toggle;
 
-/* HBAO: LSAO paper sec. 3 and 6. Every field: 0 selects the default given after it. */
+/* HBAO: LSAO paper sec. 3 and 6. Every field: 0 selects the default given after it ("derive" for derived ones). */
 typedef struct obscura_hbao_settings {
     float radius;         /* metres, [1e-3, 1e4]: distance where the falloff rho0 reaches 0; steps cover it. Default 1 */
     float falloff_c;      /* C of rho0(d) = max(0, r(1+C)/(r+d^2) - C), [1e-3, 0.999]. Default 0.3 */
-    float decay_rate;     /* r of rho0 in m^2, [1e-10, 1e8]. Default C*radius^2, so rho0 reaches 0 at radius */
+    float decay_rate;     /* r of rho0 in m^2, [1e-10, 1e8]. Derived: C*radius^2, so rho0 reaches 0 at radius */
     int32_t directions;   /* K azimuthal directions, [1, 32]. Default 8 */
     int32_t steps;        /* N steps per direction, [1, 128]. Default 12 */
     int32_t estimator;    /* 1: horizon-split integration (Bavoil 2008); 2: largest falloff-weighted occluder
@@ -262,7 +266,7 @@ typedef struct obscura_hbao_settings {
 typedef struct obscura_sao_settings {
     float radius;         /* metres, [1e-3, 1e4]: world-space radius r of the sample ball (eq. 5). Default 1 */
     int32_t samples;      /* s taps per pixel, [1, 64]. Default 9 */
-    int32_t turns;        /* tau turns of the spiral, [1, 1024]. Default: the integer nearest 7s/9 that shares no
+    int32_t turns;        /* tau turns of the spiral, [1, 1024]. Derived: the integer nearest 7s/9 that shares no
                              factor with s, so the s angles are all different (the paper's 7 for s = 9) */
     obscura_toggle mip;   /* z-MIP hierarchy; off: every tap reads level 0 (the paper's quality baseline). Default on */
     int32_t mip_filter;   /* z^(m+1) from z^m (Table 1): 1 rotated-grid subsample, 2 arithmetic mean, 3 harmonic
@@ -294,15 +298,15 @@ typedef struct obscura_lsao_settings {
     float radius;         /* metres, [1e-3, 1e4]: falloff scale, the decay rate defaults to C*radius^2. Default 1 */
     int32_t falloff;      /* 1: rho0 (HBAO's, LSAO eq. 3), 2: r/(r+d^2) (LSAO eq. 2), [1, 2]. Default 2 */
     float falloff_c;      /* C, [1e-3, 0.999]: rho0's sink, and the decay-rate default. Default 0.3 */
-    float decay_rate;     /* r in m^2, [1e-10, 1e8]. Default C*radius^2 */
+    float decay_rate;     /* r in m^2, [1e-10, 1e8]. Derived: C*radius^2 */
     int32_t preset;       /* K, D_S, D_L of the paper: 1: 8, 1.41, 1.41; 2: 16, 2.43, 1.64; 3: 24, 3.56, 1.69;
                              4: 32, 4.69, 1.70 (Table 2); 5: 8, 2.83, 2.12 (Figure 1); 6: 16, 4.87, 2.46
                              (Figure 13), [1, 6]. Default 2 */
     int32_t pattern;      /* 1: aligned 8n directions on texel centres (sec. 5.2); 2: free: any K, interpolated
                              depth, snapped at depth edges, [1, 2]. Default 1 */
-    int32_t directions;   /* K, [1, 64]; aligned: a multiple of 8. Default: the preset's */
-    float step_length;    /* D_S in texels, [0.5, 16]; free pattern only (aligned ones derive it). Default: preset's */
-    float line_spacing;   /* D_L in texels, [0.5, 16]. Default: the preset's */
+    int32_t directions;   /* K, [1, 64]; aligned: a multiple of 8. Derived: the preset's */
+    float step_length;    /* D_S in texels, [0.5, 16]; free pattern only (aligned ones derive it). Derived: preset's */
+    float line_spacing;   /* D_L in texels, [0.5, 16]. Derived: the preset's */
     float tangent;        /* the fixed sin(t), [-1, 0.5]. Default -0.85 */
     int32_t tangent_strategy; /* sec. 4.1: 1 the receiver's tangent for hull and occlusion, 2 fixed for the hull
                              and the receiver's for occlusion, 3 fixed for both, [1, 3]. Default 3 */
@@ -313,7 +317,7 @@ typedef struct obscura_lsao_settings {
                              per line, for validation). Default off */
     int32_t segment_steps; /* lines are swept in segments of this many steps (rounded up to a multiple of 8), one
                              GPU thread each, every segment after a warm-up run; -1: whole lines, one thread each,
-                             [-1, 4096]. Default (0): whole lines on CPU renderers (llvmpipe, softpipe), which
+                             [-1, 4096]. Derived (0): whole lines on CPU renderers (llvmpipe, softpipe), which
                              have no idle lanes to fill, and 128 on GPUs */
     float warmup_tolerance; /* segments: the most obscurance an occluder before a segment's warm-up may cast; the
                              falloff turns it into the warm-up's length (exact for rho0 beyond its reach). The
@@ -356,7 +360,7 @@ typedef struct obscura_reference_settings {
     float radius;         /* metres, [1e-3, 1e4]: where RHO0 (with the default decay rate) and TABLE reach 0. Default 1 */
     int32_t falloff;      /* obscura_falloff, [1, 4]. Default 1 (RHO0) */
     float falloff_c;      /* C of RHO0, [1e-3, 0.999]. Default 0.3 */
-    float decay_rate;     /* r in m^2, [1e-10, 1e8]. Default C*radius^2 (RHO0 then reaches 0 at the radius) */
+    float decay_rate;     /* r in m^2, [1e-10, 1e8]. Derived: C*radius^2 (RHO0 then reaches 0 at the radius) */
     float thickness;      /* metres of solid assumed behind every depth texel, [0, 1e4]: a ray that passes more
                              than that behind the depth field goes on. Default 0: infinitely thick (every ray behind
                              a silhouette is blocked). The way to bring REFERENCE near the geometry: 0.3 brought
@@ -380,8 +384,9 @@ typedef struct obscura_ffao_settings {
     float radius;         /* metres, [1e-3, 1e4]: where RHO0 (default decay rate) and TABLE reach 0. Default 1 */
     int32_t falloff;      /* obscura_falloff, [1, 4]. Default 3 (EXPONENTIAL, the paper's) */
     float falloff_c;      /* C of RHO0 and of the decay-rate default, [1e-3, 0.999]. Default 0.3 */
-    float decay_rate;     /* r in m^2, [1e-10, 1e8]. Default C*radius^2 */
-    int32_t sectors;      /* K azimuthal sectors, an even number (a line orientation serves two), [4, 64]. Default 16 */
+    float decay_rate;     /* r in m^2, [1e-10, 1e8]. Derived: C*radius^2 */
+    int32_t sectors;      /* K azimuthal sectors, an even number (a line orientation serves two), [4, 64]. Derived:
+                             16, or 18 with saao */
     int32_t segments;     /* evaluated parts of each sector, averaged separately (the paper's "x2"), [1, 4]. Default 2 */
     int32_t base_interval; /* B0: scan steps per level-0 interval; the near field covers B0 to 2 B0 texels,
                              [2, 64]. Default 10 */
@@ -395,12 +400,31 @@ typedef struct obscura_ffao_settings {
     obscura_toggle saao;  /* SAAO interleaving (sec. 10): in every 3x3 pixel group each pixel evaluates the far field
                              of K/9 of the sectors (x2 segments) at its group's edge-aware averaged depth and normal;
                              a gather adds the accepted neighbours' far fields to each pixel's full near field.
-                             Needs K a multiple of 18; sectors left 0 become 18 (the paper's 18x2). Default off */
+                             Needs K a multiple of 18; derived sectors become 18 (the paper's 18x2). Default off */
     obscura_toggle saao_blur; /* SAAO: the paper's 5x5 box blur over values within 7 % of the pixel's. Default on */
     float intensity;      /* obscurance multiplier, [1e-3, 16]. Default 1 */
     float power;          /* visibility exponent, [1e-3, 16]. Default 1 */
     float falloff_table[OBSCURA_FALLOFF_TABLE_SIZE]; /* TABLE only: rho at i/(N-1) * radius, values in [0, 1] */
 } obscura_ffao_settings;
+
+/* SETTINGS: what a user edits and what the SDK uses.
+   The editable form is what obscura_default_settings() returns and what hosts, UIs and files keep: every field
+   holds its default, except the derived fields (the metadata flags them OBSCURA_SETTING_FLAG_DERIVED), which
+   hold 0, "derive": decay rates from C and the radius, LSAO's K, D_S and D_L from its preset, SAO's spiral turns
+   from the tap count, FFAO's K from SAAO. So setting `radius` moves the falloff's reach, and choosing a preset
+   moves K, D_S and D_L; writing a value into a derived field fixes it. The effective form, every value the SDK
+   will use, exists only as the output of obscura_resolve_settings() (for logs and UIs); obscura_render()
+   resolves the same way.
+   Zero-initialised structs (struct_size and method set, the rest 0) also work: every zero field means its
+   default. In them a field whose range includes 0 but whose default is not 0 (lsao.tangent,
+   lsao.normal_threshold) cannot be 0; the editable form carries OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE, under
+   which 0 in such a field is 0, and obscura_set_setting() sets the flag when it stores such a 0.
+   Struct sizes: the library accepts the obscura_settings of every released header (0.1 to this one); the fields
+   an older header does not have read as 0 (their defaults). */
+enum {
+    /* 0 in a field whose range includes 0 is the value 0 (not the default). Derived fields still derive. */
+    OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE = 1u << 0
+};
 
 typedef struct obscura_settings {
     uint32_t struct_size;   /* sizeof(obscura_settings); required */
@@ -410,21 +434,29 @@ typedef struct obscura_settings {
     obscura_sao_settings sao;
     obscura_lsao_settings lsao;
     obscura_ffao_settings ffao;
+    uint32_t flags;         /* OBSCURA_SETTINGS_FLAG_* (0.4). obscura_default_settings sets ZERO_IS_VALUE */
 } obscura_settings;
 
-/* Fills `out` with the defaults of `method` (struct_size set, every field explicit).
-   Returns OK, NULL_ARGUMENT, INVALID_ENUM. */
-OBSCURA_API obscura_status obscura_default_settings(obscura_method method, obscura_settings* out);
+/* Fills `out` with the editable form of `method`'s defaults (see SETTINGS above; struct_size set). Writes
+   `out_size` bytes, the size of the caller's obscura_settings: the macro below passes the header's. A binary
+   built against 0.3 calls the plain symbol, which writes the 0.3 struct. Returns OK, NULL_ARGUMENT,
+   INVALID_STRUCT_SIZE, INVALID_ENUM. */
+OBSCURA_API obscura_status obscura_default_settings_sized(obscura_method method, obscura_settings* out,
+                                                          uint32_t out_size);
+#define obscura_default_settings(method, out) \
+    obscura_default_settings_sized((method), (out), (uint32_t)sizeof(obscura_settings))
 
-/* Replaces zero fields of `in` with their defaults, validates every field, and writes the values that
-   will be used to `out` (may alias `in`); for UIs and logs. `context` may be NULL (then the error
-   detail goes nowhere). Returns OK, NULL_ARGUMENT, INVALID_STRUCT_SIZE, INVALID_ENUM, INVALID_SETTING. */
+/* Replaces zero fields of `in` with their defaults, derives the derived fields, validates every field, and
+   writes the effective values to `out` (may alias `in`; `in->struct_size` bytes, so both are the caller's
+   struct version); for UIs and logs. `context` may be NULL (then the error detail goes nowhere). Returns OK,
+   NULL_ARGUMENT, INVALID_STRUCT_SIZE, INVALID_ENUM, INVALID_SETTING. */
 OBSCURA_API obscura_status obscura_resolve_settings(obscura_context* context, const obscura_settings* in,
                                                     obscura_settings* out);
 
 /* Writes to `out` the REFERENCE settings that evaluate the same falloff (kind, radius, C, decay rate) as
    `method_settings` (resolved first; a REFERENCE input is copied), and FFAO's thickness, with the default ray
-   counts, so an error measured against that screen-space reference compares like with like. Returns OK,
+   counts, so an error measured against that screen-space reference compares like with like. Writes
+   `method_settings->struct_size` bytes. Returns OK,
    NULL_ARGUMENT, INVALID_STRUCT_SIZE, INVALID_ENUM, INVALID_SETTING. */
 OBSCURA_API obscura_status obscura_reference_settings_for(const obscura_settings* method_settings,
                                                           obscura_settings* out);
@@ -443,32 +475,51 @@ OBSCURA_API obscura_status obscura_evaluate_falloff(const obscura_settings* meth
 typedef enum obscura_setting_type {
     OBSCURA_SETTING_FLOAT = 0,
     OBSCURA_SETTING_INT = 1,
-    OBSCURA_SETTING_TOGGLE = 2 /* obscura_toggle; min 0 (off) max 1 (on) in the table */
+    OBSCURA_SETTING_TOGGLE = 2,     /* obscura_toggle; min 0 (off) max 1 (on) in the table, named "off", "on" */
+    OBSCURA_SETTING_ENUM = 3,       /* an int32_t field of named values min..max (0.4; INT before) */
+    OBSCURA_SETTING_FLOAT_ARRAY = 4 /* value_count floats, each in [min, max] (0.4): a falloff table */
 } obscura_setting_type;
+
+enum {
+    /* 0 derives the field from other settings (the description says how); default_value is then 0. */
+    OBSCURA_SETTING_FLAG_DERIVED = 1u << 0
+};
 
 typedef struct obscura_setting_info {
     const char* name;        /* spec key, e.g. "radius" */
     obscura_setting_type type;
-    double default_value;
+    double default_value;    /* in the editable form (0 for derived fields) */
     double min_value;        /* inclusive */
     double max_value;        /* inclusive */
     const char* unit;        /* "m", "m^2", "px", "" ... */
     const char* description; /* one line */
     size_t offset;           /* byte offset of the field inside obscura_settings */
+    /* 0.4: */
+    uint32_t flags;          /* OBSCURA_SETTING_FLAG_* */
+    uint32_t value_count;    /* ENUM, TOGGLE: the named values; FLOAT_ARRAY: the array's length; else 0 */
+    const char* const* value_names; /* ENUM, TOGGLE: value_names[i] names the value min_value + i ("exponential") */
 } obscura_setting_info;
 
-/* Sets *out_infos to the method's static table of settings and *out_count to its length.
-   Returns OK, NULL_ARGUMENT, INVALID_ENUM. */
-OBSCURA_API obscura_status obscura_get_setting_infos(obscura_method method, const obscura_setting_info** out_infos,
-                                                     uint32_t* out_count);
+/* Sets *out_infos to the method's static table of settings and *out_count to its length. `info_size` is the
+   caller's sizeof(obscura_setting_info) (the macro below passes the header's): the table has that layout. A
+   binary built against 0.3 calls the plain symbol, which returns the 0.3 layout (ENUM rows as INT, no array
+   rows). Returns OK, NULL_ARGUMENT, INVALID_STRUCT_SIZE, INVALID_ENUM. */
+OBSCURA_API obscura_status obscura_get_setting_infos_sized(obscura_method method,
+                                                           const obscura_setting_info** out_infos,
+                                                           uint32_t* out_count, uint32_t info_size);
+#define obscura_get_setting_infos(method, out_infos, out_count) \
+    obscura_get_setting_infos_sized((method), (out_infos), (out_count), (uint32_t)sizeof(obscura_setting_info))
 
-/* Sets the setting `name` of settings->method to `value` (toggles: 0 off, 1 on). The value is range-checked.
-   Returns OK, NULL_ARGUMENT, UNKNOWN_SETTING, INVALID_SETTING, INVALID_ENUM. */
+/* Sets the setting `name` of settings->method to `value` (toggles: 0 off, 1 on; enums: their value). The value
+   is range-checked. 0 in a derived field derives it; 0 in a field whose range includes 0 is stored as 0 (and
+   sets OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE, the fields whose zero meant "default" then holding their
+   defaults). Array settings are written through their offset. Returns OK, NULL_ARGUMENT, UNKNOWN_SETTING (also
+   a setting the caller's struct version does not have), INVALID_SETTING, INVALID_STRUCT_SIZE, INVALID_ENUM. */
 OBSCURA_API obscura_status obscura_set_setting(obscura_settings* settings, const char* name, double value);
 
 /* Reads the setting `name` of settings->method as it will be used: zero fields report their default
-   (derived defaults such as hbao decay_rate included); toggles read 0 (off) or 1 (on).
-   Returns OK, NULL_ARGUMENT, UNKNOWN_SETTING, INVALID_ENUM. */
+   (derived fields their derived value); toggles read 0 (off) or 1 (on). Array settings: INVALID_SETTING.
+   Returns OK, NULL_ARGUMENT, UNKNOWN_SETTING, INVALID_SETTING, INVALID_STRUCT_SIZE, INVALID_ENUM. */
 OBSCURA_API obscura_status obscura_get_setting(const obscura_settings* settings, const char* name, double* out_value);
 
 /* ---- Per-frame input ------------------------------------------------------------------------- */
@@ -561,9 +612,12 @@ OBSCURA_API void obscura_release_resources(obscura_context* context);
 
 /* ---- Queries --------------------------------------------------------------------------------- */
 typedef struct obscura_timing {
-    const char* label; /* "total" first, then one entry per pass: "depth_prepare", then "hbao", "reference",
-                          "z_pyramid" + "sao", "line_sweep" + "gather" or ["ffao_table" when the falloff's shape
-                          changed] + "ffao_scan" + "ffao_prefix" + "ffao_obscurance", then "blur", "composite" */
+    const char* label; /* "total" first, then one entry per pass that ran, in order: "depth_prepare"; then
+                          HBAO "hbao" ["blur"]; REFERENCE "reference"; SAO ["z_pyramid"] "sao" ["blur"]; LSAO
+                          "line_sweep" "gather"; FFAO ["ffao_table" when the falloff's shape changed], then
+                          "ffao_scan" ["ffao_prefix"] (geometry=mipmap: ["z_pyramid"] instead),
+                          ["ffao_box_average"] "ffao_obscurance" ["ffao_gather" "blur"] (the last three with saao);
+                          then "composite". Static strings */
     double milliseconds;
 } obscura_timing;
 
@@ -580,6 +634,15 @@ OBSCURA_API obscura_status obscura_get_timings(obscura_context* context, obscura
    latest configuration (size, method, settings, output kind) needs and nothing else, so the same configuration
    always reports the same bytes. Returns OK, NULL_ARGUMENT. */
 OBSCURA_API obscura_status obscura_get_memory_usage(const obscura_context* context, uint64_t* out_bytes);
+
+/* ---- The 0.3 ABI ----------------------------------------------------------------------------- */
+/* Binaries built against the 0.3 header call these two names; here they are macros (above), which the
+   parentheses keep from expanding. obscura_default_settings writes a 0.3-sized obscura_settings, and
+   obscura_get_setting_infos returns the table in the 0.3 layout of obscura_setting_info (its first eight
+   fields). New code calls the macros. */
+OBSCURA_API obscura_status(obscura_default_settings)(obscura_method method, obscura_settings* out);
+OBSCURA_API obscura_status(obscura_get_setting_infos)(obscura_method method, const obscura_setting_info** out_infos,
+                                                      uint32_t* out_count);
 
 #ifdef __cplusplus
 } /* extern "C" */

@@ -4,6 +4,7 @@
 // registry row.
 #include <cstring>
 
+#include "falloff.h"
 #include "method_registry.h"
 #include "passes/ffao.h"
 #include "passes/z_pyramid.h"
@@ -13,52 +14,59 @@
 namespace obscura {
 namespace {
 
+constexpr const char* const kFfaoGeometryNames[] = {"peaks", "mipmap"};
+
 // FFAO (Timonen, HPG 2013). Defaults are the paper's: K = 16x2, B0 = 10, an exponential falloff. The falloff
 // fields mirror the reference's, so obscura_reference_settings_for() gives the screen-space reference FFAO
 // converges to (same falloff and thickness).
 const obscura_setting_info kFfaoSettings[] = {
-    {"radius", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 1e4, "m",
-     "where rho0 (with the default decay rate) and the falloff table reach zero", OBSCURA_SETTING_OFFSET(ffao, radius)},
-    {"falloff", OBSCURA_SETTING_INT, 3, 1, 4, "",
-     "1: rho0 (LSAO eq. 3); 2: inverse quadratic r/(r+d^2); 3: exponential exp(-d/sqrt(r)); 4: table",
-     OBSCURA_SETTING_OFFSET(ffao, falloff)},
-    {"falloff_c", OBSCURA_SETTING_FLOAT, 0.3, 1e-3, 0.999, "", "C of rho0(d) = max(0, r(1+C)/(r+d^2) - C)",
-     OBSCURA_SETTING_OFFSET(ffao, falloff_c)},
-    {"decay_rate", OBSCURA_SETTING_FLOAT, 0.0, 1e-10, 1e8, "m^2", "r of the falloff; 0 derives C*radius^2",
-     OBSCURA_SETTING_OFFSET(ffao, decay_rate)},
-    {"sectors", OBSCURA_SETTING_INT, 16, 4, 64, "", "K azimuthal sectors (even: one line orientation serves two)",
-     OBSCURA_SETTING_OFFSET(ffao, sectors)},
-    {"segments", OBSCURA_SETTING_INT, 2, 1, 4, "", "parts of a sector averaged and evaluated separately (K x this)",
-     OBSCURA_SETTING_OFFSET(ffao, segments)},
-    {"base_interval", OBSCURA_SETTING_INT, 10, 2, 64, "px",
+    setting_row("radius", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 1e4, "m",
+     "where rho0 (with the default decay rate) and the falloff table reach zero", OBSCURA_SETTING_OFFSET(ffao, radius)),
+    enum_row("falloff", 3, 1,
+             "rho0 (LSAO eq. 3), inverse_quadratic r/(r+d^2), exponential exp(-d/sqrt(r)) (the paper's), or table "
+             "(falloff_table)",
+             OBSCURA_SETTING_OFFSET(ffao, falloff), kFalloffNames),
+    setting_row("falloff_c", OBSCURA_SETTING_FLOAT, 0.3, 1e-3, 0.999, "", "C of rho0(d) = max(0, r(1+C)/(r+d^2) - C)",
+     OBSCURA_SETTING_OFFSET(ffao, falloff_c)),
+    setting_row("decay_rate", OBSCURA_SETTING_FLOAT, 0.0, 1e-10, 1e8, "m^2", "r of the falloff; derived: C*radius^2",
+     OBSCURA_SETTING_OFFSET(ffao, decay_rate), OBSCURA_SETTING_FLAG_DERIVED),
+    setting_row("sectors", OBSCURA_SETTING_INT, 0, 4, 64, "",
+     "K azimuthal sectors (even: one line orientation serves two); derived: 16, or 18 with saao",
+     OBSCURA_SETTING_OFFSET(ffao, sectors), OBSCURA_SETTING_FLAG_DERIVED),
+    setting_row("segments", OBSCURA_SETTING_INT, 2, 1, 4, "", "parts of a sector averaged and evaluated separately (K x this)",
+     OBSCURA_SETTING_OFFSET(ffao, segments)),
+    setting_row("base_interval", OBSCURA_SETTING_INT, 10, 2, 64, "px",
      "B0: scan steps per level-0 interval; the near field covers the first B0 to 2 B0 texels",
-     OBSCURA_SETTING_OFFSET(ffao, base_interval)},
-    {"geometry", OBSCURA_SETTING_INT, 1, 1, 2, "",
-     "far-field points: 1 scanned peaks (sec. 6-7); 2 depth MIP pyramid at distances x1.5 (sec. 5 baseline)",
-     OBSCURA_SETTING_OFFSET(ffao, geometry)},
-    {"thickness", OBSCURA_SETTING_FLOAT, 0.0, 0.0, 1e4, "m",
+     OBSCURA_SETTING_OFFSET(ffao, base_interval)),
+    enum_row("geometry", 1, 1,
+             "far-field points: peaks: the scanned peaks (sec. 6-7); mipmap: a depth MIP pyramid at distances x1.5 "
+             "(sec. 5 baseline)",
+             OBSCURA_SETTING_OFFSET(ffao, geometry), kFfaoGeometryNames),
+    setting_row("thickness", OBSCURA_SETTING_FLOAT, 0.0, 0.0, 1e4, "m",
      "solid behind every depth texel; 0: infinitely thick; > 0 reads single lines (no sector averages)",
-     OBSCURA_SETTING_OFFSET(ffao, thickness)},
-    {"jitter", OBSCURA_SETTING_TOGGLE, 0, 0, 1, "", "offset each sector's lines per pixel: banding becomes noise",
-     OBSCURA_SETTING_OFFSET(ffao, jitter)},
-    {"saao", OBSCURA_SETTING_TOGGLE, 0, 0, 1, "",
+     OBSCURA_SETTING_OFFSET(ffao, thickness)),
+    setting_row("jitter", OBSCURA_SETTING_TOGGLE, 0, 0, 1, "", "offset each sector's lines per pixel: banding becomes noise",
+     OBSCURA_SETTING_OFFSET(ffao, jitter)),
+    setting_row("saao", OBSCURA_SETTING_TOGGLE, 0, 0, 1, "",
      "SAAO: each pixel of a 3x3 group evaluates 1/9 of the far field; a gather adds its accepted neighbours'",
-     OBSCURA_SETTING_OFFSET(ffao, saao)},
-    {"saao_blur", OBSCURA_SETTING_TOGGLE, 1, 0, 1, "", "SAAO: 5x5 box blur over values within 7 % of the pixel's",
-     OBSCURA_SETTING_OFFSET(ffao, saao_blur)},
-    {"intensity", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "obscurance multiplier", OBSCURA_SETTING_OFFSET(ffao, intensity)},
-    {"power", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "exponent applied to the visibility",
-     OBSCURA_SETTING_OFFSET(ffao, power)},
+     OBSCURA_SETTING_OFFSET(ffao, saao)),
+    setting_row("saao_blur", OBSCURA_SETTING_TOGGLE, 1, 0, 1, "", "SAAO: 5x5 box blur over values within 7 % of the pixel's",
+     OBSCURA_SETTING_OFFSET(ffao, saao_blur)),
+    setting_row("intensity", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "obscurance multiplier", OBSCURA_SETTING_OFFSET(ffao, intensity)),
+    setting_row("power", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "exponent applied to the visibility",
+     OBSCURA_SETTING_OFFSET(ffao, power)),
+    array_row("falloff_table", OBSCURA_FALLOFF_TABLE_SIZE, 0.0, 1.0,
+              "falloff = table: rho at i/15 * radius (i = 0..15), linear in between, 0 beyond; not all 0",
+              OBSCURA_SETTING_OFFSET(ffao, falloff_table)),
 };
 
 // FFAO's derived values: the decay rate follows the radius; a line orientation serves two opposite sectors;
-// SAAO spreads the orientations over 3x3 pixels (sectors_given: whether the host set K).
-Error derive_ffao(const obscura_settings& in, obscura_settings* resolved) {
+// SAAO spreads the orientations over 3x3 pixels (K derived: the paper's 18).
+Error derive_ffao(const obscura_settings&, obscura_settings* resolved) {
     obscura_ffao_settings* ffao = &resolved->ffao;
-    const bool sectors_given = in.ffao.sectors != 0;
-    if (ffao->decay_rate == 0.0f) ffao->decay_rate = ffao->falloff_c * ffao->radius * ffao->radius;
+    if (ffao->decay_rate == 0.0f) ffao->decay_rate = derived_decay_rate(ffao->falloff_c, ffao->radius);
     if (ffao->saao == OBSCURA_TOGGLE_ON) {
-        if (!sectors_given) ffao->sectors = 18;
+        if (ffao->sectors == 0) ffao->sectors = 18;
         if (ffao->sectors % 18 != 0) {
             return Error::make(OBSCURA_STATUS_INVALID_SETTING,
                                "ffao.sectors = %d with saao: K must be a multiple of 18 (the 9 pixels of a 3x3 group "
@@ -66,6 +74,7 @@ Error derive_ffao(const obscura_settings& in, obscura_settings* resolved) {
                                int(ffao->sectors));
         }
     }
+    if (ffao->sectors == 0) ffao->sectors = 16;
     if (ffao->sectors % 2 != 0) {
         return Error::make(OBSCURA_STATUS_INVALID_SETTING,
                            "ffao.sectors = %d: K must be even (each scanned line orientation serves two opposite "

@@ -1,5 +1,6 @@
 // HBAO (LSAO paper sec. 3 and 6): its settings metadata, its derived values, the falloff it is compared with,
 // its technique (the horizon search, then the separable bilateral blur) and its registry row.
+#include "falloff.h"
 #include "method_registry.h"
 #include "passes/bilateral_blur.h"
 #include "passes/hbao.h"
@@ -9,39 +10,43 @@
 namespace obscura {
 namespace {
 
+constexpr const char* const kHbaoEstimatorNames[] = {"horizon_split", "largest_occluder"};
+
 // HBAO (LSAO paper sec. 3 and 6; the falloff rho0 is its eq. 3). Defaults follow the paper (C = 0.3)
 // and common HBAO practice (8 directions, 12 steps, 4-tap bilateral blur).
 const obscura_setting_info kHbaoSettings[] = {
-    {"radius", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 1e4, "m",
-     "distance where the falloff reaches zero; the steps cover it", OBSCURA_SETTING_OFFSET(hbao, radius)},
-    {"falloff_c", OBSCURA_SETTING_FLOAT, 0.3, 1e-3, 0.999, "",
-     "C of rho0(d) = max(0, r(1+C)/(r+d^2) - C): how far the falloff is sunk", OBSCURA_SETTING_OFFSET(hbao, falloff_c)},
-    {"decay_rate", OBSCURA_SETTING_FLOAT, 0.0, 1e-10, 1e8, "m^2",
-     "r of rho0; 0 derives C*radius^2 so rho0 reaches zero at the radius", OBSCURA_SETTING_OFFSET(hbao, decay_rate)},
-    {"directions", OBSCURA_SETTING_INT, 8, 1, 32, "", "K azimuthal directions per pixel",
-     OBSCURA_SETTING_OFFSET(hbao, directions)},
-    {"steps", OBSCURA_SETTING_INT, 12, 1, 128, "", "N ray-march steps per direction", OBSCURA_SETTING_OFFSET(hbao, steps)},
-    {"estimator", OBSCURA_SETTING_INT, 1, 1, 2, "",
-     "1: horizon-split integration (Bavoil 2008); 2: largest falloff-weighted occluder (LSAO eq. 1)",
-     OBSCURA_SETTING_OFFSET(hbao, estimator)},
-    {"bias", OBSCURA_SETTING_FLOAT, 0.0, 0.0, 0.5, "",
-     "subtracted from sin(h) - sin(t) to hide tessellation; the default is zero", OBSCURA_SETTING_OFFSET(hbao, bias)},
-    {"intensity", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "obscurance multiplier", OBSCURA_SETTING_OFFSET(hbao, intensity)},
-    {"power", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "exponent applied to the visibility",
-     OBSCURA_SETTING_OFFSET(hbao, power)},
-    {"max_radius_pixels", OBSCURA_SETTING_FLOAT, 256.0, 1.0, 4096.0, "px",
-     "cap of the radius on screen, bounding the cost of close-ups", OBSCURA_SETTING_OFFSET(hbao, max_radius_pixels)},
-    {"blur", OBSCURA_SETTING_TOGGLE, 1, 0, 1, "", "depth-aware bilateral blur of the AO", OBSCURA_SETTING_OFFSET(hbao, blur)},
-    {"blur_radius", OBSCURA_SETTING_INT, 4, 1, 16, "px", "blur taps on each side", OBSCURA_SETTING_OFFSET(hbao, blur_radius)},
-    {"blur_sharpness", OBSCURA_SETTING_FLOAT, 16.0, 1e-3, 1000.0, "",
+    setting_row("radius", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 1e4, "m",
+     "distance where the falloff reaches zero; the steps cover it", OBSCURA_SETTING_OFFSET(hbao, radius)),
+    setting_row("falloff_c", OBSCURA_SETTING_FLOAT, 0.3, 1e-3, 0.999, "",
+     "C of rho0(d) = max(0, r(1+C)/(r+d^2) - C): how far the falloff is sunk", OBSCURA_SETTING_OFFSET(hbao, falloff_c)),
+    setting_row("decay_rate", OBSCURA_SETTING_FLOAT, 0.0, 1e-10, 1e8, "m^2",
+     "r of rho0; derived: C*radius^2, so rho0 reaches zero at the radius",
+     OBSCURA_SETTING_OFFSET(hbao, decay_rate), OBSCURA_SETTING_FLAG_DERIVED),
+    setting_row("directions", OBSCURA_SETTING_INT, 8, 1, 32, "", "K azimuthal directions per pixel",
+     OBSCURA_SETTING_OFFSET(hbao, directions)),
+    setting_row("steps", OBSCURA_SETTING_INT, 12, 1, 128, "", "N ray-march steps per direction", OBSCURA_SETTING_OFFSET(hbao, steps)),
+    enum_row("estimator", 1, 1,
+             "horizon_split: horizon-split integration (Bavoil 2008); largest_occluder: the largest falloff-weighted "
+             "occluder only (LSAO eq. 1)",
+             OBSCURA_SETTING_OFFSET(hbao, estimator), kHbaoEstimatorNames),
+    setting_row("bias", OBSCURA_SETTING_FLOAT, 0.0, 0.0, 0.5, "",
+     "subtracted from sin(h) - sin(t) to hide tessellation; the default is zero", OBSCURA_SETTING_OFFSET(hbao, bias)),
+    setting_row("intensity", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "obscurance multiplier", OBSCURA_SETTING_OFFSET(hbao, intensity)),
+    setting_row("power", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "exponent applied to the visibility",
+     OBSCURA_SETTING_OFFSET(hbao, power)),
+    setting_row("max_radius_pixels", OBSCURA_SETTING_FLOAT, 256.0, 1.0, 4096.0, "px",
+     "cap of the radius on screen, bounding the cost of close-ups", OBSCURA_SETTING_OFFSET(hbao, max_radius_pixels)),
+    setting_row("blur", OBSCURA_SETTING_TOGGLE, 1, 0, 1, "", "depth-aware bilateral blur of the AO", OBSCURA_SETTING_OFFSET(hbao, blur)),
+    setting_row("blur_radius", OBSCURA_SETTING_INT, 4, 1, 16, "px", "blur taps on each side", OBSCURA_SETTING_OFFSET(hbao, blur_radius)),
+    setting_row("blur_sharpness", OBSCURA_SETTING_FLOAT, 16.0, 1e-3, 1000.0, "",
      "how strongly the blur stops at depth edges (relative depth difference scale)",
-     OBSCURA_SETTING_OFFSET(hbao, blur_sharpness)},
+     OBSCURA_SETTING_OFFSET(hbao, blur_sharpness)),
 };
 
 Error derive_hbao(const obscura_settings&, obscura_settings* resolved) {
     // The decay rate defaults to C * radius^2, where rho0 reaches zero exactly at the radius.
     obscura_hbao_settings& hbao = resolved->hbao;
-    if (hbao.decay_rate == 0.0f) hbao.decay_rate = hbao.falloff_c * hbao.radius * hbao.radius;
+    if (hbao.decay_rate == 0.0f) hbao.decay_rate = derived_decay_rate(hbao.falloff_c, hbao.radius);
     return Error();
 }
 

@@ -1,5 +1,6 @@
 // LSAO (Timonen, EGSR 2013): its settings metadata and presets, its derived values, the falloff it is compared
 // with, its technique (the line sweeps over the whole depth texture, then the gather) and its registry row.
+#include "falloff.h"
 #include "method_registry.h"
 #include "passes/lsao.h"
 #include "settings.h"
@@ -8,53 +9,59 @@
 namespace obscura {
 namespace {
 
+constexpr const char* const kLsaoPresetNames[] = {"k8", "k16", "k24", "k32", "k8_figure1", "k16_figure13"};
+constexpr const char* const kLsaoPatternNames[] = {"aligned", "free"};
+constexpr const char* const kLsaoTangentStrategyNames[] = {"receiver", "fixed_hull", "fixed"};
+
 // LSAO (Timonen 2013). Defaults are the paper's: falloff r/(r+d^2), the K = 16 configuration of Table 2,
 // aligned sampling patterns, fixed tangent sin(t) = -0.85 for hull and occlusion (strategy 3).
 const obscura_setting_info kLsaoSettings[] = {
-    {"radius", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 1e4, "m", "falloff scale: the decay rate defaults to C*radius^2",
-     OBSCURA_SETTING_OFFSET(lsao, radius)},
-    {"falloff", OBSCURA_SETTING_INT, 2, 1, 2, "", "1: rho0 (LSAO eq. 3, HBAO's); 2: r/(r+d^2) (LSAO eq. 2)",
-     OBSCURA_SETTING_OFFSET(lsao, falloff)},
-    {"falloff_c", OBSCURA_SETTING_FLOAT, 0.3, 1e-3, 0.999, "", "C: rho0's sink and the decay-rate default",
-     OBSCURA_SETTING_OFFSET(lsao, falloff_c)},
-    {"decay_rate", OBSCURA_SETTING_FLOAT, 0.0, 1e-10, 1e8, "m^2", "r of the falloff; 0 derives C*radius^2",
-     OBSCURA_SETTING_OFFSET(lsao, decay_rate)},
-    {"preset", OBSCURA_SETTING_INT, 2, 1, 6, "",
-     "K/D_S/D_L: 1 8/1.41/1.41, 2 16/2.43/1.64, 3 24/3.56/1.69, 4 32/4.69/1.70, 5 8/2.83/2.12, 6 16/4.87/2.46",
-     OBSCURA_SETTING_OFFSET(lsao, preset)},
-    {"pattern", OBSCURA_SETTING_INT, 1, 1, 2, "", "1: aligned 8n directions on texel centres; 2: free (interpolated)",
-     OBSCURA_SETTING_OFFSET(lsao, pattern)},
-    {"directions", OBSCURA_SETTING_INT, 0, 1, 64, "", "K; aligned patterns need a multiple of 8; 0: the preset's",
-     OBSCURA_SETTING_OFFSET(lsao, directions)},
-    {"step_length", OBSCURA_SETTING_FLOAT, 0.0, 0.5, 16.0, "px", "D_S (free pattern); 0: the preset's",
-     OBSCURA_SETTING_OFFSET(lsao, step_length)},
-    {"line_spacing", OBSCURA_SETTING_FLOAT, 0.0, 0.5, 16.0, "px", "D_L between parallel lines; 0: the preset's",
-     OBSCURA_SETTING_OFFSET(lsao, line_spacing)},
-    {"tangent", OBSCURA_SETTING_FLOAT, -0.85, -1.0, 0.5, "", "the fixed sin(t) of the hull and the occlusion",
-     OBSCURA_SETTING_OFFSET(lsao, tangent)},
-    {"tangent_strategy", OBSCURA_SETTING_INT, 3, 1, 3, "",
-     "1: receiver's tangent for hull and occlusion; 2: fixed for the hull, receiver's for occlusion; 3: fixed",
-     OBSCURA_SETTING_OFFSET(lsao, tangent_strategy)},
-    {"hull_capacity", OBSCURA_SETTING_INT, 24, 2, OBSCURA_LSAO_MAX_HULL, "",
-     "points kept per line; the oldest is dropped when full", OBSCURA_SETTING_OFFSET(lsao, hull_capacity)},
-    {"exact", OBSCURA_SETTING_TOGGLE, 0, 0, 1, "", "brute-force largest occluder instead of the hull (validation)",
-     OBSCURA_SETTING_OFFSET(lsao, exact)},
-    {"segment_steps", OBSCURA_SETTING_INT, 0, -1, 4096, "",
-     "steps per line segment (one GPU thread each, after a warm-up); -1: whole lines; 0: whole on CPU renderers, "
-     "128 on GPUs", OBSCURA_SETTING_OFFSET(lsao, segment_steps)},
-    {"warmup_tolerance", OBSCURA_SETTING_FLOAT, 0.1, 1e-4, 1.0, "",
+    setting_row("radius", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 1e4, "m", "falloff scale: the decay rate defaults to C*radius^2",
+     OBSCURA_SETTING_OFFSET(lsao, radius)),
+    enum_row("falloff", 2, 1, "rho0 (LSAO eq. 3, HBAO's) or inverse_quadratic r/(r+d^2) (LSAO eq. 2)",
+             OBSCURA_SETTING_OFFSET(lsao, falloff), kFalloffNames, 2),
+    setting_row("falloff_c", OBSCURA_SETTING_FLOAT, 0.3, 1e-3, 0.999, "", "C: rho0's sink and the decay-rate default",
+     OBSCURA_SETTING_OFFSET(lsao, falloff_c)),
+    setting_row("decay_rate", OBSCURA_SETTING_FLOAT, 0.0, 1e-10, 1e8, "m^2", "r of the falloff; derived: C*radius^2",
+     OBSCURA_SETTING_OFFSET(lsao, decay_rate), OBSCURA_SETTING_FLAG_DERIVED),
+    enum_row("preset", 2, 1,
+             "K/D_S/D_L of the paper: k8 8/1.41/1.41, k16 16/2.43/1.64, k24 24/3.56/1.69, k32 32/4.69/1.70 (Table 2), "
+             "k8_figure1 8/2.83/2.12, k16_figure13 16/4.87/2.46",
+             OBSCURA_SETTING_OFFSET(lsao, preset), kLsaoPresetNames),
+    enum_row("pattern", 1, 1, "aligned: 8n directions on texel centres; free: any K, interpolated depth",
+             OBSCURA_SETTING_OFFSET(lsao, pattern), kLsaoPatternNames),
+    setting_row("directions", OBSCURA_SETTING_INT, 0, 1, 64, "", "K; aligned patterns need a multiple of 8; derived: the preset's",
+     OBSCURA_SETTING_OFFSET(lsao, directions), OBSCURA_SETTING_FLAG_DERIVED),
+    setting_row("step_length", OBSCURA_SETTING_FLOAT, 0.0, 0.5, 16.0, "px", "D_S (free pattern); derived: the preset's",
+     OBSCURA_SETTING_OFFSET(lsao, step_length), OBSCURA_SETTING_FLAG_DERIVED),
+    setting_row("line_spacing", OBSCURA_SETTING_FLOAT, 0.0, 0.5, 16.0, "px", "D_L between parallel lines; derived: the preset's",
+     OBSCURA_SETTING_OFFSET(lsao, line_spacing), OBSCURA_SETTING_FLAG_DERIVED),
+    setting_row("tangent", OBSCURA_SETTING_FLOAT, -0.85, -1.0, 0.5, "", "the fixed sin(t) of the hull and the occlusion",
+     OBSCURA_SETTING_OFFSET(lsao, tangent)),
+    enum_row("tangent_strategy", 3, 1,
+             "sec. 4.1: receiver: the receiver's tangent for hull and occlusion; fixed_hull: fixed for the hull, the "
+             "receiver's for occlusion; fixed: fixed for both",
+             OBSCURA_SETTING_OFFSET(lsao, tangent_strategy), kLsaoTangentStrategyNames),
+    setting_row("hull_capacity", OBSCURA_SETTING_INT, 24, 2, OBSCURA_LSAO_MAX_HULL, "",
+     "points kept per line; the oldest is dropped when full", OBSCURA_SETTING_OFFSET(lsao, hull_capacity)),
+    setting_row("exact", OBSCURA_SETTING_TOGGLE, 0, 0, 1, "", "brute-force largest occluder instead of the hull (validation)",
+     OBSCURA_SETTING_OFFSET(lsao, exact)),
+    setting_row("segment_steps", OBSCURA_SETTING_INT, 0, -1, 4096, "",
+     "steps per line segment (one GPU thread each, after a warm-up); -1: whole lines; derived: whole lines on CPU "
+     "renderers, 128 on GPUs", OBSCURA_SETTING_OFFSET(lsao, segment_steps), OBSCURA_SETTING_FLAG_DERIVED),
+    setting_row("warmup_tolerance", OBSCURA_SETTING_FLOAT, 0.1, 1e-4, 1.0, "",
      "segments: most obscurance an occluder before the warm-up may cast (sets the warm-up length)",
-     OBSCURA_SETTING_OFFSET(lsao, warmup_tolerance)},
-    {"warmup_stride", OBSCURA_SETTING_INT, 4, 1, 64, "",
+     OBSCURA_SETTING_OFFSET(lsao, warmup_tolerance)),
+    setting_row("warmup_stride", OBSCURA_SETTING_INT, 4, 1, 64, "",
      "segments: the warm-up before the last 16 steps samples every n-th step (far occluders need less detail)",
-     OBSCURA_SETTING_OFFSET(lsao, warmup_stride)},
-    {"depth_threshold", OBSCURA_SETTING_FLOAT, 0.05, 1e-4, 10.0, "", "gather: relative depth difference that rejects",
-     OBSCURA_SETTING_OFFSET(lsao, depth_threshold)},
-    {"normal_test", OBSCURA_SETTING_TOGGLE, 0, 0, 1, "", "gather: also reject by normal", OBSCURA_SETTING_OFFSET(lsao, normal_test)},
-    {"normal_threshold", OBSCURA_SETTING_FLOAT, 0.8, -1.0, 1.0, "", "gather: minimum dot of the normals",
-     OBSCURA_SETTING_OFFSET(lsao, normal_threshold)},
-    {"intensity", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "obscurance multiplier", OBSCURA_SETTING_OFFSET(lsao, intensity)},
-    {"power", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "exponent applied to the visibility", OBSCURA_SETTING_OFFSET(lsao, power)},
+     OBSCURA_SETTING_OFFSET(lsao, warmup_stride)),
+    setting_row("depth_threshold", OBSCURA_SETTING_FLOAT, 0.05, 1e-4, 10.0, "", "gather: relative depth difference that rejects",
+     OBSCURA_SETTING_OFFSET(lsao, depth_threshold)),
+    setting_row("normal_test", OBSCURA_SETTING_TOGGLE, 0, 0, 1, "", "gather: also reject by normal", OBSCURA_SETTING_OFFSET(lsao, normal_test)),
+    setting_row("normal_threshold", OBSCURA_SETTING_FLOAT, 0.8, -1.0, 1.0, "", "gather: minimum dot of the normals",
+     OBSCURA_SETTING_OFFSET(lsao, normal_threshold)),
+    setting_row("intensity", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "obscurance multiplier", OBSCURA_SETTING_OFFSET(lsao, intensity)),
+    setting_row("power", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "exponent applied to the visibility", OBSCURA_SETTING_OFFSET(lsao, power)),
 };
 
 struct LsaoPreset {
@@ -73,20 +80,21 @@ Error derive_lsao(const obscura_settings&, obscura_settings* resolved) {
     if (lsao->directions == 0) lsao->directions = preset.directions;
     if (lsao->step_length == 0.0f) lsao->step_length = float(preset.step_length);
     if (lsao->line_spacing == 0.0f) lsao->line_spacing = float(preset.line_spacing);
-    if (lsao->decay_rate == 0.0f) lsao->decay_rate = lsao->falloff_c * lsao->radius * lsao->radius;
+    if (lsao->decay_rate == 0.0f) lsao->decay_rate = derived_decay_rate(lsao->falloff_c, lsao->radius);
     // Segments start on the sweep's 8-value stores; 0 (auto) is settled by the context, which knows the renderer.
     if (lsao->segment_steps > 0) lsao->segment_steps = (lsao->segment_steps + 7) / 8 * 8;
     if (lsao->pattern == 1 && lsao->directions % 8 != 0) {
         return Error::make(OBSCURA_STATUS_INVALID_SETTING,
                            "lsao.directions = %d: the aligned pattern has K = 8n directions (8, 16, 24 ... 64); "
-                           "use pattern 2 (free) for other counts",
+                           "use the free pattern (pattern 2, \"free\") for other counts",
                            int(lsao->directions));
     }
     return Error();
 }
 
 void lsao_reference_falloff(const obscura_settings& resolved, obscura_reference_settings* reference) {
-    reference->falloff = resolved.lsao.falloff == 1 ? OBSCURA_FALLOFF_RHO0 : OBSCURA_FALLOFF_INVERSE_QUADRATIC;
+    reference->falloff =
+        resolved.lsao.falloff == OBSCURA_FALLOFF_RHO0 ? OBSCURA_FALLOFF_RHO0 : OBSCURA_FALLOFF_INVERSE_QUADRATIC;
     reference->radius = resolved.lsao.radius;
     reference->falloff_c = resolved.lsao.falloff_c;
     reference->decay_rate = resolved.lsao.decay_rate;

@@ -1,6 +1,7 @@
 // The screen-space reference (FFAO paper eq. 1 by rays through the depth buffer, its sec. 8): its settings
 // metadata, its derived values, its technique (ray batches accumulated in an R32F texture) and its registry row.
 // Its settings are the reference other methods are compared with (obscura_reference_settings_for).
+#include "falloff.h"
 #include "method_registry.h"
 #include "passes/reference.h"
 #include "settings.h"
@@ -14,33 +15,37 @@ namespace {
 // triangles; the SDK only sees depth). The falloff defaults match HBAO's, so the default reference is the
 // screen-space reference of the default HBAO.
 const obscura_setting_info kReferenceSettings[] = {
-    {"radius", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 1e4, "m",
-     "where rho0 (with the default decay rate) and the falloff table reach zero", OBSCURA_SETTING_OFFSET(reference, radius)},
-    {"falloff", OBSCURA_SETTING_INT, 1, 1, 4, "",
-     "1: rho0 (LSAO eq. 3); 2: inverse quadratic r/(r+d^2) (LSAO eq. 2); 3: exponential exp(-d/sqrt(r)); 4: table",
-     OBSCURA_SETTING_OFFSET(reference, falloff)},
-    {"falloff_c", OBSCURA_SETTING_FLOAT, 0.3, 1e-3, 0.999, "", "C of rho0(d) = max(0, r(1+C)/(r+d^2) - C)",
-     OBSCURA_SETTING_OFFSET(reference, falloff_c)},
-    {"decay_rate", OBSCURA_SETTING_FLOAT, 0.0, 1e-10, 1e8, "m^2",
-     "r of the falloff; 0 derives C*radius^2 (rho0 then reaches zero at the radius)",
-     OBSCURA_SETTING_OFFSET(reference, decay_rate)},
-    {"thickness", OBSCURA_SETTING_FLOAT, 0.0, 0.0, 1e4, "m",
+    setting_row("radius", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 1e4, "m",
+     "where rho0 (with the default decay rate) and the falloff table reach zero", OBSCURA_SETTING_OFFSET(reference, radius)),
+    enum_row("falloff", 1, 1,
+             "rho0 (LSAO eq. 3), inverse_quadratic r/(r+d^2) (LSAO eq. 2), exponential exp(-d/sqrt(r)), or table "
+             "(falloff_table)",
+             OBSCURA_SETTING_OFFSET(reference, falloff), kFalloffNames),
+    setting_row("falloff_c", OBSCURA_SETTING_FLOAT, 0.3, 1e-3, 0.999, "", "C of rho0(d) = max(0, r(1+C)/(r+d^2) - C)",
+     OBSCURA_SETTING_OFFSET(reference, falloff_c)),
+    setting_row("decay_rate", OBSCURA_SETTING_FLOAT, 0.0, 1e-10, 1e8, "m^2",
+     "r of the falloff; derived: C*radius^2 (rho0 then reaches zero at the radius)",
+     OBSCURA_SETTING_OFFSET(reference, decay_rate), OBSCURA_SETTING_FLAG_DERIVED),
+    setting_row("thickness", OBSCURA_SETTING_FLOAT, 0.0, 0.0, 1e4, "m",
      "solid assumed behind every depth texel; 0: infinitely thick (a continuous depth field: every ray behind a "
      "silhouette is blocked); 0.3 brought the atrium at 320x180 from 0.085 to 0.026 mean abs error against the "
      "geometry truth (rays against the scene's triangles)",
-     OBSCURA_SETTING_OFFSET(reference, thickness)},
-    {"rays", OBSCURA_SETTING_INT, 256, 1, 65536, "", "cosine-weighted rays per pixel", OBSCURA_SETTING_OFFSET(reference, rays)},
-    {"rays_per_dispatch", OBSCURA_SETTING_INT, 16, 1, 1024, "",
+     OBSCURA_SETTING_OFFSET(reference, thickness)),
+    setting_row("rays", OBSCURA_SETTING_INT, 256, 1, 65536, "", "cosine-weighted rays per pixel", OBSCURA_SETTING_OFFSET(reference, rays)),
+    setting_row("rays_per_dispatch", OBSCURA_SETTING_INT, 16, 1, 1024, "",
      "rays per pixel in one compute dispatch (progressive accumulation keeps each dispatch short)",
-     OBSCURA_SETTING_OFFSET(reference, rays_per_dispatch)},
-    {"first_ray", OBSCURA_SETTING_INT, 0, 0, 16777216, "",
+     OBSCURA_SETTING_OFFSET(reference, rays_per_dispatch)),
+    setting_row("first_ray", OBSCURA_SETTING_INT, 0, 0, 16777216, "",
      "index of the first ray in the per-pixel sequence; average frames with 0, rays, 2*rays ... to accumulate",
-     OBSCURA_SETTING_OFFSET(reference, first_ray)},
+     OBSCURA_SETTING_OFFSET(reference, first_ray)),
+    array_row("falloff_table", OBSCURA_FALLOFF_TABLE_SIZE, 0.0, 1.0,
+              "falloff = table: rho at i/15 * radius (i = 0..15), linear in between, 0 beyond; not all 0",
+              OBSCURA_SETTING_OFFSET(reference, falloff_table)),
 };
 
 Error derive_reference(const obscura_settings&, obscura_settings* resolved) {
     obscura_reference_settings& reference = resolved->reference;
-    if (reference.decay_rate == 0.0f) reference.decay_rate = reference.falloff_c * reference.radius * reference.radius;
+    if (reference.decay_rate == 0.0f) reference.decay_rate = derived_decay_rate(reference.falloff_c, reference.radius);
     return check_falloff_table("reference", reference.falloff, reference.falloff_table);
 }
 

@@ -1,5 +1,7 @@
 #include "passes/composite.h"
 
+#include "output_writer.h"  // image_format_qualifier
+
 namespace obscura {
 
 CompositePass::Variant* CompositePass::find(GLenum format) {

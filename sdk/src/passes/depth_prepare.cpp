@@ -21,7 +21,18 @@ void DepthPreparePass::run(const PassEnv& env, const FrameInput& input, const Un
     gl.BindImageTexture(OBSCURA_IMAGE_OUT0, resources.linear_depth.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     gl.BindImageTexture(OBSCURA_IMAGE_OUT1, resources.normals.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG16_SNORM);
     env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
+    // A depth-stencil texture the host samples as stencil is read as depth for this dispatch only: GL runs the
+    // dispatch with the state it was issued with, so the host's mode can be put back right after.
+    const GLenum depth_target = input.depth_multisample ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
+    if (input.host_depth_stencil_mode) {
+        gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_DEPTH));
+        gl.TexParameteri(depth_target, GL_DEPTH_STENCIL_TEXTURE_MODE, GL_DEPTH_COMPONENT);
+    }
     env.dispatch(input.width, input.height, OBSCURA_DEPTH_PREPARE_GROUP_X, OBSCURA_DEPTH_PREPARE_GROUP_Y);
+    if (input.host_depth_stencil_mode) {
+        gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_DEPTH));
+        gl.TexParameteri(depth_target, GL_DEPTH_STENCIL_TEXTURE_MODE, input.host_depth_stencil_mode);
+    }
     gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 

@@ -315,21 +315,4 @@ void FfaoPass::run_saao_blur(const PassEnv& env, const UniformRange& frame, cons
     dispatch_pixels(env, frame, pass, region);
 }
 
-std::vector<float> FfaoPass::read_table(const gl::Table& gl) const {
-    std::vector<float> texels(size_t(kTableBytes / 4));
-    gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_FFAO_TABLE));
-    gl.BindTexture(GL_TEXTURE_3D, table_.name());
-    gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
-    gl.GetTexImage(GL_TEXTURE_3D, 0, GL_RED, GL_FLOAT, texels.data());
-    gl.BindTexture(GL_TEXTURE_3D, 0);
-    return texels;
-}
-
-std::vector<float> FfaoPass::read_peaks(const gl::Table& gl) const {
-    std::vector<float> values(size_t(layout_.entries) * 4);
-    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, peaks_.name());
-    gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(values.size() * 4), values.data());
-    return values;
-}
-
 }  // namespace obscura

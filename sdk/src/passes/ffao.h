@@ -55,12 +55,8 @@ public:
     uint64_t bytes() const;
     void release();  // the per-size buffers (the table stays)
     void release_table();  // the estimator table too: rebuilt on the next frame that needs it
-    // Tests: the table texels (A fastest, then B, then the shared C x D axis) and the peaks buffer (vec4s);
-    // both read back, so they wait for the GPU.
-    std::vector<float> read_table(const gl::Table& gl) const;
-    std::vector<float> read_peaks(const gl::Table& gl) const;
-
 private:
+    friend class FfaoPassInspection;  // the tests' readbacks (testing/pass_inspection.h)
     static void dispatch_pixels(const PassEnv& env, const UniformRange& frame, const UniformRange& pass,
                                 const Region& region);
     gl::Object table_program_, scan_program_, prefix_program_, box_program_, gather_program_, blur_program_;

@@ -7,6 +7,7 @@
 
 #include "common/shader_interface.h"
 #include "falloff.h"
+#include "math_constants.h"
 
 namespace obscura {
 namespace {
@@ -41,7 +42,7 @@ bool FfaoFalloffShape::operator==(const FfaoFalloffShape& o) const {
 double ffao_falloff_scale(const obscura_ffao_settings& settings) {
     const double r = settings.decay_rate, c = settings.falloff_c;
     switch (settings.falloff) {
-        case OBSCURA_FALLOFF_RHO0: return std::sqrt(r * (1.0 + c) / c);  // where rho0 reaches 0
+        case OBSCURA_FALLOFF_RHO0: return std::sqrt(r * (1.0 + c) / c);  // sqrt(1 + C) times rho0_reach()
         case OBSCURA_FALLOFF_TABLE: return settings.radius;
         default: return std::sqrt(r);
     }
@@ -62,7 +63,7 @@ FfaoFalloffShape ffao_falloff_shape(const obscura_ffao_settings& settings) {
 double ffao_slab_integral(const FfaoFalloffShape& shape, double a, double beta, double c, double d) {
     // Nothing past the slab's direction (c) or the receiver's tangent (d + pi/2); below the zenith is the other
     // sector's. Equal pieces first, so a narrow lobe cannot hide between the first few samples.
-    const double lo = std::max(a, 0.0), hi = std::min(c, d + 0.5 * 3.14159265358979323846);
+    const double lo = std::max(a, 0.0), hi = std::min(c, d + 0.5 * kPi);
     if (!(lo < hi)) return 0.0;
     auto f = [&](double theta) {
         const double s = std::max(std::sin(c - theta), 1e-300);

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "math_constants.h"
+
 namespace obscura {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 bool texel_inside(const float p[2], int width, int height) {
     const float x = std::floor(p[0]), y = std::floor(p[1]);

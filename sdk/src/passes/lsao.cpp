@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <cstring>
 
+#include "falloff.h"
+
 namespace obscura {
 namespace {
 
@@ -34,10 +36,9 @@ double lsao_warmup_distance(const obscura_lsao_settings& settings, float meters_
     // tangent (2 when receivers' own tangents take part). Solve A (r(1+C)/(r+d^2) - C) = tolerance for d.
     const double m2v = meters_to_view_units;
     const double r = double(settings.decay_rate) * m2v * m2v;
-    const double c = settings.falloff == 1 ? double(settings.falloff_c) : 0.0;
+    const double c = settings.falloff == OBSCURA_FALLOFF_RHO0 ? double(settings.falloff_c) : 0.0;
     const double a = settings.tangent_strategy == 3 ? 1.0 - double(settings.tangent) : 2.0;
-    const double d_sq = r * (1.0 + c) / (double(settings.warmup_tolerance) / a + c) - r;
-    return std::sqrt(std::max(0.0, d_sq));
+    return std::sqrt(std::max(0.0, rho0_distance_sq(r, c, double(settings.warmup_tolerance) / a)));
 }
 
 Error LsaoPass::program_for(const PassEnv& env, const char* shader, const std::string& defines,
@@ -163,7 +164,7 @@ LsaoConstants LsaoPass::constants(const obscura_lsao_settings& settings, const F
     const float m2v = input.meters_to_view_units;
     LsaoConstants c = {};
     c.falloff[0] = settings.decay_rate * m2v * m2v;
-    c.falloff[1] = settings.falloff == 1 ? settings.falloff_c : 0.0f;
+    c.falloff[1] = settings.falloff == OBSCURA_FALLOFF_RHO0 ? settings.falloff_c : 0.0f;
     c.falloff[2] = settings.tangent;
     c.falloff[3] = settings.line_spacing;
     c.gather[0] = settings.depth_threshold;
@@ -242,39 +243,6 @@ void LsaoPass::run_gather(const PassEnv& env, const UniformRange& frame, const U
     env.bind_uniforms(OBSCURA_UBO_PASS, pass);
     env.dispatch(region.width, region.height, gather_group_[0], gather_group_[1]);
     gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-}
-
-void LsaoPass::read_stats(const gl::Table& gl, uint32_t out[3]) const {
-    uint32_t values[4] = {};
-    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, stats_.name());
-    gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof values, values);
-    std::memcpy(out, values, 3 * sizeof(uint32_t));
-}
-
-}  // namespace obscura
-
-namespace obscura {
-
-void LsaoPass::fill_values(const gl::Table& gl, uint16_t half_bits) const {
-    const std::vector<uint16_t> halves(size_t(layout_.values), half_bits);
-    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, values_.name());
-    gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(halves.size() * 2), halves.data());
-}
-
-std::vector<float> LsaoPass::read_values(const gl::Table& gl) const {
-    std::vector<uint16_t> halves(size_t(layout_.values));
-    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, values_.name());
-    gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(halves.size() * 2), halves.data());
-    std::vector<float> out(halves.size());
-    for (size_t i = 0; i < halves.size(); ++i) {
-        // IEEE half -> float (values are finite: obscurance in [-1, 1] or OBSCURA_LSAO_NO_OCCLUDER).
-        const uint32_t h = halves[i];
-        const uint32_t sign = (h >> 15) & 1u, exponent = (h >> 10) & 31u, mantissa = h & 1023u;
-        float magnitude = exponent == 0 ? std::ldexp(float(mantissa), -24)
-                                        : std::ldexp(float(mantissa | 1024u), int(exponent) - 25);
-        out[i] = sign ? -magnitude : magnitude;
-    }
-    return out;
 }
 
 }  // namespace obscura

@@ -49,17 +49,8 @@ public:
     const LsaoLayout& layout() const { return layout_; }
     uint64_t bytes() const { return lines_.bytes() + values_.bytes() + stats_.bytes(); }
     void release();
-    // The counters of the last sweeps (steps, hull pops, points dropped from full hulls); reads the buffer
-    // back, so it waits for the GPU: tests only.
-    void read_stats(const gl::Table& gl, uint32_t out[3]) const;
-    // The sweeps' values in layout order (OBSCURA_LSAO_NO_OCCLUDER where a sample had none); tests only.
-    std::vector<float> read_values(const gl::Table& gl) const;
-    // Fills the values with one half-float bit pattern (tests: poison before a sweep to see what it writes).
-    void fill_values(const gl::Table& gl, uint16_t half_bits) const;
-    // Whether the sweeps count their work for read_stats (off by default: the counters cost atomics).
-    void collect_stats(bool on) { collect_stats_ = on; }
-
 private:
+    friend class LsaoPassInspection;  // the tests' readbacks (testing/pass_inspection.h)
     // Programs with the settings that select code compiled in (the pattern, the tangent strategy, the hull
     // capacity, the normal test): CPU rasterisers run both sides of a branch, even of one on a uniform. The
     // last few are kept, so toggling a setting does not compile again.

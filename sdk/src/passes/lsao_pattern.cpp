@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "math_constants.h"
+
 namespace obscura {
 namespace {
-
-constexpr double kTwoPi = 6.283185307179586;
 
 double angle_of(const double v[2]) {
     double a = std::atan2(v[1], v[0]);

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <vector>
 
+#include "falloff.h"
+
 namespace obscura {
 
 struct SlicePoint {
@@ -19,10 +21,7 @@ struct ObscuranceModel {
     double decay_rate = 1.0;   // r of the falloff
     double falloff_c = 0.0;    // C: 0 gives r / (r + d^2) (LSAO eq. 2), > 0 gives rho0 (LSAO eq. 3)
 
-    double falloff(double distance_sq) const {
-        const double f = decay_rate * (1.0 + falloff_c) / (decay_rate + distance_sq) - falloff_c;
-        return f > 0.0 ? f : 0.0;
-    }
+    double falloff(double distance_sq) const { return rho0(decay_rate, falloff_c, distance_sq); }
     // Algorithm 1's occlusion(): sin t + max(0, sin h - sin t) rho(|h|), h from the receiver to the occluder.
     double occlusion(SlicePoint h, SlicePoint u) const {
         const double length_sq = h.x * h.x + h.y * h.y;

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "falloff.h"
+
 namespace obscura {
 namespace {
 // Location of `u_batch` in reference.comp (layout(location = 0)).
@@ -24,7 +26,7 @@ ReferenceConstants ReferencePass::constants(const obscura_reference_settings& se
     c.falloff[1] = settings.falloff_c;
     c.falloff[2] = radius;
     switch (settings.falloff) {
-        case OBSCURA_FALLOFF_RHO0: c.falloff[3] = std::sqrt(r / settings.falloff_c); break;  // rho0 = 0 from there on
+        case OBSCURA_FALLOFF_RHO0: c.falloff[3] = rho0_reach(r, settings.falloff_c); break;
         case OBSCURA_FALLOFF_TABLE: c.falloff[3] = radius; break;
         default: c.falloff[3] = kUnboundedRay; break;
     }

@@ -2,10 +2,9 @@
 
 #include <cmath>
 
+#include "math_constants.h"
+
 namespace obscura {
-namespace {
-constexpr double kTwoPi = 6.283185307179586;
-}  // namespace
 
 int default_spiral_turns(int samples) {
     if (samples <= 2) return 1;
@@ -39,8 +38,8 @@ SpiralTap spiral_tap(int i, int samples, int turns) {
 float spiral_rotation(int x, int y) {
     const uint32_t ux = uint32_t(x), uy = uint32_t(y);
     const double n = double((30u * ux) ^ uy) + double(10u * ux * uy);
-    const double turns = n * (1.0 / 6.283185307179586);
-    return float((turns - std::floor(turns)) * 6.283185307179586);
+    const double turns = n * (1.0 / kTwoPi);
+    return float((turns - std::floor(turns)) * kTwoPi);
 }
 
 Error SaoPass::prepare(const PassEnv& env) {

@@ -1,0 +1,58 @@
+// Texture probes: GL 4.3 cannot be asked a texture's target, only told it by binding the name to a target
+// and seeing whether GL accepts it. Shared by the input's and the output's validation (frame_input.cpp,
+// output_writer.cpp).
+#ifndef OBSCURA_GL_TEXTURE_PROBE_H
+#define OBSCURA_GL_TEXTURE_PROBE_H
+
+#include "gl/gl_objects.h"
+
+namespace obscura::gl {
+
+// Binds `texture` to `target` on the current unit and reports whether GL accepted it: the only way in
+// GL 4.3 to learn a texture's target (binding a name to the wrong target raises INVALID_OPERATION).
+inline bool texture_has_target(const Table& gl, GLuint texture, GLenum target) {
+    gl.BindTexture(target, texture);
+    bool ok = gl.GetError() == GL_NO_ERROR;
+    if (!ok) gl.BindTexture(target, 0);
+    return ok;
+}
+
+inline GLenum binding_query(GLenum target) {
+    switch (target) {
+        case GL_TEXTURE_2D: return GL_TEXTURE_BINDING_2D;
+        case GL_TEXTURE_2D_ARRAY: return GL_TEXTURE_BINDING_2D_ARRAY;
+        case GL_TEXTURE_3D: return GL_TEXTURE_BINDING_3D;
+        case GL_TEXTURE_CUBE_MAP: return GL_TEXTURE_BINDING_CUBE_MAP;
+        case GL_TEXTURE_CUBE_MAP_ARRAY: return GL_TEXTURE_BINDING_CUBE_MAP_ARRAY;
+        case GL_TEXTURE_RECTANGLE: return GL_TEXTURE_BINDING_RECTANGLE;
+        case GL_TEXTURE_1D: return GL_TEXTURE_BINDING_1D;
+        case GL_TEXTURE_1D_ARRAY: return GL_TEXTURE_BINDING_1D_ARRAY;
+        case GL_TEXTURE_2D_MULTISAMPLE: return GL_TEXTURE_BINDING_2D_MULTISAMPLE;
+        default: return GL_TEXTURE_BINDING_2D_MULTISAMPLE_ARRAY;
+    }
+}
+
+// Binds `texture` to `target` on the active unit for the probe's lifetime and then puts back the host's
+// binding: the state guard restores only the targets the passes use, and a probe may touch any.
+class ScopedTextureProbe {
+public:
+    ScopedTextureProbe(const Table& gl, GLuint texture, GLenum target) : gl_(gl), target_(target) {
+        gl.GetIntegerv(binding_query(target), &previous_);
+        gl.BindTexture(target, texture);
+        bound_ = gl.GetError() == GL_NO_ERROR;
+    }
+    ~ScopedTextureProbe() { gl_.BindTexture(target_, GLuint(previous_)); }
+    ScopedTextureProbe(const ScopedTextureProbe&) = delete;
+    ScopedTextureProbe& operator=(const ScopedTextureProbe&) = delete;
+    bool bound() const { return bound_; }
+
+private:
+    const Table& gl_;
+    GLenum target_;
+    GLint previous_ = 0;
+    bool bound_ = false;
+};
+
+}  // namespace obscura::gl
+
+#endif  // OBSCURA_GL_TEXTURE_PROBE_H

@@ -1,0 +1,597 @@
+/* tests/abi/obscura_0_3.h - FROZEN COPY of the released 0.3 public header, for the ABI test
+ * (tests/abi/abi_0_3_host.c, ctest Abi.Host03RendersWithTodaysLibrary).
+ *
+ * Taken verbatim from `git show 8324698:sdk/include/obscura/obscura.h` (OBSCURA_VERSION 300); only the include
+ * guard is renamed (OBSCURA_OBSCURA_H -> OBSCURA_ABI_OBSCURA_0_3_H) so it can never be mistaken for, or collide
+ * with, the current header. It stands for a host binary compiled against 0.3: its structs, sizes and layouts
+ * are what such a binary passes to today's library. NEVER EDIT IT, not even to follow a change of the SDK:
+ * a change to the SDK that breaks this copy breaks released hosts. A later release gets its own frozen copy.
+ */
+/*
+ * obscura.h - Obscura: real-time ambient obscurance for OpenGL 4.3 renderers.
+ *
+ * This header is the whole public API. It is C99 and C++ compatible, includes no GL header
+ * (GL object names are uint32_t) and no C++ types.
+ *
+ * OVERVIEW
+ *   A host renderer creates one obscura_context per GL context with its own GL function loader,
+ *   fills an obscura_settings struct, and each frame calls obscura_render() with its depth buffer
+ *   (and optionally view-space normals). Obscura writes ambient *visibility* (1 = unoccluded,
+ *   0 = fully occluded) into a texture or framebuffer the host names. Every pass is a GLSL compute
+ *   shader embedded in the library; the SDK loads GL through the host's get_proc_address into a
+ *   private function table and defines no global gl* or glad* symbols.
+ *
+ * METHODS (papers in docs/algorithms.md)
+ *   OBSCURA_METHOD_HBAO       Horizon-based AO: K directions x N steps ray marching with the
+ *                             falloff rho0 of Timonen, "Line-Sweep Ambient Obscurance" (EGSR 2013), sec. 6.
+ *   OBSCURA_METHOD_SAO        McGuire et al., "Scalable Ambient Obscurance" (HPG 2012): z-MIP hierarchy,
+ *                             spiral taps and the AlchemyAO estimator, 2x2 + separable bilateral reconstruction.
+ *   OBSCURA_METHOD_LSAO       Timonen, "Line-Sweep Ambient Obscurance" (EGSR 2013): obscure-hull line sweeps in K
+ *                             directions, sparse lines gathered per pixel; cost independent of the radius.
+ *   OBSCURA_METHOD_FFAO       Timonen, "Screen-Space Far-Field Ambient Obscurance" (HPG 2013): scans in K/2 line
+ *                             orientations keep depth peaks per interval in a 1D pyramid, prefix sums average them
+ *                             over each sector, and a precomputed table integrates the falloff over slabs; a
+ *                             near-field search covers the first 1-2 intervals. The whole depth buffer, any radius.
+ *   OBSCURA_METHOD_REFERENCE  The screen-space reference: eq. 1 of the FFAO paper evaluated by cosine-weighted
+ *                             rays stepped through the whole depth buffer (its sec. 8), the depth field infinitely
+ *                             thick unless `thickness` is set. The ceiling of what a screen-space method can compute
+ *                             from a depth buffer (the limit the other methods converge to), not what a viewer
+ *                             sees, which the samples' geometry truth (rays against the scene's triangles) measures.
+ *   All five are available in this version; obscura_method_available() and OBSCURA_STATUS_METHOD_NOT_AVAILABLE
+ *   remain for methods a build or a later version does not have.
+ *
+ * INTEGRATION
+ *   1. obscura_context_desc desc = {0};
+ *      desc.struct_size = sizeof desc; desc.header_version = OBSCURA_VERSION;
+ *      desc.get_proc_address = eglGetProcAddress;             // or glfwGetProcAddress, SDL_GL_GetProcAddress
+ *   2. obscura_context* ctx; if (obscura_create_context(&desc, &ctx) != OBSCURA_OK) ... ;
+ *   3. obscura_settings settings; obscura_default_settings(OBSCURA_METHOD_HBAO, &settings);
+ *      settings.hbao.radius = 1.5f;                           // metres
+ *   4. each frame: obscura_input in = {0}; in.struct_size = sizeof in;
+ *      in.depth_texture = depth_tex; in.projection = proj (column-major, as given to GL);
+ *      in.depth_width/height = depth size; in.output_rect = the visible part (guard band around it);
+ *      obscura_output out = {0}; out.struct_size = sizeof out; out.texture = ao_tex;
+ *      obscura_render(ctx, &in, &settings, &out);
+ *   5. obscura_destroy_context(ctx) with the GL context current.
+ *
+ * INPUT CONTRACT
+ *   - Depth: a GL_TEXTURE_2D or GL_TEXTURE_2D_MULTISAMPLE (sample 0 is used) holding either
+ *     hardware depth (GL_DEPTH_COMPONENT16/24/32/32F, DEPTH24_STENCIL8, DEPTH32F_STENCIL8) written
+ *     with `projection`, or linear view depth (R16F/R32F: positive distance from the eye plane,
+ *     in view units). Hardware depth may come from any projection GL can express: perspective or
+ *     orthographic, standard or reversed-Z, finite or infinite far plane, [-1,1] or [0,1] clip depth
+ *     (glClipControl). The projection is decoded from the matrix itself; its near/far layout is
+ *     validated ("looks transposed" is reported as such).
+ *   - Pixels at the far-plane clear value (1, or 0 with reversed-Z), NaN or inf, and linear depths that are
+ *     zero, negative or denormal, are "sky": they receive visibility 1, occlude nothing and do not enter
+ *     their neighbours' normals or filters. Every input depth gives finite AO in [0, 1].
+ *   - Guard band: the depth texture covers more than the visible image. Occluders are read from the
+ *     whole depth texture; AO is written only for `output_rect`. The papers use 10-20 % per side.
+ *   - Units: view units are the units of the host's view space; settings distances are metres and
+ *     are multiplied by `meters_to_view_units` (default 1).
+ *   - Normals (optional): view-space normals in a GL_TEXTURE_2D (RGB, signed float formats as is,
+ *     unsigned normalised formats decoded as n*2-1) the size of the depth texture. Without them the
+ *     SDK reconstructs face normals from depth.
+ *
+ * GL STATE CONTRACT
+ *   obscura_render() leaves every GL binding it touches as it found it (program, texture and
+ *   sampler bindings on the units it uses, image units, SSBO/UBO bindings, read/draw framebuffers,
+ *   active texture, pixel-store state) and leaves no GL error. It never calls glFinish or reads data
+ *   back, except when OBSCURA_CONTEXT_FLAG_SYNC_TIMING is set. One context per GL context, used
+ *   from the thread where that GL context is current.
+ *
+ * PERFORMANCE (docs/performance.md; NVIDIA H100, GL timer queries, 10 % guard band, median of 200 frames)
+ *   method / settings            1280x720          1920x1080         3840x2160     GPU memory, 1080p
+ *   HBAO K=8  N=12, blur         0.35 ms           0.82 ms           3.83 ms       39.9 MiB
+ *   HBAO K=16 N=48, blur         1.86 ms           4.01 ms          15.74 ms       39.9 MiB
+ */
+#ifndef OBSCURA_ABI_OBSCURA_0_3_H
+#define OBSCURA_ABI_OBSCURA_0_3_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- Export ---------------------------------------------------------------------------------- */
+#if defined(OBSCURA_SHARED_LIBRARY)
+#  if defined(_WIN32)
+#    if defined(OBSCURA_BUILDING_LIBRARY)
+#      define OBSCURA_API __declspec(dllexport)
+#    else
+#      define OBSCURA_API __declspec(dllimport)
+#    endif
+#  else
+#    define OBSCURA_API __attribute__((visibility("default")))
+#  endif
+#else
+#  define OBSCURA_API
+#endif
+
+/* ---- Version --------------------------------------------------------------------------------- */
+#define OBSCURA_VERSION_MAJOR 0
+#define OBSCURA_VERSION_MINOR 3
+#define OBSCURA_VERSION_PATCH 0
+/* Packed version: major * 10000 + minor * 100 + patch. */
+#define OBSCURA_VERSION (OBSCURA_VERSION_MAJOR * 10000 + OBSCURA_VERSION_MINOR * 100 + OBSCURA_VERSION_PATCH)
+
+/* Returns the packed version of the library that is linked (compare with OBSCURA_VERSION). */
+OBSCURA_API uint32_t obscura_version(void);
+
+/* ---- Status codes ---------------------------------------------------------------------------- */
+/* One table generates the enum and obscura_status_string(): X(name, value, description). */
+#define OBSCURA_STATUS_LIST(X)                                                                        \
+    X(OK, 0, "success")                                                                               \
+    X(NULL_ARGUMENT, 1, "a required pointer argument is NULL")                                        \
+    X(INVALID_STRUCT_SIZE, 2, "struct_size does not match any version of the struct")                 \
+    X(VERSION_MISMATCH, 3, "header_version is not compatible with the linked library")                \
+    X(NO_GL_CONTEXT, 4, "no OpenGL context is current, or get_proc_address returned nothing")         \
+    X(GL_VERSION_UNSUPPORTED, 5, "the current OpenGL context is older than 4.3 core")                 \
+    X(MISSING_GL_FUNCTION, 6, "get_proc_address did not return a required OpenGL function")           \
+    X(WRONG_GL_CONTEXT, 7, "the current GL context is not the one the obscura context was created on") \
+    X(INVALID_SIZE, 8, "a size is zero, negative or larger than the GL implementation allows")        \
+    X(INVALID_RECT, 9, "the output rectangle is empty or not inside the depth texture")               \
+    X(INVALID_TEXTURE, 10, "a GL name is not a texture of the expected target, or its size differs")  \
+    X(UNSUPPORTED_FORMAT, 11, "a texture has an internal format the SDK cannot read or write")        \
+    X(INVALID_PROJECTION, 12, "the projection matrix is not a GL perspective or orthographic matrix") \
+    X(PROJECTION_TRANSPOSED, 13, "the projection matrix looks transposed (row-major given as column-major)") \
+    X(INVALID_SETTING, 14, "a setting is NaN, infinite or outside its documented range")              \
+    X(INVALID_ENUM, 15, "an enum field holds a value the SDK does not know")                          \
+    X(METHOD_NOT_AVAILABLE, 16, "the requested method is not implemented in this version")            \
+    X(INVALID_FRAMEBUFFER, 17, "the output framebuffer is incomplete or has no colour attachment 0")   \
+    X(SHADER_COMPILE_FAILED, 18, "an embedded shader failed to compile or link (log in message)")     \
+    X(OUT_OF_MEMORY, 19, "the allocator or the GL implementation ran out of memory")                  \
+    X(HOST_GL_ERROR, 20, "the host left a GL error pending before the call; nothing was rendered")    \
+    X(GL_ERROR, 21, "a GL error was raised inside the SDK; the message names the pass")               \
+    X(UNKNOWN_SETTING, 22, "no setting of that name exists for the method")                           \
+    X(INTERNAL_ERROR, 23, "an unexpected internal failure; please report it")                         \
+    X(CONTEXT_LOST, 24, "the GL context was lost (GPU reset); destroy the obscura context, recreate both")
+
+#define OBSCURA_STATUS_ENUM_ENTRY_(name, value, desc) OBSCURA_STATUS_##name = value,
+typedef enum obscura_status {
+    OBSCURA_STATUS_LIST(OBSCURA_STATUS_ENUM_ENTRY_)
+    OBSCURA_STATUS_COUNT_
+} obscura_status;
+#undef OBSCURA_STATUS_ENUM_ENTRY_
+#define OBSCURA_OK OBSCURA_STATUS_OK
+
+/* Returns "OBSCURA_STATUS_<NAME>: <description>" for a status, or a fixed string for unknown codes. */
+OBSCURA_API const char* obscura_status_string(obscura_status status);
+
+/* ---- Host callbacks -------------------------------------------------------------------------- */
+/* A GL function pointer as loaders return it; eglGetProcAddress, glfwGetProcAddress, SDL3's
+   SDL_GL_GetProcAddress and glad's GLADloadfunc all have the shape of obscura_get_proc_address_fn. */
+typedef void (*obscura_gl_function)(void);
+typedef obscura_gl_function (*obscura_get_proc_address_fn)(const char* name);
+/* The same with the host's pointer passed back, for loaders that need state (several GL contexts). */
+typedef obscura_gl_function (*obscura_get_proc_address_with_user_data_fn)(void* user_data, const char* name);
+
+typedef enum obscura_log_level {
+    OBSCURA_LOG_ERROR = 0,
+    OBSCURA_LOG_WARNING = 1,
+    OBSCURA_LOG_INFO = 2
+} obscura_log_level;
+
+/* Receives every error (with the status it returns) and warnings such as shader logs. */
+typedef void (*obscura_log_fn)(obscura_log_level level, obscura_status status, const char* message,
+                               void* user_data);
+
+/* Optional allocator for all CPU memory the SDK owns. Both functions or neither. */
+typedef struct obscura_allocator {
+    void* (*alloc)(size_t size, void* user_data);
+    void (*free)(void* ptr, void* user_data);
+    void* user_data;
+} obscura_allocator;
+
+/* ---- Context --------------------------------------------------------------------------------- */
+typedef struct obscura_context obscura_context;
+
+enum {
+    /* Time every pass by glFinish + CPU clock instead of GL timer queries (for benchmarks on
+       drivers whose timer queries read 0, such as llvmpipe). Stalls: never use in production. */
+    OBSCURA_CONTEXT_FLAG_SYNC_TIMING = 1u << 0,
+    /* Check glGetError after every pass and report the pass that raised one (debugging aid). */
+    OBSCURA_CONTEXT_FLAG_VALIDATE_PASSES = 1u << 1
+};
+
+typedef struct obscura_context_desc {
+    uint32_t struct_size;                       /* sizeof(obscura_context_desc); required */
+    uint32_t header_version;                    /* OBSCURA_VERSION; required */
+    obscura_get_proc_address_fn get_proc_address; /* the host's GL loader: this ... */
+    obscura_get_proc_address_with_user_data_fn get_proc_address_with_user_data; /* ... or this, not both */
+    void* get_proc_address_user_data;           /* passed to get_proc_address_with_user_data */
+    obscura_allocator allocator;                /* zero: malloc/free */
+    obscura_log_fn log;                         /* zero: no logging */
+    void* log_user_data;
+    uint32_t flags;                             /* OBSCURA_CONTEXT_FLAG_* */
+} obscura_context_desc;
+
+/* Creates a context for the GL context current on this thread and compiles the shaders.
+   Returns OK, NULL_ARGUMENT, INVALID_STRUCT_SIZE, VERSION_MISMATCH, NO_GL_CONTEXT,
+   GL_VERSION_UNSUPPORTED, MISSING_GL_FUNCTION, HOST_GL_ERROR, SHADER_COMPILE_FAILED, OUT_OF_MEMORY,
+   GL_ERROR, CONTEXT_LOST, INTERNAL_ERROR. On failure the message goes to desc->log (there is no context to ask). */
+OBSCURA_API obscura_status obscura_create_context(const obscura_context_desc* desc, obscura_context** out_context);
+
+/* Destroys the context and every GL object it owns. The same GL context must be current: with another one
+   current the GL objects are leaked (a warning is logged) rather than deleted there. NULL is a no-op. */
+OBSCURA_API void obscura_destroy_context(obscura_context* context);
+
+/* Returns the message of the last error on this context ("" if none). Valid until the next call. */
+OBSCURA_API const char* obscura_get_last_error(const obscura_context* context);
+
+/* ---- Methods and settings -------------------------------------------------------------------- */
+typedef enum obscura_method {
+    OBSCURA_METHOD_DEFAULT = 0, /* HBAO */
+    OBSCURA_METHOD_HBAO = 1,
+    OBSCURA_METHOD_SAO = 2,
+    OBSCURA_METHOD_LSAO = 3,
+    OBSCURA_METHOD_FFAO = 4,
+    OBSCURA_METHOD_REFERENCE = 5,
+    OBSCURA_METHOD_COUNT_
+} obscura_method;
+
+/* Returns "hbao", "sao", "lsao", "ffao", "reference", or NULL for an unknown method. */
+OBSCURA_API const char* obscura_method_name(obscura_method method);
+
+/* Returns 1 if the method is implemented in this library version, 0 otherwise. */
+OBSCURA_API int obscura_method_available(obscura_method method);
+
+typedef enum obscura_toggle {
+    OBSCURA_TOGGLE_DEFAULT = 0,
+    OBSCURA_TOGGLE_ON = 1,
+    OBSCURA_TOGGLE_OFF = 2
+} obscura_toggle;
+
+/* HBAO: LSAO paper sec. 3 and 6. Every field: 0 selects the default given after it. */
+typedef struct obscura_hbao_settings {
+    float radius;         /* metres, [1e-3, 1e4]: distance where the falloff rho0 reaches 0; steps cover it. Default 1 */
+    float falloff_c;      /* C of rho0(d) = max(0, r(1+C)/(r+d^2) - C), [1e-3, 0.999]. Default 0.3 */
+    float decay_rate;     /* r of rho0 in m^2, [1e-10, 1e8]. Default C*radius^2, so rho0 reaches 0 at radius */
+    int32_t directions;   /* K azimuthal directions, [1, 32]. Default 8 */
+    int32_t steps;        /* N steps per direction, [1, 128]. Default 12 */
+    int32_t estimator;    /* 1: horizon-split integration (Bavoil 2008); 2: largest falloff-weighted occluder
+                             only (LSAO paper eq. 1, what LSAO computes). Default 1 */
+    float bias;           /* subtracted from sin(h) - sin(t), [0, 0.5]. Default 0 (zero is the default) */
+    float intensity;      /* obscurance multiplier, [1e-3, 16]. Default 1 */
+    float power;          /* visibility exponent, [1e-3, 16]. Default 1 */
+    float max_radius_pixels; /* screen-space cap of the marched radius, [1, 4096]. Default 256 */
+    obscura_toggle blur;  /* depth-aware bilateral blur. Default on */
+    int32_t blur_radius;  /* taps each side, [1, 16]. Default 4 */
+    float blur_sharpness; /* depth edge sharpness, [1e-3, 1000]. Default 16 */
+} obscura_hbao_settings;
+
+/* SAO: McGuire, Mara, Luebke, "Scalable Ambient Obscurance" (HPG 2012). s taps on a spiral (eq. 6-8) read
+   camera-space z from a MIP hierarchy (level from the tap's screen radius, eq. 9-10), feed the AlchemyAO
+   estimator A = max(0, 1 - (2 sigma r / s) sum max(0, v.n + z_C beta) / (v.v + epsilon r^2))^k over the taps
+   inside the ball of radius r (SAO eq. 1; sigma and epsilon are relative to r so the result does not change
+   with the scene's scale), then a 2x2 bilateral step and a separable 7-tap bilateral blur. Every field: 0
+   selects the default given after it. */
+typedef struct obscura_sao_settings {
+    float radius;         /* metres, [1e-3, 1e4]: world-space radius r of the sample ball (eq. 5). Default 1 */
+    int32_t samples;      /* s taps per pixel, [1, 64]. Default 9 */
+    int32_t turns;        /* tau turns of the spiral, [1, 1024]. Default: the integer nearest 7s/9 that shares no
+                             factor with s, so the s angles are all different (the paper's 7 for s = 9) */
+    obscura_toggle mip;   /* z-MIP hierarchy; off: every tap reads level 0 (the paper's quality baseline). Default on */
+    int32_t mip_filter;   /* z^(m+1) from z^m (Table 1): 1 rotated-grid subsample, 2 arithmetic mean, 3 harmonic
+                             mean, 4 min, 5 max, [1, 5]. Default 1 */
+    int32_t log_q;        /* log2 of q', the screen radius (px) at which taps move one level down (eq. 9), [1, 8].
+                             Default 3 */
+    float intensity;      /* sigma, [1e-3, 16]. Default 1 */
+    float bias;           /* beta: v.n must exceed beta times the receiver's distance, [1e-6, 0.1]. Default 1e-3 */
+    float contrast;       /* k, [1e-3, 16]. Default 1 */
+    float epsilon;        /* epsilon / r^2, [1e-6, 1]. Default 0.01 */
+    float max_radius_pixels; /* cap of the screen radius r' (eq. 5), [1, 4096]. Default 256 */
+    obscura_toggle quad_filter; /* the 2x2 bilateral step at the end of the AO pass. Default on */
+    obscura_toggle blur;  /* the separable bilateral blur. Default on */
+    int32_t blur_radius;  /* taps each side, [1, 8]. Default 3 (the paper's 7 taps) */
+    int32_t blur_stride;  /* pixels between taps, [1, 4]. Default 3 (the paper's, after the 2x2 step) */
+    float blur_sharpness; /* edge weight max(0, 1 - sharpness |z - z_tap| / blur_depth_range), [1, 1e6].
+                             Default 2048 (the paper's 2^11) */
+    float blur_depth_range; /* metres over which z is packed in 16 bits beside the AO (the paper's z_min),
+                             [1e-2, 1e5]. Default 200 */
+} obscura_sao_settings;
+
+/* LSAO: Timonen, "Line-Sweep Ambient Obscurance" (EGSR 2013). Lines D_L texels apart cross the whole depth
+   texture in K directions; each is walked in steps of D_S texels, keeping the obscure hull (Algorithm 1) of
+   the points behind, so each step finds its largest falloff-weighted occluder in amortised O(1): the cost
+   does not depend on the radius. A gather pass takes, per pixel and direction, the nearest line sample that
+   is on the same surface and averages them weighted by azimuthal coverage (eq. 1). Every field: 0 selects the
+   default given after it; `preset` fills K, D_S and D_L where those are 0. */
+typedef struct obscura_lsao_settings {
+    float radius;         /* metres, [1e-3, 1e4]: falloff scale, the decay rate defaults to C*radius^2. Default 1 */
+    int32_t falloff;      /* 1: rho0 (HBAO's, LSAO eq. 3), 2: r/(r+d^2) (LSAO eq. 2), [1, 2]. Default 2 */
+    float falloff_c;      /* C, [1e-3, 0.999]: rho0's sink, and the decay-rate default. Default 0.3 */
+    float decay_rate;     /* r in m^2, [1e-10, 1e8]. Default C*radius^2 */
+    int32_t preset;       /* K, D_S, D_L of the paper: 1: 8, 1.41, 1.41; 2: 16, 2.43, 1.64; 3: 24, 3.56, 1.69;
+                             4: 32, 4.69, 1.70 (Table 2); 5: 8, 2.83, 2.12 (Figure 1); 6: 16, 4.87, 2.46
+                             (Figure 13), [1, 6]. Default 2 */
+    int32_t pattern;      /* 1: aligned 8n directions on texel centres (sec. 5.2); 2: free: any K, interpolated
+                             depth, snapped at depth edges, [1, 2]. Default 1 */
+    int32_t directions;   /* K, [1, 64]; aligned: a multiple of 8. Default: the preset's */
+    float step_length;    /* D_S in texels, [0.5, 16]; free pattern only (aligned ones derive it). Default: preset's */
+    float line_spacing;   /* D_L in texels, [0.5, 16]. Default: the preset's */
+    float tangent;        /* the fixed sin(t), [-1, 0.5]. Default -0.85 */
+    int32_t tangent_strategy; /* sec. 4.1: 1 the receiver's tangent for hull and occlusion, 2 fixed for the hull
+                             and the receiver's for occlusion, 3 fixed for both, [1, 3]. Default 3 */
+    int32_t hull_capacity; /* points kept per line (the oldest is dropped when full), [2, 64]. Default 24: on the
+                             H100 the sweep takes 0.37 ms at 24 and 0.43 at 32 (shared memory per group), and
+                             the AO moves by at most 0.0007 mean on the built-in scenes (docs/performance.md) */
+    obscura_toggle exact; /* brute-force largest occluder over all earlier samples instead of the hull (O(M^2)
+                             per line, for validation). Default off */
+    int32_t segment_steps; /* lines are swept in segments of this many steps (rounded up to a multiple of 8), one
+                             GPU thread each, every segment after a warm-up run; -1: whole lines, one thread each,
+                             [-1, 4096]. Default (0): whole lines on CPU renderers (llvmpipe, softpipe), which
+                             have no idle lanes to fill, and 128 on GPUs */
+    float warmup_tolerance; /* segments: the most obscurance an occluder before a segment's warm-up may cast; the
+                             falloff turns it into the warm-up's length (exact for rho0 beyond its reach). The
+                             hull's top is nearly always a near point: at 0.1 the AO moved by < 1e-5 on every
+                             built-in scene (docs/performance.md), [1e-4, 1]. Default 0.1 */
+    int32_t warmup_stride; /* segments: the warm-up samples every n-th step except its last 16 steps, which are
+                             dense: far occluders need less detail. At 4 the H100's sweep takes 0.38 instead of
+                             0.68 ms at 1080p and the AO moves by 0.0003 (atrium) to 0.0016 (clutter) mean
+                             against whole lines (docs/performance.md), [1, 64]. Default 4 */
+    float depth_threshold; /* gather: values whose depth differs by more than this fraction are rejected,
+                             [1e-4, 10]. Default 0.05 */
+    obscura_toggle normal_test; /* gather: also reject values whose normal differs. Default off */
+    float normal_threshold; /* gather: minimum dot of the two normals, [-1, 1]. Default 0.8 */
+    float intensity;      /* obscurance multiplier, [1e-3, 16]. Default 1 */
+    float power;          /* visibility exponent, [1e-3, 16]. Default 1 */
+} obscura_lsao_settings;
+
+/* Falloff rho(d) of the obscurance integral (FFAO paper eq. 1), d in metres, r = decay_rate in m^2. */
+typedef enum obscura_falloff {
+    OBSCURA_FALLOFF_DEFAULT = 0,           /* RHO0 */
+    OBSCURA_FALLOFF_RHO0 = 1,              /* max(0, r(1+C)/(r+d^2) - C): HBAO's (LSAO paper eq. 3); 0 from d = sqrt(r/C) */
+    OBSCURA_FALLOFF_INVERSE_QUADRATIC = 2, /* r/(r+d^2) (LSAO paper eq. 2); never reaches 0 */
+    OBSCURA_FALLOFF_EXPONENTIAL = 3,       /* exp(-d/sqrt(r)) ("light-emitting fog"); never reaches 0 */
+    OBSCURA_FALLOFF_TABLE = 4              /* falloff_table[i] = rho(i/(N-1) * radius), linear in between, 0 beyond */
+} obscura_falloff;
+
+#define OBSCURA_FALLOFF_TABLE_SIZE 16
+
+/* REFERENCE: for every receiver pixel, `rays` cosine-weighted rays over the hemisphere of its normal are
+   stepped texel by texel through the whole depth buffer (guard band included) until they pass behind the
+   depth field; visibility = 1 - mean(rho(hit distance)), misses count 0. Slow by design: the screen-space
+   reference other methods are measured against and converge to. It sees only the depth buffer, so it is not
+   the geometry truth (rays against the scene's triangles, in the samples): with thickness 0 every ray that
+   passes behind a silhouette counts as blocked, which darkens the sides of convex objects, the insides of
+   arches and the floor behind thin objects. The rays are cast in dispatches of rays_per_dispatch (progressive
+   accumulation: no single dispatch runs long); hosts may accumulate further across frames by averaging
+   renders with first_ray = 0, rays, 2 * rays, ... (each frame then traces new rays of one sequence).
+   obscura_reference_settings_for() makes these settings match another method's falloff. */
+typedef struct obscura_reference_settings {
+    float radius;         /* metres, [1e-3, 1e4]: where RHO0 (with the default decay rate) and TABLE reach 0. Default 1 */
+    int32_t falloff;      /* obscura_falloff, [1, 4]. Default 1 (RHO0) */
+    float falloff_c;      /* C of RHO0, [1e-3, 0.999]. Default 0.3 */
+    float decay_rate;     /* r in m^2, [1e-10, 1e8]. Default C*radius^2 (RHO0 then reaches 0 at the radius) */
+    float thickness;      /* metres of solid assumed behind every depth texel, [0, 1e4]: a ray that passes more
+                             than that behind the depth field goes on. Default 0: infinitely thick (every ray behind
+                             a silhouette is blocked). The way to bring REFERENCE near the geometry: 0.3 brought
+                             the atrium (320x180) from 0.085 to 0.026 mean abs error against the geometry truth */
+    int32_t rays;         /* rays per pixel, [1, 65536]. Default 256 */
+    int32_t rays_per_dispatch; /* [1, 1024]. Default 16 */
+    int32_t first_ray;    /* index of the first ray in the per-pixel sequence, [0, 16777216]. Default 0 */
+    float falloff_table[OBSCURA_FALLOFF_TABLE_SIZE]; /* TABLE only: values in [0, 1], not all 0 */
+} obscura_reference_settings;
+
+/* FFAO: Timonen, "Screen-Space Far-Field Ambient Obscurance" (HPG 2013). Parallel lines one texel apart in K/2
+   orientations are scanned once; every B0 steps each keeps the peaks (m0, m1) of the depth field as seen along
+   two receiver angles, in a 1D pyramid of intervals B0 * 2^n (sec. 6). Prefix sums across lines (sec. 7) let
+   every pixel average the peaks over each sector segment at every distance; the virtual points they give are
+   slabs whose falloff-weighted, cosine-weighted visibility comes from a table L(a, b, c, d) integrated once
+   per falloff shape (sec. 4, eq. 3). A direct search covers the pixel's first B0 to 2 B0 texels (sec. 9).
+   Converges to the screen-space reference (REFERENCE) with the same falloff and thickness, not to the geometry:
+   with thickness 0 it assumes the same infinitely thick depth field. Every field: 0 selects the default given
+   after it. */
+typedef struct obscura_ffao_settings {
+    float radius;         /* metres, [1e-3, 1e4]: where RHO0 (default decay rate) and TABLE reach 0. Default 1 */
+    int32_t falloff;      /* obscura_falloff, [1, 4]. Default 3 (EXPONENTIAL, the paper's) */
+    float falloff_c;      /* C of RHO0 and of the decay-rate default, [1e-3, 0.999]. Default 0.3 */
+    float decay_rate;     /* r in m^2, [1e-10, 1e8]. Default C*radius^2 */
+    int32_t sectors;      /* K azimuthal sectors, an even number (a line orientation serves two), [4, 64]. Default 16 */
+    int32_t segments;     /* evaluated parts of each sector, averaged separately (the paper's "x2"), [1, 4]. Default 2 */
+    int32_t base_interval; /* B0: scan steps per level-0 interval; the near field covers B0 to 2 B0 texels,
+                             [2, 64]. Default 10 */
+    int32_t geometry;     /* the far field's scene points: 1 the scanned peaks (sec. 6-7); 2 the paper's baseline
+                             (sec. 5), a depth MIP pyramid (mean, or max height with a thickness) sampled along
+                             each sector's centre at distances growing by 1.5, [1, 2]. Default 1 */
+    float thickness;      /* metres of solid behind every depth texel (sec. 11), [0, 1e4]; > 0 also reads single
+                             lines instead of sector averages (a finite field cannot be averaged). Default 0:
+                             infinitely thick */
+    obscura_toggle jitter; /* offset every sector's lines per pixel (sec. 11.1): banding becomes noise. Default off */
+    obscura_toggle saao;  /* SAAO interleaving (sec. 10): in every 3x3 pixel group each pixel evaluates the far field
+                             of K/9 of the sectors (x2 segments) at its group's edge-aware averaged depth and normal;
+                             a gather adds the accepted neighbours' far fields to each pixel's full near field.
+                             Needs K a multiple of 18; sectors left 0 become 18 (the paper's 18x2). Default off */
+    obscura_toggle saao_blur; /* SAAO: the paper's 5x5 box blur over values within 7 % of the pixel's. Default on */
+    float intensity;      /* obscurance multiplier, [1e-3, 16]. Default 1 */
+    float power;          /* visibility exponent, [1e-3, 16]. Default 1 */
+    float falloff_table[OBSCURA_FALLOFF_TABLE_SIZE]; /* TABLE only: rho at i/(N-1) * radius, values in [0, 1] */
+} obscura_ffao_settings;
+
+typedef struct obscura_settings {
+    uint32_t struct_size;   /* sizeof(obscura_settings); required */
+    obscura_method method;  /* which method renders. Default HBAO */
+    obscura_hbao_settings hbao;
+    obscura_reference_settings reference;
+    obscura_sao_settings sao;
+    obscura_lsao_settings lsao;
+    obscura_ffao_settings ffao;
+} obscura_settings;
+
+/* Fills `out` with the defaults of `method` (struct_size set, every field explicit).
+   Returns OK, NULL_ARGUMENT, INVALID_ENUM. */
+OBSCURA_API obscura_status obscura_default_settings(obscura_method method, obscura_settings* out);
+
+/* Replaces zero fields of `in` with their defaults, validates every field, and writes the values that
+   will be used to `out` (may alias `in`); for UIs and logs. `context` may be NULL (then the error
+   detail goes nowhere). Returns OK, NULL_ARGUMENT, INVALID_STRUCT_SIZE, INVALID_ENUM, INVALID_SETTING. */
+OBSCURA_API obscura_status obscura_resolve_settings(obscura_context* context, const obscura_settings* in,
+                                                    obscura_settings* out);
+
+/* Writes to `out` the REFERENCE settings that evaluate the same falloff (kind, radius, C, decay rate) as
+   `method_settings` (resolved first; a REFERENCE input is copied), and FFAO's thickness, with the default ray
+   counts, so an error measured against that screen-space reference compares like with like. Returns OK,
+   NULL_ARGUMENT, INVALID_STRUCT_SIZE, INVALID_ENUM, INVALID_SETTING. */
+OBSCURA_API obscura_status obscura_reference_settings_for(const obscura_settings* method_settings,
+                                                          obscura_settings* out);
+
+/* Writes rho(distances[i]) to rho[i] for `count` distances in metres: the falloff that `method_settings` weigh
+   an occluder with, as the SDK's own integrals define it (the REFERENCE settings' falloff; any other method's
+   as obscura_reference_settings_for() maps it). For tools that integrate the same obscurance by other means,
+   such as the samples' geometry truth (rays against the scene's triangles). The settings are resolved once
+   per call, so pass many distances at a time. A negative distance counts as 0, +infinity and NaN as a miss
+   (rho 0). `distances` and `rho` may alias; with count 0 both may be NULL; on failure nothing is written.
+   Returns OK, NULL_ARGUMENT, INVALID_STRUCT_SIZE, INVALID_ENUM, INVALID_SETTING. */
+OBSCURA_API obscura_status obscura_evaluate_falloff(const obscura_settings* method_settings, const float* distances,
+                                                    float* rho, uint32_t count);
+
+/* ---- Settings metadata: declared once, read by the CLI, the viewer and the docs ----------------- */
+typedef enum obscura_setting_type {
+    OBSCURA_SETTING_FLOAT = 0,
+    OBSCURA_SETTING_INT = 1,
+    OBSCURA_SETTING_TOGGLE = 2 /* obscura_toggle; min 0 (off) max 1 (on) in the table */
+} obscura_setting_type;
+
+typedef struct obscura_setting_info {
+    const char* name;        /* spec key, e.g. "radius" */
+    obscura_setting_type type;
+    double default_value;
+    double min_value;        /* inclusive */
+    double max_value;        /* inclusive */
+    const char* unit;        /* "m", "m^2", "px", "" ... */
+    const char* description; /* one line */
+    size_t offset;           /* byte offset of the field inside obscura_settings */
+} obscura_setting_info;
+
+/* Sets *out_infos to the method's static table of settings and *out_count to its length.
+   Returns OK, NULL_ARGUMENT, INVALID_ENUM. */
+OBSCURA_API obscura_status obscura_get_setting_infos(obscura_method method, const obscura_setting_info** out_infos,
+                                                     uint32_t* out_count);
+
+/* Sets the setting `name` of settings->method to `value` (toggles: 0 off, 1 on). The value is range-checked.
+   Returns OK, NULL_ARGUMENT, UNKNOWN_SETTING, INVALID_SETTING, INVALID_ENUM. */
+OBSCURA_API obscura_status obscura_set_setting(obscura_settings* settings, const char* name, double value);
+
+/* Reads the setting `name` of settings->method as it will be used: zero fields report their default
+   (derived defaults such as hbao decay_rate included); toggles read 0 (off) or 1 (on).
+   Returns OK, NULL_ARGUMENT, UNKNOWN_SETTING, INVALID_ENUM. */
+OBSCURA_API obscura_status obscura_get_setting(const obscura_settings* settings, const char* name, double* out_value);
+
+/* ---- Per-frame input ------------------------------------------------------------------------- */
+typedef enum obscura_depth_kind {
+    OBSCURA_DEPTH_HARDWARE = 0,    /* window-space depth written through `projection` */
+    OBSCURA_DEPTH_LINEAR_VIEW = 1  /* positive distance from the eye plane in view units (R16F/R32F) */
+} obscura_depth_kind;
+
+typedef enum obscura_clip_depth {
+    OBSCURA_CLIP_DEPTH_NEGATIVE_ONE_TO_ONE = 0, /* GL default */
+    OBSCURA_CLIP_DEPTH_ZERO_TO_ONE = 1          /* glClipControl(..., GL_ZERO_TO_ONE), usual with reversed-Z */
+} obscura_clip_depth;
+
+typedef enum obscura_matrix_layout {
+    OBSCURA_MATRIX_COLUMN_MAJOR = 0, /* as glUniformMatrix4fv(..., GL_FALSE, m) expects (GLM, most engines) */
+    OBSCURA_MATRIX_ROW_MAJOR = 1
+} obscura_matrix_layout;
+
+typedef struct obscura_rect {
+    int32_t x, y, width, height; /* pixels, origin at the bottom-left as in GL */
+} obscura_rect;
+
+typedef struct obscura_input {
+    uint32_t struct_size;           /* sizeof(obscura_input); required */
+    uint32_t depth_texture;         /* GL texture name; required */
+    obscura_depth_kind depth_kind;  /* default HARDWARE */
+    int32_t depth_width;            /* size of the whole depth texture (guard band included); required */
+    int32_t depth_height;
+    obscura_rect output_rect;       /* visible part of the depth texture; zero: the whole texture */
+    float projection[16];           /* the projection the depth was rendered with, covering the whole texture; required */
+    obscura_matrix_layout projection_layout; /* default column-major */
+    obscura_clip_depth clip_depth;  /* default [-1, 1] */
+    float meters_to_view_units;     /* view units per metre, (0, 1e6]; default 1 */
+    uint32_t normal_texture;        /* optional view-space normals, same size as the depth; 0: reconstruct */
+} obscura_input;
+
+/* ---- Per-frame output ------------------------------------------------------------------------ */
+typedef enum obscura_blend_mode {
+    OBSCURA_BLEND_OVERWRITE = 0, /* target = visibility */
+    OBSCURA_BLEND_MULTIPLY = 1   /* target.rgb *= visibility (alpha kept) */
+} obscura_blend_mode;
+
+typedef enum obscura_debug_view {
+    OBSCURA_DEBUG_NONE = 0,        /* final AO */
+    OBSCURA_DEBUG_LINEAR_DEPTH = 1, /* view depth / (4 * radius), clamped: near = black */
+    OBSCURA_DEBUG_NORMALS = 2,     /* view-space normal * 0.5 + 0.5 in rgb (single-channel targets get z) */
+    OBSCURA_DEBUG_AO_BEFORE_BLUR = 3,
+    OBSCURA_DEBUG_TAP_COUNT = 4    /* depth texels the AO pass read for the pixel / 256 (HBAO, SAO; others 0);
+                                      with a float target, round(value * 256) is the count (up to 127) */
+} obscura_debug_view;
+
+typedef struct obscura_output {
+    uint32_t struct_size;          /* sizeof(obscura_output); required */
+    uint32_t texture;              /* GL_TEXTURE_2D (R8, R16F, R32F, RG*, RGBA8, RGBA16F, RGBA32F) ... */
+    uint32_t framebuffer;          /* ... or a framebuffer object (colour attachment 0) when texture is 0.
+                                      Both 0: the default framebuffer. */
+    int32_t x, y;                  /* where the output rectangle lands in the target; default (0, 0) */
+    obscura_blend_mode blend;      /* default OVERWRITE */
+    obscura_debug_view debug_view; /* default NONE */
+} obscura_output;
+
+/* ---- Rendering ------------------------------------------------------------------------------- */
+
+/* Renders AO for input->output_rect with `settings` into `output`. Allocates per-size resources on the
+   first call and when the size or the settings' resource needs change (see obscura_prepare).
+   Sizes: a depth texture whose size differs from depth_width/height is INVALID_TEXTURE; an output
+   rectangle outside the depth, or a result that does not fit the output target, is INVALID_RECT.
+   Returns OK or NULL_ARGUMENT, INVALID_STRUCT_SIZE, WRONG_GL_CONTEXT, HOST_GL_ERROR, INVALID_SIZE,
+   INVALID_RECT, INVALID_TEXTURE, UNSUPPORTED_FORMAT, INVALID_PROJECTION, PROJECTION_TRANSPOSED,
+   INVALID_SETTING, INVALID_ENUM, METHOD_NOT_AVAILABLE, INVALID_FRAMEBUFFER, SHADER_COMPILE_FAILED (a
+   variant built on first use), OUT_OF_MEMORY, GL_ERROR, CONTEXT_LOST.
+   Host errors and context loss: a GL error the host left pending is consumed and reported as HOST_GL_ERROR
+   before anything is done (never blamed on a pass). A reset reported by glGetGraphicsResetStatus (GL 4.5,
+   KHR/ARB_robustness; only robust contexts report one) or GL_CONTEXT_LOST from glGetError makes this and
+   every later call on the context return CONTEXT_LOST. */
+OBSCURA_API obscura_status obscura_render(obscura_context* context, const obscura_input* input,
+                                          const obscura_settings* settings, const obscura_output* output);
+
+/* Allocates the textures a render of this size and these settings needs, so the first frame does not.
+   Shader variants that depend on the input and output (MSAA or linear depth, the target's format) are
+   still compiled on the first render that needs them. Optional. Returns OK, NULL_ARGUMENT,
+   INVALID_STRUCT_SIZE, INVALID_SETTING, INVALID_ENUM, METHOD_NOT_AVAILABLE, INVALID_SIZE,
+   WRONG_GL_CONTEXT, HOST_GL_ERROR, OUT_OF_MEMORY, CONTEXT_LOST. */
+OBSCURA_API obscura_status obscura_prepare(obscura_context* context, int32_t depth_width, int32_t depth_height,
+                                           const obscura_settings* settings);
+
+/* Frees the per-size resources and FFAO's table (they are recreated on the next render); programs stay. With
+   another GL context current it frees nothing and logs a warning. */
+OBSCURA_API void obscura_release_resources(obscura_context* context);
+
+/* ---- Queries --------------------------------------------------------------------------------- */
+typedef struct obscura_timing {
+    const char* label; /* "total" first, then one entry per pass: "depth_prepare", then "hbao", "reference",
+                          "z_pyramid" + "sao", "line_sweep" + "gather" or ["ffao_table" when the falloff's shape
+                          changed] + "ffao_scan" + "ffao_prefix" + "ffao_obscurance", then "blur", "composite" */
+    double milliseconds;
+} obscura_timing;
+
+/* Copies the latest complete per-pass GPU timings (a few frames old; never waits on the GPU) into
+   `out` (up to `capacity` entries) and sets *out_count to the number available. *out_frame_index (may be
+   NULL) receives the 1-based index of the frame they belong to, counting the obscura_render calls that
+   passed validation and reached the GPU, so a caller can
+   tell a new result from the same one read twice; 0 and *out_count = 0 until a frame's queries have
+   completed. Returns OK, NULL_ARGUMENT. */
+OBSCURA_API obscura_status obscura_get_timings(obscura_context* context, obscura_timing* out, uint32_t capacity,
+                                               uint32_t* out_count, uint64_t* out_frame_index);
+
+/* Sets *out_bytes to the GPU memory the context has allocated (textures and buffers). The context holds what its
+   latest configuration (size, method, settings, output kind) needs and nothing else, so the same configuration
+   always reports the same bytes. Returns OK, NULL_ARGUMENT. */
+OBSCURA_API obscura_status obscura_get_memory_usage(const obscura_context* context, uint64_t* out_bytes);
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
+
+#endif /* OBSCURA_ABI_OBSCURA_0_3_H */
