@@ -29,12 +29,6 @@ obscura_status report_without_context(const Error& error) {
     return error.status();
 }
 
-// The method argument resolved (DEFAULT -> HBAO), or OBSCURA_METHOD_COUNT_ for a value the API does not know.
-obscura_method method_argument(const obscura_method& method) {
-    const obscura::MethodDescriptor* row = obscura::find_method(method);
-    return row ? row->method : OBSCURA_METHOD_COUNT_;
-}
-
 // Runs `body` (returning Error) and maps its result and any exception to a status on `context`.
 template <class Body>
 obscura_status guarded(Context* context, Body&& body) {
@@ -124,8 +118,11 @@ OBSCURA_API const char* obscura_get_last_error(const obscura_context* context) {
     return static_cast<const Context*>(context)->last_error();
 }
 
-OBSCURA_API obscura_status obscura_default_settings_sized(obscura_method method, obscura_settings* out,
-                                                          uint32_t out_size) {
+namespace {
+
+// The bodies of the sized and the 0.3 entry points. The method is taken by reference and only read as an int
+// (find_method): a C host may pass any value, and loading one outside the enum as the C++ type is undefined.
+obscura_status default_settings_of_size(const obscura_method& method, obscura_settings* out, uint32_t out_size) {
     if (!out) return report_without_context(Error::make(OBSCURA_STATUS_NULL_ARGUMENT, "obscura_default_settings: out is NULL"));
     if (!obscura::is_known_settings_size(out_size)) {
         return report_without_context(Error::make(OBSCURA_STATUS_INVALID_STRUCT_SIZE,
@@ -139,34 +136,54 @@ OBSCURA_API obscura_status obscura_default_settings_sized(obscura_method method,
     return report_without_context(error);
 }
 
-// The 0.3 ABI: binaries built against 0.3 call these names; the header's macros of the same names call the
-// sized entry points.
-#undef obscura_default_settings
-OBSCURA_API obscura_status(obscura_default_settings)(obscura_method method, obscura_settings* out) {
-    return obscura_default_settings_sized(method, out, obscura::settings_size_03());
+obscura_status setting_infos_of_size(const obscura_method& method, const obscura_setting_info** out_infos,
+                                     uint32_t* out_count, uint32_t info_size) {
+    if (!out_infos || !out_count) {
+        return report_without_context(
+            Error::make(OBSCURA_STATUS_NULL_ARGUMENT, "obscura_get_setting_infos: out_infos and out_count are required"));
+    }
+    if (!obscura::find_method(method)) {
+        return report_without_context(Error::make(OBSCURA_STATUS_INVALID_ENUM, "obscura_get_setting_infos: %d is not an "
+                                                  "obscura_method", int(obscura::stored_enum(method))));
+    }
+    if (info_size == sizeof(obscura::SettingInfo03)) {
+        // The caller's obscura_setting_info is the 0.3 struct, which is what this table holds.
+        *out_infos = reinterpret_cast<const obscura_setting_info*>(obscura::setting_infos_03(method, out_count));
+    } else if (info_size == sizeof(obscura_setting_info)) {
+        *out_infos = obscura::setting_infos(method, out_count);
+    } else {
+        return report_without_context(Error::make(OBSCURA_STATUS_INVALID_STRUCT_SIZE,
+                                                  "obscura_get_setting_infos: %u is the obscura_setting_info size of no "
+                                                  "released obscura.h",
+                                                  info_size));
+    }
+    return report_without_context(Error());
 }
 
-#undef obscura_get_setting_infos
-OBSCURA_API obscura_status(obscura_get_setting_infos)(obscura_method method, const obscura_setting_info** out_infos,
-                                                      uint32_t* out_count) {
-    if (!out_infos || !out_count) return OBSCURA_STATUS_NULL_ARGUMENT;
-    const obscura::SettingInfo03* infos = obscura::setting_infos_03(method, out_count);
-    if (!infos) return OBSCURA_STATUS_INVALID_ENUM;
-    // The caller's obscura_setting_info is the 0.3 struct, which is what the table holds.
-    *out_infos = reinterpret_cast<const obscura_setting_info*>(infos);
-    return OBSCURA_OK;
+}  // namespace
+
+OBSCURA_API obscura_status obscura_default_settings_sized(obscura_method method, obscura_settings* out,
+                                                          uint32_t out_size) {
+    return default_settings_of_size(method, out, out_size);
 }
 
 OBSCURA_API obscura_status obscura_get_setting_infos_sized(obscura_method method,
                                                            const obscura_setting_info** out_infos,
                                                            uint32_t* out_count, uint32_t info_size) {
-    if (!out_infos || !out_count) return OBSCURA_STATUS_NULL_ARGUMENT;
-    if (info_size == sizeof(obscura::SettingInfo03)) return (obscura_get_setting_infos)(method, out_infos, out_count);
-    if (info_size != sizeof(obscura_setting_info)) return OBSCURA_STATUS_INVALID_STRUCT_SIZE;
-    const obscura_method resolved = method_argument(method);
-    if (resolved == OBSCURA_METHOD_COUNT_) return OBSCURA_STATUS_INVALID_ENUM;
-    *out_infos = obscura::setting_infos(resolved, out_count);
-    return OBSCURA_OK;
+    return setting_infos_of_size(method, out_infos, out_count, info_size);
+}
+
+// The 0.3 ABI: binaries built against 0.3 call these names; the header's macros of the same names call the
+// sized entry points.
+#undef obscura_default_settings
+OBSCURA_API obscura_status(obscura_default_settings)(obscura_method method, obscura_settings* out) {
+    return default_settings_of_size(method, out, obscura::settings_size_03());
+}
+
+#undef obscura_get_setting_infos
+OBSCURA_API obscura_status(obscura_get_setting_infos)(obscura_method method, const obscura_setting_info** out_infos,
+                                                      uint32_t* out_count) {
+    return setting_infos_of_size(method, out_infos, out_count, uint32_t(sizeof(obscura::SettingInfo03)));
 }
 
 OBSCURA_API obscura_status obscura_resolve_settings(obscura_context* context, const obscura_settings* in,
@@ -184,7 +201,10 @@ OBSCURA_API obscura_status obscura_resolve_settings(obscura_context* context, co
 
 OBSCURA_API obscura_status obscura_reference_settings_for(const obscura_settings* method_settings,
                                                           obscura_settings* out) {
-    if (!method_settings || !out) return OBSCURA_STATUS_NULL_ARGUMENT;
+    if (!method_settings || !out) {
+        return report_without_context(Error::make(OBSCURA_STATUS_NULL_ARGUMENT,
+                                                  "obscura_reference_settings_for: method_settings and out are required"));
+    }
     const uint32_t size = method_settings->struct_size;
     obscura_settings whole, reference;
     Error error = obscura::read_host_settings(method_settings, &whole, "obscura_reference_settings_for");
@@ -195,7 +215,11 @@ OBSCURA_API obscura_status obscura_reference_settings_for(const obscura_settings
 
 OBSCURA_API obscura_status obscura_evaluate_falloff(const obscura_settings* method_settings, const float* distances,
                                                     float* rho, uint32_t count) {
-    if (!method_settings || (count > 0 && (!distances || !rho))) return OBSCURA_STATUS_NULL_ARGUMENT;
+    if (!method_settings || (count > 0 && (!distances || !rho))) {
+        return report_without_context(Error::make(OBSCURA_STATUS_NULL_ARGUMENT,
+                                                  "obscura_evaluate_falloff: method_settings, distances and rho are "
+                                                  "required"));
+    }
     obscura_settings whole, reference;
     Error error = obscura::read_host_settings(method_settings, &whole, "obscura_evaluate_falloff");
     if (!error) error = obscura::reference_settings_for(whole, &reference);
@@ -206,7 +230,10 @@ OBSCURA_API obscura_status obscura_evaluate_falloff(const obscura_settings* meth
 }
 
 OBSCURA_API obscura_status obscura_set_setting(obscura_settings* settings, const char* name, double value) {
-    if (!settings || !name) return OBSCURA_STATUS_NULL_ARGUMENT;
+    if (!settings || !name) {
+        return report_without_context(
+            Error::make(OBSCURA_STATUS_NULL_ARGUMENT, "obscura_set_setting: settings and name are required"));
+    }
     const uint32_t size = settings->struct_size;
     obscura_settings whole;
     Error error = obscura::read_host_settings(settings, &whole, "obscura_set_setting");
@@ -216,7 +243,10 @@ OBSCURA_API obscura_status obscura_set_setting(obscura_settings* settings, const
 }
 
 OBSCURA_API obscura_status obscura_get_setting(const obscura_settings* settings, const char* name, double* out_value) {
-    if (!settings || !name || !out_value) return OBSCURA_STATUS_NULL_ARGUMENT;
+    if (!settings || !name || !out_value) {
+        return report_without_context(
+            Error::make(OBSCURA_STATUS_NULL_ARGUMENT, "obscura_get_setting: settings, name and out_value are required"));
+    }
     obscura_settings whole;
     Error error = obscura::read_host_settings(settings, &whole, "obscura_get_setting");
     if (!error) error = obscura::get_setting(whole, name, out_value);
@@ -259,7 +289,10 @@ OBSCURA_API void obscura_release_resources(obscura_context* context) {
 
 OBSCURA_API obscura_status obscura_get_timings(obscura_context* context, obscura_timing* out, uint32_t capacity,
                                                uint32_t* out_count, uint64_t* out_frame_index) {
-    if (!context || !out_count || (!out && capacity > 0)) return OBSCURA_STATUS_NULL_ARGUMENT;
+    if (!context || !out_count || (!out && capacity > 0)) {
+        return report_without_context(Error::make(OBSCURA_STATUS_NULL_ARGUMENT,
+                                                  "obscura_get_timings: context, out_count (and out) are required"));
+    }
     uint64_t frame_index = 0;
     *out_count = as_context(context)->timings(out, capacity, &frame_index);
     if (out_frame_index) *out_frame_index = frame_index;
@@ -267,7 +300,10 @@ OBSCURA_API obscura_status obscura_get_timings(obscura_context* context, obscura
 }
 
 OBSCURA_API obscura_status obscura_get_memory_usage(const obscura_context* context, uint64_t* out_bytes) {
-    if (!context || !out_bytes) return OBSCURA_STATUS_NULL_ARGUMENT;
+    if (!context || !out_bytes) {
+        return report_without_context(
+            Error::make(OBSCURA_STATUS_NULL_ARGUMENT, "obscura_get_memory_usage: context and out_bytes are required"));
+    }
     *out_bytes = static_cast<const Context*>(context)->memory_bytes();
     return OBSCURA_OK;
 }

@@ -38,6 +38,6 @@ const MethodDescriptor* find_method_value(int32_t value) {
     return row->method == obscura_method(value) ? row : nullptr;  // a row out of order is no row
 }
 
-const MethodDescriptor* find_method(obscura_method method) { return find_method_value(stored_enum(method)); }
+const MethodDescriptor* find_method(const obscura_method& method) { return find_method_value(stored_enum(method)); }
 
 }  // namespace obscura

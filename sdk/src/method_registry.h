@@ -38,9 +38,10 @@ struct MethodDescriptor {
 // Every method, in obscura_method order (OBSCURA_METHOD_DEFAULT excluded).
 const MethodDescriptor* const* method_descriptors(uint32_t* count);
 
-// The row of a method (OBSCURA_METHOD_DEFAULT: HBAO's); null for a value that is no method. Reads the
-// value as an int, so any value a C host stores is safe.
-const MethodDescriptor* find_method(obscura_method method);
+// The row of a method (OBSCURA_METHOD_DEFAULT: HBAO's); null for a value that is no method. Takes the enum by
+// reference and reads its bytes as an int: any value a C host passes is safe (loading an out-of-range value as
+// the C++ enum would be undefined).
+const MethodDescriptor* find_method(const obscura_method& method);
 const MethodDescriptor* find_method_value(int32_t value);
 
 }  // namespace obscura

@@ -134,15 +134,15 @@ Error check_falloff_table(const char* method, int32_t falloff, const float (&tab
     return Error();
 }
 
-obscura_method resolve_method(obscura_method method) { return resolve_method_value(int32_t(method)); }
+obscura_method resolve_method(const obscura_method& method) { return resolve_method_value(stored_enum(method)); }
 
-const obscura_setting_info* setting_infos(obscura_method method, uint32_t* count) {
+const obscura_setting_info* setting_infos(const obscura_method& method, uint32_t* count) {
     const MethodDescriptor* row = find_method(method);
     *count = row ? row->setting_count : 0;
     return row ? row->settings : nullptr;
 }
 
-const SettingInfo03* setting_infos_03(obscura_method method, uint32_t* count) {
+const SettingInfo03* setting_infos_03(const obscura_method& method, uint32_t* count) {
     // Built once from the rows (C++11 initialises a local static once, thread-safely); no heap.
     constexpr uint32_t kMaxRows = 48;
     struct Tables {
@@ -204,7 +204,7 @@ void write_host_settings(const obscura_settings& settings, obscura_settings* hos
     std::memcpy(host, &copy, size);
 }
 
-Error default_settings(obscura_method method, obscura_settings* out) {
+Error default_settings(const obscura_method& method, obscura_settings* out) {
     const MethodDescriptor* selected = find_method(method);
     if (!selected) return Error::make(OBSCURA_STATUS_INVALID_ENUM, "%d is not an obscura_method", int(stored_enum(method)));
     obscura_settings settings;
@@ -348,12 +348,16 @@ Error set_setting(obscura_settings* settings, const char* name, double value, ui
                            "%s.%s is an array of %u values: write it through its offset", obscura_method_name(method),
                            info->name, unsigned(info->value_count));
     }
+    // Whether the field will hold 0: a float field also turns a tiny double into 0.
+    const bool stores_zero = info->type == OBSCURA_SETTING_FLOAT
+                                 ? std::fabs(value) <= double(std::numeric_limits<float>::max()) && float(value) == 0.0f
+                                 : value == 0.0;
     if (info->type == OBSCURA_SETTING_TOGGLE) {
         if (value != 0.0 && value != 1.0) {
             return Error::make(OBSCURA_STATUS_INVALID_SETTING, "%s.%s is a toggle: 0 (off) or 1 (on), not %g",
                                obscura_method_name(method), info->name, value);
         }
-    } else if (value == 0.0 && zero_can_be_value(*info)) {
+    } else if (stores_zero && zero_can_be_value(*info)) {
         // A literal 0 where 0 would mean "default": the struct switches to OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE,
         // whose other such fields then hold their defaults explicitly, so they keep meaning what they meant.
         if (!(settings->flags & OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE)) {

@@ -42,7 +42,7 @@ constexpr obscura_setting_info array_row(const char* name, uint32_t length, doub
 constexpr const char* const kFalloffNames[] = {"rho0", "inverse_quadratic", "exponential", "table"};
 
 // The table for `method` (OBSCURA_METHOD_DEFAULT maps to HBAO); null and count 0 for a value that is no method.
-const obscura_setting_info* setting_infos(obscura_method method, uint32_t* count);
+const obscura_setting_info* setting_infos(const obscura_method& method, uint32_t* count);
 
 // obscura_setting_info as the 0.3 header declared it (the binaries built against 0.3 read this layout).
 struct SettingInfo03 {
@@ -55,10 +55,10 @@ struct SettingInfo03 {
 };
 static_assert(sizeof(SettingInfo03) == offsetof(obscura_setting_info, flags), "0.4 appended to the 0.3 layout");
 // The method's table in the 0.3 layout: ENUM rows read as INT, array rows (new in 0.4) left out.
-const SettingInfo03* setting_infos_03(obscura_method method, uint32_t* count);
+const SettingInfo03* setting_infos_03(const obscura_method& method, uint32_t* count);
 
 // Resolved method (DEFAULT -> HBAO); OBSCURA_METHOD_COUNT_ for unknown values.
-obscura_method resolve_method(obscura_method method);
+obscura_method resolve_method(const obscura_method& method);
 
 // Sizes of every released version of obscura_settings that the library accepts (0.1 ... this header).
 bool is_known_settings_size(uint32_t struct_size);
@@ -72,7 +72,7 @@ void write_host_settings(const obscura_settings& settings, obscura_settings* hos
 
 // The editable form of `method`'s defaults (obscura_default_settings): every field its default, derived fields
 // 0, OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE set. INVALID_ENUM for a value that is no method.
-Error default_settings(obscura_method method, obscura_settings* out);
+Error default_settings(const obscura_method& method, obscura_settings* out);
 
 // Defaults every zero field, validates every field, and derives dependent values (each method's `derive`).
 // `in` is whole (read_host_settings).

@@ -1,6 +1,7 @@
 // Shared by the libFuzzer targets: a reader that turns the input bytes into values (zeros once the input is
-// used up, so every input, even an empty one, is a complete test case), the failure report, and the C
-// shims (raw_enum_calls.c) that pass arbitrary ints where the API takes an enum.
+// used up, so every input, even an empty one, is a complete test case), the failure report, the C shims
+// (raw_enum_calls.c) that pass arbitrary ints where the API takes an enum, and the released sizes of
+// obscura_settings with a buffer that holds a host's struct of exactly such a size.
 #ifndef OBSCURA_TESTS_FUZZ_SUPPORT_H
 #define OBSCURA_TESTS_FUZZ_SUPPORT_H
 
@@ -8,6 +9,7 @@
 #include <cstdint>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "obscura/obscura.h"
 
@@ -19,6 +21,12 @@ const char* fuzz_method_name(int32_t method);
 int fuzz_method_available(int32_t method);
 int32_t fuzz_default_settings(int32_t method, obscura_settings* out);
 int32_t fuzz_get_setting_infos(int32_t method, const obscura_setting_info** out_infos, uint32_t* out_count);
+int32_t fuzz_default_settings_sized(int32_t method, obscura_settings* out, uint32_t out_size);
+int32_t fuzz_get_setting_infos_sized(int32_t method, const obscura_setting_info** out_infos, uint32_t* out_count,
+                                     uint32_t info_size);
+// The 0.3 ABI symbols, (obscura_default_settings) and (obscura_get_setting_infos).
+int32_t fuzz_default_settings_03(int32_t method, obscura_settings* out);
+int32_t fuzz_get_setting_infos_03(int32_t method, const obscura_setting_info** out_infos, uint32_t* out_count);
 }
 
 namespace obscura_fuzz {
@@ -99,6 +107,70 @@ private:
     const uint8_t* data_;
     size_t size_;
     size_t offset_ = 0;
+};
+
+// ---- Struct versions --------------------------------------------------------------------------------------
+
+// sizeof(obscura_settings) in every released header (obscura.h, SETTINGS: each release appended to the end).
+constexpr uint32_t kSettingsSize01 = uint32_t(offsetof(obscura_settings, reference));  // HBAO only
+constexpr uint32_t kSettingsSize02 = uint32_t(offsetof(obscura_settings, sao));        // + REFERENCE
+constexpr uint32_t kSettingsSize03 = uint32_t(offsetof(obscura_settings, flags));      // + SAO, LSAO, FFAO
+constexpr uint32_t kSettingsSize04 = uint32_t(sizeof(obscura_settings));               // + flags
+constexpr uint32_t kReleasedSettingsSizes[4] = {kSettingsSize01, kSettingsSize02, kSettingsSize03, kSettingsSize04};
+inline bool is_released_settings_size(uint32_t size) {
+    for (uint32_t released : kReleasedSettingsSizes) {
+        if (size == released) return true;
+    }
+    return false;
+}
+
+// obscura_setting_info as the 0.3 header declared it: the first eight fields of today's.
+struct SettingInfo03 {
+    const char* name;
+    obscura_setting_type type;
+    double default_value, min_value, max_value;
+    const char* unit;
+    const char* description;
+    size_t offset;
+};
+static_assert(sizeof(SettingInfo03) == offsetof(obscura_setting_info, flags), "0.4 appended to the 0.3 layout");
+
+// A host's obscura_settings of exactly `size` bytes on the heap (never less than the struct_size field), so that
+// AddressSanitizer reports any read or write of the library past the caller's struct. The settings functions take
+// it as an obscura_settings*; this code reads it only as bytes.
+class SettingsBuffer {
+public:
+    // The first `size` bytes of `settings`.
+    SettingsBuffer(const obscura_settings& settings, size_t size)
+        : bytes_(reinterpret_cast<const unsigned char*>(&settings),
+                 reinterpret_cast<const unsigned char*>(&settings) + clamp(size)) {}
+    // `size` bytes of `fill`.
+    SettingsBuffer(unsigned char fill, size_t size) : bytes_(clamp(size), fill) {}
+
+    obscura_settings* get() { return reinterpret_cast<obscura_settings*>(bytes_.data()); }
+    const obscura_settings* get() const { return reinterpret_cast<const obscura_settings*>(bytes_.data()); }
+    size_t size() const { return bytes_.size(); }
+    const unsigned char* bytes() const { return bytes_.data(); }
+    uint32_t struct_size() const {
+        uint32_t value;
+        std::memcpy(&value, bytes_.data(), sizeof value);
+        return value;
+    }
+    bool operator==(const SettingsBuffer& other) const { return bytes_ == other.bytes_; }
+    bool operator!=(const SettingsBuffer& other) const { return bytes_ != other.bytes_; }
+    // The bytes as a whole obscura_settings: zeros after them (struct_size as stored).
+    obscura_settings whole() const {
+        obscura_settings out;
+        std::memset(&out, 0, sizeof out);
+        std::memcpy(&out, bytes_.data(), bytes_.size());
+        return out;
+    }
+
+private:
+    static size_t clamp(size_t size) {
+        return size < sizeof(uint32_t) ? sizeof(uint32_t) : size > sizeof(obscura_settings) ? sizeof(obscura_settings) : size;
+    }
+    std::vector<unsigned char> bytes_;
 };
 
 // A value for a setting with metadata `info`, picked by `selector`: the range's edges, just outside and

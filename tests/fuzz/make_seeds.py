@@ -7,9 +7,10 @@ only spells out what differs from zero. Run it again after changing a decoder:
 
     python3 tests/fuzz/make_seeds.py
 
-The seeds give the fuzzer a successful call of every kind to mutate from: default settings of every method,
-renders of every method from every depth format into every target kind, prepare, the queries, a host GL error
-and NULL arguments.
+The seeds give the fuzzer a successful call of every kind to mutate from: default settings of every method at
+every released struct size, renders of every method from every depth format into every target kind (with
+settings of every released size), prepare, the queries, a host GL error, another GL context current (with valid
+and with invalid fields) and NULL arguments.
 """
 import os
 import struct
@@ -17,15 +18,22 @@ import struct
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 # ---- settings_fuzzer -------------------------------------------------------------------------------------------
-# flags (bit 0: valid struct_size, bit 1: small method (method % 8 - 1) into the struct, bit 2: XOR onto that
-# method's defaults), i32 method, i32 status, name (length byte + bytes), f64 value, edit count, edits
-# (u8 method - 1, u8 setting index, u8 value selector), then the settings bytes.
+# flags (bit 0: struct_size the released size of bits 3-4, bit 1: small method (method % 8 - 1) into the struct,
+# bit 2: XOR onto that method's defaults of that size; bits 3-4: 0 this header's size, 1 0.1, 2 0.2, 3 0.3, also
+# the running struct's), i32 method, i32 status, name (length byte + bytes), f64 value, u32 raw size (for
+# obscura_default_settings_sized and obscura_get_setting_infos_sized), edit count, edits (u8 method - 1, u8 setting
+# index, u8 value selector), then the settings bytes.
 METHODS = {"default": 0, "hbao": 1, "sao": 2, "lsao": 3, "ffao": 4, "reference": 5}
+VERSION_BITS = {"0.4": 0, "0.1": 1 << 3, "0.2": 2 << 3, "0.3": 3 << 3}
+# obscura.h's layout (64-bit): offsetof(obscura_settings, flags), sizeof(obscura_setting_info) and of its 0.3 part.
+FLAGS_OFFSET = 428
+SETTING_INFO_SIZE = 80
+SETTING_INFO_03_SIZE = 64
 
 
-def settings_seed(flags, method, status=0, name=b"", value=0.0, edits=(), overlay=b""):
+def settings_seed(flags, method, status=0, name=b"", value=0.0, size=0, edits=(), overlay=b""):
     out = bytes([flags]) + struct.pack("<ii", method + 1 if flags & 6 else method, status)
-    out += bytes([len(name)]) + name + struct.pack("<d", value)
+    out += bytes([len(name)]) + name + struct.pack("<dI", value, size)
     out += bytes([len(edits)])
     for edit_method, index, selector in edits:
         out += bytes([edit_method - 1, index, selector])
@@ -37,19 +45,48 @@ def settings_seeds():
     for name, method in METHODS.items():
         seeds["defaults_" + name] = settings_seed(7, method)
         seeds["zero_struct_" + name] = settings_seed(3, method)
+        for version in ("0.1", "0.2", "0.3"):
+            seeds["defaults_%s_%s" % (name, version)] = settings_seed(7 | VERSION_BITS[version], method)
+    for version in ("0.1", "0.2", "0.3"):
+        seeds["zero_struct_lsao_" + version] = settings_seed(3 | VERSION_BITS[version], METHODS["lsao"])
     seeds["unknown_method"] = settings_seed(0, 42, status=-7)
     seeds["name_radius"] = settings_seed(7, METHODS["hbao"], name=b"radius", value=2.0)
     seeds["name_falloff_table"] = settings_seed(7, METHODS["reference"], name=b"falloff", value=4.0)
+    seeds["name_falloff_table_array"] = settings_seed(7, METHODS["ffao"], name=b"falloff_table", value=0.5)
     seeds["name_unknown"] = settings_seed(7, METHODS["sao"], name=b"no_such_setting", value=1.0)
     seeds["name_nan"] = settings_seed(7, METHODS["lsao"], name=b"radius", value=float("nan"))
+    seeds["name_enum"] = settings_seed(7, METHODS["lsao"], name=b"tangent_strategy", value=1.0)
+    # 0 where 0 is a value: in the editable form, in a zero struct (sets ZERO_IS_VALUE), in a 0.3 struct (refused).
+    seeds["name_tangent_zero_defaults"] = settings_seed(7, METHODS["lsao"], name=b"tangent", value=0.0)
+    seeds["name_tangent_zero_zero_struct"] = settings_seed(3, METHODS["lsao"], name=b"tangent", value=0.0)
+    seeds["name_tangent_zero_0.3"] = settings_seed(7 | VERSION_BITS["0.3"], METHODS["lsao"], name=b"tangent",
+                                                   value=0.0)
+    seeds["name_derived_zero"] = settings_seed(7, METHODS["lsao"], name=b"directions", value=0.0)
+    # A setting the caller's older struct does not have.
+    seeds["name_past_0.1"] = settings_seed(7 | VERSION_BITS["0.1"], METHODS["sao"], name=b"samples", value=12.0)
+    # The defaults with ZERO_IS_VALUE cleared, and with an unknown flag bit.
+    seeds["defaults_lsao_flag_cleared"] = settings_seed(7, METHODS["lsao"], overlay=bytes(FLAGS_OFFSET) + b"\x01")
+    seeds["defaults_hbao_unknown_flag"] = settings_seed(7, METHODS["hbao"], overlay=bytes(FLAGS_OFFSET) + b"\x02")
+    # The tables in both layouts, and a size neither has.
+    seeds["infos_size_current"] = settings_seed(7, METHODS["ffao"], size=SETTING_INFO_SIZE)
+    seeds["infos_size_0.3"] = settings_seed(7, METHODS["ffao"], size=SETTING_INFO_03_SIZE)
+    seeds["defaults_size_0.2"] = settings_seed(7, METHODS["hbao"], size=156)
     # Edits: each method's first settings at the range's edges (selectors 0 min, 1 max, 3 below, 4 above, 8 NaN).
     for name, method in list(METHODS.items())[1:]:
         seeds["edges_" + name] = settings_seed(
             7, method, edits=[(method, i, s) for i, s in zip(range(8), (0, 1, 3, 4, 8, 0, 1, 11))])
-    # The smallest radius with the smallest C: the derived decay rate falls below its minimum (a known issue that
-    # settings_fuzzer.cpp tolerates; see kTolerateDerivedDecayRateBelowMinimum).
+    # The smallest radius with the smallest C: the derived decay rate at its lowest (once below the minimum).
     seeds["derived_decay_rate_below_minimum"] = settings_seed(
         7, METHODS["hbao"], edits=[(METHODS["hbao"], 0, 0), (METHODS["hbao"], 1, 0)])
+    # A TABLE falloff with its table written through the offset (REFERENCE rows 1 falloff, 8 falloff_table; FFAO
+    # rows 1 and 14), in the running struct.
+    seeds["running_reference_table"] = settings_seed(
+        7, METHODS["reference"], edits=[(METHODS["reference"], 1, 1), (METHODS["reference"], 8, 1)])
+    seeds["running_ffao_table_0.3"] = settings_seed(
+        7 | VERSION_BITS["0.3"], METHODS["ffao"], edits=[(METHODS["ffao"], 1, 1), (METHODS["ffao"], 14, 13)])
+    # LSAO tangent (row 9) and normal_threshold (row 18) set to 0 (selector 11), its preset (row 4) to its max.
+    seeds["running_lsao_zeros"] = settings_seed(
+        7, METHODS["lsao"], edits=[(METHODS["lsao"], 9, 11), (METHODS["lsao"], 18, 11), (METHODS["lsao"], 4, 1)])
     # Defaults with a few bytes flipped (the XOR overlay).
     seeds["defaults_ffao_flipped"] = settings_seed(7, METHODS["ffao"], overlay=bytes(8) + b"\x01\x00\x80\x3f")
     return seeds
@@ -64,26 +101,33 @@ NORMALS = {"none": 0, "rgba16f": 1, "rgba8": 2, "rg8": 3, "rgba16f_8x6": 4, "buf
 OUTPUT = {"r8": 0, "rgba16f": 1, "rgb8": 2, "r8_4x4": 3, "fbo_texture": 4, "fbo_renderbuffer": 5,
           "fbo_incomplete": 6, "default_framebuffer": 7, "never_generated_fbo": 8, "linear_depth": 9, "buffer": 10,
           "rgba32f_40x40": 11}
-# decode_settings' method byte: index into {DEFAULT, HBAO, SAO, LSAO, FFAO, REFERENCE, COUNT_, -1}.
+# decode_settings' method byte: index into {DEFAULT, HBAO, SAO, LSAO, FFAO, REFERENCE, COUNT_, -1}; its version
+# byte: 12 0.1, 13 0.2, 14 0.3 (defaults from the 0.3 symbol), 15 a raw u32 size, anything else this header's.
+SETTINGS_VERSIONS = {"0.4": 0, "0.1": 12, "0.2": 13, "0.3": 14}
 OPS = {"render": 0, "prepare": 8, "release": 10, "queries": 11, "wrong_context": 12, "render_host_error": 13,
        "resolve": 14, "null": 15}
 
 
-def settings_block(method, edits=(), defaults=True):
-    """edits: (setting index, value selector) pairs; selectors as in pick_setting_value (0 min, 1 max, ...)."""
-    out = bytes([METHODS[method] | (0 if defaults else 8), len(edits)])
+def settings_block(method, edits=(), defaults=True, version="0.4", pokes=()):
+    """edits: (setting index, value selector) pairs; selectors as in pick_setting_value (0 min, 1 max, ...);
+    pokes: (byte offset, u32 XORed there) pairs."""
+    out = bytes([METHODS[method] | (0 if defaults else 8), SETTINGS_VERSIONS[version], len(edits)])
     for index, selector in edits:
         out += bytes([index, selector])
-    return out + bytes([0, 0])  # no pokes, struct_size valid
+    out += bytes([len(pokes)])
+    for offset, bits in pokes:
+        out += struct.pack("<HI", offset, bits)
+    return out
 
 
-def input_block(depth, projection=0x00, near=9, far=255, fov=128, rect=None, normals="none", units=0, layout=0):
+def input_block(depth, projection=0x00, near=9, far=255, fov=128, rect=None, normals="none", units=0, layout=0,
+                raw_rect=False):
     """projection: bits 0-2 < 5 perspective, 5-6 orthographic, 7 raw; 0x10 reversed-Z, 0x20 [0, 1] clip depth,
-    0x40 infinite far plane."""
-    flags = 0x20 if rect else 0x00
+    0x40 infinite far plane. rect: 4 bytes, reduced into the texture, or with raw_rect signed bytes as they are."""
+    flags = (0x40 if raw_rect else 0x20) if rect else 0x00
     out = bytes([DEPTH[depth], flags, 0])
     if rect:
-        out += bytes(rect)
+        out += bytes(v & 0xFF for v in rect)
     out += bytes([projection, near, far])
     out += bytes([fov]) if (projection & 7) < 5 else bytes([fov, fov])
     out += bytes([0, layout, units])  # no perturbation
@@ -155,6 +199,32 @@ def render_seeds():
         render_op(settings_block("sao"), input_block("d32f"), output_block("r8")),
         bytes([OPS["queries"], 16]), bytes([OPS["release"]]), bytes([OPS["queries"], 4]))
     seeds["resolve_with_context"] = seed(bytes([OPS["resolve"]]) + settings_block("hbao", edits=[(0, 4)]))
+    # Settings of the older released sizes (0.3's defaults from the 0.3 symbol).
+    seeds["render_hbao_settings_0.1"] = seed(
+        render_op(settings_block("hbao", version="0.1"), input_block("d32f"), output_block("r8")))
+    seeds["render_reference_settings_0.2"] = seed(
+        render_op(settings_block("reference", version="0.2"), input_block("d32f"), output_block("rgba16f")))
+    seeds["render_lsao_settings_0.3"] = seed(
+        render_op(settings_block("lsao", version="0.3"), input_block("d32f"), output_block("r8")))
+    seeds["render_ffao_settings_0.3"] = seed(
+        render_op(settings_block("ffao", version="0.3"), input_block("d24s8"), output_block("rgba16f")))
+    seeds["prepare_settings_0.2"] = seed(bytes([OPS["prepare"]]) + settings_block("sao", version="0.2") + bytes([0, 15, 11]))
+    seeds["resolve_with_context_0.3"] = seed(bytes([OPS["resolve"]]) + settings_block("lsao", version="0.3"))
+    # Fields refused before the GL checks: with a host GL error pending, with another GL context current. HBAO's
+    # radius (offset 8) poked from 1 to infinity; an unknown flags bit (offset 428); an empty raw rectangle.
+    bad_radius = settings_block("hbao", pokes=[(8, 0x40000000)])
+    seeds["render_host_error_bad_settings"] = seed(
+        render_op(bad_radius, input_block("d32f"), output_block("r8"), op="render_host_error"))
+    seeds["render_host_error_bad_rect"] = seed(
+        render_op(settings_block("hbao"), input_block("d32f", rect=(0, 0, -1, -1), raw_rect=True), output_block("r8"),
+                  op="render_host_error"))
+    seeds["render_unknown_settings_flag"] = seed(
+        render_op(settings_block("sao", pokes=[(428, 2)]), input_block("d32f"), output_block("r8")))
+    seeds["wrong_context_bad_fields"] = seed(
+        render_op(bad_radius, input_block("d32f"), output_block("r8"), op="wrong_context") + bytes([0]),
+        render_op(settings_block("hbao"), input_block("d32f", rect=(0, 0, -1, -1), raw_rect=True), output_block("r8"),
+                  op="wrong_context") + bytes([0]),
+        render_op(bad_radius, input_block("d32f"), output_block("r8"), op="wrong_context") + bytes([1]))
     seeds["null_arguments"] = seed(bytes([OPS["null"]]) + settings_block("hbao") + bytes([1]))
     return seeds
 

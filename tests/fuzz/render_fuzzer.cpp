@@ -8,9 +8,13 @@
 // Each input is a short list of operations (see run_operation); after every call the fuzzer checks that the
 // status is a known code and one this call may return, that a failure left a message (and went to the log),
 // that glGetError() is GL_NO_ERROR, and that every sentinel binding is still in place. It traps otherwise.
+// Settings structs come in every released size (0.1 ... this header's), each in a heap buffer of exactly that
+// size (AddressSanitizer reports a read past the caller's struct); a call refused on its fields (settings, input
+// and output fields: stage 1, no GL) must answer that before WRONG_GL_CONTEXT or HOST_GL_ERROR.
 //
-// Renders stay cheap: the depth textures are at most 16x12, REFERENCE traces at most 4 rays, obscura_prepare
-// gets either a size up to 64x64 or an invalid one (never a valid large size, which would allocate gigabytes).
+// Renders stay cheap: the depth textures are at most 16x12, REFERENCE traces at most 4 rays (a 0.1 struct, which
+// has no REFERENCE block, its default 256), obscura_prepare gets either a size up to 64x64 or an invalid one (never
+// a valid large size, which would allocate gigabytes).
 // The context keeps its resources and compiled variants from one input to the next, like a host's does: a
 // crash input replays the operations of one input on a fresh process, which normally reproduces it.
 #include <cmath>
@@ -28,6 +32,8 @@
 
 using obscura::samples::HeadlessGL;
 using obscura_fuzz::Reader;
+using obscura_fuzz::SettingsBuffer;
+using obscura_fuzz::is_released_settings_size;
 using obscura_fuzz::load_raw;
 using obscura_fuzz::status_code;
 using obscura_fuzz::store_raw;
@@ -545,20 +551,54 @@ void check_after_call(const char* call, int32_t status, int log_count_before, bo
 
 bool valid_method(int32_t method) { return method >= 0 && method < int32_t(OBSCURA_METHOD_COUNT_); }
 
-obscura_settings decode_settings(Reader& in) {
+// A host's settings struct: exactly struct_size bytes for a released size (this header's or an older one), the
+// whole struct for a size no header had.
+struct DecodedSettings {
+    SettingsBuffer buffer{0, sizeof(obscura_settings)};
+    const obscura_settings* get() const { return buffer.get(); }
+    uint32_t struct_size() const { return buffer.struct_size(); }
+    int32_t method() const {
+        int32_t method;
+        std::memcpy(&method, buffer.bytes() + offsetof(obscura_settings, method), sizeof method);
+        return method;
+    }
+};
+
+// Known issue (settings_fuzzer.cpp, kTolerateEnumArgumentLoads): the library loads the method argument of
+// obscura_default_settings* through the C++ enum type; only valid methods are passed here, so it does not matter.
+
+DecodedSettings decode_settings(Reader& in) {
     const uint8_t mode = in.u8();
     static const int32_t kMethods[8] = {OBSCURA_METHOD_DEFAULT, OBSCURA_METHOD_HBAO, OBSCURA_METHOD_SAO,
                                         OBSCURA_METHOD_LSAO, OBSCURA_METHOD_FFAO, OBSCURA_METHOD_REFERENCE,
                                         OBSCURA_METHOD_COUNT_, -1};
     int32_t method = kMethods[mode % 8];
     if ((mode & 0xF8) == 0xF8) method = in.i32();
-    obscura_settings settings;
-    std::memset(&settings, 0, sizeof settings);
-    settings.struct_size = sizeof settings;
+    // The struct's version: mostly this header's, or an older released one (0.3's from the 0.3 symbol), or any size.
+    const uint8_t version = in.u8() & 15;
+    uint32_t size = sizeof(obscura_settings);
+    bool raw_size = false;
+    uint32_t raw = 0;
+    switch (version) {
+        case 12: size = obscura_fuzz::kSettingsSize01; break;
+        case 13: size = obscura_fuzz::kSettingsSize02; break;
+        case 14: size = obscura_fuzz::kSettingsSize03; break;
+        case 15: raw_size = true, raw = in.u32(); break;
+        default: break;
+    }
+    DecodedSettings d;
+    d.buffer = SettingsBuffer(0, size);
+    obscura_settings* settings = d.buffer.get();
     if (valid_method(method) && (mode & 0x08) == 0) {
-        FUZZ_CHECK(fuzz_default_settings(method, &settings) == kOk, "default settings of method %d failed", method);
+        const int32_t status = size == sizeof(obscura_settings)       ? fuzz_default_settings(method, settings)
+                               : size == obscura_fuzz::kSettingsSize03 ? fuzz_default_settings_03(method, settings)
+                                                                       : fuzz_default_settings_sized(method, settings, size);
+        FUZZ_CHECK(status == kOk && d.struct_size() == size, "default settings of method %d (size %u) failed: %d",
+                   method, size, status);
     } else {
-        store_raw(&settings.method, method);
+        std::memcpy(d.buffer.get(), &size, sizeof size);
+        std::memcpy(reinterpret_cast<unsigned char*>(settings) + offsetof(obscura_settings, method), &method,
+                    sizeof method);
     }
     // Edits through the metadata (any value: out-of-range ones are refused and leave the struct as it was).
     const int32_t info_method = valid_method(method) ? method : int32_t(OBSCURA_METHOD_HBAO);
@@ -569,24 +609,49 @@ obscura_settings decode_settings(Reader& in) {
     for (int i = 0; i < edits; ++i) {
         const obscura_setting_info& info = infos[in.index(count)];
         const double value = obscura_fuzz::pick_setting_value(info, in.u8(), in);
-        obscura_set_setting(&settings, info.name, value);
+        obscura_set_setting(settings, info.name, value);
     }
-    // Raw pokes anywhere in the struct (other methods' fields, the falloff tables, the method and size too).
+    // Raw pokes anywhere in the struct (other methods' fields, the falloff tables, the flags, the method and size).
     const int pokes = in.u8() % 4;
     for (int i = 0; i < pokes; ++i) {
-        const size_t offset = in.u16() % (sizeof settings - 3);
+        const size_t offset = in.u16() % (size - 3);
         const uint32_t bits = in.u32();
-        unsigned char* field = reinterpret_cast<unsigned char*>(&settings) + offset;
+        unsigned char* field = reinterpret_cast<unsigned char*>(settings) + offset;
         for (int b = 0; b < 4; ++b) field[b] ^= uint8_t(bits >> (8 * b));
     }
-    if ((in.u8() & 15) == 15) settings.struct_size = in.u32();
-    // Keep the ray-traced reference cheap: at most 4 rays per pixel (values outside the range stay invalid).
-    if (load_raw(settings.method) == OBSCURA_METHOD_REFERENCE) {
-        int32_t& rays = settings.reference.rays;
+    if (raw_size) std::memcpy(d.buffer.get(), &raw, sizeof raw);
+    // Keep the ray-traced reference cheap: at most 4 rays per pixel (values outside the range stay invalid). A 0.1
+    // struct has no REFERENCE block: its rays read as the default 256, cheap enough at these sizes.
+    const size_t rays_offset = offsetof(obscura_settings, reference) + offsetof(obscura_reference_settings, rays);
+    if (d.method() == OBSCURA_METHOD_REFERENCE && rays_offset + 4 <= size) {
+        unsigned char* field = reinterpret_cast<unsigned char*>(settings) + rays_offset;
+        int32_t rays;
+        std::memcpy(&rays, field, sizeof rays);
         if (rays == 0 || (rays > 4 && rays <= 65536)) rays = 1 + (rays & 3);
+        std::memcpy(field, &rays, sizeof rays);
     }
-    return settings;
+    return d;
 }
+
+// obscura_resolve_settings without a context, into a buffer of the struct's size.
+int32_t resolve_status_of(const DecodedSettings& settings) {
+    SettingsBuffer out(0, settings.buffer.size());
+    return status_code(obscura_resolve_settings(nullptr, settings.get(), out.get()));
+}
+
+// obscura_get_last_error(NULL) belongs to the calls made without a context: one made with the context must leave it.
+class NoContextMessage {
+public:
+    NoContextMessage() : before_(obscura_get_last_error(nullptr)) {}
+    void check(const char* call) const {
+        FUZZ_CHECK(before_ == obscura_get_last_error(nullptr),
+                   "%s, made with a context, changed obscura_get_last_error(NULL) from \"%s\" to \"%s\"", call,
+                   before_.c_str(), obscura_get_last_error(nullptr));
+    }
+
+private:
+    std::string before_;
+};
 
 void perspective(float m[16], double fovy_degrees, double aspect, double n, double f, bool infinite, bool reversed,
                  bool zero_to_one) {
@@ -642,6 +707,9 @@ struct DecodedInput {
     obscura_input input;
     const DepthEntry* depth;
     const NormalEntry* normals;
+    // Every field was decoded from a valid choice (no raw size, rect, enum, projection or units): the fields alone
+    // (stage 1) pass, whatever the textures they name.
+    bool fields_valid = true;
 };
 
 DecodedInput decode_input(Reader& in) {
@@ -661,9 +729,11 @@ DecodedInput decode_input(Reader& in) {
     store_raw(&input.depth_kind, depth_kind);
 
     // Size: the texture's, or raw ints.
+    if (kind >= 245) d.fields_valid = false;  // a raw int (200-244: HARDWARE or LINEAR_VIEW, maybe the wrong one)
     input.depth_width = d.depth->width;
     input.depth_height = d.depth->height;
     if (flags & 0x10) {
+        d.fields_valid = false;
         input.depth_width = in.i32();
         input.depth_height = in.i32();
     }
@@ -681,9 +751,11 @@ DecodedInput decode_input(Reader& in) {
         }
         case 2:
             input.output_rect = {int8_t(in.u8()), int8_t(in.u8()), int8_t(in.u8()), int8_t(in.u8())};
+            d.fields_valid = false;
             break;
         default:
             input.output_rect = {in.i32(), in.i32(), in.i32(), in.i32()};
+            d.fields_valid = false;
             break;
     }
 
@@ -709,9 +781,11 @@ DecodedInput decode_input(Reader& in) {
         }
     } else {
         for (float& value : input.projection) value = in.f32();
+        d.fields_valid = false;
     }
     store_raw(&input.clip_depth, zero_to_one ? OBSCURA_CLIP_DEPTH_ZERO_TO_ONE : OBSCURA_CLIP_DEPTH_NEGATIVE_ONE_TO_ONE);
     const int perturbations = in.u8() % 4;
+    if (perturbations) d.fields_valid = false;
     for (int i = 0; i < perturbations; ++i) {
         float& value = input.projection[in.u8() % 16];
         const uint8_t how = in.u8();
@@ -719,6 +793,7 @@ DecodedInput decode_input(Reader& in) {
         else value = special_float(how, in);
     }
     const uint8_t layout = in.u8();
+    if (layout >= 160 && !(layout >= 176 && layout < 192)) d.fields_valid = false;
     if (layout >= 192) {  // given row-major: transposed, with the layout said (or any int)
         float transposed[16];
         for (int r = 0; r < 4; ++r)
@@ -730,6 +805,7 @@ DecodedInput decode_input(Reader& in) {
 
     // Units: default, a plausible scale, or any float.
     const uint8_t units = in.u8();
+    if (units >= 224) d.fields_valid = false;
     input.meters_to_view_units = units < 128   ? 0.0f
                                  : units < 224 ? 0.01f * float(1 + units % 96)
                                                : special_float(units, in);
@@ -743,6 +819,7 @@ DecodedInput decode_input(Reader& in) {
 struct DecodedOutput {
     obscura_output output;
     const OutputEntry* target;
+    bool fields_valid = true;  // blend, debug view and position decoded from valid choices (stage 1 passes)
 };
 
 DecodedOutput decode_output(Reader& in) {
@@ -759,13 +836,16 @@ DecodedOutput decode_output(Reader& in) {
         output.framebuffer = pools.any_framebuffer;
     }
     const uint8_t position = in.u8();
+    if (position >= 240) d.fields_valid = false;
     if (position >= 160) {
         output.x = position >= 240 ? in.i32() : in.u8() % 8;
         output.y = position >= 240 ? in.i32() : in.u8() % 8;
     }
     const uint8_t blend = in.u8();
+    if (blend >= 250) d.fields_valid = false;
     store_raw(&output.blend, blend < 250 ? int32_t(blend & 1) : in.i32());
     const uint8_t view = in.u8();
+    if (view >= 250) d.fields_valid = false;
     store_raw(&output.debug_view, view < 160 ? 0 : view < 250 ? int32_t(view % 5) : in.i32());
     return d;
 }
@@ -789,7 +869,36 @@ bool render_status_allowed(int32_t status, bool host_error_pending) {
     }
 }
 
-std::string describe(const DecodedInput& in, const DecodedOutput& out, const obscura_settings& settings) {
+// What obscura_render may answer from the fields alone (stage 1, before it looks at GL: the struct sizes, the
+// settings, the input and output fields), and so before WRONG_GL_CONTEXT or HOST_GL_ERROR.
+bool stage_one_status(int32_t status) {
+    switch (status) {
+        case OBSCURA_STATUS_INVALID_STRUCT_SIZE: case OBSCURA_STATUS_INVALID_SETTING: case OBSCURA_STATUS_INVALID_ENUM:
+        case OBSCURA_STATUS_INVALID_SIZE: case OBSCURA_STATUS_INVALID_RECT: case OBSCURA_STATUS_INVALID_PROJECTION:
+        case OBSCURA_STATUS_PROJECTION_TRANSPOSED:
+            return true;
+        default: return false;
+    }
+}
+
+// What a render's arguments promise about stage 1: known sizes (settings: any released size) and settings that
+// resolve; `passes`: also fields decoded from valid choices, so stage 1 must pass.
+struct StageOne {
+    bool sizes_valid = false;
+    int32_t resolve_status = -1;
+    bool passes = false;
+};
+StageOne stage_one(const DecodedInput& input, const DecodedOutput& output, const DecodedSettings& settings) {
+    StageOne s;
+    s.sizes_valid = input.input.struct_size == sizeof(obscura_input) &&
+                    output.output.struct_size == sizeof(obscura_output) &&
+                    is_released_settings_size(settings.struct_size());
+    s.resolve_status = resolve_status_of(settings);
+    s.passes = s.sizes_valid && s.resolve_status == kOk && input.fields_valid && output.fields_valid;
+    return s;
+}
+
+std::string describe(const DecodedInput& in, const DecodedOutput& out, const DecodedSettings& settings) {
     char text[1024];
     std::snprintf(text, sizeof text,
                   "obscura_render: depth %s (size %dx%d, kind %d, rect %d,%d %dx%d), normals %s, output %s at (%d, %d) "
@@ -797,8 +906,8 @@ std::string describe(const DecodedInput& in, const DecodedOutput& out, const obs
                   in.depth->label, in.input.depth_width, in.input.depth_height, load_raw(in.input.depth_kind),
                   in.input.output_rect.x, in.input.output_rect.y, in.input.output_rect.width,
                   in.input.output_rect.height, in.normals->label, out.target->label, out.output.x, out.output.y,
-                  load_raw(out.output.blend), load_raw(out.output.debug_view), load_raw(settings.method),
-                  settings.struct_size);
+                  load_raw(out.output.blend), load_raw(out.output.debug_view), settings.method(),
+                  settings.struct_size());
     return text;
 }
 
@@ -831,39 +940,49 @@ void check_float_result(const DecodedInput& in, const DecodedOutput& out) {
 
 void op_render(Reader& in, bool inject_host_error) {
     Fixture& fx = *g_fixture;
-    const obscura_settings settings = decode_settings(in);
+    const DecodedSettings settings = decode_settings(in);
     const DecodedInput input = decode_input(in);
     const DecodedOutput output = decode_output(in);
     const std::string what = describe(input, output, settings);
     obscura_fuzz::set_failure_context(what);
 
+    const NoContextMessage message;
     if (inject_host_error) glEnable(0xBAD);  // GL_INVALID_ENUM, pending when the SDK is called
     const int log_before = fx.log.count;
-    const int32_t status = status_code(obscura_render(fx.context, &input.input, &settings, &output.output));
-    const bool sizes_valid = input.input.struct_size == sizeof(obscura_input) &&
-                             output.output.struct_size == sizeof(obscura_output) &&
-                             settings.struct_size == sizeof(obscura_settings);
+    const int32_t status = status_code(obscura_render(fx.context, &input.input, settings.get(), &output.output));
+    if (inject_host_error && status != OBSCURA_STATUS_HOST_GL_ERROR) {
+        // Refused on its fields before it looked at GL: the error is still the host's, and nothing else is pending.
+        const GLenum pending = glGetError();
+        GLenum more = GL_NO_ERROR;
+        while (GLenum error = glGetError()) more = error;
+        FUZZ_CHECK(pending == GL_INVALID_ENUM && more == GL_NO_ERROR,
+                   "obscura_render refused (%s) with a host GL error pending, which is now %s (then %s)",
+                   fuzz_status_string(status), gl_error_name(pending), gl_error_name(more));
+    }
+    message.check("obscura_render");
+    const StageOne stage = stage_one(input, output, settings);
     if (inject_host_error) {
-        FUZZ_CHECK(!sizes_valid || status == OBSCURA_STATUS_HOST_GL_ERROR,
-                   "obscura_render with a host GL error pending returned %s, not HOST_GL_ERROR",
+        FUZZ_CHECK(status == OBSCURA_STATUS_HOST_GL_ERROR || stage_one_status(status),
+                   "obscura_render with a host GL error pending returned %s, neither HOST_GL_ERROR nor a field error",
                    fuzz_status_string(status));
-        if (!sizes_valid) {
-            while (glGetError() != GL_NO_ERROR) {}  // rejected before looking at GL: the error is still the host's
-        }
+        FUZZ_CHECK(status != OBSCURA_STATUS_HOST_GL_ERROR || (stage.sizes_valid && stage.resolve_status == kOk),
+                   "obscura_render reported the host GL error before its sizes or settings (resolve: %s)",
+                   fuzz_status_string(stage.resolve_status));
+        FUZZ_CHECK(!stage.passes || status == OBSCURA_STATUS_HOST_GL_ERROR,
+                   "obscura_render with a host GL error pending and valid fields returned %s, not HOST_GL_ERROR",
+                   fuzz_status_string(status));
     }
     count_status(0, status, what, fx.context);
     check_after_call("obscura_render", status, log_before, true);
     FUZZ_CHECK(render_status_allowed(status, inject_host_error), "obscura_render returned %s (\"%s\")",
                fuzz_status_string(status), obscura_get_last_error(fx.context));
 
-    // Settings the SDK refuses make the render fail the same way (after the struct sizes and the host state).
-    if (sizes_valid && !inject_host_error) {
-        obscura_settings resolved;
-        const int32_t resolve_status = status_code(obscura_resolve_settings(nullptr, &settings, &resolved));
-        FUZZ_CHECK(resolve_status == kOk || status == resolve_status,
-                   "obscura_render returned %s for settings that resolve to %s", fuzz_status_string(status),
-                   fuzz_status_string(resolve_status));
-    }
+    // Settings the SDK refuses make the render fail the same way (after the struct sizes, before the host state).
+    FUZZ_CHECK(!stage.sizes_valid || stage.resolve_status == kOk || status == stage.resolve_status,
+               "obscura_render returned %s for settings that resolve to %s", fuzz_status_string(status),
+               fuzz_status_string(stage.resolve_status));
+    FUZZ_CHECK(status != kOk || stage.sizes_valid, "obscura_render accepted struct sizes %u / %u / %u",
+               input.input.struct_size, output.output.struct_size, settings.struct_size());
     // A buffer's or a deleted texture's number may have become a texture since (GL reuses names, the SDK's own
     // textures included): then nothing is known about it.
     const bool names_known = !(input.depth->not_a_texture && glIsTexture(input.depth->name)) &&
@@ -894,7 +1013,7 @@ void op_render(Reader& in, bool inject_host_error) {
 
 void op_prepare(Reader& in) {
     Fixture& fx = *g_fixture;
-    const obscura_settings settings = decode_settings(in);
+    const DecodedSettings settings = decode_settings(in);
     int32_t width = 0, height = 0;
     const uint8_t mode = in.u8();
     auto size = [&](uint8_t m) -> int32_t {
@@ -912,10 +1031,12 @@ void op_prepare(Reader& in) {
     if (height > 64 && height <= fx.max_texture_size) height = 64;
     char what[160];
     std::snprintf(what, sizeof what, "obscura_prepare(%d, %d) with settings method %d struct_size %u", width, height,
-                  load_raw(settings.method), settings.struct_size);
+                  settings.method(), settings.struct_size());
     obscura_fuzz::set_failure_context(what);
+    const NoContextMessage message;
     const int log_before = fx.log.count;
-    const int32_t status = status_code(obscura_prepare(fx.context, width, height, &settings));
+    const int32_t status = status_code(obscura_prepare(fx.context, width, height, settings.get()));
+    message.check("obscura_prepare");
     count_status(1, status, what, fx.context);
     check_after_call("obscura_prepare", status, log_before, true);
     const bool size_ok = width > 0 && height > 0 && width <= fx.max_texture_size && height <= fx.max_texture_size;
@@ -923,8 +1044,7 @@ void op_prepare(Reader& in) {
                    status == OBSCURA_STATUS_INVALID_ENUM || status == OBSCURA_STATUS_INVALID_STRUCT_SIZE,
                "%s returned %s (\"%s\")", what, fuzz_status_string(status), obscura_get_last_error(fx.context));
     FUZZ_CHECK(size_ok || status != kOk, "%s accepted the size", what);
-    obscura_settings resolved;
-    const int32_t resolve_status = status_code(obscura_resolve_settings(nullptr, &settings, &resolved));
+    const int32_t resolve_status = resolve_status_of(settings);
     FUZZ_CHECK(resolve_status == kOk || status == resolve_status, "%s returned %s for settings that resolve to %s",
                what, fuzz_status_string(status), fuzz_status_string(resolve_status));
     FUZZ_CHECK(!(resolve_status == kOk && size_ok) || status == kOk, "%s failed (%s) with valid settings and size: %s",
@@ -978,18 +1098,26 @@ void op_queries(Reader& in) {
 // obscura_resolve_settings with the context: failures are reported on it like every other call.
 void op_resolve_with_context(Reader& in) {
     Fixture& fx = *g_fixture;
-    const obscura_settings settings = decode_settings(in);
+    const DecodedSettings settings = decode_settings(in);
     obscura_fuzz::set_failure_context("obscura_resolve_settings with the context");
-    obscura_settings out;
+    SettingsBuffer out(0x5A, settings.buffer.size());
+    const NoContextMessage message;
     const int log_before = fx.log.count;
-    const int32_t status = status_code(obscura_resolve_settings(fx.context, &settings, &out));
+    const int32_t status = status_code(obscura_resolve_settings(fx.context, settings.get(), out.get()));
+    message.check("obscura_resolve_settings");
     check_after_call("obscura_resolve_settings", status, log_before, true);
+    // The same answer and bytes as without a context.
+    SettingsBuffer out_without(0x5A, settings.buffer.size());
+    const int32_t status_without = status_code(obscura_resolve_settings(nullptr, settings.get(), out_without.get()));
+    FUZZ_CHECK(status == status_without && out == out_without,
+               "obscura_resolve_settings with the context returned %s (or other bytes), without one %s",
+               fuzz_status_string(status), fuzz_status_string(status_without));
 }
 
 // A call while another GL context is current: WRONG_GL_CONTEXT, and nothing done in either context.
 void op_wrong_context(Reader& in) {
     Fixture& fx = *g_fixture;
-    const obscura_settings settings = decode_settings(in);
+    const DecodedSettings settings = decode_settings(in);
     const DecodedInput input = decode_input(in);
     const DecodedOutput output = decode_output(in);
     const bool prepare = in.u8() & 1;
@@ -997,33 +1125,69 @@ void op_wrong_context(Reader& in) {
                              ", with another GL context current";
     obscura_fuzz::set_failure_context(what);
     fx.other_gl->make_current();
+    const NoContextMessage message;
     const int log_before = fx.log.count;
     const int32_t status =
-        status_code(prepare ? obscura_prepare(fx.context, kDepthWidth, kDepthHeight, &settings)
-                            : obscura_render(fx.context, &input.input, &settings, &output.output));
+        status_code(prepare ? obscura_prepare(fx.context, kDepthWidth, kDepthHeight, settings.get())
+                            : obscura_render(fx.context, &input.input, settings.get(), &output.output));
     const GLenum other_error = glGetError();
     fx.gl->make_current();
+    message.check(prepare ? "obscura_prepare" : "obscura_render");
     FUZZ_CHECK(other_error == GL_NO_ERROR, "%s left %s in the other GL context", what.c_str(),
                gl_error_name(other_error));
     check_after_call(prepare ? "obscura_prepare" : "obscura_render", status, log_before, true);
-    obscura_settings resolved;
-    const bool settings_ok = status_code(obscura_resolve_settings(nullptr, &settings, &resolved)) == kOk;
-    const bool sizes_ok = input.input.struct_size == sizeof(obscura_input) &&
-                          output.output.struct_size == sizeof(obscura_output) &&
-                          settings.struct_size == sizeof(obscura_settings);
-    if (prepare ? settings_ok : sizes_ok) {
-        FUZZ_CHECK(status == OBSCURA_STATUS_WRONG_GL_CONTEXT, "%s returned %s, not WRONG_GL_CONTEXT", what.c_str(),
-                   fuzz_status_string(status));
-    } else {
-        FUZZ_CHECK(status != kOk, "%s returned OK", what.c_str());
+    if (prepare) {
+        // Settings first (then the size, valid here), then the GL context.
+        const int32_t resolve_status = resolve_status_of(settings);
+        FUZZ_CHECK(status == (resolve_status == kOk ? int32_t(OBSCURA_STATUS_WRONG_GL_CONTEXT) : resolve_status),
+                   "%s returned %s (settings resolve to %s)", what.c_str(), fuzz_status_string(status),
+                   fuzz_status_string(resolve_status));
+        return;
     }
+    // A render checks its fields (stage 1) before the GL context.
+    const StageOne stage = stage_one(input, output, settings);
+    FUZZ_CHECK(status != kOk, "%s returned OK", what.c_str());
+    FUZZ_CHECK(status == OBSCURA_STATUS_WRONG_GL_CONTEXT || stage_one_status(status),
+               "%s returned %s, neither WRONG_GL_CONTEXT nor a field error", what.c_str(), fuzz_status_string(status));
+    FUZZ_CHECK(!stage.passes || status == OBSCURA_STATUS_WRONG_GL_CONTEXT, "%s returned %s, not WRONG_GL_CONTEXT",
+               what.c_str(), fuzz_status_string(status));
+    FUZZ_CHECK(status != OBSCURA_STATUS_WRONG_GL_CONTEXT || (stage.sizes_valid && stage.resolve_status == kOk),
+               "%s reported WRONG_GL_CONTEXT before its sizes or settings (resolve: %s)", what.c_str(),
+               fuzz_status_string(stage.resolve_status));
+    FUZZ_CHECK(!stage.sizes_valid || stage.resolve_status == kOk || status == stage.resolve_status,
+               "%s returned %s for settings that resolve to %s", what.c_str(), fuzz_status_string(status),
+               fuzz_status_string(stage.resolve_status));
 }
 
 // NULL arguments on a live context: NULL_ARGUMENT with a message, nothing touched.
+// (obscura_get_setting_infos, obscura_get_timings and obscura_get_memory_usage given NULL recorded no message for
+// obscura_get_last_error(NULL); fixed, the tolerance stays off: settings_fuzzer.cpp, kTolerateUnrecordedMessages.)
+constexpr bool kTolerateUnrecordedMessages = false;
+
+// A call without a context (or given a NULL one): its message for obscura_get_last_error(NULL), "" after a success.
+void check_no_context_message(const char* call, int32_t status, bool recorded = true) {
+    const char* message = obscura_get_last_error(nullptr);
+    FUZZ_CHECK(message != nullptr, "obscura_get_last_error(NULL) returned NULL after %s", call);
+    if (!recorded && kTolerateUnrecordedMessages) return;
+    FUZZ_CHECK((status == kOk) == (message[0] == '\0'),
+               "%s returned %s but obscura_get_last_error(NULL) is \"%s\"", call, fuzz_status_string(status),
+               message);
+}
+
+// A call without a context that succeeds (so that the next one's message shows).
+void succeed_without_context() {
+    SettingsBuffer defaults(0, sizeof(obscura_settings));
+    const int32_t status = fuzz_default_settings(OBSCURA_METHOD_SAO, defaults.get());
+    check_no_context_message("obscura_default_settings", status);
+    FUZZ_CHECK(status == kOk, "obscura_default_settings(SAO) returned %s", fuzz_status_string(status));
+}
+
+// NULL arguments on a live context: NULL_ARGUMENT with a message, nothing touched. Calls given a NULL context
+// leave their message for obscura_get_last_error(NULL).
 void op_null_arguments(Reader& in) {
     Fixture& fx = *g_fixture;
     obscura_fuzz::set_failure_context("NULL arguments");
-    const obscura_settings settings = decode_settings(in);
+    const DecodedSettings settings = decode_settings(in);
     obscura_input input;
     std::memset(&input, 0, sizeof input);
     input.struct_size = sizeof input;
@@ -1031,21 +1195,61 @@ void op_null_arguments(Reader& in) {
     std::memset(&output, 0, sizeof output);
     output.struct_size = sizeof output;
     const uint8_t which = in.u8() % 4;
+    const NoContextMessage message;
     const int log_before = fx.log.count;
     int32_t status = 0;
     switch (which) {
-        case 0: status = status_code(obscura_render(fx.context, nullptr, &settings, &output)); break;
+        case 0: status = status_code(obscura_render(fx.context, nullptr, settings.get(), &output)); break;
         case 1: status = status_code(obscura_render(fx.context, &input, nullptr, &output)); break;
-        case 2: status = status_code(obscura_render(fx.context, &input, &settings, nullptr)); break;
+        case 2: status = status_code(obscura_render(fx.context, &input, settings.get(), nullptr)); break;
         default: status = status_code(obscura_prepare(fx.context, 8, 8, nullptr)); break;
     }
+    message.check("a call with a NULL argument");
     check_after_call("a call with a NULL argument", status, log_before, true);
     FUZZ_CHECK(status == OBSCURA_STATUS_NULL_ARGUMENT, "a call with a NULL argument returned %s",
                fuzz_status_string(status));
-    FUZZ_CHECK(status_code(obscura_render(nullptr, &input, &settings, &output)) == OBSCURA_STATUS_NULL_ARGUMENT &&
-                   status_code(obscura_prepare(nullptr, 8, 8, &settings)) == OBSCURA_STATUS_NULL_ARGUMENT,
-               "a call without a context did not return NULL_ARGUMENT");
-    check_after_call("a call without a context", kOk, fx.log.count, false);
+
+    succeed_without_context();
+    status = status_code(obscura_render(nullptr, &input, settings.get(), &output));
+    FUZZ_CHECK(status == OBSCURA_STATUS_NULL_ARGUMENT, "obscura_render(NULL context) returned %s",
+               fuzz_status_string(status));
+    check_no_context_message("obscura_render(NULL context)", status);
+    succeed_without_context();
+    status = status_code(obscura_prepare(nullptr, 8, 8, settings.get()));
+    FUZZ_CHECK(status == OBSCURA_STATUS_NULL_ARGUMENT, "obscura_prepare(NULL context) returned %s",
+               fuzz_status_string(status));
+    check_no_context_message("obscura_prepare(NULL context)", status);
+    succeed_without_context();
+    uint32_t count = 0;
+    status = status_code(obscura_get_timings(nullptr, nullptr, 0, &count, nullptr));
+    FUZZ_CHECK(status == OBSCURA_STATUS_NULL_ARGUMENT, "obscura_get_timings(NULL context) returned %s",
+               fuzz_status_string(status));
+    check_no_context_message("obscura_get_timings(NULL context)", status, false);
+    succeed_without_context();
+    uint64_t bytes = 0;
+    status = status_code(obscura_get_memory_usage(nullptr, &bytes));
+    FUZZ_CHECK(status == OBSCURA_STATUS_NULL_ARGUMENT, "obscura_get_memory_usage(NULL context) returned %s",
+               fuzz_status_string(status));
+    check_no_context_message("obscura_get_memory_usage(NULL context)", status, false);
+    obscura_release_resources(nullptr);  // a no-op
+    // obscura_create_context refused before it looks at GL: its reason goes to obscura_get_last_error(NULL).
+    succeed_without_context();
+    obscura_context* created = reinterpret_cast<obscura_context*>(&count);
+    status = status_code(obscura_create_context(nullptr, &created));
+    FUZZ_CHECK(status == OBSCURA_STATUS_NULL_ARGUMENT && created == nullptr,
+               "obscura_create_context(NULL desc) returned %s", fuzz_status_string(status));
+    check_no_context_message("obscura_create_context(NULL desc)", status);
+    succeed_without_context();
+    obscura_context_desc desc;
+    std::memset(&desc, 0, sizeof desc);
+    desc.struct_size = sizeof desc + 4;
+    desc.header_version = OBSCURA_VERSION;
+    desc.get_proc_address = &HeadlessGL::get_proc_address;
+    status = status_code(obscura_create_context(&desc, &created));
+    FUZZ_CHECK(status == OBSCURA_STATUS_INVALID_STRUCT_SIZE && created == nullptr,
+               "obscura_create_context(struct_size + 4) returned %s", fuzz_status_string(status));
+    check_no_context_message("obscura_create_context(struct_size + 4)", status);
+    check_after_call("the calls without a context", kOk, fx.log.count, false);
 }
 
 void run_operation(uint8_t op, Reader& in) {
