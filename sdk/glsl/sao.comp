@@ -9,6 +9,7 @@
 #include "common/shader_interface.h"
 #include "common/depth.glsl"
 #include "common/normal_encoding.glsl"
+#include "common/z_pyramid.glsl"
 
 layout(local_size_x = OBSCURA_SAO_GROUP_X, local_size_y = OBSCURA_SAO_GROUP_Y) in;
 
@@ -30,16 +31,6 @@ vec2 rotation(ivec2 p) {
     double turns = n * (1.0LF / 6.283185307179586LF);
     float phi = float((turns - floor(turns)) * 6.283185307179586LF);
     return vec2(cos(phi), sin(phi));
-}
-
-// Where the z of level-m texel `t` was taken from, in level-0 texel units: the rotated grid keeps one real
-// texel (followed down level by level, the same rule as z_pyramid.comp); the 2x2 filters describe the
-// block's centre. Reconstructing the tap there instead of at the tap's own pixel keeps it on the surface
-// (at the tap's pixel, a level-m depth misses a slanted plane by up to 2^m texels of its slope).
-vec2 level_texel_origin(ivec2 t, int m) {
-    if (sao.options.x != OBSCURA_MIP_FILTER_ROTATED_GRID) return (vec2(t) + 0.5) * float(1 << m);
-    for (int level = m; level > 0; --level) t = 2 * t + ivec2((t.y & 1) ^ 1, (t.x & 1) ^ 1);
-    return vec2(t) + 0.5;
 }
 
 // Visibility of the receiver at p (SAO eq. 1) and the number of depth texels read.
@@ -67,7 +58,7 @@ float sample_visibility(ivec2 p, float depth, out int taps_read) {
         float z = texelFetch(u_z, t, m).r;
         ++taps_read;
         if (obscura_is_sky(z)) continue;
-        vec3 v = obscura_view_position_at(level_texel_origin(t, m), z) - c;
+        vec3 v = obscura_view_position_at(obscura_level_texel_origin(t, m, sao.options.x), z) - c;
         float vv = dot(v, v);
         if (vv >= sao.ball.y) continue;  // the estimator's points lie in the ball of radius r
         sum += max(0.0, dot(v, n) + bias) / (vv + sao.ball.w);

@@ -45,6 +45,12 @@ float reduce4(float a, float b, float c, float d) {
         float count = dot(geometry, vec4(1.0));
         return count > 0.0 ? dot(z * geometry, vec4(1.0)) / count : OBSCURA_SKY_DEPTH;
     }
+    if (filter_kind == OBSCURA_MIP_FILTER_HARMONIC_MEAN_OF_GEOMETRY) {
+        vec4 z = vec4(a, b, c, d);
+        vec4 geometry = vec4(lessThan(z, vec4(OBSCURA_SKY_THRESHOLD)));
+        float count = dot(geometry, vec4(1.0));
+        return count > 0.0 ? count / dot(geometry / z, vec4(1.0)) : OBSCURA_SKY_DEPTH;
+    }
     if (filter_kind == OBSCURA_MIP_FILTER_HARMONIC_MEAN) return 4.0 / (1.0 / a + 1.0 / b + 1.0 / c + 1.0 / d);
     if (filter_kind == OBSCURA_MIP_FILTER_MIN) return min(min(a, b), min(c, d));
     return max(max(a, b), max(c, d));

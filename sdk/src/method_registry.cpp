@@ -10,6 +10,7 @@ extern const MethodDescriptor kSaoMethod;
 extern const MethodDescriptor kLsaoMethod;
 extern const MethodDescriptor kFfaoMethod;
 extern const MethodDescriptor kReferenceMethod;
+extern const MethodDescriptor kGtaoMethod;
 
 namespace {
 
@@ -20,6 +21,7 @@ const MethodDescriptor* const kMethods[] = {
     &kLsaoMethod,
     &kFfaoMethod,
     &kReferenceMethod,
+    &kGtaoMethod,
 };
 static_assert(sizeof kMethods / sizeof kMethods[0] == size_t(OBSCURA_METHOD_COUNT_) - 1,
               "one registry row per obscura_method (OBSCURA_METHOD_DEFAULT excluded)");

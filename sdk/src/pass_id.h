@@ -23,6 +23,8 @@ namespace obscura {
     X(FfaoBoxAverage, "ffao_box_average")    \
     X(FfaoObscurance, "ffao_obscurance")     \
     X(FfaoGather, "ffao_gather")             \
+    X(Gtao, "gtao")                          \
+    X(GtaoDenoise, "gtao_denoise")           \
     X(Blur, "blur")                          \
     X(Composite, "composite")
 

@@ -109,7 +109,8 @@ void store_value(obscura_settings* settings, const obscura_setting_info& info, d
 constexpr uint32_t kSettingsSize01 = uint32_t(offsetof(obscura_settings, reference));  // HBAO only
 constexpr uint32_t kSettingsSize02 = uint32_t(offsetof(obscura_settings, sao));        // + REFERENCE
 constexpr uint32_t kSettingsSize03 = uint32_t(offsetof(obscura_settings, flags));      // + SAO, LSAO, FFAO
-constexpr uint32_t kSettingsSizes[] = {kSettingsSize01, kSettingsSize02, kSettingsSize03,
+constexpr uint32_t kSettingsSize04 = uint32_t(offsetof(obscura_settings, gtao));       // + flags
+constexpr uint32_t kSettingsSizes[] = {kSettingsSize01, kSettingsSize02, kSettingsSize03, kSettingsSize04,
                                        uint32_t(sizeof(obscura_settings))};
 
 }  // namespace

@@ -121,6 +121,10 @@ const std::vector<GoldenCase>& golden_cases() {
         {"ffao_terrain_r4_saao", library_scene("terrain"), "ffao:radius=4:decay_rate=4.8:saao=on:sectors=18"},
         {"reference_analytic_16_rays", library_scene("analytic"), "reference:rays=16"},
         {"reference_objects_16_rays", library_scene("objects"), "reference:rays=16"},
+        {"gtao_atrium", library_scene("atrium"), "gtao"},
+        {"gtao_clutter", library_scene("clutter"), "gtao"},
+        {"gtao_atrium_bitmask", library_scene("atrium"), "gtao:thickness_mode=bitmask"},
+        {"gtao_objects_bitmask_ultra", library_scene("objects"), "gtao:thickness_mode=bitmask:preset=ultra"},
     };
     return cases;
 }

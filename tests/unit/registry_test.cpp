@@ -25,9 +25,12 @@ TEST(MethodRegistry, OneCompleteRowPerMethodInEnumOrder) {
         EXPECT_STREQ(obscura_method_name(row.method), row.name);
         EXPECT_EQ(obscura_method_available(row.method), 1);
         EXPECT_EQ(obscura::find_method(row.method), &row);
-        // The settings block lies inside obscura_settings and every metadata row inside the block.
+        // The settings block lies inside obscura_settings, clear of struct_size, method and flags, and every
+        // metadata row inside the block.
         EXPECT_GE(row.settings_offset, offsetof(obscura_settings, hbao));
-        EXPECT_LE(row.settings_offset + row.settings_size, offsetof(obscura_settings, flags));
+        EXPECT_LE(row.settings_offset + row.settings_size, sizeof(obscura_settings));
+        const size_t flags_begin = offsetof(obscura_settings, flags), flags_end = flags_begin + sizeof(uint32_t);
+        EXPECT_TRUE(row.settings_offset + row.settings_size <= flags_begin || row.settings_offset >= flags_end);
         ASSERT_NE(row.settings, nullptr);
         ASSERT_GT(row.setting_count, 0u);
         for (uint32_t s = 0; s < row.setting_count; ++s) {

@@ -587,6 +587,14 @@ TEST(SettingsDocument, MetadataKeysAreTheCFieldNames) {
         OBSCURA_TEST_FIELD(ffao, thickness), OBSCURA_TEST_FIELD(ffao, jitter), OBSCURA_TEST_FIELD(ffao, saao),
         OBSCURA_TEST_FIELD(ffao, saao_blur), OBSCURA_TEST_FIELD(ffao, intensity), OBSCURA_TEST_FIELD(ffao, power),
         OBSCURA_TEST_FIELD(ffao, falloff_table),
+        OBSCURA_TEST_FIELD(gtao, radius), OBSCURA_TEST_FIELD(gtao, preset), OBSCURA_TEST_FIELD(gtao, slices),
+        OBSCURA_TEST_FIELD(gtao, steps), OBSCURA_TEST_FIELD(gtao, thickness_mode),
+        OBSCURA_TEST_FIELD(gtao, thickness), OBSCURA_TEST_FIELD(gtao, thickness_blend),
+        OBSCURA_TEST_FIELD(gtao, sectors), OBSCURA_TEST_FIELD(gtao, falloff_range),
+        OBSCURA_TEST_FIELD(gtao, step_power), OBSCURA_TEST_FIELD(gtao, mip), OBSCURA_TEST_FIELD(gtao, mip_offset),
+        OBSCURA_TEST_FIELD(gtao, intensity), OBSCURA_TEST_FIELD(gtao, power), OBSCURA_TEST_FIELD(gtao, albedo),
+        OBSCURA_TEST_FIELD(gtao, max_radius_pixels), OBSCURA_TEST_FIELD(gtao, denoise),
+        OBSCURA_TEST_FIELD(gtao, denoise_sharpness), OBSCURA_TEST_FIELD(gtao, frame_index),
     };
 #undef OBSCURA_TEST_FIELD
     for (obscura_method method : all_methods()) {

@@ -60,6 +60,11 @@
 #define OBSCURA_SAO_GROUP_X 8
 #define OBSCURA_SAO_GROUP_Y 8
 #define OBSCURA_SAO_MAX_SAMPLES 64
+// GTAO: 8x8 groups for the slices and the denoise.
+#define OBSCURA_GTAO_GROUP_X 8
+#define OBSCURA_GTAO_GROUP_Y 8
+#define OBSCURA_GTAO_DENOISE_GROUP_X 8
+#define OBSCURA_GTAO_DENOISE_GROUP_Y 8
 // LSAO: one invocation per line segment, 64 per group, each keeping its hull in shared memory (64 x hull
 // capacity x 8 bytes: 12 KiB at the default 24 points, 32 KiB, GL's guaranteed minimum, at the most);
 // the gather in 8x8 groups on CPU rasterisers and 16x16 on GPUs, whose groups share a tile of depths.
@@ -195,6 +200,9 @@ OBSCURA_PASS_BLOCK_END(ReferenceConstants, reference)
 #define OBSCURA_MIP_FILTER_MAX 5
 // Internal (FFAO's mipmap method): the mean of the children that are not sky; sky only if all four are.
 #define OBSCURA_MIP_FILTER_MEAN_OF_GEOMETRY 6
+// Internal (GTAO's): the harmonic mean of the children that are not sky. 1/z is affine in screen space on a plane,
+// so on planes it is the depth at the block's centre, where GTAO reconstructs the sample.
+#define OBSCURA_MIP_FILTER_HARMONIC_MEAN_OF_GEOMETRY 7
 
 #if defined(__cplusplus) || defined(OBSCURA_Z_PYRAMID_PASS)
 OBSCURA_PASS_BLOCK_BEGIN(ZPyramidConstants)
@@ -218,6 +226,27 @@ OBSCURA_PASS_BLOCK_BEGIN(SaoBlurConstants)
   OBSCURA_VEC4(params);    // edge scale (sharpness, on the packed key), 1 / (2 sigma^2), unused, unused
   OBSCURA_IVEC4(config);   // radius in taps, stride, axis x, axis y
 OBSCURA_PASS_BLOCK_END(SaoBlurConstants, sao_blur)
+#endif
+
+#if defined(__cplusplus) || defined(OBSCURA_GTAO_PASS)
+// GTAO's thickness modes (compiled in: GtaoPass::prepare): the values of obscura_gtao_settings.thickness_mode.
+#define OBSCURA_GTAO_MODE_HORIZON 1
+#define OBSCURA_GTAO_MODE_BITMASK 2
+OBSCURA_PASS_BLOCK_BEGIN(GtaoConstants)
+  OBSCURA_VEC4(falloff);   // radius (view units), weight = clamp(d * x + y): its slope and offset, max radius (px)
+  OBSCURA_VEC4(thickness); // bitmask thickness (view units), horizon blend, step power, MIP offset (log2 px)
+  OBSCURA_VEC4(shaping);   // intensity, power, albedo (0: no multi-bounce), unused
+  OBSCURA_IVEC4(config);   // S slices, N steps per side, sectors, deepest z-pyramid level (0: level 0 only)
+  OBSCURA_VEC4(noise);     // the frame's offsets of the slice rotation and of the step jitter in [0, 1), unused x2
+  OBSCURA_VEC4(rotation);  // cos and sin of pi / S (from one slice to the next), 2^-mip_offset, unused
+OBSCURA_PASS_BLOCK_END(GtaoConstants, gtao)
+#endif
+
+#if defined(__cplusplus) || defined(OBSCURA_GTAO_DENOISE_PASS)
+OBSCURA_PASS_BLOCK_BEGIN(GtaoDenoiseConstants)
+  OBSCURA_VEC4(params);    // sharpness (per relative distance to the pixel's plane), unused x3
+  OBSCURA_IVEC4(config);   // axis x, axis y, unused x2
+OBSCURA_PASS_BLOCK_END(GtaoDenoiseConstants, gtao_denoise)
 #endif
 
 #if defined(__cplusplus) || defined(OBSCURA_LSAO_PASS)

@@ -28,7 +28,12 @@
  *                             thick unless `thickness` is set. The ceiling of what a screen-space method can compute
  *                             from a depth buffer (the limit the other methods converge to), not what a viewer
  *                             sees, which the samples' geometry truth (rays against the scene's triangles) measures.
- *   All five are available in this version; obscura_method_available() and OBSCURA_STATUS_METHOD_NOT_AVAILABLE
+ *   OBSCURA_METHOD_GTAO       Jimenez et al., "Practical Realtime Strategies for Accurate Indirect Occlusion" (2016):
+ *                             S slices x N steps per side, the two horizons of each slice integrated in closed form
+ *                             against the projected normal (cosine-weighted); or (thickness_mode bitmask) Therrien et
+ *                             al., "Screen Space Indirect Lighting with Visibility Bitmask" (2023): occluders of finite
+ *                             thickness mark sectors of a 32-bit mask, so light passes behind thin objects.
+ *   All six are available in this version; obscura_method_available() and OBSCURA_STATUS_METHOD_NOT_AVAILABLE
  *   remain for methods a build or a later version does not have.
  *
  * INTEGRATION
@@ -103,7 +108,7 @@ extern "C" {
 
 /* ---- Version --------------------------------------------------------------------------------- */
 #define OBSCURA_VERSION_MAJOR 0
-#define OBSCURA_VERSION_MINOR 4
+#define OBSCURA_VERSION_MINOR 5
 #define OBSCURA_VERSION_PATCH 0
 /* Packed version: major * 10000 + minor * 100 + patch. */
 #define OBSCURA_VERSION (OBSCURA_VERSION_MAJOR * 10000 + OBSCURA_VERSION_MINOR * 100 + OBSCURA_VERSION_PATCH)
@@ -224,10 +229,11 @@ typedef enum obscura_method {
     OBSCURA_METHOD_LSAO = 3,
     OBSCURA_METHOD_FFAO = 4,
     OBSCURA_METHOD_REFERENCE = 5,
+    OBSCURA_METHOD_GTAO = 6,     /* 0.5 */
     OBSCURA_METHOD_COUNT_
 } obscura_method;
 
-/* Returns "hbao", "sao", "lsao", "ffao", "reference", or NULL for an unknown method. */
+/* Returns "hbao", "sao", "lsao", "ffao", "reference", "gtao", or NULL for an unknown method. */
 OBSCURA_API const char* obscura_method_name(obscura_method method);
 
 /* Returns 1 if the method is implemented in this library version, 0 otherwise. */
@@ -407,6 +413,50 @@ typedef struct obscura_ffao_settings {
     float falloff_table[OBSCURA_FALLOFF_TABLE_SIZE]; /* TABLE only: rho at i/(N-1) * radius, values in [0, 1] */
 } obscura_ffao_settings;
 
+/* GTAO: Jimenez, Wu, Pesce, Jarabo, "Practical Realtime Strategies for Accurate Indirect Occlusion" (2016).
+   Per pixel, S slices (planes through the eye and a screen direction, rotated per pixel over a 4x4 pattern that
+   frame_index moves) are searched N steps to each side along the projected radius, the steps reading a z pyramid
+   where they are far apart. thickness_mode 1 (horizon): each side keeps its highest horizon; the arc a sample
+   adds to it counts as occluded with the sample's falloff weight (HBAO's horizon split, cosine-weighted), and the
+   arcs are integrated in closed form against the normal projected into the slice (the paper's eq. 10).
+   thickness_mode 2 (bitmask, Therrien et al. 2023): every sample occupies the sectors of the slice between its
+   front and `thickness` metres behind it, in a mask of `sectors` bits (when its falloff weight exceeds a
+   threshold drawn per slice), and the free sectors are integrated with the same cosine weight, so light passes
+   behind thin objects. A separable edge-aware 5x5 denoise averages the 4x4 pattern. Visibility is the ratio of
+   the visible to the unoccluded slice integrals, so planes are exactly 1 at any slice count. The falloff it is
+   compared with (obscura_reference_settings_for): 1 up to radius * (1 - falloff_range), linear to 0 at the
+   radius, and the bitmask's thickness.
+   Every field: 0 selects the default given after it ("derive" for derived ones). */
+typedef struct obscura_gtao_settings {
+    float radius;         /* metres, [1e-3, 1e4]: occluders farther than this do not count. Default 1 */
+    int32_t preset;       /* slices x steps per side, as XeGTAO names them: 1 low 1x2, 2 medium 2x2, 3 high 3x3,
+                             4 ultra 9x3, [1, 4]. Default 3 */
+    int32_t slices;       /* S, [1, 16]. Derived: the preset's */
+    int32_t steps;        /* N steps to each side, [1, 32]. Derived: the preset's */
+    int32_t thickness_mode; /* 1 horizon (the paper's two horizons), 2 bitmask (finite thickness), [1, 2].
+                             Default 1 (measured closer to the geometry truth at 3 steps, docs/quality.md) */
+    float thickness;      /* bitmask: metres of solid behind every depth sample, [1e-3, 1e4]. Default 0.3 */
+    float thickness_blend; /* horizon: the paper's thickness heuristic; a sample below the current horizon pulls
+                             it this fraction of the way down, [0, 1]. Default 0 (zero is the default) */
+    int32_t sectors;      /* bitmask: sectors per slice, [4, 32]. Default 32 */
+    float falloff_range;  /* fraction of the radius over which an occluder's weight fades to 0 at the radius,
+                             [0.01, 1]. Default 0.6 */
+    float step_power;     /* the steps sit at radius * ((j + jitter) / N)^step_power: denser near the pixel,
+                             [1, 4]. Default 2 */
+    obscura_toggle mip;   /* steps read the z pyramid where they are far apart. Default on */
+    float mip_offset;     /* log2 of the step's distance in pixels at which it reads one level down, [0, 8].
+                             Default 3.3 */
+    float intensity;      /* obscurance multiplier, [1e-3, 16]. Default 1 */
+    float power;          /* visibility exponent, [1e-3, 16]. Default 1.5: makes up for the horizons 3 steps miss */
+    float albedo;         /* the paper's multi-bounce fit for this surface albedo, [0, 0.95]; 0: none. Default 0 */
+    float max_radius_pixels; /* cap of the radius on screen, [1, 4096]. Default 256 */
+    obscura_toggle denoise; /* edge-aware 5x5 denoise over the 4x4 noise pattern. Default on */
+    float denoise_sharpness; /* how strongly the denoise stops at a neighbour off the pixel's plane, [1e-3, 1000].
+                             Default 32 */
+    int32_t frame_index;  /* moves the per-pixel noise; hosts accumulating frames advance it each frame,
+                             [0, 16777216]. Default 0 */
+} obscura_gtao_settings;
+
 /* SETTINGS: what a user edits and what the SDK uses.
    The editable form is what obscura_default_settings() returns and what hosts, UIs and files keep: every field
    holds its default, except the derived fields (the metadata flags them OBSCURA_SETTING_FLAG_DERIVED), which
@@ -435,6 +485,7 @@ typedef struct obscura_settings {
     obscura_lsao_settings lsao;
     obscura_ffao_settings ffao;
     uint32_t flags;         /* OBSCURA_SETTINGS_FLAG_* (0.4). obscura_default_settings sets ZERO_IS_VALUE */
+    obscura_gtao_settings gtao; /* 0.5 */
 } obscura_settings;
 
 /* Fills `out` with the editable form of `method`'s defaults (see SETTINGS above; struct_size set). Writes
@@ -617,7 +668,7 @@ typedef struct obscura_timing {
                           "line_sweep" "gather"; FFAO ["ffao_table" when the falloff's shape changed], then
                           "ffao_scan" ["ffao_prefix"] (geometry=mipmap: ["z_pyramid"] instead),
                           ["ffao_box_average"] "ffao_obscurance" ["ffao_gather" "blur"] (the last three with saao);
-                          then "composite". Static strings */
+                          GTAO ["z_pyramid"] "gtao" ["gtao_denoise"]; then "composite". Static strings */
     double milliseconds;
 } obscura_timing;
 

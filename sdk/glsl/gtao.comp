@@ -1,0 +1,272 @@
+// GTAO: ground-truth-based ambient occlusion (Jimenez, Wu, Pesce, Jarabo, "Practical Realtime Strategies for
+// Accurate Indirect Occlusion", 2016), with the visibility bitmask of Therrien, Levesque, Gilet, "Screen Space
+// Indirect Lighting with Visibility Bitmask" (2023) as the finite-thickness mode.
+//
+// Per pixel, S slices: the planes through the eye that contain a screen direction phi (rotated per pixel). In a
+// slice, angles h are measured from the direction towards the eye V, positive towards the screen direction;
+// the normal projected into the slice sits at angle n, and a direction h is weighted by cos(h - n) |sin h| (the
+// cosine, times the measure of the sphere in slice coordinates). N steps to each side, at radius * ((j + jitter)
+// / N)^power on screen, reconstruct occluders; where the steps are far apart they read the z pyramid (harmonic
+// means of the geometry below, reconstructed at the block's centre: exact on planes).
+//   horizon (OBSCURA_GTAO_MODE == 1): each side keeps its highest horizon cos h (the paper's eq. 3-4); the arc a
+//     sample adds to it is occluded with the sample's falloff weight (HBAO's horizon split, cosine-weighted: an
+//     occluder counts as the rays that would hit it at its distance do), every arc integrated in closed form
+//     (eq. 10): G(h) = (cos n + 2 h sin n - cos(2h - n)) / 4 is the weight from 0 to |h| on either side.
+//   bitmask (OBSCURA_GTAO_MODE == 2): a sample occupies the sectors between the angles of its front and of the
+//     point `thickness` behind it, in `sectors` equal angles over the normal's half-circle [n - pi/2, n + pi/2];
+//     the unoccupied runs of sectors are integrated with the same weight (W(b) - W(a), W the signed G). A sample
+//     counts when its falloff weight exceeds a threshold drawn per slice.
+// Visibility is the sum of the slices' visible integrals (each times |projected normal|) over the sum of their
+// unoccluded integrals (cos n + n sin n): the paper's estimator normalised by its own value for an unoccluded
+// pixel, so a plane is exactly 1 at any slice count (the paper's per-slice sum is 1 only on average over slices).
+// Bent normals (OBSCURA_GTAO_BENT_NORMALS): the cosine-weighted mean visible direction, integrated over the
+// same arcs or runs in closed form (F below); the output is then rgba16f: visibility, bent normal xyz.
+#define OBSCURA_GTAO_PASS 1
+#include "common/shader_interface.h"
+#include "common/depth.glsl"
+#include "common/normal_encoding.glsl"
+#include "common/z_pyramid.glsl"
+
+layout(local_size_x = OBSCURA_GTAO_GROUP_X, local_size_y = OBSCURA_GTAO_GROUP_Y) in;
+
+layout(binding = OBSCURA_UNIT_LINEAR_DEPTH) uniform sampler2D u_z;  // the z pyramid (mipmapped sampler)
+layout(binding = OBSCURA_UNIT_NORMALS) uniform sampler2D u_normals;
+#if OBSCURA_GTAO_BENT_NORMALS
+layout(binding = OBSCURA_IMAGE_OUT0, rgba16f) writeonly uniform image2D u_ao;
+#else
+layout(binding = OBSCURA_IMAGE_OUT0, r16f) writeonly uniform image2D u_ao;
+#endif
+
+const float kHalfPi = 0.5 * OBSCURA_PI;
+
+// acos to about 1e-4 rad (a polynomial in |x| times sqrt(1 - |x|), Abramowitz & Stegun 4.4.45's form): the
+// library acos is a long polynomial on CPU rasterisers, and a slice needs three.
+float fast_acos(float x) {
+    float a = abs(x);
+    float r = (((-0.0187293 * a + 0.0742610) * a - 0.2121144) * a + 1.5707288) * sqrt(max(0.0, 1.0 - a));
+    return x < 0.0 ? OBSCURA_PI - r : r;
+}
+
+// The cosine-and-measure weight of the slice from angle 0 to angle h, G(h) = (cos n + 2 h sin n - cos(2h - n)) / 4,
+// signed (negative for h < 0) so that the weight of [a, b] is signed_weight(b) - signed_weight(a).
+float signed_weight(float h, float sin_n, float cos_n) {
+    float g = 0.25 * (cos_n + 2.0 * h * sin_n - cos(2.0 * h) * cos_n - sin(2.0 * h) * sin_n);
+    return h < 0.0 ? -g : g;
+}
+
+// G(h) for the angle whose cosine is `c` on side `side_sign` (+1: h = acos c, -1: h = -acos c): the weight
+// between 0 and h, without sin or cos (cos 2h = 2c^2 - 1, sin 2h = 2 c sin h).
+float side_weight(float c, float side_sign, float sin_n, float cos_n) {
+    float h = side_sign * fast_acos(c);
+    float sin_h = side_sign * sqrt(max(0.0, 1.0 - c * c));
+    return 0.25 * (cos_n + 2.0 * h * sin_n - (2.0 * c * c - 1.0) * cos_n - 2.0 * c * sin_h * sin_n);
+}
+
+// The weighted direction integral from 0 to the angle h (given by its sine and cosine) in slice coordinates (along
+// the screen direction, towards the eye), signed like signed_weight: d/dh = (sin h, cos h) cos(h - n) |sin h|.
+vec2 signed_direction(float sin_h, float cos_h, float sin_n, float cos_n) {
+    float s3 = sin_h * sin_h * sin_h, c3 = cos_h * cos_h * cos_h;
+    vec2 f = vec2(cos_n * s3 + sin_n * (2.0 - 3.0 * cos_h + c3), cos_n * (1.0 - c3) + sin_n * s3) * (1.0 / 3.0);
+    return sin_h < 0.0 ? -f : f;
+}
+
+// The per-pixel noise: a 4x4 ordered pattern (every 4x4 window holds each of its 16 values once, so the 5x5
+// denoise averages 16 rotations), and a permutation of it for the step jitter; the frame's offsets move both
+// inside their 1/16 strata.
+vec2 pixel_noise(ivec2 p) {
+    ivec2 q = p & 3;
+    int low = ((q.x & 1) ^ (q.y & 1)) << 1 | (q.y & 1);
+    int high = (((q.x >> 1) ^ (q.y >> 1)) << 1) | (q.y >> 1);
+    int index = (low << 2) | high;
+    int jitter = (index * 5 + 3) & 15;
+    return (vec2(float(index), float(jitter)) + gtao.noise.xy) * (1.0 / 16.0);
+}
+
+void store(ivec2 p, float visibility, vec3 bent) {
+#if OBSCURA_GTAO_BENT_NORMALS
+    imageStore(u_ao, p, vec4(visibility, bent));
+#else
+    imageStore(u_ao, p, vec4(visibility));
+#endif
+}
+
+// The paper's multi-bounce fit (its eq. 12 fitted per albedo): visibility -> visibility with interreflections.
+float multi_bounce(float v, float albedo) {
+    float a = 2.0404 * albedo - 0.3324;
+    float b = -4.7951 * albedo + 0.6417;
+    float c = 2.7552 * albedo + 0.6903;
+    return max(v, ((v * a + b) * v + c) * v);
+}
+
+void main() {
+    ivec2 p = work_rect.xy + ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(gl_GlobalInvocationID.xy, uvec2(work_rect.zw)))) return;
+
+    float depth = texelFetch(u_z, p, 0).r;
+    bool count_taps = target_params.w == OBSCURA_DEBUG_VIEW_TAP_COUNT;
+    if (obscura_is_sky(depth)) {
+        store(p, count_taps ? 0.0 : 1.0, vec3(0.0, 0.0, 1.0));
+        return;
+    }
+    vec3 position = obscura_view_position(p, depth);
+    vec3 normal = obscura_decode_normal(texelFetch(u_normals, p, 0).xy);
+    vec3 towards_eye = obscura_towards_eye(position);
+
+    float radius_px = min(gtao.falloff.x * obscura_pixels_per_view_unit(depth), gtao.falloff.w);
+    if (radius_px < 1.0) {  // the radius covers less than a texel: nothing to search
+        store(p, count_taps ? 0.0 : 1.0, normal);
+        return;
+    }
+    int slices = gtao.config.x, steps = gtao.config.y, deepest = gtao.config.w;
+    vec2 noise = pixel_noise(p);
+    vec2 pixel_center = vec2(p) + 0.5;
+    // Screen directions map to view-space directions through the projection's x/y scales.
+    vec2 view_per_pixel = vec2(1.0) / (proj_scale.xy * vec2(depth_size.xy));
+    // Slice s is the first one's direction turned by s pi / S: one rotation per slice instead of cos and sin.
+    float phi = noise.x * (OBSCURA_PI / float(slices));
+    vec2 dir = vec2(cos(phi), sin(phi));
+    vec2 turn = gtao.rotation.xy;
+#if OBSCURA_GTAO_MODE == OBSCURA_GTAO_MODE_BITMASK
+    int sectors = gtao.config.z;
+    uint all_sectors = sectors == 32 ? 0xffffffffu : (1u << uint(sectors)) - 1u;
+    float sector_angle = OBSCURA_PI / float(sectors);
+#endif
+
+    int taps_read = 0;
+    float visible = 0.0, unoccluded = 0.0;
+    vec3 bent = vec3(0.0);
+    for (int s = 0; s < slices; ++s, dir = vec2(dir.x * turn.x - dir.y * turn.y, dir.x * turn.y + dir.y * turn.x)) {
+        // The slice's axes: `along` is the screen direction in view space made orthogonal to V.
+        vec3 line = vec3(normalize(dir * view_per_pixel), 0.0);
+        vec3 along = normalize(line - towards_eye * dot(line, towards_eye));
+        vec3 slice_normal = cross(along, towards_eye);
+        // The normal projected into the slice: its length weighs the slice, its angle n from V.
+        float n_along = dot(normal, along), n_view = dot(normal, towards_eye);
+        float projected_length = sqrt(n_along * n_along + n_view * n_view);
+        if (projected_length < 1e-4) continue;  // the slice is (almost) the receiver's tangent plane
+        float cos_n = n_view / projected_length, sin_n = n_along / projected_length;
+        float n = sin_n < 0.0 ? -fast_acos(cos_n) : fast_acos(cos_n);
+        // Off-slice correction (as in hbao.comp): a texel beside the slice is moved back into it along the
+        // receiver's tangent plane, exact for planes, so planes do not occlude themselves.
+        float slope = dot(normal, slice_normal) / max(n_view, 0.1);
+        vec3 correction = towards_eye * slope - slice_normal;
+        // Per side, the tangent plane's cos h: cos(n + pi/2) = -sin n (side +), cos(n - pi/2) = sin n (side -).
+        vec2 low_cos = vec2(-sin_n, sin_n);
+#if OBSCURA_GTAO_MODE == OBSCURA_GTAO_MODE_BITMASK
+        uint occupied = 0u;
+        float lowest = n - kHalfPi;  // the angle of sector 0's lower edge
+        // A sample occupies its sectors when its falloff weight exceeds one threshold drawn per slice: a sector is
+        // then occupied with the probability of its highest weight, its nearest occluder's, as a ray would be
+        // weighed by its hit distance (the denoise averages the draws).
+        float chance = fract(noise.y * 7.0 + float(s) * 0.6180339887);
+#else
+        // Per side: the highest horizon so far (as cos h), G at it, and the weight of the occluded arc: each sample
+        // that raises the horizon occludes the arc it adds with its falloff weight (the horizon-split estimator of
+        // HBAO, here cosine-weighted), so an occluder counts as rays that hit it at its distance would.
+        vec2 horizon_cos = low_cos;
+        vec2 unoccluded_weight = vec2(side_weight(low_cos.x, 1.0, sin_n, cos_n), side_weight(low_cos.y, -1.0, sin_n, cos_n));
+        vec2 horizon_weight = unoccluded_weight;
+        vec2 occluded = vec2(0.0);
+#endif
+        // Both sides in one step: the two samples share their distance and level (vec2 lanes: side +, side -).
+        // No branch in the steps (CPU rasterisers run every lane through every branch): a sample outside the
+        // texture, on the pixel itself or on sky gets weight 0.
+        for (int j = 0; j < steps; ++j) {
+            float u = (float(j) + noise.y) / float(steps);
+#if OBSCURA_GTAO_STEP_POWER_2
+            float t = u * u * radius_px + 1.0;  // the default distribution, without pow's exp2 and log2
+#else
+            float t = pow(u, gtao.thickness.z) * radius_px + 1.0;
+#endif
+            // One level down per doubling of the step's distance past 2^mip_offset pixels.
+            int m = clamp(findMSB(int(t * gtao.rotation.z)), 0, deepest);
+            ivec2 level_last = max(depth_size.xy >> m, ivec2(1)) - 1;
+            vec2 cos_h, weight, back_cos;
+            for (int side = 0; side < 2; ++side) {  // unrolled by the compilers: constant trip count
+                ivec2 unclamped = ivec2(floor(pixel_center + dir * (side == 0 ? t : -t)));
+                ivec2 q = clamp(unclamped, ivec2(0), depth_size.xy - 1);
+                ivec2 texel = min(q >> m, level_last);
+                float z = texelFetch(u_z, texel, m).r;
+                bool inside = unclamped == q && q != p;
+                bool valid = inside && !obscura_is_sky(z);
+                taps_read += inside ? 1 : 0;
+                // The pyramid holds harmonic means, exact at the block's centre on planes.
+                vec3 sample_position = obscura_view_position_at(
+                    obscura_level_texel_origin(texel, m, OBSCURA_MIP_FILTER_HARMONIC_MEAN_OF_GEOMETRY), valid ? z : depth);
+                vec3 delta = sample_position - position;
+                delta += correction * dot(delta, slice_normal);
+                float distance_sq = max(dot(delta, delta), 1e-30);
+                float inverse_distance = inversesqrt(distance_sq);
+                // The falloff: full weight up to radius (1 - range), fading to 0 at the radius.
+                float w = clamp(distance_sq * inverse_distance * gtao.falloff.y + gtao.falloff.z, 0.0, 1.0);
+                weight[side] = valid ? w : 0.0;
+                cos_h[side] = dot(delta, towards_eye) * inverse_distance;
+#if OBSCURA_GTAO_MODE == OBSCURA_GTAO_MODE_BITMASK
+                vec3 back = delta - obscura_towards_eye(sample_position) * gtao.thickness.x;
+                back_cos[side] = dot(back, towards_eye) * inversesqrt(dot(back, back));
+#endif
+            }
+#if OBSCURA_GTAO_MODE == OBSCURA_GTAO_MODE_BITMASK
+            vec2 front_h = vec2(fast_acos(cos_h.x), -fast_acos(cos_h.y));
+            vec2 back_h = vec2(fast_acos(back_cos.x), -fast_acos(back_cos.y));
+            vec2 lo = clamp((min(front_h, back_h) - lowest) / sector_angle, 0.0, float(sectors));
+            vec2 hi = clamp((max(front_h, back_h) - lowest) / sector_angle, 0.0, float(sectors));
+            uvec2 first = uvec2(lo + 0.5), last = uvec2(hi + 0.5);  // sectors [first, last)
+            uvec2 below_last = uvec2(last.x >= 32u ? 0xffffffffu : (1u << last.x) - 1u,
+                                     last.y >= 32u ? 0xffffffffu : (1u << last.y) - 1u);
+            uvec2 below_first = (uvec2(1u) << min(first, uvec2(31u))) - 1u;
+            uvec2 marked = below_last & ~below_first;
+            occupied |= (weight.x > chance ? marked.x : 0u) | (weight.y > chance ? marked.y : 0u);
+#else
+            vec2 sample_cos = max(mix(low_cos, cos_h, greaterThan(weight, vec2(0.0))), low_cos);
+            vec2 sample_weight = vec2(side_weight(sample_cos.x, 1.0, sin_n, cos_n), side_weight(sample_cos.y, -1.0, sin_n, cos_n));
+            bvec2 raises = greaterThan(sample_cos, horizon_cos);
+            occluded += mix(vec2(0.0), weight * (horizon_weight - sample_weight), raises);
+            // The thickness heuristic: a lower sample pulls the horizon down by the blend fraction (of the arc's
+            // weight), so a thin occluder stops hiding what lies beyond it.
+            vec2 blend = gtao.thickness.y * step(vec2(1e-30), weight);
+            horizon_weight = mix(mix(horizon_weight, sample_weight, blend), sample_weight, raises);
+            horizon_cos = mix(mix(horizon_cos, sample_cos, blend), sample_cos, raises);
+#endif
+        }
+
+        // The unoccluded slice, G(n + pi/2) + G(n - pi/2) = cos n + n sin n.
+        float slice_unoccluded = cos_n + n * sin_n;
+        float slice_visible;
+        vec2 slice_bent = vec2(0.0);
+#if OBSCURA_GTAO_MODE == OBSCURA_GTAO_MODE_BITMASK
+        slice_visible = 0.0;
+        uint free_sectors = ~occupied & all_sectors;
+        while (free_sectors != 0u) {
+            int first = findLSB(free_sectors);
+            uint above = ~free_sectors & ~((1u << uint(first)) - 1u) & all_sectors;  // occupied above `first`
+            int last = above == 0u ? sectors : findLSB(above);
+            float a = lowest + float(first) * sector_angle, b = lowest + float(last) * sector_angle;
+            slice_visible += signed_weight(b, sin_n, cos_n) - signed_weight(a, sin_n, cos_n);
+#if OBSCURA_GTAO_BENT_NORMALS
+            slice_bent += signed_direction(sin(b), cos(b), sin_n, cos_n) - signed_direction(sin(a), cos(a), sin_n, cos_n);
+#endif
+            free_sectors &= last >= 32 ? 0u : ~((1u << uint(last)) - 1u);
+        }
+#else
+        // The visible arc [h0, h1]: h1 = acos of side +'s horizon, h0 = -acos of side -'s.
+        slice_visible = max(0.0, unoccluded_weight.x + unoccluded_weight.y - occluded.x - occluded.y);
+        slice_unoccluded = unoccluded_weight.x + unoccluded_weight.y;
+#if OBSCURA_GTAO_BENT_NORMALS
+        vec2 sin_h = vec2(1.0, -1.0) * sqrt(max(vec2(0.0), 1.0 - horizon_cos * horizon_cos));
+        slice_bent = signed_direction(sin_h.x, horizon_cos.x, sin_n, cos_n) -
+                     signed_direction(sin_h.y, horizon_cos.y, sin_n, cos_n);
+#endif
+#endif
+        visible += projected_length * slice_visible;
+        unoccluded += projected_length * slice_unoccluded;
+        bent += projected_length * (along * slice_bent.x + towards_eye * slice_bent.y);
+    }
+
+    float visibility = unoccluded > 0.0 ? clamp(visible / unoccluded, 0.0, 1.0) : 1.0;
+    visibility = pow(clamp(1.0 - gtao.shaping.x * (1.0 - visibility), 0.0, 1.0), gtao.shaping.y);
+    if (gtao.shaping.z > 0.0) visibility = multi_bounce(visibility, gtao.shaping.z);
+    float bent_length = length(bent);
+    vec3 bent_normal = bent_length > 0.0 ? bent / bent_length : normal;
+    store(p, count_taps ? float(taps_read) / 256.0 : visibility, bent_normal);
+}

@@ -1,0 +1,174 @@
+// GTAO (Jimenez et al. 2016) with the visibility bitmask (Therrien et al. 2023) as its finite-thickness mode: its
+// settings metadata, its derived values (the preset's slices and steps), the falloff it is compared with, its
+// technique (z pyramid, slices, denoise) and its registry row.
+#include "method_registry.h"
+#include "passes/gtao.h"
+#include "passes/z_pyramid.h"
+#include "settings.h"
+#include "technique.h"
+
+namespace obscura {
+namespace {
+
+constexpr const char* const kGtaoPresetNames[] = {"low", "medium", "high", "ultra"};
+constexpr const char* const kGtaoModeNames[] = {"horizon", "bitmask"};
+
+// Defaults: XeGTAO's High preset (3 slices x 3 steps per side), its falloff range (0.6 of the radius), step
+// distribution (2) and MIP offset (3.3). Horizon mode and power 1.5: measured against the geometry truth on the
+// atrium, objects, clutter and terrain at 320x180, they beat the bitmask mode and power 1 or 2 on every scene
+// (docs/quality.md). Bitmask: 32 sectors and 0.3 m of thickness (the value that brought REFERENCE closest to the
+// geometry truth on the atrium).
+const obscura_setting_info kGtaoSettings[] = {
+    setting_row("radius", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 1e4, "m", "occluders farther than this do not count",
+     OBSCURA_SETTING_OFFSET(gtao, radius)),
+    enum_row("preset", 3, 1, "slices x steps per side: low 1x2, medium 2x2, high 3x3, ultra 9x3 (XeGTAO's names)",
+             OBSCURA_SETTING_OFFSET(gtao, preset), kGtaoPresetNames),
+    setting_row("slices", OBSCURA_SETTING_INT, 0, 1, 16, "", "S slices per pixel; derived: the preset's",
+     OBSCURA_SETTING_OFFSET(gtao, slices), OBSCURA_SETTING_FLAG_DERIVED),
+    setting_row("steps", OBSCURA_SETTING_INT, 0, 1, 32, "", "N steps to each side of a slice; derived: the preset's",
+     OBSCURA_SETTING_OFFSET(gtao, steps), OBSCURA_SETTING_FLAG_DERIVED),
+    enum_row("thickness_mode", 1, 1,
+             "horizon: the paper's two horizons per slice (every occluder infinitely thick); bitmask: each sample "
+             "occupies the sectors from its front to thickness behind it (Therrien et al. 2023)",
+             OBSCURA_SETTING_OFFSET(gtao, thickness_mode), kGtaoModeNames),
+    setting_row("thickness", OBSCURA_SETTING_FLOAT, 0.3, 1e-3, 1e4, "m", "bitmask: solid assumed behind every depth sample",
+     OBSCURA_SETTING_OFFSET(gtao, thickness)),
+    setting_row("thickness_blend", OBSCURA_SETTING_FLOAT, 0.0, 0.0, 1.0, "",
+     "horizon: the paper's thickness heuristic, the fraction by which a lower sample pulls the horizon down",
+     OBSCURA_SETTING_OFFSET(gtao, thickness_blend)),
+    setting_row("sectors", OBSCURA_SETTING_INT, 32, 4, 32, "", "bitmask: sectors of the normal's half-circle per slice",
+     OBSCURA_SETTING_OFFSET(gtao, sectors)),
+    setting_row("falloff_range", OBSCURA_SETTING_FLOAT, 0.6, 0.01, 1.0, "",
+     "fraction of the radius over which an occluder's weight fades to zero at the radius",
+     OBSCURA_SETTING_OFFSET(gtao, falloff_range)),
+    setting_row("step_power", OBSCURA_SETTING_FLOAT, 2.0, 1.0, 4.0, "",
+     "steps at radius * ((j + jitter) / N)^power on screen: denser near the pixel", OBSCURA_SETTING_OFFSET(gtao, step_power)),
+    setting_row("mip", OBSCURA_SETTING_TOGGLE, 1, 0, 1, "", "steps read the z pyramid where they are far apart",
+     OBSCURA_SETTING_OFFSET(gtao, mip)),
+    setting_row("mip_offset", OBSCURA_SETTING_FLOAT, 3.3, 0.0, 8.0, "",
+     "log2 of the step distance (px) at which a step reads one z-pyramid level down", OBSCURA_SETTING_OFFSET(gtao, mip_offset)),
+    setting_row("intensity", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "obscurance multiplier", OBSCURA_SETTING_OFFSET(gtao, intensity)),
+    setting_row("power", OBSCURA_SETTING_FLOAT, 1.5, 1e-3, 16.0, "",
+     "exponent applied to the visibility: 1.5 makes up for the horizons that 3 steps per side miss (docs/quality.md)",
+     OBSCURA_SETTING_OFFSET(gtao, power)),
+    setting_row("albedo", OBSCURA_SETTING_FLOAT, 0.0, 0.0, 0.95, "",
+     "the paper's multi-bounce fit for this surface albedo; 0: none (plain visibility)", OBSCURA_SETTING_OFFSET(gtao, albedo)),
+    setting_row("max_radius_pixels", OBSCURA_SETTING_FLOAT, 256.0, 1.0, 4096.0, "px",
+     "cap of the radius on screen, bounding the step spacing of close-ups", OBSCURA_SETTING_OFFSET(gtao, max_radius_pixels)),
+    setting_row("denoise", OBSCURA_SETTING_TOGGLE, 1, 0, 1, "", "edge-aware separable 5x5 denoise over the 4x4 noise pattern",
+     OBSCURA_SETTING_OFFSET(gtao, denoise)),
+    setting_row("denoise_sharpness", OBSCURA_SETTING_FLOAT, 32.0, 1e-3, 1000.0, "",
+     "how strongly the denoise stops at neighbours off the pixel's plane (per relative distance)",
+     OBSCURA_SETTING_OFFSET(gtao, denoise_sharpness)),
+    setting_row("frame_index", OBSCURA_SETTING_INT, 0, 0, 16777216, "",
+     "moves the per-pixel noise; advance it each frame when accumulating frames", OBSCURA_SETTING_OFFSET(gtao, frame_index)),
+};
+
+Error derive_gtao(const obscura_settings&, obscura_settings* resolved) {
+    obscura_gtao_settings& gtao = resolved->gtao;
+    const GtaoPresetCounts counts = gtao_preset_counts(gtao.preset);
+    if (gtao.slices == 0) gtao.slices = counts.slices;
+    if (gtao.steps == 0) gtao.steps = counts.steps;
+    return Error();
+}
+
+// The falloff GTAO weighs an occluder with: 1 up to radius * (1 - range), falling linearly to 0 at the radius (the
+// horizon is faded towards the tangent plane by that weight; the bitmask occupies sectors with that probability).
+// In bitmask mode the reference gets the same thickness.
+void gtao_reference_falloff(const obscura_settings& resolved, obscura_reference_settings* reference) {
+    const obscura_gtao_settings& gtao = resolved.gtao;
+    reference->falloff = OBSCURA_FALLOFF_TABLE;
+    reference->radius = gtao.radius;
+    for (int i = 0; i < OBSCURA_FALLOFF_TABLE_SIZE; ++i) {
+        const float d = float(i) / float(OBSCURA_FALLOFF_TABLE_SIZE - 1);  // in units of the radius
+        const float weight = (1.0f - d) / gtao.falloff_range;
+        reference->falloff_table[i] = weight < 0.0f ? 0.0f : (weight > 1.0f ? 1.0f : weight);
+    }
+    reference->thickness = gtao.thickness_mode == OBSCURA_GTAO_MODE_BITMASK ? gtao.thickness : 0.0f;
+}
+
+bool gtao_denoises(const obscura_gtao_settings& gtao, bool raw_view) {
+    return !raw_view && gtao.denoise == OBSCURA_TOGGLE_ON;
+}
+
+class GtaoTechnique final : public Technique {
+public:
+    TechniquePlan plan(const obscura_settings& settings, int width, int height, bool raw_view) const override {
+        const obscura_gtao_settings& gtao = settings.gtao;
+        TechniquePlan plan;
+        plan.apron = gtao_denoises(gtao, raw_view) ? 2 : 0;
+        plan.depth_levels = ZPyramidPass::level_count(width, height, GtaoPass::wanted_levels(gtao));
+        plan.radius = gtao.radius;
+        return plan;
+    }
+
+    Error prepare(const PassEnv& env, const obscura_settings& settings, FrameResources&) override {
+        Error error = pyramid_pass_.prepare(env);
+        if (!error) error = gtao_.prepare(env, settings.gtao, false);
+        if (!error) error = denoise_.prepare(env, false);
+        return error;
+    }
+
+    void write_constants(const Frame& frame, UniformWriter& uniforms) override {
+        const obscura_gtao_settings& gtao = frame.settings.gtao;
+        levels_ = frame.resources.linear_depth.levels();
+        pyramid_dispatches_ = ZPyramidPass::dispatch_count(levels_);
+        for (int d = 0; d < pyramid_dispatches_ && d < kMaxPyramidDispatches; ++d) {
+            pyramid_[d] = uniforms.push(ZPyramidPass::constants(d, levels_, OBSCURA_MIP_FILTER_HARMONIC_MEAN_OF_GEOMETRY));
+        }
+        pass_ = uniforms.push(GtaoPass::constants(gtao, frame.input, levels_ - 1));
+        denoise_x_ = uniforms.push(GtaoDenoisePass::constants(gtao, 1, 0));
+        denoise_y_ = uniforms.push(GtaoDenoisePass::constants(gtao, 0, 1));
+    }
+
+    Error record(const Frame& frame, PassRecorder& recorder, TechniqueOutput* out) override {
+        FrameResources& r = frame.resources;
+        Error error;
+        if (levels_ > 1) {
+            pyramid_pass_.run(frame.env, pyramid_, pyramid_dispatches_, r.linear_depth);
+            error = recorder.end(PassId::ZPyramid);
+            if (error) return error;
+        }
+        gtao_.run(frame.env, frame.settings.gtao, false, frame.uniforms.ao, pass_, frame.regions.ao, r, r.ao);
+        out->raw = out->result = &r.ao;
+        error = recorder.end(PassId::Gtao);
+        if (error || !gtao_denoises(frame.settings.gtao, frame.raw_view)) return error;
+        denoise_.run(frame.env, false, false, frame.uniforms.blur_x, denoise_x_, frame.regions.blur_x, r, r.ao,
+                     r.blur_temp, nullptr);
+        denoise_.run(frame.env, false, true, frame.uniforms.output, denoise_y_, frame.regions.output, r, r.blur_temp,
+                     r.ao_blurred, nullptr);
+        out->result = &r.ao_blurred;
+        return recorder.end(PassId::GtaoDenoise);
+    }
+
+    uint64_t memory_bytes() const override { return 0; }  // the shared depth pyramid and AO textures only
+    void release() override {}
+
+private:
+    static constexpr int kMaxPyramidDispatches = 4;
+    ZPyramidPass pyramid_pass_;
+    GtaoPass gtao_;
+    GtaoDenoisePass denoise_;
+    int levels_ = 1, pyramid_dispatches_ = 0;
+    UniformRange pyramid_[kMaxPyramidDispatches], pass_, denoise_x_, denoise_y_;
+};
+
+const PassId kGtaoPasses[] = {PassId::ZPyramid, PassId::Gtao, PassId::GtaoDenoise};
+
+}  // namespace
+
+extern const MethodDescriptor kGtaoMethod = {
+    OBSCURA_METHOD_GTAO,
+    "gtao",
+    offsetof(obscura_settings, gtao),
+    sizeof(obscura_gtao_settings),
+    kGtaoSettings,
+    uint32_t(sizeof kGtaoSettings / sizeof kGtaoSettings[0]),
+    derive_gtao,
+    gtao_reference_falloff,
+    kGtaoPasses,
+    uint32_t(sizeof kGtaoPasses / sizeof kGtaoPasses[0]),
+    create_technique<GtaoTechnique>,
+};
+
+}  // namespace obscura

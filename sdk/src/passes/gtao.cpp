@@ -1,0 +1,126 @@
+#include "passes/gtao.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "math_constants.h"
+
+namespace obscura {
+
+GtaoPresetCounts gtao_preset_counts(int preset) {
+    static const GtaoPresetCounts kPresets[] = {{1, 2}, {2, 2}, {3, 3}, {9, 3}};  // low, medium, high, ultra
+    return kPresets[preset >= 1 && preset <= 4 ? preset - 1 : 2];
+}
+
+gl::Object& GtaoPass::program(const obscura_gtao_settings& settings, bool bent_normals) {
+    return programs_[settings.thickness_mode == OBSCURA_GTAO_MODE_BITMASK ? 1 : 0][settings.step_power == 2.0f ? 1 : 0]
+                    [bent_normals ? 1 : 0];
+}
+
+Error GtaoPass::prepare(const PassEnv& env, const obscura_gtao_settings& settings, bool bent_normals) {
+    gl::Object& built = program(settings, bent_normals);
+    if (built) return Error();
+    char defines[128];
+    std::snprintf(defines, sizeof defines,
+                  "OBSCURA_GTAO_MODE %d\nOBSCURA_GTAO_STEP_POWER_2 %d\nOBSCURA_GTAO_BENT_NORMALS %d\n",
+                  settings.thickness_mode == OBSCURA_GTAO_MODE_BITMASK ? 2 : 1, settings.step_power == 2.0f ? 1 : 0,
+                  bent_normals ? 1 : 0);
+    return env.build("gtao.comp", defines, &built);
+}
+
+int GtaoPass::wanted_levels(const obscura_gtao_settings& settings) {
+    if (settings.mip != OBSCURA_TOGGLE_ON) return 1;
+    // The farthest step lies at the capped screen radius; it reads level log2(t) - mip_offset.
+    const double deepest = std::floor(std::log2(double(settings.max_radius_pixels) + 1.0) - settings.mip_offset);
+    return deepest > 0.0 ? int(deepest) + 1 : 1;
+}
+
+GtaoConstants GtaoPass::constants(const obscura_gtao_settings& settings, const FrameInput& input, int deepest_level) {
+    const float m2v = input.meters_to_view_units;
+    const float radius = settings.radius * m2v;
+    // weight(d) = clamp((radius - d) / (range * radius), 0, 1) = clamp(d * slope + offset).
+    const float fade = settings.falloff_range * radius;
+    GtaoConstants c = {};
+    c.falloff[0] = radius;
+    c.falloff[1] = -1.0f / fade;
+    c.falloff[2] = radius / fade;
+    c.falloff[3] = settings.max_radius_pixels;
+    c.thickness[0] = settings.thickness * m2v;
+    c.thickness[1] = settings.thickness_blend;
+    c.thickness[2] = settings.step_power;
+    c.thickness[3] = settings.mip_offset;
+    c.shaping[0] = settings.intensity;
+    c.shaping[1] = settings.power;
+    c.shaping[2] = settings.albedo;
+    c.config[0] = settings.slices;
+    c.config[1] = settings.steps;
+    c.config[2] = settings.sectors;
+    c.config[3] = deepest_level;
+    // The frame moves the pattern inside its 1/16 strata along an R2 sequence (frame 0: the strata's centres).
+    const double frame = double(settings.frame_index);
+    const double rotation = 0.5 + frame * 0.7548776662466927, jitter = 0.5 + frame * 0.5698402909980532;
+    c.noise[0] = float(rotation - std::floor(rotation));
+    c.noise[1] = float(jitter - std::floor(jitter));
+    c.rotation[0] = float(std::cos(kPi / settings.slices));
+    c.rotation[1] = float(std::sin(kPi / settings.slices));
+    c.rotation[2] = float(std::exp2(-double(settings.mip_offset)));
+    return c;
+}
+
+void GtaoPass::run(const PassEnv& env, const obscura_gtao_settings& settings, bool bent_normals,
+                   const UniformRange& frame, const UniformRange& pass, const Region& region,
+                   const FrameResources& resources, const gl::Texture2D& destination) {
+    const gl::Table& gl = env.gl;
+    gl.UseProgram(program(settings, bent_normals).name());
+    env.bind_texture_mipmapped(OBSCURA_UNIT_LINEAR_DEPTH, resources.linear_depth.name());
+    env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
+    gl.BindImageTexture(OBSCURA_IMAGE_OUT0, destination.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
+                        bent_normals ? GL_RGBA16F : GL_R16F);
+    env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
+    env.bind_uniforms(OBSCURA_UBO_PASS, pass);
+    env.dispatch(region.width, region.height, OBSCURA_GTAO_GROUP_X, OBSCURA_GTAO_GROUP_Y);
+    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+Error GtaoDenoisePass::prepare(const PassEnv& env, bool bent_normals) {
+    for (int final = 0; final < 2; ++final) {
+        gl::Object& program = programs_[bent_normals ? 1 : 0][final];
+        if (program) continue;
+        char defines[96];
+        std::snprintf(defines, sizeof defines, "OBSCURA_GTAO_BENT_NORMALS %d\nOBSCURA_GTAO_DENOISE_FINAL %d\n",
+                      bent_normals ? 1 : 0, final);
+        Error error = env.build("gtao_denoise.comp", defines, &program);
+        if (error) return error;
+    }
+    return Error();
+}
+
+GtaoDenoiseConstants GtaoDenoisePass::constants(const obscura_gtao_settings& settings, int axis_x, int axis_y) {
+    GtaoDenoiseConstants c = {};
+    c.params[0] = settings.denoise_sharpness;
+    c.config[0] = axis_x;
+    c.config[1] = axis_y;
+    return c;
+}
+
+void GtaoDenoisePass::run(const PassEnv& env, bool bent_normals, bool final, const UniformRange& frame,
+                          const UniformRange& pass, const Region& region, const FrameResources& resources,
+                          const gl::Texture2D& source, const gl::Texture2D& destination, const gl::Texture2D* bent) {
+    const gl::Table& gl = env.gl;
+    gl.UseProgram(programs_[bent_normals ? 1 : 0][final ? 1 : 0].name());
+    env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
+    env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
+    env.bind_texture(OBSCURA_UNIT_SOURCE, GL_TEXTURE_2D, source.name());
+    const bool rgba = bent_normals && !final;
+    gl.BindImageTexture(OBSCURA_IMAGE_OUT0, destination.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
+                        rgba ? GL_RGBA16F : GL_R16F);
+    if (bent_normals && final && bent) {
+        gl.BindImageTexture(OBSCURA_IMAGE_OUT1, bent->name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    }
+    env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
+    env.bind_uniforms(OBSCURA_UBO_PASS, pass);
+    env.dispatch(region.width, region.height, OBSCURA_GTAO_DENOISE_GROUP_X, OBSCURA_GTAO_DENOISE_GROUP_Y);
+    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+}  // namespace obscura

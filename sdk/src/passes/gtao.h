@@ -1,0 +1,56 @@
+// GTAO: S slices x N steps per side per pixel, horizons (or a visibility bitmask) integrated in closed form
+// against the projected normal (sdk/glsl/gtao.comp), and its edge-aware 5x5 denoise (gtao_denoise.comp).
+#ifndef OBSCURA_GTAO_H
+#define OBSCURA_GTAO_H
+
+#include "frame_input.h"
+#include "passes/pass_common.h"
+
+namespace obscura {
+
+// The slices and steps of a GTAO preset (1 low ... 4 ultra), as XeGTAO names them.
+struct GtaoPresetCounts {
+    int slices, steps;
+};
+GtaoPresetCounts gtao_preset_counts(int preset);
+
+class GtaoPass {
+public:
+    // Builds the program of these settings' variant (thickness mode, step power 2 or not) with bent normals or not
+    // on first use: variants are compiled in (CPU rasterisers run both sides of a branch on a uniform).
+    Error prepare(const PassEnv& env, const obscura_gtao_settings& settings, bool bent_normals);
+    // Levels of the z pyramid the steps can read (counting level 0) for these settings.
+    static int wanted_levels(const obscura_gtao_settings& settings);
+    // Converts resolved settings (metres) to the shader's constants (view units); `deepest_level`: the last level of
+    // the z pyramid (0: level 0 only).
+    static GtaoConstants constants(const obscura_gtao_settings& settings, const FrameInput& input, int deepest_level);
+    // Writes visibility over `region` into `destination`: R16F, or RGBA16F (visibility, bent normal) with bent
+    // normals. The linear depth is read through its levels.
+    void run(const PassEnv& env, const obscura_gtao_settings& settings, bool bent_normals, const UniformRange& frame,
+             const UniformRange& pass, const Region& region, const FrameResources& resources,
+             const gl::Texture2D& destination);
+
+private:
+    gl::Object programs_[2][2][2];  // [thickness mode - 1][step power 2][bent normals]
+    gl::Object& program(const obscura_gtao_settings& settings, bool bent_normals);
+};
+
+// Separable: along x into a temporary, then along y into the result.
+class GtaoDenoisePass {
+public:
+    Error prepare(const PassEnv& env, bool bent_normals);
+    static GtaoDenoiseConstants constants(const obscura_gtao_settings& settings, int axis_x, int axis_y);
+    // Denoises `source` over `region` along the pass's axis into `destination`: with `final` the visibility (R16F)
+    // and, with bent normals, `bent` (RGBA16F: unit bent normal, visibility); else the same values as `source`
+    // (R16F, or RGBA16F with bent normals).
+    void run(const PassEnv& env, bool bent_normals, bool final, const UniformRange& frame, const UniformRange& pass,
+             const Region& region, const FrameResources& resources, const gl::Texture2D& source,
+             const gl::Texture2D& destination, const gl::Texture2D* bent);
+
+private:
+    gl::Object programs_[2][2];  // [bent normals][final]
+};
+
+}  // namespace obscura
+
+#endif  // OBSCURA_GTAO_H

@@ -1,0 +1,290 @@
+// GTAO behaviour on analytic scenes (CPU ray cast, uploaded as D32F depth, 320x180), in both thickness modes:
+//   - planes get visibility 1 for every projection variant (the estimator is normalised per pixel),
+//   - a corner darkens as the exact obscurance with GTAO's own falloff does (a quadrature in the test),
+//   - a box on a floor darkens at its contact and nowhere far from it,
+//   - a thin pole in front of a wall darkens the wall less in bitmask mode than in horizon mode,
+//   - the radius does not change the number of taps; the frame index moves the noise, deterministically.
+// Tolerances are stated with each test, with the values measured on llvmpipe in the comments.
+#include <cmath>
+#include <cstring>
+
+#include "ao_test_scene.h"
+
+namespace obscura_test {
+namespace {
+
+constexpr int kWidth = 320;
+constexpr int kHeight = 180;
+
+constexpr int kHorizon = 1;  // obscura_gtao_settings.thickness_mode
+constexpr int kBitmask = 2;
+
+obscura_settings gtao_settings(int thickness_mode, float radius = 1.0f) {
+    obscura_settings settings;
+    obscura_default_settings(OBSCURA_METHOD_GTAO, &settings);
+    settings.gtao.radius = radius;
+    settings.gtao.thickness_mode = thickness_mode;
+    settings.gtao.power = 1.0f;  // the estimator itself (the default 1.5 compensates for the High preset's steps)
+    return settings;
+}
+
+const char* mode_name(int mode) { return mode == kBitmask ? "bitmask" : "horizon"; }
+
+// ---- Planes --------------------------------------------------------------------------------------------
+
+struct PlaneCase {
+    Projection projection;
+    int mode;
+};
+
+class GtaoFlatPlane : public GLTest, public ::testing::WithParamInterface<PlaneCase> {};
+
+TEST_P(GtaoFlatPlane, FacingCameraIsUnoccluded) {
+    AoScene scene = make_ao_scene(GetParam().projection, glm::dmat4(1.0),
+                                  {plane(1, glm::dvec3(0.0, 0.0, -5.0), glm::dvec3(0.0, 0.0, 1.0))});
+    Stats s = geometry_stats(scene, render_visibility(ctx(), scene.input, gtao_settings(GetParam().mode)));
+    ASSERT_EQ(s.count, kWidth * kHeight);
+    EXPECT_GT(s.min, 0.995) << describe(s);  // measured 1 (R16F)
+}
+
+TEST_P(GtaoFlatPlane, TiltedIsUnoccluded) {
+    AoScene scene = tilted_plane_scene(GetParam().projection);
+    Stats s = geometry_stats(scene, render_visibility(ctx(), scene.input, gtao_settings(GetParam().mode)));
+    ASSERT_EQ(s.count, kWidth * kHeight);
+    EXPECT_GT(s.min, 0.995) << describe(s);
+}
+
+TEST_P(GtaoFlatPlane, SteepFloorIsUnoccluded) {
+    AoScene scene = steep_floor_scene(GetParam().projection);
+    Stats s = geometry_stats(scene, render_visibility(ctx(), scene.input, gtao_settings(GetParam().mode)));
+    ASSERT_GT(s.count, kWidth * kHeight / 2);
+    EXPECT_GT(s.min, 0.995) << describe(s);
+}
+
+std::vector<PlaneCase> plane_cases() {
+    std::vector<PlaneCase> cases;
+    for (Projection projection : {Projection::Perspective, Projection::ReversedZ, Projection::Infinite,
+                                  Projection::ReversedInfinite, Projection::Orthographic, Projection::LinearView}) {
+        for (int mode : {kHorizon, kBitmask}) cases.push_back({projection, mode});
+    }
+    return cases;
+}
+
+std::string plane_case_name(const ::testing::TestParamInfo<PlaneCase>& info) {
+    ::testing::TestParamInfo<Projection> projection(info.param.projection, info.index);
+    return projection_test_name(projection) + "_" + mode_name(info.param.mode);
+}
+
+INSTANTIATE_TEST_SUITE_P(Variants, GtaoFlatPlane, ::testing::ValuesIn(plane_cases()), plane_case_name);
+
+// ---- A corner, against its exact obscurance ----------------------------------------------------------------
+
+// Exact visibility of a floor point `x` metres from an infinite wall (the corner scene's floor, far from the
+// image edges), weighing each cosine-distributed direction's hit distance with the falloff `settings` are
+// compared with (obscura_evaluate_falloff: the SDK's own mapping of GTAO's falloff). Stratified quadrature.
+double exact_corner_visibility(const obscura_settings& settings, double x) {
+    constexpr int kN = 256;
+    std::vector<float> distances;
+    distances.reserve(kN * kN);
+    for (int i = 0; i < kN; ++i) {
+        for (int j = 0; j < kN; ++j) {
+            const double u1 = (i + 0.5) / kN, u2 = (j + 0.5) / kN;
+            const double r = std::sqrt(u1), phi = 2.0 * 3.14159265358979323846 * u2;
+            const double toward_wall = r * std::sin(phi);  // -z component of the direction
+            distances.push_back(toward_wall > 0.0 ? float(x / toward_wall) : INFINITY);
+        }
+    }
+    std::vector<float> rho(distances.size());
+    if (obscura_evaluate_falloff(&settings, distances.data(), rho.data(), uint32_t(rho.size())) != OBSCURA_OK) return -1;
+    double sum = 0.0;
+    for (float value : rho) sum += value;
+    return 1.0 - sum / double(rho.size());
+}
+
+class GtaoModes : public GLTest, public ::testing::WithParamInterface<int> {};
+
+// Floor bands at a distance from the crease against the exact value, with `tolerance` per band (the wall's own
+// texels are left out). Returns the largest difference.
+void expect_corner_near_exact(obscura_context* context, const obscura_settings& settings, double tolerance,
+                              const char* label) {
+    AoScene scene = corner_scene();
+    std::vector<float> v = render_visibility(context, scene.input, settings);
+    ASSERT_FALSE(v.empty());
+    double previous = 0.0;
+    for (double d : {0.1, 0.3, 0.5, 0.8, 1.3}) {
+        Stats band = stats(v, select(scene.hits, kWidth, kHeight, 8, [d](const Hit& h) {
+            return h.id == 1 && std::fabs(crease_distance(h) - d) < 0.04;
+        }));
+        ASSERT_GT(band.count, 30) << "band at " << d;
+        const double exact = exact_corner_visibility(settings, d);
+        ASSERT_GE(exact, 0.0);
+        std::printf("[ gtao %s ] corner floor at %.1f m: %s, exact %.4f\n", label, d, describe(band).c_str(), exact);
+        EXPECT_NEAR(band.mean, exact, tolerance) << label << ", band at " << d << ": " << describe(band);
+        EXPECT_GT(band.mean, previous) << label << ", band at " << d;  // occlusion falls with the distance
+        previous = band.mean;
+    }
+}
+
+// Many slices and steps: the estimator converges to the exact obscurance of the falloff it is compared with
+// (measured: within 0.03 in every band, both modes).
+TEST_P(GtaoModes, CornerConvergesToTheExactObscurance) {
+    obscura_settings settings = gtao_settings(GetParam());
+    settings.gtao.slices = 8;
+    settings.gtao.steps = 24;
+    expect_corner_near_exact(ctx(), settings, 0.04, mode_name(GetParam()));
+}
+
+// The High preset (3 x 3): fewer steps find lower horizons, so it is brighter than the exact value (measured: up to
+// +0.13 at 0.3 m from the crease; the tuned intensity and power are what bring it back, docs/quality.md).
+TEST_P(GtaoModes, CornerHighPresetDarkensTowardsTheExactObscurance) {
+    expect_corner_near_exact(ctx(), gtao_settings(GetParam()), 0.15, mode_name(GetParam()));
+}
+
+// ---- A box on a floor -------------------------------------------------------------------------------------
+
+constexpr double kBoxHalf = 0.5;
+constexpr double kBoxHeight = 0.7;
+
+AoScene box_scene() {
+    return make_ao_scene(Projection::Perspective, look_at(glm::dvec3(0.9, 2.4, 3.2), glm::dvec3(0.0, 0.3, 0.0)),
+                         {plane(1, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0)),
+                          box(2, glm::dvec3(-kBoxHalf, 0.0, -kBoxHalf), glm::dvec3(kBoxHalf, kBoxHeight, kBoxHalf))});
+}
+
+double footprint_distance(const Hit& h) {
+    double dx = std::max(std::fabs(h.world.x) - kBoxHalf, 0.0);
+    double dz = std::max(std::fabs(h.world.z) - kBoxHalf, 0.0);
+    return std::hypot(dx, dz);
+}
+
+TEST_P(GtaoModes, BoxContactOccludedOpenFloorNot) {
+    AoScene scene = box_scene();
+    std::vector<float> v = render_visibility(ctx(), scene.input, gtao_settings(GetParam()));
+    ASSERT_FALSE(v.empty());
+    Stats contact = stats(v, select(scene.hits, kWidth, kHeight, 8, [](const Hit& h) {
+        return h.id == 1 && footprint_distance(h) < 0.05;
+    }));
+    Stats open = stats(v, select(scene.hits, kWidth, kHeight, 8, [](const Hit& h) {
+        return h.id == 1 && footprint_distance(h) > 1.2 && h.view_depth() < 15.0;
+    }));
+    Stats top = stats(v, select(scene.hits, kWidth, kHeight, 8, [](const Hit& h) {
+        return h.id == 2 && h.world.y > kBoxHeight - 1e-6 && std::fabs(h.world.x) < 0.25 && std::fabs(h.world.z) < 0.25;
+    }));
+    std::printf("[ gtao %s ] box contact %s; open floor %s; top %s\n", mode_name(GetParam()),
+                describe(contact).c_str(), describe(open).c_str(), describe(top).c_str());
+    ASSERT_GT(contact.count, 50);
+    ASSERT_GT(open.count, 1000);
+    ASSERT_GT(top.count, 100);
+    EXPECT_LT(contact.mean, 0.85) << describe(contact);
+    EXPECT_GT(open.min, 0.99) << describe(open);
+    EXPECT_GT(top.min, 0.99) << describe(top);
+}
+
+// ---- Radius and taps, noise ---------------------------------------------------------------------------------
+
+TEST_P(GtaoModes, RadiusDoesNotChangeTheTapCount) {
+    AoScene scene = make_ao_scene(Projection::Perspective, glm::dmat4(1.0),
+                                  {plane(1, glm::dvec3(0.0, 0.0, -5.0), glm::dvec3(0.0, 0.0, 1.0))});
+    // Texels farther from the edges than the larger radius on screen (2 m at 5 m: about 62 px) read every tap:
+    // 2 sides x S slices x N steps (18 for the High preset), whatever the radius.
+    std::vector<bool> interior = select(scene.hits, kWidth, kHeight, 70, [](const Hit&) { return true; });
+    for (float radius : {0.25f, 1.0f, 2.0f}) {
+        std::vector<float> taps =
+            render_visibility(ctx(), scene.input, gtao_settings(GetParam(), radius), OBSCURA_DEBUG_TAP_COUNT);
+        Stats s = stats(taps, interior);
+        ASSERT_GT(s.count, 1000);
+        EXPECT_EQ(std::lround(s.min * 256.0), 18) << "radius " << radius << ": " << describe(s);
+        EXPECT_EQ(std::lround(s.max * 256.0), 18) << "radius " << radius << ": " << describe(s);
+    }
+}
+
+TEST_P(GtaoModes, FrameIndexMovesTheNoiseDeterministically) {
+    AoScene scene = corner_scene();
+    obscura_settings settings = gtao_settings(GetParam());
+    settings.gtao.denoise = OBSCURA_TOGGLE_OFF;
+    std::vector<float> a = render_visibility(ctx(), scene.input, settings);
+    std::vector<float> b = render_visibility(ctx(), scene.input, settings);
+    settings.gtao.frame_index = 1;
+    std::vector<float> c = render_visibility(ctx(), scene.input, settings);
+    ASSERT_FALSE(a.empty());
+    ASSERT_EQ(a.size(), c.size());
+    EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0);
+    size_t differing = 0;
+    for (size_t i = 0; i < a.size(); ++i) differing += a[i] != c[i] ? 1 : 0;
+    EXPECT_GT(differing, a.size() / 20) << "frame 1 should move the noise of the occluded texels";
+}
+
+INSTANTIATE_TEST_SUITE_P(Modes, GtaoModes, ::testing::Values(kHorizon, kBitmask),
+                         [](const ::testing::TestParamInfo<int>& param_info) { return std::string(mode_name(param_info.param)); });
+
+// ---- Thickness: a thin pole in front of a wall ---------------------------------------------------------------
+
+constexpr double kPoleHalf = 0.03, kPoleFront = 0.38, kPoleBack = 0.32;
+
+// The exact visibility of the wall point (x, y, 0) (normal +z) with the pole as the only occluder: cosine-weighted
+// directions, the slab test against the pole's box, hits weighed with the falloff the settings are compared with.
+double exact_wall_visibility(const obscura_settings& settings, double x, double y) {
+    constexpr int kN = 128;
+    std::vector<float> distances;
+    for (int i = 0; i < kN; ++i) {
+        for (int j = 0; j < kN; ++j) {
+            const double u1 = (i + 0.5) / kN, u2 = (j + 0.5) / kN;
+            const double r = std::sqrt(u1), phi = 2.0 * 3.14159265358979323846 * u2;
+            const glm::dvec3 d(r * std::cos(phi), r * std::sin(phi), std::sqrt(1.0 - u1));
+            const glm::dvec3 o(x, y, 0.0), lo(-kPoleHalf, -10.0, kPoleBack), hi(kPoleHalf, 10.0, kPoleFront);
+            double t0 = 0.0, t1 = 1e30;
+            for (int a = 0; a < 3; ++a) {
+                if (std::fabs(d[a]) < 1e-12) {
+                    if (o[a] < lo[a] || o[a] > hi[a]) t0 = 2e30;
+                    continue;
+                }
+                double ta = (lo[a] - o[a]) / d[a], tb = (hi[a] - o[a]) / d[a];
+                t0 = std::max(t0, std::min(ta, tb));
+                t1 = std::min(t1, std::max(ta, tb));
+            }
+            distances.push_back(t0 <= t1 ? float(t0) : INFINITY);
+        }
+    }
+    std::vector<float> rho(distances.size());
+    if (obscura_evaluate_falloff(&settings, distances.data(), rho.data(), uint32_t(rho.size())) != OBSCURA_OK) return -1;
+    double sum = 0.0;
+    for (float value : rho) sum += value;
+    return 1.0 - sum / double(rho.size());
+}
+
+// A wall (z = 0, facing +z) and a pole 6 cm square standing 0.32-0.38 m in front of it, seen head-on from 3 m: light
+// passes around and behind the pole, so the wall beside it darkens only slightly (the exact value). Horizon mode
+// takes the pole for an infinitely deep occluder and darkens the wall more; bitmask mode (0.3 m of thickness: the
+// pole is 6 cm deep, so this over-estimates it too, but it ends) comes closer.
+TEST_F(GLTest, GtaoThinPoleDarkensTheWallLessInBitmaskMode) {
+    AoScene scene = make_ao_scene(Projection::Perspective, look_at(glm::dvec3(0.0, 0.0, 3.0), glm::dvec3(0.0)),
+                                  {plane(1, glm::dvec3(0.0), glm::dvec3(0.0, 0.0, 1.0)),
+                                   box(2, glm::dvec3(-kPoleHalf, -10.0, kPoleBack), glm::dvec3(kPoleHalf, 10.0, kPoleFront))});
+    auto beside_pole = [](const Hit& h) {
+        return h.id == 1 && std::fabs(h.world.x) > 0.08 && std::fabs(h.world.x) < 0.3 && std::fabs(h.world.y) < 0.4;
+    };
+    std::vector<bool> mask = select(scene.hits, kWidth, kHeight, 8, beside_pole);
+    double mean[3] = {0.0, 0.0, 0.0}, exact = 0.0;
+    for (int mode : {kHorizon, kBitmask}) {
+        const obscura_settings settings = gtao_settings(mode);
+        Stats s = stats(render_visibility(ctx(), scene.input, settings), mask);
+        ASSERT_GT(s.count, 200);
+        mean[mode] = s.mean;
+        if (mode == kBitmask) {
+            // The exact value averaged over the same band (a grid over it: the band is symmetric in x and y).
+            double sum = 0.0;
+            int n = 0;
+            for (double x = 0.09; x < 0.3; x += 0.03) {
+                for (double y = 0.0; y < 0.4; y += 0.1, ++n) sum += exact_wall_visibility(settings, x, y);
+            }
+            exact = sum / n;
+        }
+        std::printf("[ gtao %s ] wall beside the pole: %s\n", mode_name(mode), describe(s).c_str());
+    }
+    std::printf("[ gtao ] wall beside the pole, exact %.4f\n", exact);
+    EXPECT_GT(mean[kBitmask], mean[kHorizon] + 0.005);
+    EXPECT_LT(std::fabs(mean[kBitmask] - exact), std::fabs(mean[kHorizon] - exact));
+}
+
+}  // namespace
+}  // namespace obscura_test
