@@ -30,6 +30,7 @@ void render_ao(const ObscuraSession& session, const AoRenderRequest& request) {
     obscura_output output{};
     output.struct_size = sizeof output;
     output.texture = request.target->texture();
+    output.bent_normal_texture = request.bent_target ? request.bent_target->texture() : 0;
     output.debug_view = request.debug_view;
     session.check(obscura_render(session.get(), &input, request.settings, &output), "obscura_render");
 }

@@ -38,6 +38,7 @@ struct AoRenderRequest {
     const samples::SceneFrame* scene = nullptr;
     const obscura_settings* settings = nullptr;
     const AoTarget* target = nullptr;
+    const AoTarget* bent_target = nullptr;  // RGBA: output.bent_normal_texture (methods that write bent normals)
     bool use_normals = false;
     obscura_debug_view debug_view = OBSCURA_DEBUG_NONE;
 };

@@ -153,7 +153,10 @@ void trace_geometry_truth(const TruthTracer& tracer, const std::vector<samples::
         std::string label = "geometry truth";
         if (frames.size() > 1) label += ", frame " + std::to_string(f + 1) + "/" + std::to_string(frames.size());
         TruthImages images = tracer.trace(frames[f].frame(), falloffs, truth.rays, truth.seed, label);
-        for (size_t k = 0; k < falloffs.size(); ++k) truth.references[k].frames.push_back(std::move(images.visibility[k]));
+        for (size_t k = 0; k < falloffs.size(); ++k) {
+            truth.references[k].frames.push_back(std::move(images.visibility[k]));
+            truth.references[k].bent_frames.push_back(std::move(images.bent_normal[k]));
+        }
         masks[f] = std::move(images.geometry_mask);
         truth.seconds += images.seconds;
         truth.rays_cast += images.rays_cast;
@@ -167,9 +170,12 @@ void measure_method(const ObscuraSession& session, const std::vector<samples::Re
                     bool use_normals, const CompareResult& result, ComparedMethod& method) {
     const obscura_rect& rect = frames.front()->output_rect;
     const AoTarget target(rect.width, rect.height, GL_R32F);
+    const bool bent = obscura_method_writes_bent_normals(method.spec.method()) != 0;
+    const AoTarget bent_target(bent ? rect.width : 1, bent ? rect.height : 1, GL_RGBA32F);
     AoRenderRequest request;
     request.settings = &method.spec.settings;
     request.target = &target;
+    request.bent_target = bent ? &bent_target : nullptr;
     request.use_normals = use_normals;
     for (size_t f = 0; f < frames.size(); ++f) {
         request.scene = &frames[f].frame();
@@ -182,6 +188,19 @@ void measure_method(const ObscuraSession& session, const std::vector<samples::Re
             render_ao(session, request);
         }
         method.frames.push_back(target.read());
+        if (bent) {
+            method.bent_frames.push_back(bent_target.read());
+            // The surface normals the method used (the normals debug view, n * 0.5 + 0.5), decoded: what a host
+            // without bent normals would shade with, the baseline of the bent normals' error.
+            AoRenderRequest normals = request;
+            normals.target = &bent_target;
+            normals.bent_target = nullptr;
+            normals.debug_view = OBSCURA_DEBUG_NORMALS;
+            render_ao(session, normals);
+            samples::FloatImage decoded = bent_target.read();
+            for (float& value : decoded.pixels) value = value * 2.0f - 1.0f;
+            method.normal_frames.push_back(std::move(decoded));
+        }
     }
 
     for (const ComparedTruth& truth : result.truths) {
@@ -201,6 +220,20 @@ void measure_method(const ObscuraSession& session, const std::vector<samples::Re
             mean.max_abs += weight * metrics.max_abs;
             mean.pixels = metrics.pixels;
             mean.pixels_total = metrics.pixels_total;
+        }
+        if (!method.bent_frames.empty() && !reference.bent_frames.empty()) {
+            double degrees = 0.0;
+            for (size_t f = 0; f < frames.size(); ++f) {
+                degrees += weight * samples::mean_angle_degrees(method.bent_frames[f], reference.bent_frames[f],
+                                                                result.all_pixels ? nullptr : &result.masks[f]);
+            }
+            errors.bent_degrees = degrees;
+            double normal_degrees = 0.0;
+            for (size_t f = 0; f < frames.size(); ++f) {
+                normal_degrees += weight * samples::mean_angle_degrees(method.normal_frames[f], reference.bent_frames[f],
+                                                                       result.all_pixels ? nullptr : &result.masks[f]);
+            }
+            errors.normal_degrees = normal_degrees;
         }
         if (frames.size() > 1) {
             errors.flicker =

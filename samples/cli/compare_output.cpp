@@ -179,6 +179,13 @@ void print_compare_table(const CompareResult& result) {
             table.add_row(row);
         }
         table.print(stdout);
+        for (const ComparedMethod& method : result.methods) {
+            const MethodErrors& errors = method.errors[t];
+            if (errors.bent_degrees) {
+                std::printf("bent normals of %s: mean angle to the truth's %.2f degrees (its surface normals': %.2f)\n",
+                            method.spec.text.c_str(), *errors.bent_degrees, errors.normal_degrees.value_or(0.0));
+            }
+        }
     }
     std::printf("signed = mean of method - truth: > 0 brighter (less occlusion) than the truth, < 0 darker\n");
 }
@@ -217,6 +224,8 @@ void write_compare_json(const CompareResult& result, const std::string& path) {
             json.field("max_abs", errors.metrics.max_abs);
             json.field("pixels", double(errors.metrics.pixels));
             if (errors.flicker) json.field("flicker", *errors.flicker);
+            if (errors.bent_degrees) json.field("bent_normal_degrees", *errors.bent_degrees);
+            if (errors.normal_degrees) json.field("surface_normal_degrees", *errors.normal_degrees);
             json.field("error_image", error_file(result, i, result.truths[t].kind));
             json.field("signed_error_image", signed_error_file(result, i, result.truths[t].kind));
             json.field("truth_image", truth_file(result.truths[t].kind, method.reference));

@@ -31,6 +31,7 @@ struct ComparedReference {
     obscura_settings settings{};              // REFERENCE, resolved: the falloff (screen: and the ray count)
     std::string description;                  // "rho0 r=1 m"
     std::vector<samples::FloatImage> frames;  // one per camera (one without --orbit)
+    std::vector<samples::FloatImage> bent_frames;  // geometry: the truth's bent normals, one per camera
     double seconds = 0.0;                     // screen: its wall time; geometry: 0 (see ComparedTruth::seconds)
 };
 
@@ -48,6 +49,8 @@ struct ComparedTruth {
 struct MethodErrors {
     samples::ErrorMetrics metrics;
     std::optional<double> flicker;  // with --orbit: samples::flicker against the truth's frames
+    std::optional<double> bent_degrees;  // geometry truth, methods that write bent normals: mean angle to the truth's
+    std::optional<double> normal_degrees;  // the same for the surface normals the method used (the baseline)
 };
 
 struct ComparedMethod {
@@ -55,6 +58,8 @@ struct ComparedMethod {
     size_t reference = 0;                     // the falloff: index into every ComparedTruth::references
     TimingSummary timing;                     // warm frames of the first camera
     std::vector<samples::FloatImage> frames;  // one per camera
+    std::vector<samples::FloatImage> bent_frames;  // methods that write bent normals: RGBA, one per camera
+    std::vector<samples::FloatImage> normal_frames;  // and the normals they used (debug view, decoded), per camera
     std::vector<MethodErrors> errors;         // one per CompareResult::truths
 };
 

@@ -31,7 +31,10 @@ TruthImages TruthTracer::trace(const samples::SceneFrame& frame, const std::vect
                      seconds_since(start));
     }
     TruthImages images;
-    for (size_t k = 0; k < falloffs.size(); ++k) images.visibility.push_back(truth.visibility(k));
+    for (size_t k = 0; k < falloffs.size(); ++k) {
+        images.visibility.push_back(truth.visibility(k));
+        images.bent_normal.push_back(truth.bent_normal(k));
+    }
     images.geometry_mask = truth.geometry_mask();
     images.view_depth = truth.view_depth();
     images.rays_cast = truth.rays_cast();

@@ -22,6 +22,7 @@ constexpr uint32_t kDefaultTruthSeed = 1;
 
 struct TruthImages {
     std::vector<samples::FloatImage> visibility;  // one per falloff
+    std::vector<samples::FloatImage> bent_normal; // one per falloff: view-space unit bent normals (3 channels)
     std::vector<uint8_t> geometry_mask;           // 1 where the camera sees the scene
     samples::FloatImage view_depth;               // of the primary hits, 0 on sky
     double seconds = 0.0;                         // the whole trace, primary rays included

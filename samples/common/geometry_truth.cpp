@@ -226,6 +226,9 @@ GeometryTruth::GeometryTruth(const TruthScene& scene, const TruthView& view, std
     rotation_.resize(pixels);
     sums_.assign(pixels * falloffs_.size(), 0.0);
     batch_.assign(pixels * falloffs_.size(), 0.0);
+    bent_sums_.assign(pixels * falloffs_.size(), glm::dvec3(0.0));
+    bent_batch_.assign(pixels * falloffs_.size(), glm::dvec3(0.0));
+    world_to_view_ = glm::dmat3(glm::dmat4(view.view));
 
     // Primary rays in view space, in double: through the centre of the pixel's texel of the depth texture,
     // from the near plane to the far plane.
@@ -272,34 +275,44 @@ GeometryTruth::GeometryTruth(const TruthScene& scene, const TruthView& view, std
     geometry_pixels_ = size_t(std::count(mask_.begin(), mask_.end(), uint8_t(1)));
 }
 
-void GeometryTruth::trace_row(int y, int first_ray, int rays, std::vector<float>& distances, std::vector<float>& rho) {
+void GeometryTruth::trace_row(int y, int first_ray, int rays, std::vector<float>& distances, std::vector<float>& rho,
+                              std::vector<glm::vec3>& directions) {
     const size_t pixels = size_t(width_) * size_t(height_);
     for (int x = 0; x < width_; ++x) {
         const size_t index = size_t(y) * size_t(width_) + size_t(x);
         // The batch continues the pixel's running sums, ray after ray, so the result does not depend on how the
         // rays were split into batches.
-        for (size_t k = 0; k < falloffs_.size(); ++k) batch_[k * pixels + index] = sums_[k * pixels + index];
+        for (size_t k = 0; k < falloffs_.size(); ++k) {
+            batch_[k * pixels + index] = sums_[k * pixels + index];
+            bent_batch_[k * pixels + index] = bent_sums_[k * pixels + index];
+        }
         if (!mask_[index]) continue;
         const glm::vec3 n = normal_[index];
         glm::vec3 t, b;
         tangent_frame(n, &t, &b);
         const glm::vec3 origin = position_[index] + scene_.surface_offset(position_[index]) * n;
+        // Every ray's distance (misses +infinity, whose rho is 0) and direction, for the bent normal.
         distances.clear();
+        directions.clear();
         for (int i = 0; i < rays; ++i) {
             const glm::vec3 local = truth_ray_direction(uint32_t(first_ray + i), rotation_[index]);
             const glm::vec3 direction = glm::normalize(local.x * t + local.y * b + local.z * n);
             TruthScene::Hit hit;
-            if (scene_.intersect(origin, direction, 0.0f, std::numeric_limits<float>::infinity(), &hit)) {
-                distances.push_back(hit.distance);
-            }
+            const bool hit_something =
+                scene_.intersect(origin, direction, 0.0f, std::numeric_limits<float>::infinity(), &hit);
+            distances.push_back(hit_something ? hit.distance : std::numeric_limits<float>::infinity());
+            directions.push_back(direction);
         }
-        if (distances.empty()) continue;
         rho.resize(distances.size());
         for (size_t k = 0; k < falloffs_.size(); ++k) {
             // Checked in the constructor: these settings are accepted.
             obscura_evaluate_falloff(&falloffs_[k], distances.data(), rho.data(), uint32_t(distances.size()));
             double& sum = batch_[k * pixels + index];
-            for (float value : rho) sum += double(value);
+            glm::dvec3& bent = bent_batch_[k * pixels + index];
+            for (size_t i = 0; i < rho.size(); ++i) {
+                sum += double(rho[i]);
+                bent += (1.0 - double(rho[i])) * glm::dvec3(directions[i]);
+            }
         }
     }
 }
@@ -309,12 +322,16 @@ bool GeometryTruth::trace(int rays, const std::atomic<bool>* cancel) {
     if (rays <= 0) return true;
     struct Scratch {
         std::vector<float> distances, rho;
+        std::vector<glm::vec3> directions;
     };
     const int first_ray = rays_traced_;
     parallel_rows<Scratch>(height_, options_.threads, cancel,
-                           [&](int y, Scratch& scratch) { trace_row(y, first_ray, rays, scratch.distances, scratch.rho); });
+                           [&](int y, Scratch& scratch) {
+                               trace_row(y, first_ray, rays, scratch.distances, scratch.rho, scratch.directions);
+                           });
     if (cancel && cancel->load()) return false;
     sums_.swap(batch_);
+    bent_sums_.swap(bent_batch_);
     rays_traced_ += rays;
     return true;
 }
@@ -332,6 +349,27 @@ FloatImage GeometryTruth::visibility(size_t index) const {
         if (!mask_[i]) continue;
         const double obscurance = sums_[index * pixels + i] / double(rays_traced_);
         image.pixels[i] = float(std::clamp(1.0 - obscurance, 0.0, 1.0));
+    }
+    return image;
+}
+
+FloatImage GeometryTruth::bent_normal(size_t index) const {
+    if (index >= falloffs_.size()) throw std::out_of_range("geometry truth: no such falloff");
+    FloatImage image;
+    image.width = width_;
+    image.height = height_;
+    image.channels = 3;
+    const size_t pixels = size_t(width_) * size_t(height_);
+    image.pixels.assign(pixels * 3, 0.0f);
+    for (size_t i = 0; i < pixels; ++i) {
+        glm::dvec3 bent(0.0, 0.0, 1.0);
+        if (mask_[i]) {
+            const glm::dvec3 sum = bent_sums_[index * pixels + i];
+            const double length = glm::length(sum);
+            bent = world_to_view_ * (length > 0.0 ? sum / length : glm::dvec3(normal_[i]));
+            bent = glm::normalize(bent);
+        }
+        for (int c = 0; c < 3; ++c) image.pixels[i * 3 + size_t(c)] = float(bent[c]);
     }
     return image;
 }

@@ -119,6 +119,11 @@ public:
     // The estimate so far for falloffs[index]: visibility in [0, 1], one channel, rows bottom-up; 1 on sky
     // (everywhere before the first ray).
     FloatImage visibility(size_t index) const;
+    // The bent normal for falloffs[index]: the mean of the traced directions, each weighed by its cosine (the rays
+    // are cosine-distributed) and by how unoccluded it is, 1 - rho(hit distance) (a miss: 1), normalised; in view
+    // space (as obscura_output.bent_normal_texture), three channels, rows bottom-up; (0, 0, 1) on sky, the
+    // normal where every ray is fully occluded or before the first ray.
+    FloatImage bent_normal(size_t index) const;
     // Positive view depth (distance from the eye plane, metres) of each primary hit; 0 on sky.
     FloatImage view_depth() const;
     // One byte per pixel: 1 where the primary ray hit the scene, 0 on sky (compare_images' mask).
@@ -128,7 +133,8 @@ public:
     size_t geometry_pixels() const { return geometry_pixels_; }
 
 private:
-    void trace_row(int y, int first_ray, int rays, std::vector<float>& distances, std::vector<float>& rho);
+    void trace_row(int y, int first_ray, int rays, std::vector<float>& distances, std::vector<float>& rho,
+                   std::vector<glm::vec3>& directions);
 
     const TruthScene& scene_;
     std::vector<obscura_settings> falloffs_;
@@ -146,6 +152,9 @@ private:
     std::vector<glm::vec2> rotation_;  // per-pixel Cranley-Patterson shift
     std::vector<double> sums_;         // per falloff, per pixel: sum of rho over the rays traced
     std::vector<double> batch_;        // the sums with the current batch's rays (committed when it completes)
+    std::vector<glm::dvec3> bent_sums_;   // per falloff, per pixel: sum of (1 - rho) * direction (world space)
+    std::vector<glm::dvec3> bent_batch_;  // as batch_
+    glm::dmat3 world_to_view_{1.0};
 };
 
 // Hemisphere direction i of a pixel (unit length, tangent frame: z along the normal) for the rotation

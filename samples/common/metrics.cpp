@@ -276,6 +276,33 @@ FloatImage signed_error_map(const FloatImage& image, const FloatImage& reference
     });
 }
 
+double mean_angle_degrees(const FloatImage& image, const FloatImage& reference, const std::vector<uint8_t>* mask) {
+    if (image.channels < 3 || reference.channels < 3 || image.width != reference.width ||
+        image.height != reference.height) {
+        throw std::invalid_argument("mean_angle_degrees: two images of one size with at least 3 channels are needed");
+    }
+    const size_t pixels = size_t(image.width) * size_t(image.height);
+    if (mask && mask->size() != pixels) throw std::invalid_argument("mean_angle_degrees: the mask's size differs");
+    double sum = 0.0;
+    size_t counted = 0;
+    for (size_t i = 0; i < pixels; ++i) {
+        if (mask && !(*mask)[i]) continue;
+        double a[3], b[3], aa = 0.0, bb = 0.0, ab = 0.0;
+        for (int c = 0; c < 3; ++c) {
+            a[c] = image.pixels[i * size_t(image.channels) + size_t(c)];
+            b[c] = reference.pixels[i * size_t(reference.channels) + size_t(c)];
+            aa += a[c] * a[c];
+            bb += b[c] * b[c];
+            ab += a[c] * b[c];
+        }
+        const double denominator = std::sqrt(aa * bb);
+        const bool valid = std::isfinite(denominator) && denominator > 0.0 && std::isfinite(ab);
+        sum += valid ? std::acos(std::clamp(ab / denominator, -1.0, 1.0)) * (180.0 / 3.14159265358979323846) : 180.0;
+        ++counted;
+    }
+    return counted ? sum / double(counted) : 0.0;
+}
+
 double flicker(const std::vector<FloatImage>& method_frames, const std::vector<FloatImage>& reference_frames,
                const std::vector<std::vector<uint8_t>>* masks) {
     if (method_frames.size() != reference_frames.size()) {

@@ -76,6 +76,12 @@ FloatImage signed_error_map(const FloatImage& image, const FloatImage& reference
 double flicker(const std::vector<FloatImage>& method_frames, const std::vector<FloatImage>& reference_frames,
                const std::vector<std::vector<uint8_t>>* masks = nullptr);
 
+// Mean angle in degrees between the directions in the first three channels of `image` and of `reference` (each
+// normalised; a zero or non-finite vector counts 180 degrees), over the pixels `mask` (compare_images' kind) keeps:
+// bent normals against the geometry truth's. Both need >= 3 channels and one size (std::invalid_argument
+// otherwise); 0 when no pixel counts.
+double mean_angle_degrees(const FloatImage& image, const FloatImage& reference, const std::vector<uint8_t>* mask = nullptr);
+
 // A contact sheet of `images` (1, 3 or 4 channels; alpha dropped) in a grid of `columns` columns
 // (<= 0: one row), left to right and top to bottom, on a dark grey background with a 4-pixel gap.
 // Every cell has the size of the largest image; a smaller image sits in the cell's top-left corner.

@@ -20,7 +20,8 @@
 // unoccluded integrals (cos n + n sin n): the paper's estimator normalised by its own value for an unoccluded
 // pixel, so a plane is exactly 1 at any slice count (the paper's per-slice sum is 1 only on average over slices).
 // Bent normals (OBSCURA_GTAO_BENT_NORMALS): the cosine-weighted mean visible direction, integrated over the
-// same arcs or runs in closed form (F below); the output is then rgba16f: visibility, bent normal xyz.
+// same arcs or runs in closed form (signed_direction), as the normal plus the visible minus the unoccluded arcs'
+// integrals (exact on planes); the output is then rgba16f: visibility, bent normal xyz.
 #define OBSCURA_GTAO_PASS 1
 #include "common/shader_interface.h"
 #include "common/depth.glsl"
@@ -167,6 +168,7 @@ void main() {
         vec2 unoccluded_weight = vec2(side_weight(low_cos.x, 1.0, sin_n, cos_n), side_weight(low_cos.y, -1.0, sin_n, cos_n));
         vec2 horizon_weight = unoccluded_weight;
         vec2 occluded = vec2(0.0);
+        vec2 occluded_bent = vec2(0.0);  // bent normals: the occluded arcs' direction integrals (along, towards eye)
 #endif
         // Both sides in one step: the two samples share their distance and level (vec2 lanes: side +, side -).
         // No branch in the steps (CPU rasterisers run every lane through every branch): a sample outside the
@@ -222,6 +224,17 @@ void main() {
             vec2 sample_weight = vec2(side_weight(sample_cos.x, 1.0, sin_n, cos_n), side_weight(sample_cos.y, -1.0, sin_n, cos_n));
             bvec2 raises = greaterThan(sample_cos, horizon_cos);
             occluded += mix(vec2(0.0), weight * (horizon_weight - sample_weight), raises);
+#if OBSCURA_GTAO_BENT_NORMALS
+            // The same arcs' direction integrals, for the bent normal.
+            vec2 sin_horizon = vec2(1.0, -1.0) * sqrt(max(vec2(0.0), 1.0 - horizon_cos * horizon_cos));
+            vec2 sin_sample = vec2(1.0, -1.0) * sqrt(max(vec2(0.0), 1.0 - sample_cos * sample_cos));
+            for (int side = 0; side < 2; ++side) {
+                vec2 arc = signed_direction(sin_horizon[side], horizon_cos[side], sin_n, cos_n) -
+                           signed_direction(sin_sample[side], sample_cos[side], sin_n, cos_n);
+                // Side -'s arcs run from the sample up to the horizon (negative angles): the signed integral flips.
+                occluded_bent += raises[side] ? weight[side] * (side == 0 ? arc : -arc) : vec2(0.0);
+            }
+#endif
             // The thickness heuristic: a lower sample pulls the horizon down by the blend fraction (of the arc's
             // weight), so a thin occluder stops hiding what lies beyond it.
             vec2 blend = gtao.thickness.y * step(vec2(1e-30), weight);
@@ -253,19 +266,27 @@ void main() {
         slice_visible = max(0.0, unoccluded_weight.x + unoccluded_weight.y - occluded.x - occluded.y);
         slice_unoccluded = unoccluded_weight.x + unoccluded_weight.y;
 #if OBSCURA_GTAO_BENT_NORMALS
-        vec2 sin_h = vec2(1.0, -1.0) * sqrt(max(vec2(0.0), 1.0 - horizon_cos * horizon_cos));
-        slice_bent = signed_direction(sin_h.x, horizon_cos.x, sin_n, cos_n) -
-                     signed_direction(sin_h.y, horizon_cos.y, sin_n, cos_n);
+        // The full arc's integral minus the occluded arcs' (added back below as the normal's share).
+        slice_bent = signed_direction(cos_n, -sin_n, sin_n, cos_n) - signed_direction(-cos_n, sin_n, sin_n, cos_n) -
+                     occluded_bent;
 #endif
 #endif
         visible += projected_length * slice_visible;
         unoccluded += projected_length * slice_unoccluded;
+#if OBSCURA_GTAO_BENT_NORMALS
+        // Minus the unoccluded slice's, the full arc [n - pi/2, n + pi/2] (sin, cos of n + pi/2: cos n, -sin n).
+        slice_bent -= signed_direction(cos_n, -sin_n, sin_n, cos_n) - signed_direction(-cos_n, sin_n, sin_n, cos_n);
         bent += projected_length * (along * slice_bent.x + towards_eye * slice_bent.y);
+#endif
     }
 
     float visibility = unoccluded > 0.0 ? clamp(visible / unoccluded, 0.0, 1.0) : 1.0;
     visibility = pow(clamp(1.0 - gtao.shaping.x * (1.0 - visibility), 0.0, 1.0), gtao.shaping.y);
     if (gtao.shaping.z > 0.0) visibility = multi_bounce(visibility, gtao.shaping.z);
+    // The slices' unoccluded integrals average (2/3) n each over the slice directions: the normal times 2S/3 plus the
+    // occluded arcs' difference estimates the bent normal, exactly the normal where nothing occludes (a control
+    // variate, as the visibility's ratio: the sum of the visible arcs alone strays by degrees at 3 slices).
+    bent += (2.0 / 3.0) * float(slices) * normal;
     float bent_length = length(bent);
     vec3 bent_normal = bent_length > 0.0 ? bent / bent_length : normal;
     store(p, count_taps ? float(taps_read) / 256.0 : visibility, bent_normal);

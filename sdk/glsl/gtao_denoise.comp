@@ -3,8 +3,8 @@
 // total weight, so on a plane the two passes average the 16 rotations exactly. A neighbour counts less the farther
 // it lies from the pixel's tangent plane (relative to the pixel's distance): occlusion does not bleed across depth
 // edges, and slanted surfaces keep their whole window. With bent normals (OBSCURA_GTAO_BENT_NORMALS) the values
-// are rgba16f (visibility, bent xyz) and the final pass (OBSCURA_GTAO_DENOISE_FINAL) writes the visibility and the
-// renormalised bent normal to their own textures.
+// are rgba16f (visibility, bent xyz) and the final pass (OBSCURA_GTAO_DENOISE_FINAL) writes the visibility (r16f)
+// and the same rgba16f with the bent normal renormalised.
 #define OBSCURA_GTAO_DENOISE_PASS 1
 #include "common/shader_interface.h"
 #include "common/depth.glsl"
@@ -28,7 +28,7 @@ void store(ivec2 p, vec4 value, vec3 normal) {
 #if OBSCURA_GTAO_BENT_NORMALS && OBSCURA_GTAO_DENOISE_FINAL
     imageStore(u_destination, p, vec4(value.r));
     float bent_length = length(value.gba);
-    imageStore(u_bent, p, vec4(bent_length > 0.0 ? value.gba / bent_length : normal, value.r));
+    imageStore(u_bent, p, vec4(value.r, bent_length > 0.0 ? value.gba / bent_length : normal));
 #elif OBSCURA_GTAO_BENT_NORMALS
     imageStore(u_destination, p, value);
 #else

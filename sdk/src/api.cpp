@@ -73,6 +73,11 @@ OBSCURA_API const char* obscura_method_name(obscura_method method) {
 // version does not have.
 OBSCURA_API int obscura_method_available(obscura_method method) { return obscura::find_method(method) ? 1 : 0; }
 
+OBSCURA_API int obscura_method_writes_bent_normals(obscura_method method) {
+    const obscura::MethodDescriptor* row = obscura::find_method(method);
+    return row && row->bent_normals ? 1 : 0;
+}
+
 OBSCURA_API obscura_status obscura_create_context(const obscura_context_desc* desc, obscura_context** out_context) {
     if (out_context) *out_context = nullptr;
     auto fail = [&](const Error& error) {
@@ -262,11 +267,18 @@ OBSCURA_API obscura_status obscura_render(obscura_context* context, const obscur
             return Error::make(OBSCURA_STATUS_NULL_ARGUMENT, "obscura_render: input, settings and output are required");
         }
         Error error = check_struct(input->struct_size, sizeof(obscura_input), "obscura_input");
-        if (!error) error = check_struct(output->struct_size, sizeof(obscura_output), "obscura_output");
+        // obscura_output: this header's, or 0.4's (without bent_normal_texture, which then reads 0).
+        obscura_output whole_output;
+        std::memset(&whole_output, 0, sizeof whole_output);
+        const uint32_t output_size_04 = uint32_t(offsetof(obscura_output, bent_normal_texture));
+        if (!error && output->struct_size != output_size_04) {
+            error = check_struct(output->struct_size, sizeof(obscura_output), "obscura_output");
+        }
+        if (!error) std::memcpy(&whole_output, output, output->struct_size);
         obscura_settings whole;
         if (!error) error = obscura::read_host_settings(settings, &whole, "obscura_render");
         if (error) return error;
-        return ctx->render(*input, whole, *output);
+        return ctx->render(*input, whole, whole_output);
     });
 }
 

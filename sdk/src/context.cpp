@@ -211,9 +211,10 @@ Error Context::prepare(int width, int height, const obscura_settings& settings) 
     Technique* technique = nullptr;
     error = technique_for(resolved.method, &technique);
     if (error) return error;
-    const TechniquePlan plan = technique->plan(resolved, width, height, false);
+    const FrameRequest request;  // no output yet: the AO alone
+    const TechniquePlan plan = technique->plan(resolved, width, height, request);
     error = ensure_resources(width, height, plan.depth_levels);
-    if (!error) error = technique->prepare(env(), resolved, resources_);
+    if (!error) error = technique->prepare(env(), resolved, request, resources_);
     return error;
 }
 
@@ -234,6 +235,7 @@ Error Context::render(const obscura_input& input, const obscura_settings& settin
         gl::StateGuard guard(gl);
         error = check_input_textures(gl, input, &frame);
         if (!error) error = check_output_target(gl, output, frame.output_rect, &target);
+        if (!error) error = check_bent_normal_target(gl, output, frame.output_rect, &target);
         if (!error) error = record_frame(frame, resolved, target);
         // A failed validation may leave a probing error (wrong texture target) behind: drain it.
         const GLenum gl_error = device_.take_error();
@@ -253,18 +255,27 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
     Technique* technique = nullptr;
     Error error = technique_for(settings.method, &technique);
     if (error) return error;
-    const bool raw_view = is_raw_view(target.debug_view);
-    const TechniquePlan plan = technique->plan(settings, input.width, input.height, raw_view);
+    FrameRequest request;
+    request.raw_view = is_raw_view(target.debug_view);
+    request.bent_normals = target.bent_texture != 0;
+    const TechniquePlan plan = technique->plan(settings, input.width, input.height, request);
+    if (request.bent_normals && !plan.bent_normals) {
+        return Error::make(OBSCURA_STATUS_INVALID_SETTING,
+                           "output.bent_normal_texture is set but %s computes no bent normals (GTAO does)",
+                           find_method(settings.method)->name);
+    }
+    const bool raw_view = request.raw_view;
     error = ensure_resources(input.width, input.height, plan.depth_levels);
-    if (!error) error = technique->prepare(pass_env, settings, resources_);
+    if (!error) error = technique->prepare(pass_env, settings, request, resources_);
     if (!error) error = depth_prepare_.prepare(pass_env, input);
     if (!error) error = output_.prepare(pass_env, target, input.output_rect);
     if (error) return error;
 
     const FrameRegions regions = FramePlanner::regions(input, plan);
     const FrameUniforms uniforms = planner_.begin(input, OutputWriter::composite_target(target), regions, plan);
-    const Frame frame{pass_env, input, settings, regions, uniforms, resources_, raw_view};
+    const Frame frame{pass_env, input, settings, regions, uniforms, resources_, raw_view, request.bent_normals};
     technique->write_constants(frame, planner_);
+    const UniformRange bent_pass = request.bent_normals ? planner_.push(OutputWriter::bent_constants(target)) : UniformRange();
     planner_.upload(device_.gl());
 
     FramePassRecorder recorder(device_, timer_, (flags_ & OBSCURA_CONTEXT_FLAG_VALIDATE_PASSES) != 0);
@@ -274,7 +285,8 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
     TechniqueOutput result;
     if (!error) error = technique->record(frame, recorder, &result);
     if (!error) {
-        output_.write(pass_env, uniforms.output, input, raw_view ? *result.raw : *result.result, resources_, target);
+        output_.write(pass_env, uniforms.output, input, raw_view ? *result.raw : *result.result, resources_, target,
+                      result.bent, bent_pass);
         error = recorder.end(PassId::Composite);
     }
     // The host may read the result any way (sampling, image load, framebuffer, readback).

@@ -33,6 +33,7 @@ struct MethodDescriptor {
     const PassId* passes;
     uint32_t pass_count;
     Technique* (*create_technique)(const AllocatorCallbacks& alloc);
+    bool bent_normals = false;           // writes output.bent_normal_texture (obscura_method_writes_bent_normals)
 };
 
 // Every method, in obscura_method order (OBSCURA_METHOD_DEFAULT excluded).

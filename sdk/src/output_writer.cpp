@@ -224,10 +224,40 @@ Error check_output_target(const gl::Table& gl, const obscura_output& output, con
     return Error();
 }
 
+Error check_bent_normal_target(const gl::Table& gl, const obscura_output& output, const obscura_rect& rect,
+                               OutputTarget* out) {
+    const GLuint texture = output.bent_normal_texture;
+    if (texture == 0) return Error();
+    gl.ActiveTexture(GL_TEXTURE0 + OBSCURA_UNIT_SOURCE);
+    if (!gl.IsTexture(texture) || !texture_has_target(gl, texture, GL_TEXTURE_2D)) {
+        return Error::make(OBSCURA_STATUS_INVALID_TEXTURE, "output.bent_normal_texture %u is not a GL_TEXTURE_2D",
+                           texture);
+    }
+    GLint width = 0, height = 0, format = 0;
+    gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &width);
+    gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &height);
+    gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+    gl.BindTexture(GL_TEXTURE_2D, 0);
+    if (!is_bent_normal_format(GLenum(format))) {
+        return Error::make(OBSCURA_STATUS_UNSUPPORTED_FORMAT,
+                           "output.bent_normal_texture %u has format 0x%04X; use RGBA8, RGBA16F or RGBA32F", texture,
+                           unsigned(format));
+    }
+    if (rect.width > width - output.x || rect.height > height - output.y) {
+        return Error::make(OBSCURA_STATUS_INVALID_RECT,
+                           "a %dx%d result at (%d, %d) does not fit the %dx%d output.bent_normal_texture", rect.width,
+                           rect.height, output.x, output.y, width, height);
+    }
+    out->bent_texture = texture;
+    out->bent_format = GLenum(format);
+    return Error();
+}
+
 Error OutputWriter::prepare(const PassEnv& env, const OutputTarget& target, const obscura_rect& rect) {
     const gl::Table& gl = env.gl;
     const GLenum format = staging_format(target);
     Error error = composite_.prepare(env, target.kind == TargetKind::Image ? target.format : format);
+    if (!error && target.bent_texture) error = bent_.prepare(env, target.bent_format);
     if (error) return error;
     if (target.kind != TargetKind::Blit) {
         staging_ = gl::Texture2D();  // a texture target again: the blit's staging is not needed
@@ -254,10 +284,16 @@ OutputTarget OutputWriter::composite_target(const OutputTarget& target) {
     return composite;
 }
 
+BentNormalWriteConstants OutputWriter::bent_constants(const OutputTarget& target) {
+    return BentNormalWritePass::constants(target.x, target.y);
+}
+
 void OutputWriter::write(const PassEnv& env, const UniformRange& frame, const FrameInput& input,
-                         const gl::Texture2D& source, const FrameResources& resources, const OutputTarget& target) {
+                         const gl::Texture2D& source, const FrameResources& resources, const OutputTarget& target,
+                         const gl::Texture2D* bent, const UniformRange& bent_pass) {
     const gl::Table& gl = env.gl;
     const obscura_rect& rect = input.output_rect;
+    if (target.bent_texture && bent) bent_.run(env, frame, bent_pass, rect, *bent, target.bent_texture, target.bent_format);
     if (target.kind == TargetKind::Image) {
         composite_.run(env, frame, rect, source, resources, target.texture, target.format);
         return;

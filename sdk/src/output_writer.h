@@ -6,6 +6,7 @@
 #define OBSCURA_OUTPUT_WRITER_H
 
 #include "frame_input.h"
+#include "passes/bent_normal_write.h"
 #include "passes/composite.h"
 #include "passes/pass_common.h"
 
@@ -35,6 +36,8 @@ struct OutputTarget {
     int x = 0, y = 0;
     obscura_blend_mode blend = OBSCURA_BLEND_OVERWRITE;
     obscura_debug_view debug_view = OBSCURA_DEBUG_NONE;
+    GLuint bent_texture = 0;  // output.bent_normal_texture (at x, y), 0: none
+    GLenum bent_format = 0;   // its internal format (RGBA8, RGBA16F, RGBA32F)
 };
 
 // Stage 1, no GL: the fields of `output` (blend, debug view, position). Errors: INVALID_ENUM, INVALID_RECT.
@@ -43,6 +46,11 @@ Error check_output_fields(const obscura_output& output, OutputTarget* out);
 // from stage 1. Errors: INVALID_TEXTURE, UNSUPPORTED_FORMAT, INVALID_RECT, INVALID_FRAMEBUFFER.
 Error check_output_target(const gl::Table& gl, const obscura_output& output, const obscura_rect& rect,
                           OutputTarget* out);
+
+// Stage 2 for output.bent_normal_texture (when set): a GL_TEXTURE_2D of a bent-normal format the result fits at
+// (x, y). Errors: INVALID_TEXTURE, UNSUPPORTED_FORMAT, INVALID_RECT.
+Error check_bent_normal_target(const gl::Table& gl, const obscura_output& output, const obscura_rect& rect,
+                               OutputTarget* out);
 
 // GLSL image format qualifier for a texture internal format the composite pass can write, or nullptr.
 const char* image_format_qualifier(GLenum internal_format, int* channels);
@@ -54,10 +62,14 @@ public:
     Error prepare(const PassEnv& env, const OutputTarget& target, const obscura_rect& rect);
     // The target as the composite writes it: blit targets compose into the staging texture at (0, 0).
     static OutputTarget composite_target(const OutputTarget& target);
-    // Writes `source` (or the target's debug view) for the output rectangle into the target. `frame`: the
-    // frame's constants for the output rectangle (with composite_target's offset).
+    // The uniform block of the bent-normal write (push it with the frame's other blocks).
+    static BentNormalWriteConstants bent_constants(const OutputTarget& target);
+    // Writes `source` (or the target's debug view) for the output rectangle into the target, and `bent` (the
+    // technique's RGBA16F bent normals) into the target's bent-normal texture when it has one. `frame`: the
+    // frame's constants for the output rectangle (with composite_target's offset); `bent_pass`: bent_constants'.
     void write(const PassEnv& env, const UniformRange& frame, const FrameInput& input, const gl::Texture2D& source,
-               const FrameResources& resources, const OutputTarget& target);
+               const FrameResources& resources, const OutputTarget& target, const gl::Texture2D* bent = nullptr,
+               const UniformRange& bent_pass = UniformRange());
     uint64_t bytes() const { return staging_.bytes(); }
     void release();
 
@@ -66,6 +78,7 @@ private:
     // attachment 0 attached, so only that attachment is read and written.
     GLuint blit_framebuffer(const gl::Table& gl, const OutputTarget& target);
     CompositePass composite_;
+    BentNormalWritePass bent_;
     gl::Texture2D staging_;  // RGBA8 or RGBA16F, output-rect sized: blit targets only
     gl::Object staging_framebuffer_;
     gl::Object target_framebuffer_;  // see blit_framebuffer()

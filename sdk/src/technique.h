@@ -16,12 +16,19 @@
 
 namespace obscura {
 
+// What the host asked of a frame beyond the AO (from its output), known before anything is planned.
+struct FrameRequest {
+    bool raw_view = false;      // the debug view shows the AO pass's own output: no reconstruction
+    bool bent_normals = false;  // output.bent_normal_texture is set (only techniques whose plan says so write it)
+};
+
 // What a technique needs of a frame before anything is allocated or recorded.
 struct TechniquePlan {
     int apron = 0;             // texels its reconstruction reads beyond the output rectangle on each side
     bool ao_on_quads = false;  // the AO region starts on even coordinates (a filter over absolute 2x2 quads)
     int depth_levels = 1;      // MIP levels the linear depth needs (a z pyramid over level 0); 1: none
     float radius = 1.0f;       // the method's radius in metres: the linear-depth debug view's scale
+    bool bent_normals = false; // the technique writes bent normals (TechniqueOutput::bent) when requested
 };
 
 // The regions of a frame's passes, in depth-texture texels (frame_planner.h computes them from the plan).
@@ -46,6 +53,7 @@ struct Frame {
     const FrameUniforms& uniforms;
     FrameResources& resources;         // the shared per-size textures (depth, normals, AO, blur targets)
     bool raw_view;                     // the debug view shows the AO pass's own output: no reconstruction
+    bool bent_normals;                 // requested, and the technique's plan writes them
 };
 
 // Collects the frame's uniform blocks (one upload for the whole frame).
@@ -76,17 +84,21 @@ public:
 struct TechniqueOutput {
     const gl::Texture2D* raw = nullptr;     // the AO pass's own output (the raw debug views)
     const gl::Texture2D* result = nullptr;  // after the reconstruction: what the composite shows
+    const gl::Texture2D* bent = nullptr;    // with bent normals: RGBA16F visibility, unit view-space bent normal xyz
 };
 
 class Technique {
 public:
     virtual ~Technique() = default;
     // What a frame with these resolved settings needs at a width x height depth texture.
-    virtual TechniquePlan plan(const obscura_settings& settings, int width, int height, bool raw_view) const = 0;
+    virtual TechniquePlan plan(const obscura_settings& settings, int width, int height,
+                               const FrameRequest& request) const = 0;
     // Builds the programs the settings run and creates or reuses the technique's resources for the size of
-    // `resources` (whose linear depth already has the plan's levels). Called by obscura_prepare and by every
-    // frame: cheap when nothing changed. Programs are kept; resources follow the latest settings only.
-    virtual Error prepare(const PassEnv& env, const obscura_settings& settings, FrameResources& resources) = 0;
+    // `resources` (whose linear depth already has the plan's levels) and the request (bent normals only where the
+    // plan writes them). Called by obscura_prepare and by every frame: cheap when nothing changed. Programs are
+    // kept; resources follow the latest settings only.
+    virtual Error prepare(const PassEnv& env, const obscura_settings& settings, const FrameRequest& request,
+                          FrameResources& resources) = 0;
     // Pushes the uniform blocks of the passes record() will run.
     virtual void write_constants(const Frame& frame, UniformWriter& uniforms) = 0;
     // Records the passes, ending each through `recorder`.

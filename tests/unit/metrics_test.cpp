@@ -353,3 +353,33 @@ TEST(SignedErrorMap, RedTooDarkBlueTooBright) {
     for (size_t i = 0; i < expected.size(); ++i) EXPECT_NEAR(map.pixels[i], expected[i], 1e-6f) << "sample " << i;
     EXPECT_THROW(obscura::samples::signed_error_map(image, reference, 0.0), std::invalid_argument);
 }
+
+namespace {
+
+obscura::samples::FloatImage directions(std::vector<float> xyz, int channels) {
+    obscura::samples::FloatImage image;
+    image.width = int(xyz.size()) / channels;
+    image.height = 1;
+    image.channels = channels;
+    image.pixels = std::move(xyz);
+    return image;
+}
+
+}  // namespace
+
+TEST(MeanAngle, DegreesBetweenDirectionsOverTheMask) {
+    // Pixel 0: the same direction (lengths differ); pixel 1: 90 degrees; pixel 2: 60 degrees, masked out.
+    const auto method = directions({0, 0, 2, 0, 0, 1, 0, 0, 1}, 3);
+    const auto truth = directions({0, 0, 1, 1, 0, 0, 0, 1, 1.7320508f}, 3);
+    EXPECT_NEAR(obscura::samples::mean_angle_degrees(method, truth), (0.0 + 90.0 + 30.0) / 3.0, 1e-4);
+    const std::vector<uint8_t> mask = {1, 1, 0};
+    EXPECT_NEAR(obscura::samples::mean_angle_degrees(method, truth, &mask), 45.0, 1e-4);
+}
+
+TEST(MeanAngle, FourChannelsUseRgbAndBadVectorsCountHalfACircle) {
+    // RGBA (the SDK's bent-normal texture: alpha is the visibility) against RGB; a zero vector counts 180.
+    const auto method = directions({0, 1, 0, 0.5f, 0, 0, 0, 1}, 4);
+    const auto truth = directions({0, 1, 0, 0, 0, 1}, 3);
+    EXPECT_NEAR(obscura::samples::mean_angle_degrees(method, truth), 90.0, 1e-4);
+    EXPECT_THROW(obscura::samples::mean_angle_degrees(directions({0, 1}, 2), truth), std::invalid_argument);
+}

@@ -249,6 +249,12 @@ OBSCURA_PASS_BLOCK_BEGIN(GtaoDenoiseConstants)
 OBSCURA_PASS_BLOCK_END(GtaoDenoiseConstants, gtao_denoise)
 #endif
 
+#if defined(__cplusplus) || defined(OBSCURA_BENT_NORMAL_WRITE_PASS)
+OBSCURA_PASS_BLOCK_BEGIN(BentNormalWriteConstants)
+  OBSCURA_IVEC4(config);   // x, y of the output rectangle in the host's bent-normal texture, unused x2
+OBSCURA_PASS_BLOCK_END(BentNormalWriteConstants, bent_normal_write)
+#endif
+
 #if defined(__cplusplus) || defined(OBSCURA_LSAO_PASS)
 // LsaoConstants.config.w flags.
 // (The pattern, tangent strategy, hull capacity and normal test are compiled in: see LsaoPass::prepare.)

@@ -239,6 +239,9 @@ OBSCURA_API const char* obscura_method_name(obscura_method method);
 /* Returns 1 if the method is implemented in this library version, 0 otherwise. */
 OBSCURA_API int obscura_method_available(obscura_method method);
 
+/* Returns 1 if the method writes obscura_output.bent_normal_texture (0.5: GTAO), 0 otherwise. */
+OBSCURA_API int obscura_method_writes_bent_normals(obscura_method method);
+
 typedef enum obscura_toggle {
     OBSCURA_TOGGLE_DEFAULT = 0,
     OBSCURA_TOGGLE_ON = 1,
@@ -630,6 +633,12 @@ typedef struct obscura_output {
     int32_t x, y;                  /* where the output rectangle lands in the target; default (0, 0) */
     obscura_blend_mode blend;      /* default OVERWRITE */
     obscura_debug_view debug_view; /* default NONE */
+    /* 0.5: */
+    uint32_t bent_normal_texture;  /* optional GL_TEXTURE_2D (RGBA8, RGBA16F or RGBA32F) that receives, at (x, y) like
+                                      the AO, the pixel's bent normal: the cosine-weighted mean unoccluded direction,
+                                      unit length, in view space (camera looking down -z), in rgb (RGBA8: n * 0.5 +
+                                      0.5), and the visibility in a. Sky: (0, 0, 1) and 1. GTAO only (its slices, the
+                                      same denoise); with another method INVALID_SETTING. 0: none */
 } obscura_output;
 
 /* ---- Rendering ------------------------------------------------------------------------------- */

@@ -99,16 +99,18 @@ bool ffao_blurs(const obscura_ffao_settings& ffao, bool raw_view) {
 
 class FfaoTechnique final : public Technique {
 public:
-    TechniquePlan plan(const obscura_settings& settings, int width, int height, bool raw_view) const override {
+    TechniquePlan plan(const obscura_settings& settings, int width, int height,
+                       const FrameRequest& request) const override {
         const obscura_ffao_settings& ffao = settings.ffao;
         TechniquePlan plan;
-        plan.apron = ffao_blurs(ffao, raw_view) ? 2 : 0;  // the 5x5 box
+        plan.apron = ffao_blurs(ffao, request.raw_view) ? 2 : 0;  // the 5x5 box
         if (ffao_uses_mipmap(ffao)) plan.depth_levels = ZPyramidPass::level_count(width, height, kFfaoMipmapLevels);
         plan.radius = ffao.radius;
         return plan;
     }
 
-    Error prepare(const PassEnv& env, const obscura_settings& settings, FrameResources& resources) override {
+    Error prepare(const PassEnv& env, const obscura_settings& settings, const FrameRequest&,
+                  FrameResources& resources) override {
         Error error = ffao_.prepare(env, settings.ffao);
         if (!error && ffao_uses_mipmap(settings.ffao)) error = pyramid_pass_.prepare(env);
         if (!error) error = ffao_.ensure_layout(env, settings.ffao, resources.width, resources.height);

@@ -91,22 +91,43 @@ bool gtao_denoises(const obscura_gtao_settings& gtao, bool raw_view) {
     return !raw_view && gtao.denoise == OBSCURA_TOGGLE_ON;
 }
 
+constexpr bool kGtaoMethodWritesBentNormals = true;
+
 class GtaoTechnique final : public Technique {
 public:
-    TechniquePlan plan(const obscura_settings& settings, int width, int height, bool raw_view) const override {
+    TechniquePlan plan(const obscura_settings& settings, int width, int height,
+                       const FrameRequest& request) const override {
         const obscura_gtao_settings& gtao = settings.gtao;
         TechniquePlan plan;
-        plan.apron = gtao_denoises(gtao, raw_view) ? 2 : 0;
+        plan.apron = gtao_denoises(gtao, request.raw_view) ? 2 : 0;
         plan.depth_levels = ZPyramidPass::level_count(width, height, GtaoPass::wanted_levels(gtao));
         plan.radius = gtao.radius;
+        plan.bent_normals = kGtaoMethodWritesBentNormals;
         return plan;
     }
 
-    Error prepare(const PassEnv& env, const obscura_settings& settings, FrameResources&) override {
+    Error prepare(const PassEnv& env, const obscura_settings& settings, const FrameRequest& request,
+                  FrameResources& resources) override {
+        const bool bent = request.bent_normals;
         Error error = pyramid_pass_.prepare(env);
-        if (!error) error = gtao_.prepare(env, settings.gtao, false);
-        if (!error) error = denoise_.prepare(env, false);
-        return error;
+        if (!error) error = gtao_.prepare(env, settings.gtao, bent);
+        if (!error) error = denoise_.prepare(env, bent);
+        if (error) return error;
+        if (!bent) {  // the shared R16F textures suffice
+            release();
+            return Error();
+        }
+        if (bent_raw_.width() == resources.width && bent_raw_.height() == resources.height) return Error();
+        // Visibility and the bent normal travel together: the pass's output, the denoise's x pass, the result.
+        bent_raw_ = env.create_texture(GL_RGBA16F, resources.width, resources.height);
+        bent_temp_ = env.create_texture(GL_RGBA16F, resources.width, resources.height);
+        bent_ = env.create_texture(GL_RGBA16F, resources.width, resources.height);
+        if (!bent_raw_ || !bent_temp_ || !bent_) {
+            release();
+            return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating the %dx%d GTAO bent-normal textures failed",
+                               resources.width, resources.height);
+        }
+        return Error();
     }
 
     void write_constants(const Frame& frame, UniformWriter& uniforms) override {
@@ -123,32 +144,43 @@ public:
 
     Error record(const Frame& frame, PassRecorder& recorder, TechniqueOutput* out) override {
         FrameResources& r = frame.resources;
+        const bool bent = frame.bent_normals;
         Error error;
         if (levels_ > 1) {
             pyramid_pass_.run(frame.env, pyramid_, pyramid_dispatches_, r.linear_depth);
             error = recorder.end(PassId::ZPyramid);
             if (error) return error;
         }
-        gtao_.run(frame.env, frame.settings.gtao, false, frame.uniforms.ao, pass_, frame.regions.ao, r, r.ao);
-        out->raw = out->result = &r.ao;
+        const gl::Texture2D& raw = bent ? bent_raw_ : r.ao;
+        gtao_.run(frame.env, frame.settings.gtao, bent, frame.uniforms.ao, pass_, frame.regions.ao, r, raw);
+        out->raw = out->result = &raw;
+        out->bent = bent ? &bent_raw_ : nullptr;
         error = recorder.end(PassId::Gtao);
         if (error || !gtao_denoises(frame.settings.gtao, frame.raw_view)) return error;
-        denoise_.run(frame.env, false, false, frame.uniforms.blur_x, denoise_x_, frame.regions.blur_x, r, r.ao,
-                     r.blur_temp, nullptr);
-        denoise_.run(frame.env, false, true, frame.uniforms.output, denoise_y_, frame.regions.output, r, r.blur_temp,
-                     r.ao_blurred, nullptr);
+        denoise_.run(frame.env, bent, false, frame.uniforms.blur_x, denoise_x_, frame.regions.blur_x, r, raw,
+                     bent ? bent_temp_ : r.blur_temp, nullptr);
+        denoise_.run(frame.env, bent, true, frame.uniforms.output, denoise_y_, frame.regions.output, r,
+                     bent ? bent_temp_ : r.blur_temp, r.ao_blurred, bent ? &bent_ : nullptr);
         out->result = &r.ao_blurred;
+        out->bent = bent ? &bent_ : nullptr;
         return recorder.end(PassId::GtaoDenoise);
     }
 
-    uint64_t memory_bytes() const override { return 0; }  // the shared depth pyramid and AO textures only
-    void release() override {}
+    uint64_t memory_bytes() const override { return bent_raw_.bytes() + bent_temp_.bytes() + bent_.bytes(); }
+    void release() override {
+        bent_raw_ = gl::Texture2D();
+        bent_temp_ = gl::Texture2D();
+        bent_ = gl::Texture2D();
+    }
 
 private:
     static constexpr int kMaxPyramidDispatches = 4;
     ZPyramidPass pyramid_pass_;
     GtaoPass gtao_;
     GtaoDenoisePass denoise_;
+    // With bent normals only (RGBA16F: visibility, view-space bent normal): the pass's output, the denoise's x
+    // pass and its result.
+    gl::Texture2D bent_raw_, bent_temp_, bent_;
     int levels_ = 1, pyramid_dispatches_ = 0;
     UniformRange pyramid_[kMaxPyramidDispatches], pass_, denoise_x_, denoise_y_;
 };
@@ -169,6 +201,7 @@ extern const MethodDescriptor kGtaoMethod = {
     kGtaoPasses,
     uint32_t(sizeof kGtaoPasses / sizeof kGtaoPasses[0]),
     create_technique<GtaoTechnique>,
+    kGtaoMethodWritesBentNormals,
 };
 
 }  // namespace obscura

@@ -61,14 +61,14 @@ bool hbao_blurs(const obscura_hbao_settings& hbao, bool raw_view) { return !raw_
 
 class HbaoTechnique final : public Technique {
 public:
-    TechniquePlan plan(const obscura_settings& settings, int, int, bool raw_view) const override {
+    TechniquePlan plan(const obscura_settings& settings, int, int, const FrameRequest& request) const override {
         TechniquePlan plan;
-        plan.apron = hbao_blurs(settings.hbao, raw_view) ? settings.hbao.blur_radius : 0;
+        plan.apron = hbao_blurs(settings.hbao, request.raw_view) ? settings.hbao.blur_radius : 0;
         plan.radius = settings.hbao.radius;
         return plan;
     }
 
-    Error prepare(const PassEnv& env, const obscura_settings&, FrameResources&) override {
+    Error prepare(const PassEnv& env, const obscura_settings&, const FrameRequest&, FrameResources&) override {
         Error error = hbao_.prepare(env);
         if (!error) error = blur_.prepare(env);
         return error;

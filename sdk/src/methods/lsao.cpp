@@ -102,13 +102,14 @@ void lsao_reference_falloff(const obscura_settings& resolved, obscura_reference_
 
 class LsaoTechnique final : public Technique {
 public:
-    TechniquePlan plan(const obscura_settings& settings, int, int, bool) const override {
+    TechniquePlan plan(const obscura_settings& settings, int, int, const FrameRequest&) const override {
         TechniquePlan plan;
         plan.radius = settings.lsao.radius;
         return plan;
     }
 
-    Error prepare(const PassEnv& env, const obscura_settings& settings, FrameResources& resources) override {
+    Error prepare(const PassEnv& env, const obscura_settings& settings, const FrameRequest&,
+                  FrameResources& resources) override {
         Error error = pass_.prepare(env, settings.lsao);
         if (!error) error = pass_.ensure_layout(env, settings.lsao, resources.width, resources.height);
         return error;

@@ -51,13 +51,14 @@ Error derive_reference(const obscura_settings&, obscura_settings* resolved) {
 
 class ReferenceTechnique final : public Technique {
 public:
-    TechniquePlan plan(const obscura_settings& settings, int, int, bool) const override {
+    TechniquePlan plan(const obscura_settings& settings, int, int, const FrameRequest&) const override {
         TechniquePlan plan;
         plan.radius = settings.reference.radius;
         return plan;
     }
 
-    Error prepare(const PassEnv& env, const obscura_settings&, FrameResources& resources) override {
+    Error prepare(const PassEnv& env, const obscura_settings&, const FrameRequest&,
+                  FrameResources& resources) override {
         Error error = pass_.prepare(env);
         if (error || (accumulator_.width() == resources.width && accumulator_.height() == resources.height)) {
             return error;

@@ -68,17 +68,19 @@ bool sao_blurs(const obscura_sao_settings& sao, bool raw_view) { return !raw_vie
 
 class SaoTechnique final : public Technique {
 public:
-    TechniquePlan plan(const obscura_settings& settings, int width, int height, bool raw_view) const override {
+    TechniquePlan plan(const obscura_settings& settings, int width, int height,
+                       const FrameRequest& request) const override {
         const obscura_sao_settings& sao = settings.sao;
         TechniquePlan plan;
-        plan.apron = sao_blurs(sao, raw_view) ? sao.blur_radius * sao.blur_stride : 0;
+        plan.apron = sao_blurs(sao, request.raw_view) ? sao.blur_radius * sao.blur_stride : 0;
         plan.ao_on_quads = true;  // the quad filter pairs pixels of 2x2 quads in absolute coordinates
         plan.depth_levels = ZPyramidPass::level_count(width, height, SaoPass::wanted_levels(sao));
         plan.radius = sao.radius;
         return plan;
     }
 
-    Error prepare(const PassEnv& env, const obscura_settings&, FrameResources& resources) override {
+    Error prepare(const PassEnv& env, const obscura_settings&, const FrameRequest&,
+                  FrameResources& resources) override {
         Error error = pyramid_pass_.prepare(env);
         if (!error) error = sao_.prepare(env);
         if (!error) error = blur_.prepare(env);
