@@ -16,6 +16,7 @@ int run_bench(ArgumentList& arguments);
 int run_demo(ArgumentList& arguments);  // compare with the demo's scene, size and methods
 int run_diff(ArgumentList& arguments);  // no GL; reports its own bad input (exit 2) on one line
 int run_truth(ArgumentList& arguments);  // the geometry truth of a scene view, and its linear depth
+int run_tune(ArgumentList& arguments);   // searches a method's settings against the geometry truth under a budget
 
 }  // namespace obscura::cli
 

@@ -24,12 +24,15 @@ const char* const kUsage = R"(usage:
   obscura bench [--methods SPEC,SPEC,...] [--set KEY=VALUE]... [--sizes 1280x720,1920x1080,...]
                 [--frames 50] [--warmup 5] [--clock auto|gpu-timer|wall] [--json BENCH.json]
                 [--csv BENCH.csv] [SCENE without --size]
+  obscura tune --method SPEC --scenes NAME[@VIEWPOINT],... [--size 320x180] [--budget RATIOx:SPEC]
+               [--keys KEY,KEY,...] [--evaluations 60] [--truth-rays 256] [--seed 1] [--json TUNE.json]
+               [--sync-timing] [SCENE options but --scene, --viewpoint, --eye/--target and --depth]
   obscura demo [--out-dir demo-output] [other compare options]
   obscura diff IMAGE.png|pfm REFERENCE.png|pfm [--tolerance mean=0.005,pixels=0.005,threshold=4]
                [--out DIFF.png] [--json REPORT.json]
   obscura --list-scenes | --list-methods | --list-settings [METHOD] | --help
 
-SCENE (render, compare, bench, truth):
+SCENE (render, compare, bench, truth; tune takes the scenes as --scenes):
   --scene NAME|FILE.obj   atrium (default), terrain, objects, clutter, analytic, room, bunny, or an OBJ file
   --viewpoint NAME        one of the scene's cameras (--list-scenes; default: default)
   --eye X,Y,Z --target X,Y,Z [--fovy DEG]   a camera of your own instead
@@ -76,6 +79,21 @@ bench times warm frames, median and min, in total and per pass. Clock: GL timer 
   ("gpu-timer"), wall time around render + glFinish on llvmpipe/softpipe, whose timer queries read 0
   ("wall"; passes then by glFinish + CPU clock). A configuration the SDK refuses is reported (JSON
   "error", CSV pass "failed") and the others still run; the exit status is then 1.
+tune searches SPEC's settings, starting from them, for the lowest mean_abs against the geometry truth
+  averaged over the --scenes views (e.g. atrium,objects,clutter@VIEWPOINT; default viewpoints otherwise), the
+  truth weighed with each candidate's own falloff (obscura_reference_settings_for; one truth traced per
+  falloff, --truth-rays per pixel, --seed). Searched: every number, enum and toggle of the method's metadata
+  (--list-settings) that is not derived, not scheduling or noise (frame_index, first_ray, rays_per_dispatch)
+  and does not define the falloff (radius, falloff_c, falloff, GTAO's falloff_range: they move the target);
+  --keys names the settings to search instead (derived and falloff ones too). Ranges are the metadata's, on a
+  log scale where they span more than 2 decades. The search (seeded, deterministic): compass steps with
+  halving, pattern moves, random directions and restarts, --evaluations renders in all. Cost: the SDK's total
+  summed over the scenes, median of warm frames, timed in the same run; --budget 1.0x:hbao rejects candidates
+  costing more than 1.0 times the spec hbao on the same scenes, and the best is timed again against it
+  (alternately) before it is reported; settings of the best that leave its pictures unchanged are put back.
+  Progress on stderr; prints the start's and the best's error (per scene) and cost, the budget, and the best
+  settings as a spec (for --method) and as C code; --json writes them with every evaluation. Exit 1 when no
+  candidate is within the budget.
 demo runs compare on the atrium at 640x360 with every available method against the geometry truth
   into demo-output/.
 --sync-timing times passes with glFinish (automatic on llvmpipe/softpipe, whose timer queries read 0).
@@ -107,6 +125,7 @@ int main(int argc, char** argv) {
         if (command == "demo") return run_demo(rest);
         if (command == "diff") return run_diff(rest);
         if (command == "truth") return run_truth(rest);
+        if (command == "tune") return run_tune(rest);
         throw UsageError("unknown command '" + command + "'");
     } catch (const UsageError& error) {
         std::fprintf(stderr, "obscura: %s (see 'obscura --help')\n", error.what());

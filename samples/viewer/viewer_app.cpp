@@ -100,6 +100,11 @@ const Preset kPresets[] = {
     {OBSCURA_METHOD_FFAO, "paper: SAAO, K=18x2", "ffao:saao=on"},
     {OBSCURA_METHOD_FFAO, "paper sec. 5: mipmap baseline", "ffao:geometry=mipmap"},
     {OBSCURA_METHOD_REFERENCE, "256 rays (defaults)", "reference"},
+    {OBSCURA_METHOD_GTAO, "XeGTAO's High, 3x3, horizon (defaults)", "gtao"},
+    {OBSCURA_METHOD_GTAO, "XeGTAO's Low, 1x2", "gtao:preset=low"},
+    {OBSCURA_METHOD_GTAO, "XeGTAO's Medium, 2x2", "gtao:preset=medium"},
+    {OBSCURA_METHOD_GTAO, "XeGTAO's Ultra, 9x3", "gtao:preset=ultra"},
+    {OBSCURA_METHOD_GTAO, "visibility bitmask, 0.3 m thick", "gtao:thickness_mode=bitmask"},
 };
 
 // One method's panel state: its settings and the text boxes of save/load, copy-as-C and the falloff table's

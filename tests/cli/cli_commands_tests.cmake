@@ -1,6 +1,6 @@
-# Tests of the obscura CLI's commands (render, compare, bench, demo, the lists) and of its bad-argument
-# handling, each a `cmake -P cli_commands_check.cmake` run: exit status, files written, and the JSON
-# reports read back with string(JSON). Included from tests/CMakeLists.txt (after OBSCURA_GL_TEST_ENV is
+# Tests of the obscura CLI's commands (render, compare, bench, demo, truth, tune, the lists) and of its
+# bad-argument handling, each a `cmake -P cli_commands_check.cmake` run: exit status, files written, and the
+# JSON reports read back with string(JSON). Included from tests/CMakeLists.txt (after OBSCURA_GL_TEST_ENV is
 # set). The GL ones render tiny images (analytic scene at 160x90, a 16-ray reference): about 0.5 s each
 # on llvmpipe. tests/cli/CMakeLists.txt holds the `obscura diff` tests.
 if(NOT TARGET obscura_cli)
@@ -100,6 +100,13 @@ obscura_cli_command_test(render_falloff_table_file 0
 obscura_cli_command_test(demo 0 "demo|--truth-rays|4|--out-dir|demo"
   GL EXPECT_FILES "demo/1_hbao.png|demo/1_hbao_error_geometry.png|demo/geometry_truth_1.png|demo/contact_sheet.png"
   EXPECT_STDOUT "scene: atrium[^\n]*640x360.*errors against the geometry truth")
+# tune: a small real search (one key, 4 evaluations, 64x36, a 16-ray truth; under a second on llvmpipe) from
+# HBAO at power 3 (too dark: the search halves it within its first steps) under a budget of twice HBAO's own
+# cost, so the budget, the second timing and the report all run; the best spec it prints renders.
+obscura_cli_command_test(tune_small 0
+  "tune|--method|hbao:power=3|--scenes|analytic|--size|64x36|--keys|power|--evaluations|4|--truth-rays|16|--budget|2x:hbao|--json|tune.json"
+  GL CHECK tune EXPECT_FILES "tune.json"
+  EXPECT_STDOUT "searched [(]1[)]: power [[]0.001, 16[]] log\n.*\n +start +[0-9.]+ +[0-9.]+ +[0-9.]+ +[0-9.]+x\n +best [(]#[2-4][)] .*best spec: hbao:power=[0-9.]+\n.*obscura_default_settings[(]OBSCURA_METHOD_HBAO, &settings[)];\n +settings.hbao.power = [0-9.]+f;\n")
 # truth: a capture (linear depth + truth) that render --depth reads back as the scene itself.
 obscura_cli_command_test(truth_capture 0
   "truth|${scene}|--rays|16|--falloff|hbao|--out|truth.pfm|--depth-out|depth.pfm|--png|truth.png"
@@ -153,6 +160,13 @@ obscura_cli_command_test(truth_of_a_depth_file 2 "truth|--depth|x.pfm|--out|t.pf
 obscura_cli_command_test(truth_without_out 2 "truth|--scene|analytic" EXPECT_STDERR "truth needs --out")
 obscura_cli_command_test(truth_depth_out_needs_single_sample 2
   "truth|--scene|analytic|--msaa|2|--out|t.pfm|--depth-out|d.pfm" EXPECT_STDERR "needs a single-sample depth buffer")
+obscura_cli_command_test(tune_unknown_key 2 "tune|--method|hbao|--scenes|analytic|--keys|power,no_such_key"
+  EXPECT_STDERR "^obscura: --keys: hbao has no setting 'no_such_key' [(]its settings: radius, falloff_c, [^\n]*[)] [(]see 'obscura --help'[)]\n$")
+obscura_cli_command_test(tune_bad_budget 2 "tune|--method|hbao|--scenes|analytic|--budget|1.0:hbao"
+  EXPECT_STDERR "^obscura: --budget: '1.0:hbao' is not RATIOx:SPEC [(]e.g. 1.0x:hbao[^\n]*\n$")
+obscura_cli_command_test(tune_key_not_searched 2 "tune|--method|gtao|--scenes|analytic|--keys|power,frame_index"
+  EXPECT_STDERR "^obscura: --keys: frame_index is not searched: it moves the noise pattern only[^\n]*\n$")
+obscura_cli_command_test(tune_without_scenes 2 "tune|--method|hbao" EXPECT_STDERR "^obscura: tune needs --scenes ")
 # A camera that sees only sky has no geometry pixel to measure: refused with a reason, not a perfect score.
 obscura_cli_command_test(compare_sky_only_view 1
   "compare|--scene|analytic|--size|64x36|--eye|0,2,0|--target|0,10,5|--methods|hbao|--truth-rays|1"
