@@ -390,6 +390,12 @@ software=""
   echo "The geometry truth at $truth_rays rays is within about 0.002 of its converged mean (tests/gl/geometry_truth_test.cpp)."
   echo
   echo "Methods: $(for m in "${methods[@]}"; do printf '[%s](#%s)\n' "$m" "$m"; done | paste -sd' ' -)."
+  # The defaults' history (how `obscura tune` moved them, with each old and new default's error) is written by
+  # hand between these markers and kept from the previous guide: it records runs this script does not make.
+  if [[ -f "$doc" ]] && grep -q '^<!-- tuned defaults: begin' "$doc"; then
+    echo
+    sed -n '/^<!-- tuned defaults: begin/,/^<!-- tuned defaults: end/p' "$doc"
+  fi
   cat "$body"
 } >"$work/parameters.md"
 

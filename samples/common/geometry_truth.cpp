@@ -278,22 +278,17 @@ GeometryTruth::GeometryTruth(const TruthScene& scene, const TruthView& view, std
 void GeometryTruth::trace_row(int y, int first_ray, int rays, std::vector<float>& distances, std::vector<float>& rho,
                               std::vector<glm::vec3>& directions) {
     const size_t pixels = size_t(width_) * size_t(height_);
+    // Every ray of the row first (misses at +infinity, whose rho is 0), then each falloff over the whole row in one
+    // obscura_evaluate_falloff call: the call resolves the settings, which per pixel cost as much as the rays.
+    distances.clear();
+    directions.clear();
     for (int x = 0; x < width_; ++x) {
         const size_t index = size_t(y) * size_t(width_) + size_t(x);
-        // The batch continues the pixel's running sums, ray after ray, so the result does not depend on how the
-        // rays were split into batches.
-        for (size_t k = 0; k < falloffs_.size(); ++k) {
-            batch_[k * pixels + index] = sums_[k * pixels + index];
-            bent_batch_[k * pixels + index] = bent_sums_[k * pixels + index];
-        }
         if (!mask_[index]) continue;
         const glm::vec3 n = normal_[index];
         glm::vec3 t, b;
         tangent_frame(n, &t, &b);
         const glm::vec3 origin = position_[index] + scene_.surface_offset(position_[index]) * n;
-        // Every ray's distance (misses +infinity, whose rho is 0) and direction, for the bent normal.
-        distances.clear();
-        directions.clear();
         for (int i = 0; i < rays; ++i) {
             const glm::vec3 local = truth_ray_direction(uint32_t(first_ray + i), rotation_[index]);
             const glm::vec3 direction = glm::normalize(local.x * t + local.y * b + local.z * n);
@@ -303,16 +298,28 @@ void GeometryTruth::trace_row(int y, int first_ray, int rays, std::vector<float>
             distances.push_back(hit_something ? hit.distance : std::numeric_limits<float>::infinity());
             directions.push_back(direction);
         }
-        rho.resize(distances.size());
-        for (size_t k = 0; k < falloffs_.size(); ++k) {
-            // Checked in the constructor: these settings are accepted.
+    }
+    rho.resize(distances.size());
+    for (size_t k = 0; k < falloffs_.size(); ++k) {
+        // Checked in the constructor: these settings are accepted.
+        if (!distances.empty()) {
             obscura_evaluate_falloff(&falloffs_[k], distances.data(), rho.data(), uint32_t(distances.size()));
-            double& sum = batch_[k * pixels + index];
-            glm::dvec3& bent = bent_batch_[k * pixels + index];
-            for (size_t i = 0; i < rho.size(); ++i) {
-                sum += double(rho[i]);
-                bent += (1.0 - double(rho[i])) * glm::dvec3(directions[i]);
+        }
+        size_t ray = 0;
+        for (int x = 0; x < width_; ++x) {
+            const size_t index = size_t(y) * size_t(width_) + size_t(x);
+            // The batch continues the pixel's running sums, ray after ray, so the result does not depend on how
+            // the rays were split into batches.
+            double sum = sums_[k * pixels + index];
+            glm::dvec3 bent = bent_sums_[k * pixels + index];
+            if (mask_[index]) {
+                for (int i = 0; i < rays; ++i, ++ray) {
+                    sum += double(rho[ray]);
+                    bent += (1.0 - double(rho[ray])) * glm::dvec3(directions[ray]);
+                }
             }
+            batch_[k * pixels + index] = sum;
+            bent_batch_[k * pixels + index] = bent;
         }
     }
 }

@@ -443,7 +443,7 @@ typedef struct obscura_gtao_settings {
                              it this fraction of the way down, [0, 1]. Default 0 (zero is the default) */
     int32_t sectors;      /* bitmask: sectors per slice, [4, 32]. Default 32 */
     float falloff_range;  /* fraction of the radius over which an occluder's weight fades to 0 at the radius,
-                             [0.01, 1]. Default 0.6 */
+                             [0.01, 1]. Default 1: the weight is 1 - d / radius (tuned, docs/quality.md) */
     float step_power;     /* the steps sit at radius * ((j + jitter) / N)^step_power: denser near the pixel,
                              [1, 4]. Default 2 */
     obscura_toggle mip;   /* steps read the z pyramid where they are far apart. Default on */
@@ -455,7 +455,7 @@ typedef struct obscura_gtao_settings {
     float max_radius_pixels; /* cap of the radius on screen, [1, 4096]. Default 256 */
     obscura_toggle denoise; /* edge-aware 5x5 denoise over the 4x4 noise pattern. Default on */
     float denoise_sharpness; /* how strongly the denoise stops at a neighbour off the pixel's plane, [1e-3, 1000].
-                             Default 32 */
+                             Default 256 (tuned) */
     int32_t frame_index;  /* moves the per-pixel noise; hosts accumulating frames advance it each frame,
                              [0, 16777216]. Default 0 */
 } obscura_gtao_settings;

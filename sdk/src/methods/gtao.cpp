@@ -13,11 +13,12 @@ namespace {
 constexpr const char* const kGtaoPresetNames[] = {"low", "medium", "high", "ultra"};
 constexpr const char* const kGtaoModeNames[] = {"horizon", "bitmask"};
 
-// Defaults: XeGTAO's High preset (3 slices x 3 steps per side), its falloff range (0.6 of the radius), step
-// distribution (2) and MIP offset (3.3). Horizon mode and power 1.5: measured against the geometry truth on the
-// atrium, objects, clutter and terrain at 320x180, they beat the bitmask mode and power 1 or 2 on every scene
-// (docs/quality.md). Bitmask: 32 sectors and 0.3 m of thickness (the value that brought REFERENCE closest to the
-// geometry truth on the atrium).
+// Defaults: XeGTAO's High preset (3 slices x 3 steps per side), step distribution (2) and MIP offset (3.3).
+// Measured against the geometry truth on the atrium, objects, clutter and terrain at 320x180 (docs/quality.md):
+// horizon mode and power 1.5 beat the bitmask mode and power 1 or 2 on every scene; `obscura tune` then moved the
+// falloff range to the whole radius (XeGTAO: 0.615; the falloff becomes 1 - d/R, close to HBAO's rho0) and the
+// denoise sharpness to 256 (mean over the four scenes 0.0263 -> 0.0253). Bitmask: 32 sectors and 0.3 m of
+// thickness (the value that brought REFERENCE closest to the geometry truth on the atrium).
 const obscura_setting_info kGtaoSettings[] = {
     setting_row("radius", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 1e4, "m", "occluders farther than this do not count",
      OBSCURA_SETTING_OFFSET(gtao, radius)),
@@ -38,7 +39,7 @@ const obscura_setting_info kGtaoSettings[] = {
      OBSCURA_SETTING_OFFSET(gtao, thickness_blend)),
     setting_row("sectors", OBSCURA_SETTING_INT, 32, 4, 32, "", "bitmask: sectors of the normal's half-circle per slice",
      OBSCURA_SETTING_OFFSET(gtao, sectors)),
-    setting_row("falloff_range", OBSCURA_SETTING_FLOAT, 0.6, 0.01, 1.0, "",
+    setting_row("falloff_range", OBSCURA_SETTING_FLOAT, 1.0, 0.01, 1.0, "",
      "fraction of the radius over which an occluder's weight fades to zero at the radius",
      OBSCURA_SETTING_OFFSET(gtao, falloff_range)),
     setting_row("step_power", OBSCURA_SETTING_FLOAT, 2.0, 1.0, 4.0, "",
@@ -57,7 +58,7 @@ const obscura_setting_info kGtaoSettings[] = {
      "cap of the radius on screen, bounding the step spacing of close-ups", OBSCURA_SETTING_OFFSET(gtao, max_radius_pixels)),
     setting_row("denoise", OBSCURA_SETTING_TOGGLE, 1, 0, 1, "", "edge-aware separable 5x5 denoise over the 4x4 noise pattern",
      OBSCURA_SETTING_OFFSET(gtao, denoise)),
-    setting_row("denoise_sharpness", OBSCURA_SETTING_FLOAT, 32.0, 1e-3, 1000.0, "",
+    setting_row("denoise_sharpness", OBSCURA_SETTING_FLOAT, 256.0, 1e-3, 1000.0, "",
      "how strongly the denoise stops at neighbours off the pixel's plane (per relative distance)",
      OBSCURA_SETTING_OFFSET(gtao, denoise_sharpness)),
     setting_row("frame_index", OBSCURA_SETTING_INT, 0, 0, 16777216, "",
