@@ -115,8 +115,10 @@ private:
 constexpr uint32_t kSettingsSize01 = uint32_t(offsetof(obscura_settings, reference));  // HBAO only
 constexpr uint32_t kSettingsSize02 = uint32_t(offsetof(obscura_settings, sao));        // + REFERENCE
 constexpr uint32_t kSettingsSize03 = uint32_t(offsetof(obscura_settings, flags));      // + SAO, LSAO, FFAO
-constexpr uint32_t kSettingsSize04 = uint32_t(sizeof(obscura_settings));               // + flags
-constexpr uint32_t kReleasedSettingsSizes[4] = {kSettingsSize01, kSettingsSize02, kSettingsSize03, kSettingsSize04};
+constexpr uint32_t kSettingsSize04 = uint32_t(offsetof(obscura_settings, gtao));       // + flags
+constexpr uint32_t kSettingsSize05 = uint32_t(sizeof(obscura_settings));               // + GTAO
+constexpr uint32_t kReleasedSettingsSizes[5] = {kSettingsSize01, kSettingsSize02, kSettingsSize03, kSettingsSize04,
+                                                kSettingsSize05};
 inline bool is_released_settings_size(uint32_t size) {
     for (uint32_t released : kReleasedSettingsSizes) {
         if (size == released) return true;

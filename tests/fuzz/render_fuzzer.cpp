@@ -569,9 +569,9 @@ struct DecodedSettings {
 
 DecodedSettings decode_settings(Reader& in) {
     const uint8_t mode = in.u8();
-    static const int32_t kMethods[8] = {OBSCURA_METHOD_DEFAULT, OBSCURA_METHOD_HBAO, OBSCURA_METHOD_SAO,
-                                        OBSCURA_METHOD_LSAO, OBSCURA_METHOD_FFAO, OBSCURA_METHOD_REFERENCE,
-                                        OBSCURA_METHOD_COUNT_, -1};
+    static const int32_t kMethods[8] = {OBSCURA_METHOD_DEFAULT, OBSCURA_METHOD_HBAO,      OBSCURA_METHOD_SAO,
+                                        OBSCURA_METHOD_LSAO,    OBSCURA_METHOD_FFAO,      OBSCURA_METHOD_REFERENCE,
+                                        OBSCURA_METHOD_GTAO,    OBSCURA_METHOD_COUNT_};
     int32_t method = kMethods[mode % 8];
     if ((mode & 0xF8) == 0xF8) method = in.i32();
     // The struct's version: mostly this header's, or an older released one (0.3's from the 0.3 symbol), or any size.
@@ -583,6 +583,7 @@ DecodedSettings decode_settings(Reader& in) {
         case 12: size = obscura_fuzz::kSettingsSize01; break;
         case 13: size = obscura_fuzz::kSettingsSize02; break;
         case 14: size = obscura_fuzz::kSettingsSize03; break;
+        case 11: size = obscura_fuzz::kSettingsSize04; break;
         case 15: raw_size = true, raw = in.u32(); break;
         default: break;
     }

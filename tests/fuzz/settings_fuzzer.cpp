@@ -7,11 +7,11 @@
 // write past the caller's struct).
 //
 // Input layout (all optional: missing bytes read as zero, so a seed needs no knowledge of the struct's size):
-//   u8 flags      bit 0: force settings.struct_size to the released size that bits 3-4 pick (0: 0.4 = sizeof,
-//                 1: 0.1, 2: 0.2, 3: 0.3); bit 1: force a small method value (-1..6) into the struct; bit 2: the
+//   u8 flags      bit 0: force settings.struct_size to the released size that bits 3-5 pick (0, 5, 6, 7: 0.5 =
+//                 sizeof, 1: 0.1, 2: 0.2, 3: 0.3, 4: 0.4); bit 1: force a small method value (-1..6) into the struct; bit 2: the
 //                 struct's bytes are XORed onto the defaults of that small method (obscura_default_settings_sized
 //                 with the picked size) instead of onto a zero struct (mutations then stay near valid settings);
-//                 bits 3-4 also pick the size of the running struct the edits collect in
+//                 bits 3-5 also pick the size of the running struct the edits collect in
 //   i32 method    a raw method value (for the free functions, and the struct's method with flag bit 1)
 //   i32 status    a raw status value for obscura_status_string
 //   text, f64     a setting name (length byte + bytes) and a value for it
@@ -42,6 +42,7 @@ using obscura_fuzz::kSettingsSize01;
 using obscura_fuzz::kSettingsSize02;
 using obscura_fuzz::kSettingsSize03;
 using obscura_fuzz::kSettingsSize04;
+using obscura_fuzz::kSettingsSize05;
 using obscura_fuzz::load_raw;
 using obscura_fuzz::status_code;
 using obscura_fuzz::store_raw;
@@ -49,7 +50,7 @@ using obscura_fuzz::store_raw;
 namespace {
 
 constexpr int32_t kOk = OBSCURA_STATUS_OK;
-constexpr uint32_t kFullSize = kSettingsSize04;
+constexpr uint32_t kFullSize = kSettingsSize05;
 constexpr uint32_t kZeroIsValue = OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE;
 
 // ---- Known issues --------------------------------------------------------------------------------------------
@@ -125,6 +126,7 @@ const Block kBlocks[] = {
     {OBSCURA_METHOD_SAO, offsetof(obscura_settings, sao), sizeof(obscura_sao_settings)},
     {OBSCURA_METHOD_LSAO, offsetof(obscura_settings, lsao), sizeof(obscura_lsao_settings)},
     {OBSCURA_METHOD_FFAO, offsetof(obscura_settings, ffao), sizeof(obscura_ffao_settings)},
+    {OBSCURA_METHOD_GTAO, offsetof(obscura_settings, gtao), sizeof(obscura_gtao_settings)},
 };
 
 int32_t type_of(const obscura_setting_info& info) { return load_raw(info.type); }
@@ -361,8 +363,9 @@ void check_metadata(int32_t method) {
                        row.offset == info.offset,
                    "row %u of the 0.3 table of %s (%s, type %d) is not %s (type %d)", k - 1, label,
                    row.name ? row.name : "NULL", old_type, info.name, want_type);
-        FUZZ_CHECK(row.offset + 4 <= kSettingsSize03, "the 0.3 row %s.%s lies outside the 0.3 struct", label,
-                   row.name);
+        // Methods of 0.3 only: a later method's rows lie in the blocks appended after it (0.3 binaries cannot name it).
+        FUZZ_CHECK(resolved_method(method) > OBSCURA_METHOD_REFERENCE || row.offset + 4 <= kSettingsSize03,
+                   "the 0.3 row %s.%s lies outside the 0.3 struct", label, row.name);
     }
     FUZZ_CHECK(k == old_count, "the 0.3 table of %s has %u rows, the current one %u without arrays", label, old_count,
                k);
@@ -372,7 +375,9 @@ void check_metadata(int32_t method) {
 void check_rows_disjoint() {
     unsigned char owner[sizeof(obscura_settings)] = {};
     for (size_t i = 0; i < offsetof(obscura_settings, hbao); ++i) owner[i] = 1;
-    for (size_t i = offsetof(obscura_settings, flags); i < sizeof(obscura_settings); ++i) owner[i] = 1;
+    for (size_t i = offsetof(obscura_settings, flags); i < offsetof(obscura_settings, flags) + sizeof(uint32_t); ++i) {
+        owner[i] = 1;
+    }
     for_each_row([&](int32_t m, const obscura_setting_info& info) {
         for (size_t i = info.offset; i < info.offset + field_bytes(info); ++i) {
             FUZZ_CHECK(owner[i] == 0, "%s.%s shares byte %zu with another field", method_label(m), info.name, i);
@@ -428,7 +433,9 @@ void check_editable_defaults(const obscura_settings& d, int32_t method) {
         FUZZ_CHECK(field_value(d, info) == stored_default(info), "the defaults of %s hold %s.%s = %.9g, not %.9g",
                    label, method_label(m), info.name, field_value(d, info), stored_default(info));
     });
-    for (size_t i = offsetof(obscura_settings, hbao); i < offsetof(obscura_settings, flags); ++i) {
+    // The method blocks: before flags (0.1 to 0.3) and after it (0.5 on).
+    for (size_t i = offsetof(obscura_settings, hbao); i < sizeof(obscura_settings); ++i) {
+        if (i >= offsetof(obscura_settings, flags) && i < offsetof(obscura_settings, gtao)) continue;
         FUZZ_CHECK(covered[i] || field_at(d, 0)[i] == 0, "the defaults of %s hold byte %zu, which no setting covers",
                    label, i);
     }
@@ -1261,9 +1268,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     check_method_functions(raw_method, raw_size);
     check_method_functions(small_method, raw_size);
 
-    // The released size bits 3-4 pick: 0.4 (this header), 0.1, 0.2, 0.3.
-    static const uint32_t kPickedSizes[4] = {kSettingsSize04, kSettingsSize01, kSettingsSize02, kSettingsSize03};
-    const uint32_t picked_size = kPickedSizes[(flags >> 3) & 3];
+    // The released size bits 3-5 pick: 0.5 (this header), 0.1, 0.2, 0.3, 0.4, then 0.5 again.
+    static const uint32_t kPickedSizes[8] = {kSettingsSize05, kSettingsSize01, kSettingsSize02, kSettingsSize03,
+                                             kSettingsSize04, kSettingsSize05, kSettingsSize05, kSettingsSize05};
+    const uint32_t picked_size = kPickedSizes[(flags >> 3) & 7];
     obscura_settings settings;
     std::memset(&settings, 0, sizeof settings);
     if ((flags & 4) && valid_method(small_method)) {
