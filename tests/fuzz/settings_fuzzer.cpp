@@ -988,9 +988,9 @@ void check_set(const obscura_settings& base, int32_t method, const obscura_setti
                    info.name, size, status);
         FUZZ_CHECK(host == before, "set_setting(%s.%s) on a %u-byte struct failed but changed it", method_label(method),
                    info.name, size);
-    } else if (!is_toggle(info) && stores_zero(info, value) && zero_is_value_field(info) &&
+    } else if (size < kSettingsSize04 && !is_toggle(info) && stores_zero(info, value) && zero_is_value_field(info) &&
                !tolerated_tiny_zero(info, value)) {
-        // A 0.3 struct has no flags: a 0 that means 0 cannot be written into it.
+        // A struct of 0.3 or before has no flags: a 0 that means 0 cannot be written into it (0.4 has them).
         FUZZ_CHECK(status == OBSCURA_STATUS_INVALID_SETTING,
                    "set_setting(%s.%s, 0) on a %u-byte struct (no flags field) returned %d", method_label(method),
                    info.name, size, status);
