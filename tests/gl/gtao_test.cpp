@@ -140,7 +140,7 @@ TEST_P(GtaoModes, CornerConvergesToTheExactObscurance) {
 // +0.06 (horizon) and +0.07 (bitmask) at 0.3 m from the crease at power 1; the default power 1.5 is what brings it
 // back, docs/quality.md).
 TEST_P(GtaoModes, CornerHighPresetDarkensTowardsTheExactObscurance) {
-    expect_corner_near_exact(ctx(), gtao_settings(GetParam()), 0.15, mode_name(GetParam()));
+    expect_corner_near_exact(ctx(), gtao_settings(GetParam()), 0.09, mode_name(GetParam()));
 }
 
 // ---- A box on a floor -------------------------------------------------------------------------------------
@@ -285,6 +285,7 @@ TEST_F(GLTest, GtaoThinPoleDarkensTheWallLessInBitmaskMode) {
         std::printf("[ gtao %s ] wall beside the pole: %s\n", mode_name(mode), describe(s).c_str());
     }
     std::printf("[ gtao ] wall beside the pole, exact %.4f\n", exact);
+    // Measured with the default falloff: bitmask 0.9497, horizon 0.9424, exact 0.9522.
     EXPECT_GT(mean[kBitmask], mean[kHorizon] + 0.005);
     EXPECT_LT(std::fabs(mean[kBitmask] - exact), std::fabs(mean[kHorizon] - exact));
 }
