@@ -5,6 +5,9 @@
 // edges, and slanted surfaces keep their whole window. With bent normals (OBSCURA_GTAO_BENT_NORMALS) the values
 // are rgba16f (visibility, bent xyz) and the final pass (OBSCURA_GTAO_DENOISE_FINAL) writes the visibility (r16f)
 // and the same rgba16f with the bent normal renormalised.
+// Each invocation filters a run of OBSCURA_GTAO_DENOISE_RUN pixels along the pass's axis: the run's windows overlap,
+// so it reads RUN + 4 values and depths instead of 5 per pixel (the pass is bound by its reads: texel fetches on
+// CPU rasterisers, memory transactions on GPUs).
 #define OBSCURA_GTAO_DENOISE_PASS 1
 #include "common/shader_interface.h"
 #include "common/depth.glsl"
@@ -24,45 +27,76 @@ layout(binding = OBSCURA_IMAGE_OUT0, r16f) writeonly uniform image2D u_destinati
 layout(binding = OBSCURA_IMAGE_OUT1, rgba16f) writeonly uniform image2D u_bent;
 #endif
 
-void store(ivec2 p, vec4 value, vec3 normal) {
+// The filtered value: visibility, or visibility and bent normal (scalar math where only the visibility is filtered).
+#if OBSCURA_GTAO_BENT_NORMALS
+#define Value vec4
+Value read_value(ivec2 q) { return texelFetch(u_source, q, 0); }
+#else
+#define Value float
+Value read_value(ivec2 q) { return texelFetch(u_source, q, 0).r; }
+#endif
+
+void store(ivec2 p, Value value, vec3 normal) {
 #if OBSCURA_GTAO_BENT_NORMALS && OBSCURA_GTAO_DENOISE_FINAL
     imageStore(u_destination, p, vec4(value.r));
     float bent_length = length(value.gba);
     imageStore(u_bent, p, vec4(value.r, bent_length > 0.0 ? value.gba / bent_length : normal));
-#elif OBSCURA_GTAO_BENT_NORMALS
-    imageStore(u_destination, p, value);
 #else
-    imageStore(u_destination, p, vec4(value.r));
+    imageStore(u_destination, p, vec4(value));
 #endif
 }
 
+const int kRun = OBSCURA_GTAO_DENOISE_RUN;
+const int kTaps = kRun + 4;  // the run and 2 neighbours on each side
+
 void main() {
-    ivec2 p = work_rect.xy + ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(gl_GlobalInvocationID.xy, uvec2(work_rect.zw)))) return;
-    vec4 center = texelFetch(u_source, p, 0);
-    float depth = texelFetch(u_linear_depth, p, 0).r;
-    vec3 normal = obscura_decode_normal(texelFetch(u_normals, p, 0).xy);
-    if (obscura_is_sky(depth)) {
-        store(p, center, vec3(0.0, 0.0, 1.0));
-        return;
-    }
-    vec3 position = obscura_view_position(p, depth);
-    float sharpness = gtao_denoise.params.x / length(position);
     ivec2 axis = gtao_denoise.config.xy;
-    // The mean is the centre plus the weighted mean of the differences, so a uniform window returns its value
-    // exactly (see bilateral_blur.comp: r16f truncates a sum that lands a rounding step below it).
-    vec4 delta_sum = vec4(0.0);
-    float weight_sum = 1.0;
-    for (int i = -2; i <= 2; ++i) {
-        if (i == 0) continue;
-        ivec2 q = p + axis * i;
-        if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, depth_size.xy))) continue;
-        float q_depth = texelFetch(u_linear_depth, q, 0).r;
-        if (obscura_is_sky(q_depth)) continue;
-        float plane_distance = dot(obscura_view_position(q, q_depth) - position, normal) * sharpness;
-        float w = (abs(i) == 2 ? 0.5 : 1.0) / (1.0 + plane_distance * plane_distance);
-        delta_sum += w * (texelFetch(u_source, q, 0) - center);
-        weight_sum += w;
+    // The invocation's run starts at `first` and covers first + axis * i, i < kRun, clipped to the work rectangle.
+    ivec2 run_step = ivec2(1) + (kRun - 1) * axis;
+    ivec2 offset = ivec2(gl_GlobalInvocationID.xy) * run_step;
+    if (any(greaterThanEqual(offset, work_rect.zw))) return;
+    ivec2 first = work_rect.xy + offset;
+    ivec2 remaining = work_rect.zw - offset;
+    int run_length = min(kRun, axis.x != 0 ? remaining.x : remaining.y);
+
+    // The window's values and positions, read once for the whole run; a tap outside the texture or on sky has
+    // weight 0 (`valid`).
+    Value value[kTaps];
+    vec3 position[kTaps];
+    float valid[kTaps];
+    for (int k = 0; k < kTaps; ++k) {
+        ivec2 q = first + axis * (k - 2);
+        bool inside = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, depth_size.xy));
+        ivec2 clamped = clamp(q, ivec2(0), depth_size.xy - 1);
+        float depth = texelFetch(u_linear_depth, clamped, 0).r;
+        value[k] = read_value(clamped);
+        valid[k] = inside && !obscura_is_sky(depth) ? 1.0 : 0.0;
+        position[k] = obscura_view_position(clamped, depth);
     }
-    store(p, center + delta_sum / weight_sum, normal);
+
+    for (int i = 0; i < kRun; ++i) {
+        if (i >= run_length) break;
+        ivec2 p = first + axis * i;
+        Value center = value[i + 2];
+        vec3 normal = obscura_decode_normal(texelFetch(u_normals, p, 0).xy);
+        if (valid[i + 2] == 0.0) {  // sky (inside the texture by construction): passed through
+            store(p, center, vec3(0.0, 0.0, 1.0));
+            continue;
+        }
+        vec3 origin = position[i + 2];
+        float sharpness = gtao_denoise.params.x / length(origin);
+        // The mean is the centre plus the weighted mean of the differences, so a uniform window returns its value
+        // exactly (see bilateral_blur.comp: r16f truncates a sum that lands a rounding step below it).
+        Value delta_sum = Value(0.0);
+        float weight_sum = 1.0;
+        for (int j = -2; j <= 2; ++j) {
+            if (j == 0) continue;
+            int k = i + 2 + j;
+            float plane_distance = dot(position[k] - origin, normal) * sharpness;
+            float w = valid[k] * (abs(j) == 2 ? 0.5 : 1.0) / (1.0 + plane_distance * plane_distance);
+            delta_sum += w * (value[k] - center);
+            weight_sum += w;
+        }
+        store(p, center + delta_sum / weight_sum, normal);
+    }
 }

@@ -65,6 +65,8 @@
 #define OBSCURA_GTAO_GROUP_Y 8
 #define OBSCURA_GTAO_DENOISE_GROUP_X 8
 #define OBSCURA_GTAO_DENOISE_GROUP_Y 8
+// Pixels one denoise invocation filters along the pass's axis (the dispatch covers the region in runs of this).
+#define OBSCURA_GTAO_DENOISE_RUN 4
 // LSAO: one invocation per line segment, 64 per group, each keeping its hull in shared memory (64 x hull
 // capacity x 8 bytes: 12 KiB at the default 24 points, 32 KiB, GL's guaranteed minimum, at the most);
 // the gather in 8x8 groups on CPU rasterisers and 16x16 on GPUs, whose groups share a tile of depths.

@@ -139,8 +139,8 @@ public:
             pyramid_[d] = uniforms.push(ZPyramidPass::constants(d, levels_, OBSCURA_MIP_FILTER_HARMONIC_MEAN_OF_GEOMETRY));
         }
         pass_ = uniforms.push(GtaoPass::constants(gtao, frame.input, levels_ - 1));
-        denoise_x_ = uniforms.push(GtaoDenoisePass::constants(gtao, 1, 0));
-        denoise_y_ = uniforms.push(GtaoDenoisePass::constants(gtao, 0, 1));
+        denoise_x_ = uniforms.push(GtaoDenoisePass::constants(gtao, false));
+        denoise_y_ = uniforms.push(GtaoDenoisePass::constants(gtao, true));
     }
 
     Error record(const Frame& frame, PassRecorder& recorder, TechniqueOutput* out) override {

@@ -95,11 +95,11 @@ Error GtaoDenoisePass::prepare(const PassEnv& env, bool bent_normals) {
     return Error();
 }
 
-GtaoDenoiseConstants GtaoDenoisePass::constants(const obscura_gtao_settings& settings, int axis_x, int axis_y) {
+GtaoDenoiseConstants GtaoDenoisePass::constants(const obscura_gtao_settings& settings, bool final) {
     GtaoDenoiseConstants c = {};
     c.params[0] = settings.denoise_sharpness;
-    c.config[0] = axis_x;
-    c.config[1] = axis_y;
+    c.config[0] = final ? 0 : 1;  // the first pass runs along x, the final one along y
+    c.config[1] = final ? 1 : 0;
     return c;
 }
 
@@ -119,7 +119,12 @@ void GtaoDenoisePass::run(const PassEnv& env, bool bent_normals, bool final, con
     }
     env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
     env.bind_uniforms(OBSCURA_UBO_PASS, pass);
-    env.dispatch(region.width, region.height, OBSCURA_GTAO_DENOISE_GROUP_X, OBSCURA_GTAO_DENOISE_GROUP_Y);
+    // One invocation per run of OBSCURA_GTAO_DENOISE_RUN pixels along the axis.
+    const int run = OBSCURA_GTAO_DENOISE_RUN;
+    const bool along_x = !final;
+    env.dispatch(along_x ? (region.width + run - 1) / run : region.width,
+                 along_x ? region.height : (region.height + run - 1) / run, OBSCURA_GTAO_DENOISE_GROUP_X,
+                 OBSCURA_GTAO_DENOISE_GROUP_Y);
     gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 

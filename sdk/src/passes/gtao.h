@@ -35,11 +35,12 @@ private:
     gl::Object& program(const obscura_gtao_settings& settings, bool bent_normals);
 };
 
-// Separable: along x into a temporary, then along y into the result.
+// Separable: along x into a temporary (the first pass), then along y into the result (the final pass); each
+// invocation filters a run of OBSCURA_GTAO_DENOISE_RUN pixels along its pass's axis.
 class GtaoDenoisePass {
 public:
     Error prepare(const PassEnv& env, bool bent_normals);
-    static GtaoDenoiseConstants constants(const obscura_gtao_settings& settings, int axis_x, int axis_y);
+    static GtaoDenoiseConstants constants(const obscura_gtao_settings& settings, bool final);
     // Denoises `source` over `region` along the pass's axis into `destination`: with `final` the visibility (R16F)
     // and, with bent normals, `bent` (RGBA16F: unit bent normal, visibility); else the same values as `source`
     // (R16F, or RGBA16F with bent normals).
