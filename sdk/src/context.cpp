@@ -211,7 +211,8 @@ Error Context::prepare(int width, int height, const obscura_settings& settings) 
     Technique* technique = nullptr;
     error = technique_for(resolved.method, &technique);
     if (error) return error;
-    const FrameRequest request;  // no output yet: the AO alone
+    FrameRequest request;  // no output yet: the AO, and whatever extra outputs the last render asked for
+    request.output_known = false;
     const TechniquePlan plan = technique->plan(resolved, width, height, request);
     error = ensure_resources(width, height, plan.depth_levels);
     if (!error) error = technique->prepare(env(), resolved, request, resources_);

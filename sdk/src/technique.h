@@ -20,6 +20,9 @@ namespace obscura {
 struct FrameRequest {
     bool raw_view = false;      // the debug view shows the AO pass's own output: no reconstruction
     bool bent_normals = false;  // output.bent_normal_texture is set (only techniques whose plan says so write it)
+    // false in obscura_prepare, which knows no output: a technique prepares for what the last render's output
+    // needed, so a host that renders bent normals every frame allocates nothing on the frame after a prepare.
+    bool output_known = true;
 };
 
 // What a technique needs of a frame before anything is allocated or recorded.

@@ -39,6 +39,18 @@ AoScene corner_scene(Projection projection) {
 
 double crease_distance(const Hit& h) { return std::hypot(std::max(h.world.y, 0.0), std::max(h.world.z, 0.0)); }
 
+AoScene box_scene() {
+    return make_ao_scene(Projection::Perspective, look_at(glm::dvec3(0.9, 2.4, 3.2), glm::dvec3(0.0, 0.3, 0.0)),
+                         {plane(1, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0)),
+                          box(2, glm::dvec3(-kBoxHalf, 0.0, -kBoxHalf), glm::dvec3(kBoxHalf, kBoxHeight, kBoxHalf))});
+}
+
+double footprint_distance(const Hit& h) {
+    const double dx = std::max(std::fabs(h.world.x) - kBoxHalf, 0.0);
+    const double dz = std::max(std::fabs(h.world.z) - kBoxHalf, 0.0);
+    return std::hypot(dx, dz);
+}
+
 AoScene tilted_plane_scene(Projection projection) {
     return make_ao_scene(projection, glm::dmat4(1.0), {plane(1, glm::dvec3(0.0, 0.0, -5.0), glm::dvec3(0.3, 0.5, 1.0))});
 }

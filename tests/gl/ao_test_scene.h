@@ -53,6 +53,13 @@ AoScene corner_scene(Projection projection = Projection::Perspective);
 // World distance of a hit on the corner's floor or wall from the crease (the line y = 0, z = 0).
 double crease_distance(const Hit& h);
 
+// A box (id 2: 1 m square, kBoxHeight tall, centred on the origin) on a floor (id 1: y = 0), seen from above.
+constexpr double kBoxHalf = 0.5;
+constexpr double kBoxHeight = 0.7;
+AoScene box_scene();
+// Horizontal distance of a floor point from the box's footprint (0 inside).
+double footprint_distance(const Hit& h);
+
 // "N texels, min a mean b max c" for failure messages.
 std::string describe(const Stats& s);
 

@@ -145,21 +145,6 @@ TEST_P(GtaoModes, CornerHighPresetDarkensTowardsTheExactObscurance) {
 
 // ---- A box on a floor -------------------------------------------------------------------------------------
 
-constexpr double kBoxHalf = 0.5;
-constexpr double kBoxHeight = 0.7;
-
-AoScene box_scene() {
-    return make_ao_scene(Projection::Perspective, look_at(glm::dvec3(0.9, 2.4, 3.2), glm::dvec3(0.0, 0.3, 0.0)),
-                         {plane(1, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0)),
-                          box(2, glm::dvec3(-kBoxHalf, 0.0, -kBoxHalf), glm::dvec3(kBoxHalf, kBoxHeight, kBoxHalf))});
-}
-
-double footprint_distance(const Hit& h) {
-    double dx = std::max(std::fabs(h.world.x) - kBoxHalf, 0.0);
-    double dz = std::max(std::fabs(h.world.z) - kBoxHalf, 0.0);
-    return std::hypot(dx, dz);
-}
-
 TEST_P(GtaoModes, BoxContactOccludedOpenFloorNot) {
     AoScene scene = box_scene();
     std::vector<float> v = render_visibility(ctx(), scene.input, gtao_settings(GetParam()));
@@ -415,6 +400,38 @@ TEST_F(GLTest, GtaoBentNormalsInEveryFormatAndOnlyForGtao) {
     obscura_output old_output = make_output(ao.get(), OBSCURA_DEBUG_NONE);
     old_output.struct_size = uint32_t(offsetof(obscura_output, bent_normal_texture));
     EXPECT_EQ(obscura_render(ctx(), &scene.input, &settings, &old_output), OBSCURA_OK) << obscura_get_last_error(ctx());
+}
+
+// obscura_prepare knows no output: it keeps the bent-normal textures a render allocated (a host that renders bent
+// normals every frame calls prepare on a resize and must not lose them); a render without bent normals frees them.
+TEST_F(GLTest, GtaoPrepareKeepsTheBentNormalTextures) {
+    AoScene scene = corner_scene();
+    const obscura_settings settings = gtao_settings(kHorizon);
+    uint64_t plain = 0, with_bent = 0, prepared = 0, resized = 0, after_plain = 0;
+    ASSERT_EQ(obscura_prepare(ctx(), kWidth, kHeight, &settings), OBSCURA_OK) << obscura_get_last_error(ctx());
+    ASSERT_EQ(obscura_get_memory_usage(ctx(), &plain), OBSCURA_OK);
+    ASSERT_FALSE(render_bent(ctx(), scene, settings).bent.empty());
+    ASSERT_EQ(obscura_get_memory_usage(ctx(), &with_bent), OBSCURA_OK);
+    // Three RGBA16F textures of the depth's size: 24 bytes per texel more.
+    EXPECT_EQ(with_bent - plain, uint64_t(kWidth) * kHeight * 24u);
+    ASSERT_EQ(obscura_prepare(ctx(), kWidth, kHeight, &settings), OBSCURA_OK) << obscura_get_last_error(ctx());
+    ASSERT_EQ(obscura_get_memory_usage(ctx(), &prepared), OBSCURA_OK);
+    EXPECT_EQ(prepared, with_bent) << "obscura_prepare freed the bent-normal textures";
+    ASSERT_EQ(obscura_prepare(ctx(), kWidth / 2, kHeight / 2, &settings), OBSCURA_OK) << obscura_get_last_error(ctx());
+    ASSERT_EQ(obscura_get_memory_usage(ctx(), &resized), OBSCURA_OK);
+    uint64_t plain_half = 0;
+    {
+        ContextPtr other = create_context();
+        ASSERT_TRUE(other);
+        ASSERT_EQ(obscura_prepare(other.get(), kWidth / 2, kHeight / 2, &settings), OBSCURA_OK);
+        ASSERT_EQ(obscura_get_memory_usage(other.get(), &plain_half), OBSCURA_OK);
+    }
+    EXPECT_EQ(resized - plain_half, uint64_t(kWidth / 2) * (kHeight / 2) * 24u) << "resized with the rest";
+    // A render that asks for no bent normals frees them.
+    ASSERT_EQ(render_visibility(ctx(), scene.input, settings).size(), size_t(kWidth) * kHeight);
+    ASSERT_EQ(obscura_get_memory_usage(ctx(), &after_plain), OBSCURA_OK);
+    EXPECT_EQ(after_plain, plain);
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 }
 
 }  // namespace

@@ -97,22 +97,6 @@ TEST_F(Hbao, CornerOcclusionDecreasesWithDistance) {
 
 // ---- A box on a floor ---------------------------------------------------------------------------------
 
-constexpr double kBoxHalf = 0.5;
-constexpr double kBoxHeight = 0.7;
-
-AoScene box_scene() {
-    return make_ao_scene(Projection::Perspective, look_at(glm::dvec3(0.9, 2.4, 3.2), glm::dvec3(0.0, 0.3, 0.0)),
-                         {plane(1, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0)),
-                          box(2, glm::dvec3(-kBoxHalf, 0.0, -kBoxHalf), glm::dvec3(kBoxHalf, kBoxHeight, kBoxHalf))});
-}
-
-// Horizontal distance of a floor point from the box footprint (0 inside).
-double footprint_distance(const Hit& h) {
-    double dx = std::max(std::fabs(h.world.x) - kBoxHalf, 0.0);
-    double dz = std::max(std::fabs(h.world.z) - kBoxHalf, 0.0);
-    return std::hypot(dx, dz);
-}
-
 TEST_F(Hbao, BoxContactOccluded) {
     AoScene scene = box_scene();
     std::vector<float> v = render_visibility(ctx(), scene.input, make_settings(1.0f));

@@ -109,7 +109,9 @@ public:
 
     Error prepare(const PassEnv& env, const obscura_settings& settings, const FrameRequest& request,
                   FrameResources& resources) override {
-        const bool bent = request.bent_normals;
+        // obscura_prepare (output unknown) allocates the bent-normal textures when the last render asked for them.
+        if (request.output_known) bent_requested_ = request.bent_normals;
+        const bool bent = request.output_known ? request.bent_normals : bent_requested_;
         Error error = pyramid_pass_.prepare(env);
         if (!error) error = gtao_.prepare(env, settings.gtao, bent);
         if (!error) error = denoise_.prepare(env, bent);
@@ -183,6 +185,7 @@ private:
     // pass and its result.
     gl::Texture2D bent_raw_, bent_temp_, bent_;
     int levels_ = 1, pyramid_dispatches_ = 0;
+    bool bent_requested_ = false;  // the last render's output had a bent-normal texture
     UniformRange pyramid_[kMaxPyramidDispatches], pass_, denoise_x_, denoise_y_;
 };
 
