@@ -49,9 +49,9 @@ for what in "$@"; do
     bench)
       {
         bench --scene atrium --sizes 1920x1080 \
-              --methods hbao,hbao:directions=16:steps=48,sao,lsao,lsao:preset=1,lsao:preset=3,lsao:preset=4,lsao:exact=on \
+              --methods hbao,hbao:steps=12:estimator=horizon_split:intensity=1:power=1:blur_radius=4:blur_sharpness=16,hbao:directions=16:steps=48:estimator=horizon_split:intensity=1:power=1:blur_radius=4:blur_sharpness=16,sao,lsao,lsao:preset=1,lsao:preset=3,lsao:preset=4,lsao:exact=on,gtao,gtao:thickness_mode=bitmask,gtao:preset=low,gtao:preset=medium,gtao:preset=ultra \
               --json "$out/methods_1080.json"
-        bench --scene atrium --sizes 1280x720,2560x1600,3840x2160 --methods hbao:directions=16:steps=48,sao,lsao \
+        bench --scene atrium --sizes 1280x720,2560x1600,3840x2160 --methods hbao:directions=16:steps=48:estimator=horizon_split:intensity=1:power=1:blur_radius=4:blur_sharpness=16,sao,lsao \
               --json "$out/methods_sizes.json"
         bench --scene atrium --sizes 1920x1080 --methods lsao:radius=0.1,lsao:radius=1,lsao:radius=10 \
               --json "$out/lsao_radius.json"
@@ -60,7 +60,7 @@ for what in "$@"; do
     ffao)
       {
         bench --scene atrium --sizes 1920x1080 \
-              --methods ffao,ffao:saao=on,ffao:saao=on:saao_blur=off,ffao:sectors=18,ffao:segments=1,ffao:geometry=2,ffao:base_interval=5,ffao:base_interval=20,ffao:radius=0.1,ffao:radius=10,ffao:thickness=0.3,hbao:directions=16:steps=48,lsao \
+              --methods ffao,ffao:saao=on,ffao:saao=on:saao_blur=off,ffao:sectors=18,ffao:segments=1,ffao:geometry=2,ffao:base_interval=5,ffao:base_interval=20,ffao:radius=0.1,ffao:radius=10,ffao:thickness=0.3,hbao:directions=16:steps=48:estimator=horizon_split:intensity=1:power=1:blur_radius=4:blur_sharpness=16,lsao \
               --json "$out/ffao_1080.json"
         bench --scene atrium --sizes 1280x720,2560x1600,3840x2160 --methods ffao,ffao:saao=on \
               --json "$out/ffao_sizes.json"
@@ -69,7 +69,7 @@ for what in "$@"; do
     lsao)
       # Sweep parallelism: whole lines vs segments of several lengths and warm-up tolerances.
       bench --scene atrium --sizes 1920x1080 \
-            --methods lsao:segment_steps=-1,lsao,lsao:segment_steps=64,lsao:segment_steps=256,lsao:warmup_stride=1,lsao:warmup_stride=2,lsao:warmup_stride=8,lsao:warmup_stride=16,lsao:warmup_tolerance=0.01,lsao:warmup_tolerance=0.2,lsao:hull_capacity=16,lsao:hull_capacity=64,lsao:hull_capacity=16:segment_steps=-1,lsao:hull_capacity=64:segment_steps=-1,lsao:hull_capacity=16:warmup_stride=8,lsao:hull_capacity=32,lsao:radius=0.1,lsao:radius=10,lsao:radius=10:warmup_stride=8,lsao:preset=1,lsao:preset=3,lsao:preset=4,hbao:directions=16:steps=48,hbao,sao \
+            --methods lsao:segment_steps=-1,lsao,lsao:segment_steps=64,lsao:segment_steps=256,lsao:warmup_stride=1,lsao:warmup_stride=2,lsao:warmup_stride=8,lsao:warmup_stride=16,lsao:warmup_tolerance=0.01,lsao:warmup_tolerance=0.2,lsao:hull_capacity=16,lsao:hull_capacity=64,lsao:hull_capacity=16:segment_steps=-1,lsao:hull_capacity=64:segment_steps=-1,lsao:hull_capacity=16:warmup_stride=8,lsao:hull_capacity=32,lsao:radius=0.1,lsao:radius=10,lsao:radius=10:warmup_stride=8,lsao:preset=1,lsao:preset=3,lsao:preset=4,hbao:directions=16:steps=48:estimator=horizon_split:intensity=1:power=1:blur_radius=4:blur_sharpness=16,hbao,sao \
             --json "$out/lsao.json" 2>&1 | grep -E '^[a-z].* @ |total|line_sweep|gather' | tee "$out/lsao.txt"
       ;;
     lsao-error)

@@ -37,5 +37,5 @@ run atrium_1920x1080 --scene atrium --size 1920x1080 --truth geometry --truth-ra
 # The summary's other rows: HBAO at the papers' quality setting and FFAO with SAAO, on the three scenes it shows.
 for scene in atrium clutter terrain; do
   run "${scene}_640x360_more" --scene "$scene" --size 640x360 --truth geometry --truth-rays 1024 \
-    --methods hbao:directions=16:steps=48,ffao:saao=on
+    --methods hbao:directions=16:steps=48:estimator=horizon_split:intensity=1:power=1:blur_radius=4:blur_sharpness=16,ffao:saao=on
 done

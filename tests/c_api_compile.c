@@ -83,7 +83,7 @@ int main(void) {
     status = obscura_default_settings(OBSCURA_METHOD_HBAO, &settings);
     CHECK(status == OBSCURA_OK);
     CHECK(settings.struct_size == sizeof settings);
-    CHECK(settings.hbao.directions == 8 && settings.hbao.steps == 12);
+    CHECK(settings.hbao.directions == 8 && settings.hbao.steps == 7);
     CHECK(obscura_set_setting(&settings, "radius", 2.0) == OBSCURA_OK);
     CHECK(obscura_get_setting(&settings, "radius", &value) == OBSCURA_OK && value == 2.0);
     CHECK(obscura_set_setting(&settings, "no_such", 1.0) == OBSCURA_STATUS_UNKNOWN_SETTING);

@@ -86,8 +86,10 @@ struct Preset {
 };
 // (The specs start from obscura_default_settings: the preset moves LSAO's K, D_S and D_L, and SAAO FFAO's K.)
 const Preset kPresets[] = {
-    {OBSCURA_METHOD_HBAO, "defaults (K=8, N=12)", "hbao"},
-    {OBSCURA_METHOD_HBAO, "K=16, N=48: the docs' quality baseline", "hbao:directions=16:steps=48"},
+    {OBSCURA_METHOD_HBAO, "defaults (K=8, N=7, tuned)", "hbao"},
+    {OBSCURA_METHOD_HBAO, "defaults before 0.5 (K=8, N=12)",
+     "hbao:steps=12:estimator=horizon_split:intensity=1:power=1:blur_radius=4:blur_sharpness=16"},
+    {OBSCURA_METHOD_HBAO, "K=16, N=48: the docs' quality baseline", "hbao:directions=16:steps=48:estimator=horizon_split:intensity=1:power=1:blur_radius=4:blur_sharpness=16"},
     {OBSCURA_METHOD_SAO, "paper: s=9, tau=7, q'=8 (defaults)", "sao"},
     {OBSCURA_METHOD_LSAO, "paper Table 2, K=8", "lsao:preset=k8"},
     {OBSCURA_METHOD_LSAO, "paper Table 2, K=16 (defaults)", "lsao:preset=k16"},

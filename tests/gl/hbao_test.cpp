@@ -345,6 +345,7 @@ TEST_F(Hbao, PowerTwoSquaresVisibility) {
     AoScene scene = box_scene();
     obscura_settings settings = make_settings(1.0f);
     settings.hbao.blur = OBSCURA_TOGGLE_OFF;
+    settings.hbao.power = 1.0f;  // the plain visibility (the default is 0.5)
     std::vector<float> one = render_visibility(ctx(), scene.input, settings);
     settings.hbao.power = 2.0f;
     std::vector<float> two = render_visibility(ctx(), scene.input, settings);
@@ -359,6 +360,7 @@ TEST_F(Hbao, PowerTwoSquaresVisibility) {
 TEST_F(Hbao, IntensityIncreasesOcclusion) {
     AoScene scene = corner_scene();
     obscura_settings settings = make_settings(1.0f);
+    settings.hbao.intensity = 1.0f;  // the plain obscurance (the default is 2)
     std::vector<float> normal = render_visibility(ctx(), scene.input, settings);
     settings.hbao.intensity = 2.0f;
     std::vector<float> strong = render_visibility(ctx(), scene.input, settings);

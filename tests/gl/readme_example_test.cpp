@@ -50,13 +50,14 @@ TEST_F(ReadmeExample, RenderOccludesAsFarAsTheRadius) {
     ASSERT_FALSE(reach_1_5.empty());
     ASSERT_FALSE(reach_1_0.empty());
     // 1 to 1.3 m from the crease: beyond the default 1 m, inside 1.5 m (measured on llvmpipe: the defaults
-    // give 0.9995 everywhere there, the README's settings a mean of 0.993 and at most 0.9976).
+    // give 0.9995 everywhere there, the README's settings a mean of 0.9946 and at most 0.9985; before 0.5's
+    // tuned defaults, whose power 0.5 halves small occlusion, 0.993 and 0.9976): every texel darker.
     const Stats beyond_default = band(scene, reach_1_0, 1.0, 1.3);
     const Stats inside_readme = band(scene, reach_1_5, 1.0, 1.3);
     ASSERT_GT(beyond_default.count, 5000);
     EXPECT_GT(beyond_default.min, 0.998) << describe(beyond_default);
     EXPECT_LT(inside_readme.mean, beyond_default.mean - 0.004) << describe(inside_readme);
-    EXPECT_LT(inside_readme.max, 0.998) << describe(inside_readme);
+    EXPECT_LT(inside_readme.max, beyond_default.min - 0.0005) << describe(inside_readme) << " vs " << describe(beyond_default);
     // Beyond 1.6 m (the radius and the blur's reach) nothing occludes.
     const Stats beyond_readme = band(scene, reach_1_5, 1.6, 100.0);
     ASSERT_GT(beyond_readme.count, 2000);

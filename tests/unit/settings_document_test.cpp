@@ -8,6 +8,7 @@
 #include <initializer_list>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -195,7 +196,7 @@ TEST(SettingsDocument, JsonHasEverySettingInMetadataOrder) {
     EXPECT_NE(text.find("\"falloff_c\": 0.3,"), std::string::npos) << text;
     EXPECT_NE(text.find("\"decay_rate\": 0,"), std::string::npos) << text;
     EXPECT_NE(text.find("\"directions\": 8,"), std::string::npos) << text;
-    EXPECT_NE(text.find("\"estimator\": \"horizon_split\","), std::string::npos) << text;
+    EXPECT_NE(text.find("\"estimator\": \"largest_occluder\","), std::string::npos) << text;
     EXPECT_NE(text.find("\"blur\": \"off\","), std::string::npos) << text;
 }
 
@@ -309,7 +310,13 @@ TEST(SettingsDocument, Version1DocumentsLoad) {
     const obscura_settings hbao = settings_from_json(document_of("hbao", R"("radius": 1, "falloff_c": 0.3,
         "decay_rate": 0.3, "directions": 8, "steps": 12, "estimator": 1, "bias": 0, "intensity": 1, "power": 1,
         "max_radius_pixels": 256, "blur": "on", "blur_radius": 4, "blur_sharpness": 16)", 1));
-    expect_same_settings(OBSCURA_METHOD_HBAO, defaults_of(OBSCURA_METHOD_HBAO), hbao);
+    // Version 1 wrote every value: the defaults before 0.5 (12 steps, horizon split, ...) load as given.
+    obscura_settings written = defaults_of(OBSCURA_METHOD_HBAO);
+    for (const auto& [name, value] : {std::pair<const char*, double>{"steps", 12}, {"estimator", 1}, {"intensity", 1},
+                                      {"power", 1}, {"blur_radius", 4}, {"blur_sharpness", 16}}) {
+        ASSERT_EQ(obscura_set_setting(&written, name, value), OBSCURA_OK) << name;
+    }
+    expect_same_settings(OBSCURA_METHOD_HBAO, written, hbao);
     obscura_settings moved = hbao;
     ASSERT_EQ(obscura_set_setting(&moved, "radius", 2.0), OBSCURA_OK);
     EXPECT_EQ(get(moved, "decay_rate"), double(0.3f * 2.0f * 2.0f));
@@ -425,7 +432,7 @@ TEST(SettingsDocument, CForDefaultsHasNoAssignments) {
 TEST(SettingsDocument, CListsExactlyTheChangedSettings) {
     obscura_settings hbao = defaults_of(OBSCURA_METHOD_HBAO);
     ASSERT_EQ(obscura_set_setting(&hbao, "radius", 1.5), OBSCURA_OK);
-    ASSERT_EQ(obscura_set_setting(&hbao, "intensity", 2.0), OBSCURA_OK);
+    ASSERT_EQ(obscura_set_setting(&hbao, "intensity", 3.0), OBSCURA_OK);
     ASSERT_EQ(obscura_set_setting(&hbao, "falloff_c", 0.1), OBSCURA_OK);
     ASSERT_EQ(obscura_set_setting(&hbao, "decay_rate", 1e-8), OBSCURA_OK);
     ASSERT_EQ(obscura_set_setting(&hbao, "steps", 16), OBSCURA_OK);
@@ -437,7 +444,7 @@ TEST(SettingsDocument, CListsExactlyTheChangedSettings) {
               "settings.hbao.falloff_c = 0.1f;\n"
               "settings.hbao.decay_rate = 1e-08f;\n"
               "settings.hbao.steps = 16;\n"
-              "settings.hbao.intensity = 2.0f;\n"
+              "settings.hbao.intensity = 3.0f;\n"
               "settings.hbao.blur = OBSCURA_TOGGLE_OFF;\n");
 
     obscura_settings lsao = defaults_of(OBSCURA_METHOD_LSAO);

@@ -89,15 +89,15 @@ TEST(SettingsDefaults, HeaderDocumentedDefaults) {
     EXPECT_FLOAT_EQ(r.hbao.radius, 1.0f);
     EXPECT_FLOAT_EQ(r.hbao.falloff_c, 0.3f);
     EXPECT_EQ(r.hbao.directions, 8);
-    EXPECT_EQ(r.hbao.steps, 12);
-    EXPECT_EQ(r.hbao.estimator, 1);
+    EXPECT_EQ(r.hbao.steps, 7);
+    EXPECT_EQ(r.hbao.estimator, 2);
     EXPECT_FLOAT_EQ(r.hbao.bias, 0.0f);
-    EXPECT_FLOAT_EQ(r.hbao.intensity, 1.0f);
-    EXPECT_FLOAT_EQ(r.hbao.power, 1.0f);
+    EXPECT_FLOAT_EQ(r.hbao.intensity, 2.0f);
+    EXPECT_FLOAT_EQ(r.hbao.power, 0.5f);
     EXPECT_FLOAT_EQ(r.hbao.max_radius_pixels, 256.0f);
     EXPECT_EQ(r.hbao.blur, OBSCURA_TOGGLE_ON);
-    EXPECT_EQ(r.hbao.blur_radius, 4);
-    EXPECT_FLOAT_EQ(r.hbao.blur_sharpness, 16.0f);
+    EXPECT_EQ(r.hbao.blur_radius, 1);
+    EXPECT_FLOAT_EQ(r.hbao.blur_sharpness, 89.3f);
 }
 
 TEST(SettingsDefaults, DecayRateDerivedFromDefaults) {
@@ -497,7 +497,7 @@ TEST(SettingsSetGet, GetOfZeroFieldReportsDefault) {
     ASSERT_EQ(obscura_get_setting(&s, "radius", &v), OBSCURA_OK);
     EXPECT_EQ(v, 1.0);
     ASSERT_EQ(obscura_get_setting(&s, "steps", &v), OBSCURA_OK);
-    EXPECT_EQ(v, 12.0);
+    EXPECT_EQ(v, 7.0);
     ASSERT_EQ(obscura_get_setting(&s, "blur", &v), OBSCURA_OK);
     EXPECT_EQ(v, 1.0);
 }

@@ -248,22 +248,24 @@ typedef enum obscura_toggle {
     OBSCURA_TOGGLE_OFF = 2
 } obscura_toggle;
 
-/* HBAO: LSAO paper sec. 3 and 6. Every field: 0 selects the default given after it ("derive" for derived ones). */
+/* HBAO: LSAO paper sec. 3 and 6. Every field: 0 selects the default given after it ("derive" for derived ones).
+   The sampling, estimator, shaping and blur defaults were tuned against ray-traced geometry (docs/parameters.md);
+   before 0.5 they were 12 steps, horizon split, intensity 1, power 1, a 4-tap blur at sharpness 16. */
 typedef struct obscura_hbao_settings {
     float radius;         /* metres, [1e-3, 1e4]: distance where the falloff rho0 reaches 0; steps cover it. Default 1 */
     float falloff_c;      /* C of rho0(d) = max(0, r(1+C)/(r+d^2) - C), [1e-3, 0.999]. Default 0.3 */
     float decay_rate;     /* r of rho0 in m^2, [1e-10, 1e8]. Derived: C*radius^2, so rho0 reaches 0 at radius */
     int32_t directions;   /* K azimuthal directions, [1, 32]. Default 8 */
-    int32_t steps;        /* N steps per direction, [1, 128]. Default 12 */
+    int32_t steps;        /* N steps per direction, [1, 128]. Default 7 */
     int32_t estimator;    /* 1: horizon-split integration (Bavoil 2008); 2: largest falloff-weighted occluder
-                             only (LSAO paper eq. 1, what LSAO computes). Default 1 */
+                             only (LSAO paper eq. 1, what LSAO computes). Default 2 */
     float bias;           /* subtracted from sin(h) - sin(t), [0, 0.5]. Default 0 (zero is the default) */
-    float intensity;      /* obscurance multiplier, [1e-3, 16]. Default 1 */
-    float power;          /* visibility exponent, [1e-3, 16]. Default 1 */
+    float intensity;      /* obscurance multiplier, [1e-3, 16]. Default 2 */
+    float power;          /* visibility exponent, [1e-3, 16]. Default 0.5 */
     float max_radius_pixels; /* screen-space cap of the marched radius, [1, 4096]. Default 256 */
     obscura_toggle blur;  /* depth-aware bilateral blur. Default on */
-    int32_t blur_radius;  /* taps each side, [1, 16]. Default 4 */
-    float blur_sharpness; /* depth edge sharpness, [1e-3, 1000]. Default 16 */
+    int32_t blur_radius;  /* taps each side, [1, 16]. Default 1 */
+    float blur_sharpness; /* depth edge sharpness, [1e-3, 1000]. Default 89.3 */
 } obscura_hbao_settings;
 
 /* SAO: McGuire, Mara, Luebke, "Scalable Ambient Obscurance" (HPG 2012). s taps on a spiral (eq. 6-8) read

@@ -12,8 +12,10 @@ namespace {
 
 constexpr const char* const kHbaoEstimatorNames[] = {"horizon_split", "largest_occluder"};
 
-// HBAO (LSAO paper sec. 3 and 6; the falloff rho0 is its eq. 3). Defaults follow the paper (C = 0.3)
-// and common HBAO practice (8 directions, 12 steps, 4-tap bilateral blur).
+// HBAO (LSAO paper sec. 3 and 6; the falloff rho0 is its eq. 3). The falloff follows the paper (C = 0.3); the
+// sampling, estimator, shaping and blur defaults were set by `obscura tune` against the geometry truth and checked
+// on held-out views (docs/parameters.md, "Tuned defaults"): 8 directions x 7 steps, the largest occluder,
+// intensity 2 and power 0.5, a 1-tap bilateral blur (they were 12 steps, horizon split, 1, 1, 4 taps at 16).
 const obscura_setting_info kHbaoSettings[] = {
     setting_row("radius", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 1e4, "m",
      "distance where the falloff reaches zero; the steps cover it", OBSCURA_SETTING_OFFSET(hbao, radius)),
@@ -24,21 +26,21 @@ const obscura_setting_info kHbaoSettings[] = {
      OBSCURA_SETTING_OFFSET(hbao, decay_rate), OBSCURA_SETTING_FLAG_DERIVED),
     setting_row("directions", OBSCURA_SETTING_INT, 8, 1, 32, "", "K azimuthal directions per pixel",
      OBSCURA_SETTING_OFFSET(hbao, directions)),
-    setting_row("steps", OBSCURA_SETTING_INT, 12, 1, 128, "", "N ray-march steps per direction", OBSCURA_SETTING_OFFSET(hbao, steps)),
-    enum_row("estimator", 1, 1,
+    setting_row("steps", OBSCURA_SETTING_INT, 7, 1, 128, "", "N ray-march steps per direction", OBSCURA_SETTING_OFFSET(hbao, steps)),
+    enum_row("estimator", 2, 1,
              "horizon_split: horizon-split integration (Bavoil 2008); largest_occluder: the largest falloff-weighted "
              "occluder only (LSAO eq. 1)",
              OBSCURA_SETTING_OFFSET(hbao, estimator), kHbaoEstimatorNames),
     setting_row("bias", OBSCURA_SETTING_FLOAT, 0.0, 0.0, 0.5, "",
      "subtracted from sin(h) - sin(t) to hide tessellation; the default is zero", OBSCURA_SETTING_OFFSET(hbao, bias)),
-    setting_row("intensity", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "obscurance multiplier", OBSCURA_SETTING_OFFSET(hbao, intensity)),
-    setting_row("power", OBSCURA_SETTING_FLOAT, 1.0, 1e-3, 16.0, "", "exponent applied to the visibility",
+    setting_row("intensity", OBSCURA_SETTING_FLOAT, 2.0, 1e-3, 16.0, "", "obscurance multiplier", OBSCURA_SETTING_OFFSET(hbao, intensity)),
+    setting_row("power", OBSCURA_SETTING_FLOAT, 0.5, 1e-3, 16.0, "", "exponent applied to the visibility",
      OBSCURA_SETTING_OFFSET(hbao, power)),
     setting_row("max_radius_pixels", OBSCURA_SETTING_FLOAT, 256.0, 1.0, 4096.0, "px",
      "cap of the radius on screen, bounding the cost of close-ups", OBSCURA_SETTING_OFFSET(hbao, max_radius_pixels)),
     setting_row("blur", OBSCURA_SETTING_TOGGLE, 1, 0, 1, "", "depth-aware bilateral blur of the AO", OBSCURA_SETTING_OFFSET(hbao, blur)),
-    setting_row("blur_radius", OBSCURA_SETTING_INT, 4, 1, 16, "px", "blur taps on each side", OBSCURA_SETTING_OFFSET(hbao, blur_radius)),
-    setting_row("blur_sharpness", OBSCURA_SETTING_FLOAT, 16.0, 1e-3, 1000.0, "",
+    setting_row("blur_radius", OBSCURA_SETTING_INT, 1, 1, 16, "px", "blur taps on each side", OBSCURA_SETTING_OFFSET(hbao, blur_radius)),
+    setting_row("blur_sharpness", OBSCURA_SETTING_FLOAT, 89.3, 1e-3, 1000.0, "",
      "how strongly the blur stops at depth edges (relative depth difference scale)",
      OBSCURA_SETTING_OFFSET(hbao, blur_sharpness)),
 };
