@@ -118,7 +118,9 @@ void main() {
         store(p, count_taps ? 0.0 : 1.0, normal);
         return;
     }
-    int slices = gtao.config.x, steps = gtao.config.y, deepest = gtao.config.w;
+    // Slices and steps are compiled in (GtaoPass::prepare): constant trip counts let compilers unroll the loops.
+    const int slices = OBSCURA_GTAO_SLICES, steps = OBSCURA_GTAO_STEPS;
+    int deepest = gtao.config.w;
     vec2 noise = pixel_noise(p);
     vec2 pixel_center = vec2(p) + 0.5;
     // Screen directions map to view-space directions through the projection's x/y scales.

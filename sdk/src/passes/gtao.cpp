@@ -12,19 +12,21 @@ GtaoPresetCounts gtao_preset_counts(int preset) {
     return kPresets[preset >= 1 && preset <= 4 ? preset - 1 : 2];
 }
 
-gl::Object& GtaoPass::program(const obscura_gtao_settings& settings, bool bent_normals) {
-    return programs_[settings.thickness_mode == OBSCURA_GTAO_MODE_BITMASK ? 1 : 0][settings.step_power == 2.0f ? 1 : 0]
-                    [bent_normals ? 1 : 0];
+uint32_t GtaoPass::variant_key(const obscura_gtao_settings& settings, bool bent_normals) {
+    // Resolved settings: slices in [1, 16], steps in [1, 32] (the metadata's ranges).
+    return (settings.thickness_mode == OBSCURA_GTAO_MODE_BITMASK ? 1u : 0u) | (settings.step_power == 2.0f ? 2u : 0u) |
+           (bent_normals ? 4u : 0u) | uint32_t(settings.slices) << 3 | uint32_t(settings.steps) << 8;
 }
 
 Error GtaoPass::prepare(const PassEnv& env, const obscura_gtao_settings& settings, bool bent_normals) {
-    gl::Object& built = program(settings, bent_normals);
+    gl::Object& built = programs_[variant_key(settings, bent_normals)];
     if (built) return Error();
-    char defines[128];
+    char defines[192];
     std::snprintf(defines, sizeof defines,
-                  "OBSCURA_GTAO_MODE %d\nOBSCURA_GTAO_STEP_POWER_2 %d\nOBSCURA_GTAO_BENT_NORMALS %d\n",
+                  "OBSCURA_GTAO_MODE %d\nOBSCURA_GTAO_STEP_POWER_2 %d\nOBSCURA_GTAO_BENT_NORMALS %d\n"
+                  "OBSCURA_GTAO_SLICES %d\nOBSCURA_GTAO_STEPS %d\n",
                   settings.thickness_mode == OBSCURA_GTAO_MODE_BITMASK ? 2 : 1, settings.step_power == 2.0f ? 1 : 0,
-                  bent_normals ? 1 : 0);
+                  bent_normals ? 1 : 0, settings.slices, settings.steps);
     return env.build("gtao.comp", defines, &built);
 }
 
@@ -52,7 +54,7 @@ GtaoConstants GtaoPass::constants(const obscura_gtao_settings& settings, const F
     c.shaping[0] = settings.intensity;
     c.shaping[1] = settings.power;
     c.shaping[2] = settings.albedo;
-    c.config[0] = settings.slices;
+    c.config[0] = settings.slices;  // (compiled in too: GtaoPass::prepare)
     c.config[1] = settings.steps;
     c.config[2] = settings.sectors;
     c.config[3] = deepest_level;
@@ -71,7 +73,7 @@ void GtaoPass::run(const PassEnv& env, const obscura_gtao_settings& settings, bo
                    const UniformRange& frame, const UniformRange& pass, const Region& region,
                    const FrameResources& resources, const gl::Texture2D& destination) {
     const gl::Table& gl = env.gl;
-    gl.UseProgram(program(settings, bent_normals).name());
+    gl.UseProgram(programs_[variant_key(settings, bent_normals)].name());
     env.bind_texture_mipmapped(OBSCURA_UNIT_LINEAR_DEPTH, resources.linear_depth.name());
     env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
     gl.BindImageTexture(OBSCURA_IMAGE_OUT0, destination.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY,

@@ -3,6 +3,9 @@
 #ifndef OBSCURA_GTAO_H
 #define OBSCURA_GTAO_H
 
+#include <cstdint>
+#include <map>
+
 #include "frame_input.h"
 #include "passes/pass_common.h"
 
@@ -16,8 +19,9 @@ GtaoPresetCounts gtao_preset_counts(int preset);
 
 class GtaoPass {
 public:
-    // Builds the program of these settings' variant (thickness mode, step power 2 or not) with bent normals or not
-    // on first use: variants are compiled in (CPU rasterisers run both sides of a branch on a uniform).
+    // Builds the program of these settings' variant (thickness mode, step power 2 or not, slices and steps) with
+    // bent normals or not on first use: variants are compiled in (CPU rasterisers run both sides of a branch on a
+    // uniform; constant loop counts unroll).
     Error prepare(const PassEnv& env, const obscura_gtao_settings& settings, bool bent_normals);
     // Levels of the z pyramid the steps can read (counting level 0) for these settings.
     static int wanted_levels(const obscura_gtao_settings& settings);
@@ -31,8 +35,9 @@ public:
              const gl::Texture2D& destination);
 
 private:
-    gl::Object programs_[2][2][2];  // [thickness mode - 1][step power 2][bent normals]
-    gl::Object& program(const obscura_gtao_settings& settings, bool bent_normals);
+    // By variant: thickness mode, step power 2, bent normals, slices, steps (variant_key).
+    std::map<uint32_t, gl::Object> programs_;
+    static uint32_t variant_key(const obscura_gtao_settings& settings, bool bent_normals);
 };
 
 // Separable: along x into a temporary (the first pass), then along y into the result (the final pass); each
