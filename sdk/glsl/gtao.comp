@@ -216,9 +216,13 @@ void main() {
             vec2 lo = clamp((min(front_h, back_h) - lowest) / sector_angle, 0.0, float(sectors));
             vec2 hi = clamp((max(front_h, back_h) - lowest) / sector_angle, 0.0, float(sectors));
             uvec2 first = uvec2(lo + 0.5), last = uvec2(hi + 0.5);  // sectors [first, last)
+            // Masks of the sectors below `last` and below `first`; 32 (a run that ends, or an empty one that starts,
+            // at the top of the half-circle) is every sector (1u << 32 is undefined, and clamping it to 31 marked
+            // sector 31 for every side + sample: tilted planes came out 0.004 dark).
             uvec2 below_last = uvec2(last.x >= 32u ? 0xffffffffu : (1u << last.x) - 1u,
                                      last.y >= 32u ? 0xffffffffu : (1u << last.y) - 1u);
-            uvec2 below_first = (uvec2(1u) << min(first, uvec2(31u))) - 1u;
+            uvec2 below_first = uvec2(first.x >= 32u ? 0xffffffffu : (1u << first.x) - 1u,
+                                      first.y >= 32u ? 0xffffffffu : (1u << first.y) - 1u);
             uvec2 marked = below_last & ~below_first;
             occupied |= (weight.x > chance ? marked.x : 0u) | (weight.y > chance ? marked.y : 0u);
 #else

@@ -46,21 +46,23 @@ TEST_P(GtaoFlatPlane, FacingCameraIsUnoccluded) {
                                   {plane(1, glm::dvec3(0.0, 0.0, -5.0), glm::dvec3(0.0, 0.0, 1.0))});
     Stats s = geometry_stats(scene, render_visibility(ctx(), scene.input, gtao_settings(GetParam().mode)));
     ASSERT_EQ(s.count, kWidth * kHeight);
-    EXPECT_GT(s.min, 0.995) << describe(s);  // measured 1 (R16F)
+    // Measured: at least 0.99951 (one R16F step below 1) in both modes, every projection (bitmask mode was 0.9951
+    // on the tilted planes while a mask clamp marked the top sector for every side + sample).
+    EXPECT_GT(s.min, 0.999) << describe(s);
 }
 
 TEST_P(GtaoFlatPlane, TiltedIsUnoccluded) {
     AoScene scene = tilted_plane_scene(GetParam().projection);
     Stats s = geometry_stats(scene, render_visibility(ctx(), scene.input, gtao_settings(GetParam().mode)));
     ASSERT_EQ(s.count, kWidth * kHeight);
-    EXPECT_GT(s.min, 0.995) << describe(s);
+    EXPECT_GT(s.min, 0.999) << describe(s);
 }
 
 TEST_P(GtaoFlatPlane, SteepFloorIsUnoccluded) {
     AoScene scene = steep_floor_scene(GetParam().projection);
     Stats s = geometry_stats(scene, render_visibility(ctx(), scene.input, gtao_settings(GetParam().mode)));
     ASSERT_GT(s.count, kWidth * kHeight / 2);
-    EXPECT_GT(s.min, 0.995) << describe(s);
+    EXPECT_GT(s.min, 0.999) << describe(s);
 }
 
 std::vector<PlaneCase> plane_cases() {
