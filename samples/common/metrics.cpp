@@ -400,3 +400,194 @@ FloatImage contact_sheet(const std::vector<FloatImage>& images, const std::vecto
 }
 
 }  // namespace obscura::samples
+
+// ---- Thickness classes ------------------------------------------------------------------------------------
+namespace obscura::samples {
+namespace {
+
+// floor(log2(value)) for value >= 1.
+int floor_log2(int value) {
+    int level = 0;
+    while ((2 << level) <= value) ++level;
+    return level;
+}
+
+// The start positions of `size`-long tiles that cover [first, last] (last - first + 1 >= size): every `size`
+// from `first`, the last one ending at `last`.
+template <typename Visit>
+void cover(int first, int last, int size, Visit visit) {
+    for (int start = first;; start += size) {
+        if (start + size - 1 >= last) {
+            visit(last - size + 1);
+            return;
+        }
+        visit(start);
+    }
+}
+
+void check_finite_at_least(double value, double minimum, bool strict, const char* name) {
+    if (!std::isfinite(value) || value < minimum || (strict && value == minimum)) {
+        throw std::invalid_argument(std::string("thickness classes: ") + name + " must be finite and " +
+                                    (strict ? "> " : ">= ") + std::to_string(minimum) + " (got " +
+                                    std::to_string(value) + ")");
+    }
+}
+
+}  // namespace
+
+WindowMinimum::WindowMinimum(const FloatImage& image, int max_half_size)
+    : width_(image.width), height_(image.height), max_half_size_(max_half_size) {
+    check_image(image, "window minimum image");
+    if (image.channels != 1) {
+        throw std::invalid_argument("window minimum: the image has " + std::to_string(image.channels) +
+                                    " channels; expected 1");
+    }
+    if (max_half_size < 0) throw std::invalid_argument("window minimum: max_half_size must be >= 0");
+    for (float value : image.pixels) {
+        if (std::isnan(value)) throw std::invalid_argument("window minimum: the image has a NaN sample");
+    }
+    // The largest square any query needs: the window's side, cut to the image's smaller side.
+    const int largest_side = int(std::min<long long>(2LL * max_half_size + 1, std::min(width_, height_)));
+    const int top_level = floor_log2(largest_side);
+    levels_.push_back(image.pixels);
+    level_widths_.push_back(width_);
+    for (int level = 1; level <= top_level; ++level) {
+        const int half = 1 << (level - 1);
+        const int side = 1 << level;
+        const int level_width = width_ - side + 1;
+        const int level_height = height_ - side + 1;
+        std::vector<float> minima(size_t(level_width) * size_t(level_height));
+        for (int y = 0; y < level_height; ++y) {
+            for (int x = 0; x < level_width; ++x) {
+                minima[size_t(y) * size_t(level_width) + size_t(x)] =
+                    std::min(std::min(level_min(level - 1, x, y), level_min(level - 1, x + half, y)),
+                             std::min(level_min(level - 1, x, y + half), level_min(level - 1, x + half, y + half)));
+            }
+        }
+        levels_.push_back(std::move(minima));
+        level_widths_.push_back(level_width);
+    }
+}
+
+float WindowMinimum::query(int x, int y, int half_size) const {
+    if (x < 0 || y < 0 || x >= width_ || y >= height_ || half_size < 0 || half_size > max_half_size_) {
+        throw std::out_of_range("window minimum: query (" + std::to_string(x) + ", " + std::to_string(y) + ", " +
+                                std::to_string(half_size) + ") outside the image or the largest half size");
+    }
+    const int x0 = std::max(0, x - half_size);
+    const int x1 = std::min(width_ - 1, x + half_size);
+    const int y0 = std::max(0, y - half_size);
+    const int y1 = std::min(height_ - 1, y + half_size);
+    const int level = floor_log2(std::min(x1 - x0 + 1, y1 - y0 + 1));
+    const int side = 1 << level;
+    float minimum = std::numeric_limits<float>::infinity();
+    cover(y0, y1, side, [&](int tile_y) {
+        cover(x0, x1, side, [&](int tile_x) { minimum = std::min(minimum, level_min(level, tile_x, tile_y)); });
+    });
+    return minimum;
+}
+
+const char* thickness_class_name(ThicknessClass value) {
+    switch (value) {
+    case ThicknessClass::Sky: return "sky";
+    case ThicknessClass::Rest: return "rest";
+    case ThicknessClass::Halo: return "halo";
+    case ThicknessClass::Silhouette: return "silhouette";
+    }
+    return "unknown";
+}
+
+std::vector<uint8_t> thickness_classes(const FloatImage& view_depth, const std::vector<uint8_t>& geometry_mask,
+                                       double radius_m, double thickness_m, double pixels_per_metre_at_1m,
+                                       double max_radius_px) {
+    check_image(view_depth, "view depth");
+    if (view_depth.channels != 1) {
+        throw std::invalid_argument("thickness classes: the view depth has " + std::to_string(view_depth.channels) +
+                                    " channels; expected 1");
+    }
+    const int width = view_depth.width;
+    const int height = view_depth.height;
+    const size_t pixel_count = size_t(width) * size_t(height);
+    if (geometry_mask.size() != pixel_count) {
+        throw std::invalid_argument("thickness classes: the mask has " + std::to_string(geometry_mask.size()) +
+                                    " entries for " + std::to_string(pixel_count) + " pixels");
+    }
+    check_finite_at_least(radius_m, 0.0, true, "radius_m");
+    check_finite_at_least(thickness_m, 0.0, false, "thickness_m");
+    check_finite_at_least(pixels_per_metre_at_1m, 0.0, true, "pixels_per_metre_at_1m");
+    check_finite_at_least(max_radius_px, 0.0, false, "max_radius_px");
+
+    // Sky is infinitely far: it never occludes and is always the far side of a step.
+    const float infinity = std::numeric_limits<float>::infinity();
+    FloatImage depth = view_depth;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < pixel_count; ++i) {
+        if (geometry_mask[i] == 0) {
+            depth.pixels[i] = infinity;
+            continue;
+        }
+        const float value = view_depth.pixels[i];
+        if (!std::isfinite(value) || !(value > 0.0f)) {
+            throw std::invalid_argument("thickness classes: geometry pixel (" + std::to_string(i % size_t(width)) + ", " +
+                                        std::to_string(i / size_t(width)) + ") has view depth " +
+                                        std::to_string(value) + "; expected finite and positive");
+        }
+        nearest = std::min(nearest, double(value));
+    }
+    const double reach = radius_m * pixels_per_metre_at_1m;  // pixels the radius covers at 1 m
+    // Windows beyond the image's larger side are the whole image; the cap also keeps the int in range.
+    const double radius_cap = std::min(max_radius_px, double(std::max(width, height)));
+    const auto half_size_at = [&](double pixel_depth) { return int(std::floor(std::min(radius_cap, reach / pixel_depth))); };
+    const int largest_half_size = std::isfinite(nearest) ? half_size_at(nearest) : 0;
+    const WindowMinimum window(depth, largest_half_size);
+
+    std::vector<uint8_t> classes(pixel_count, uint8_t(ThicknessClass::Sky));
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const size_t index = size_t(y) * size_t(width) + size_t(x);
+            if (geometry_mask[index] == 0) continue;
+            const double here = depth.pixels[index];
+            const double step = std::max(kSilhouetteMinStep, kSilhouetteRelativeStep * here);
+            const auto farther = [&](int nx, int ny) {
+                return nx >= 0 && ny >= 0 && nx < width && ny < height &&
+                       double(depth.pixels[size_t(ny) * size_t(width) + size_t(nx)]) > here + step;
+            };
+            if (farther(x - 1, y) || farther(x + 1, y) || farther(x, y - 1) || farther(x, y + 1)) {
+                classes[index] = uint8_t(ThicknessClass::Silhouette);
+                continue;
+            }
+            const int half_size = half_size_at(here);
+            const bool halo = half_size > 0 && double(window.query(x, y, half_size)) < here - thickness_m;
+            classes[index] = uint8_t(halo ? ThicknessClass::Halo : ThicknessClass::Rest);
+        }
+    }
+    return classes;
+}
+
+FloatImage thickness_class_image(const std::vector<uint8_t>& classes, int width, int height) {
+    if (width <= 0 || height <= 0 || classes.size() != size_t(width) * size_t(height)) {
+        throw std::invalid_argument("thickness class image: " + std::to_string(classes.size()) + " classes for " +
+                                    std::to_string(width) + "x" + std::to_string(height) + " pixels");
+    }
+    static constexpr std::array<std::array<float, 3>, kThicknessClassCount> kColours = {{
+        {0.0f, 0.0f, 0.0f},    // sky
+        {1.0f, 1.0f, 1.0f},    // rest
+        {0.25f, 0.45f, 1.0f},  // halo
+        {0.9f, 0.15f, 0.1f},   // silhouette
+    }};
+    FloatImage image;
+    image.width = width;
+    image.height = height;
+    image.channels = 3;
+    image.pixels.resize(classes.size() * 3);
+    for (size_t i = 0; i < classes.size(); ++i) {
+        if (classes[i] >= kThicknessClassCount) {
+            throw std::invalid_argument("thickness class image: byte " + std::to_string(int(classes[i])) + " at " +
+                                        std::to_string(i) + " is not a class");
+        }
+        std::copy(kColours[classes[i]].begin(), kColours[classes[i]].end(), image.pixels.begin() + long(i * 3));
+    }
+    return image;
+}
+
+}  // namespace obscura::samples

@@ -82,6 +82,76 @@ double flicker(const std::vector<FloatImage>& method_frames, const std::vector<F
 // otherwise); 0 when no pixel counts.
 double mean_angle_degrees(const FloatImage& image, const FloatImage& reference, const std::vector<uint8_t>* mask = nullptr);
 
+// ---- Thickness classes: where a screen-space method's thickness assumption matters -------------------
+//
+// A screen-space method sees only the depth buffer's front surfaces and must assume how thick they are. Its
+// error against the geometry truth is then concentrated in two kinds of pixels, told apart here so that an
+// error can be split by where it is (obscura compare --classes):
+//   Silhouette  the near side of a depth discontinuity: a geometry pixel p with a 4-neighbour q whose view
+//               depth exceeds p's by more than max(kSilhouetteMinStep, kSilhouetteRelativeStep * depth(p));
+//               a sky neighbour counts as infinitely far; neighbours outside the image do not count.
+//   Halo        not a silhouette, and some pixel within the AO radius on screen is nearer to the camera than
+//               p by more than the thickness T: min of the view depth over the square window of half-size
+//               r_px(p) around p (clipped to the image) < depth(p) - T. An occluder a method takes as
+//               infinitely thick darkens p there although the truth's rays may pass behind it.
+//   Rest        every other geometry pixel.
+//   Sky         no geometry (the mask's 0).
+// r_px(p) = min(max_radius_px, radius_m * pixels_per_metre_at_1m / depth(p)), rounded down: how many pixels the
+// radius covers at p's depth under a perspective projection (pixels_per_metre_at_1m = 0.5 * H * |P[1][1]| for
+// an image H pixels high and the GL projection P of that image; the same scale horizontally with square pixels).
+enum class ThicknessClass : uint8_t { Sky = 0, Rest = 1, Halo = 2, Silhouette = 3 };
+constexpr int kThicknessClassCount = 4;
+constexpr double kSilhouetteMinStep = 0.1;        // metres
+constexpr double kSilhouetteRelativeStep = 0.05;  // of p's depth
+
+// "sky", "rest", "halo", "silhouette".
+const char* thickness_class_name(ThicknessClass value);
+
+// One byte per pixel (a ThicknessClass, rows as `view_depth`'s: bottom-up) for `view_depth`: 1 channel,
+// positive view depth in metres (distance from the eye plane) on geometry, anything on sky, and
+// `geometry_mask`: compare_images' kind, one byte per pixel, non-zero on geometry. Units: radius_m and
+// thickness_m in metres (the method's AO radius and the thickness T), pixels_per_metre_at_1m in pixels,
+// max_radius_px in pixels (caps the window: its cost and the reach of a radius seen from very close).
+// Cost: O(pixels * log(window)) for a min pyramid (WindowMinimum), then O(1) per pixel.
+// std::invalid_argument for a view_depth whose size and pixel count do not match or that has more than one
+// channel, a mask of another size, a geometry pixel whose depth is not finite and positive, radius_m or
+// pixels_per_metre_at_1m not finite and > 0, thickness_m or max_radius_px not finite and >= 0.
+std::vector<uint8_t> thickness_classes(const FloatImage& view_depth, const std::vector<uint8_t>& geometry_mask,
+                                       double radius_m, double thickness_m, double pixels_per_metre_at_1m,
+                                       double max_radius_px);
+
+// An RGB picture of thickness_classes' result (`width` * `height` bytes, rows bottom-up): sky black, rest
+// white, halo blue, silhouette red. std::invalid_argument for a size that does not match or a byte that
+// is not a class.
+FloatImage thickness_class_image(const std::vector<uint8_t>& classes, int width, int height);
+
+// The minimum of a 1-channel image over square windows, O(1) per query: a sparse table (min pyramid) of the
+// minima over every 2^k x 2^k window at every position, k = 0 ... floor(log2(2 max_half_size + 1)) (limited by
+// the image's size), level k holding (W - 2^k + 1) x (H - 2^k + 1) floats (about 16 M, 64 MB, at 1920x1080 with
+// a half size of 256); a query covers its window with overlapping 2^k squares (4 for a
+// window inside the image, a few more where the image's border cuts it: at most 8 while the image is larger than
+// the half size both ways). Samples that must not count are +infinity.
+class WindowMinimum {
+public:
+    // std::invalid_argument for an image whose size and pixel count do not match, more than one channel, a NaN
+    // sample, or max_half_size < 0.
+    WindowMinimum(const FloatImage& image, int max_half_size);
+
+    // The minimum over the pixels (x', y') of the image with |x' - x| <= half_size and |y' - y| <= half_size.
+    // Needs 0 <= x < width, 0 <= y < height and 0 <= half_size <= max_half_size (std::out_of_range otherwise).
+    float query(int x, int y, int half_size) const;
+
+private:
+    float level_min(int level, int x, int y) const {
+        return levels_[size_t(level)][size_t(y) * size_t(level_widths_[size_t(level)]) + size_t(x)];
+    }
+    int width_ = 0;
+    int height_ = 0;
+    int max_half_size_ = 0;
+    std::vector<std::vector<float>> levels_;  // level k: min over [x, x + 2^k) x [y, y + 2^k)
+    std::vector<int> level_widths_;           // width - 2^k + 1
+};
+
 // A contact sheet of `images` (1, 3 or 4 channels; alpha dropped) in a grid of `columns` columns
 // (<= 0: one row), left to right and top to bottom, on a dark grey background with a 4-pixel gap.
 // Every cell has the size of the largest image; a smaller image sits in the cell's top-left corner.

@@ -1,7 +1,10 @@
 // Image error metrics and the JSON writer of samples/common (obscura_samples_metrics): no GL.
 // Every expected value is worked out by hand in the comment next to it.
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -20,6 +23,9 @@ using obscura::samples::ErrorMetrics;
 using obscura::samples::flicker;
 using obscura::samples::FloatImage;
 using obscura::samples::JsonWriter;
+using obscura::samples::thickness_classes;
+using obscura::samples::ThicknessClass;
+using obscura::samples::WindowMinimum;
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr float kInf = std::numeric_limits<float>::infinity();
@@ -365,7 +371,6 @@ obscura::samples::FloatImage directions(std::vector<float> xyz, int channels) {
     return image;
 }
 
-}  // namespace
 
 TEST(MeanAngle, DegreesBetweenDirectionsOverTheMask) {
     // Pixel 0: the same direction (lengths differ); pixel 1: 90 degrees; pixel 2: 60 degrees, masked out.
@@ -383,3 +388,226 @@ TEST(MeanAngle, FourChannelsUseRgbAndBadVectorsCountHalfACircle) {
     EXPECT_NEAR(obscura::samples::mean_angle_degrees(method, truth), 90.0, 1e-4);
     EXPECT_THROW(obscura::samples::mean_angle_degrees(directions({0, 1}, 2), truth), std::invalid_argument);
 }
+
+// ---- thickness_classes and WindowMinimum ------------------------------------------------------------------
+
+// A far plane at `far` metres with a near square of `side` pixels at `near` metres whose bottom-left pixel is
+// (left, bottom); every pixel is geometry unless a row is made sky afterwards.
+struct DepthScene {
+    FloatImage depth;
+    std::vector<uint8_t> mask;
+    DepthScene(int width, int height, float far, float near, int left, int bottom, int side)
+        : depth(constant_image(width, height, far)), mask(size_t(width) * size_t(height), 1) {
+        for (int y = bottom; y < bottom + side; ++y) {
+            for (int x = left; x < left + side; ++x) depth.pixels[size_t(y) * size_t(width) + size_t(x)] = near;
+        }
+    }
+    void make_sky_row(int y) {
+        for (int x = 0; x < depth.width; ++x) {
+            mask[size_t(y) * size_t(depth.width) + size_t(x)] = 0;
+            depth.pixels[size_t(y) * size_t(depth.width) + size_t(x)] = 0.0f;
+        }
+    }
+};
+
+ThicknessClass class_at(const std::vector<uint8_t>& classes, int width, int x, int y) {
+    return ThicknessClass(classes[size_t(y) * size_t(width) + size_t(x)]);
+}
+
+size_t count_class(const std::vector<uint8_t>& classes, ThicknessClass value) {
+    return size_t(std::count(classes.begin(), classes.end(), uint8_t(value)));
+}
+
+TEST(ThicknessClasses, NearSquareInFrontOfAFarPlane) {
+    // A 64x64 image: far plane at 10 m, an 8x8 square at 5 m over x, y in [28, 35], the top row (y = 63) sky.
+    // 40 pixels per metre at 1 m and a 1 m radius: the radius covers floor(40 / 10) = 4 pixels on the far plane.
+    DepthScene scene(64, 64, 10.0f, 5.0f, 28, 28, 8);
+    scene.make_sky_row(63);
+    const std::vector<uint8_t> classes = thickness_classes(scene.depth, scene.mask, 1.0, 0.3, 40.0, 256.0);
+    ASSERT_EQ(classes.size(), 64u * 64u);
+    // The square's border: a far neighbour 5 m behind (> max(0.1, 0.05 * 5)).
+    EXPECT_EQ(class_at(classes, 64, 28, 30), ThicknessClass::Silhouette);
+    EXPECT_EQ(class_at(classes, 64, 35, 35), ThicknessClass::Silhouette);
+    EXPECT_EQ(class_at(classes, 64, 31, 28), ThicknessClass::Silhouette);
+    // The square's 28 border pixels and the 64 of the row under the sky (below).
+    EXPECT_EQ(count_class(classes, ThicknessClass::Silhouette), 28u + 64u);
+    // Its inside: nothing nearer, no far neighbour.
+    EXPECT_EQ(class_at(classes, 64, 29, 29), ThicknessClass::Rest);
+    EXPECT_EQ(class_at(classes, 64, 34, 31), ThicknessClass::Rest);
+    // The far plane within 4 pixels (Chebyshev distance) of the square: halo; from 5 pixels on: rest.
+    EXPECT_EQ(class_at(classes, 64, 27, 30), ThicknessClass::Halo);
+    EXPECT_EQ(class_at(classes, 64, 24, 30), ThicknessClass::Halo);
+    EXPECT_EQ(class_at(classes, 64, 23, 30), ThicknessClass::Rest);
+    EXPECT_EQ(class_at(classes, 64, 39, 39), ThicknessClass::Halo);
+    EXPECT_EQ(class_at(classes, 64, 40, 39), ThicknessClass::Rest);
+    EXPECT_EQ(class_at(classes, 64, 24, 24), ThicknessClass::Halo);
+    EXPECT_EQ(class_at(classes, 64, 23, 24), ThicknessClass::Rest);
+    EXPECT_EQ(count_class(classes, ThicknessClass::Halo), 16u * 16u - 8u * 8u);  // the 16x16 footprint less the square
+    // Sky is its own class; the far plane's row under it is a silhouette (sky counts as far), the rest of the
+    // far plane's border is not (no neighbour outside the image counts).
+    EXPECT_EQ(class_at(classes, 64, 10, 63), ThicknessClass::Sky);
+    EXPECT_EQ(count_class(classes, ThicknessClass::Sky), 64u);
+    EXPECT_EQ(class_at(classes, 64, 10, 62), ThicknessClass::Silhouette);
+    EXPECT_EQ(class_at(classes, 64, 0, 0), ThicknessClass::Rest);
+    EXPECT_EQ(class_at(classes, 64, 63, 30), ThicknessClass::Rest);
+}
+
+TEST(ThicknessClasses, ThicknessThresholdIsRespected) {
+    // The square only 0.2 m in front of the plane: not thicker than T = 0.3, so no halo; and no silhouette either
+    // (0.2 < max(0.1, 0.05 * 9.8)). With T = 0.1 its 4-pixel footprint is a halo again.
+    const DepthScene scene(64, 64, 10.0f, 9.8f, 28, 28, 8);
+    const std::vector<uint8_t> thick = thickness_classes(scene.depth, scene.mask, 1.0, 0.3, 40.0, 256.0);
+    EXPECT_EQ(count_class(thick, ThicknessClass::Halo), 0u);
+    EXPECT_EQ(count_class(thick, ThicknessClass::Silhouette), 0u);
+    EXPECT_EQ(count_class(thick, ThicknessClass::Rest), 64u * 64u);
+    const std::vector<uint8_t> thin = thickness_classes(scene.depth, scene.mask, 1.0, 0.1, 40.0, 256.0);
+    EXPECT_EQ(count_class(thin, ThicknessClass::Halo), 16u * 16u - 8u * 8u);
+}
+
+TEST(ThicknessClasses, SilhouetteStepIsTenCentimetresOrFivePercent) {
+    // At 1 m the step must exceed 0.1 m; at 10 m, 0.5 m.
+    const auto silhouettes = [](float far, float near) {
+        const DepthScene scene(16, 16, far, near, 6, 6, 4);
+        return count_class(thickness_classes(scene.depth, scene.mask, 1.0, 0.3, 10.0, 256.0), ThicknessClass::Silhouette);
+    };
+    EXPECT_EQ(silhouettes(1.0f, 0.85f), 12u);  // the square's 12 border pixels
+    EXPECT_EQ(silhouettes(1.0f, 0.95f), 0u);
+    EXPECT_EQ(silhouettes(10.0f, 9.4f), 12u);
+    EXPECT_EQ(silhouettes(10.0f, 9.6f), 0u);
+}
+
+TEST(ThicknessClasses, RadiusCapAndPixelsPerMetre) {
+    // The radius in pixels shrinks with depth and is capped by max_radius_px.
+    const DepthScene scene(64, 64, 10.0f, 5.0f, 28, 28, 8);
+    // 20 pixels per metre at 1 m: 2 pixels on the far plane, a 12x12 footprint.
+    EXPECT_EQ(count_class(thickness_classes(scene.depth, scene.mask, 1.0, 0.3, 20.0, 256.0), ThicknessClass::Halo),
+              12u * 12u - 8u * 8u);
+    // A 0.5 m radius at 40 pixels per metre is the same 2 pixels.
+    EXPECT_EQ(count_class(thickness_classes(scene.depth, scene.mask, 0.5, 0.3, 40.0, 256.0), ThicknessClass::Halo),
+              12u * 12u - 8u * 8u);
+    // 4 pixels, capped at 1.
+    EXPECT_EQ(count_class(thickness_classes(scene.depth, scene.mask, 1.0, 0.3, 40.0, 1.0), ThicknessClass::Halo),
+              10u * 10u - 8u * 8u);
+    // Under a pixel: no window, no halo.
+    EXPECT_EQ(count_class(thickness_classes(scene.depth, scene.mask, 1.0, 0.3, 9.0, 256.0), ThicknessClass::Halo), 0u);
+}
+
+TEST(ThicknessClasses, MatchesABruteForceClassification) {
+    // Random depths in [1, 12] m with some sky, classified by the definition pixel by pixel.
+    const int width = 37;
+    const int height = 23;
+    std::mt19937 random(7);
+    std::uniform_real_distribution<float> depths(1.0f, 12.0f);
+    std::uniform_int_distribution<int> percent(0, 99);
+    FloatImage depth = constant_image(width, height, 0.0f);
+    std::vector<uint8_t> mask(size_t(width) * size_t(height));
+    for (size_t i = 0; i < mask.size(); ++i) {
+        mask[i] = percent(random) >= 10;
+        depth.pixels[i] = mask[i] ? depths(random) : 0.0f;
+    }
+    const double radius = 0.7, thickness = 0.3, scale = 30.0, cap = 9.0;
+    const std::vector<uint8_t> classes = thickness_classes(depth, mask, radius, thickness, scale, cap);
+    const auto far_at = [&](int x, int y) {
+        return mask[size_t(y) * size_t(width) + size_t(x)] ? double(depth.at(x, y)) : std::numeric_limits<double>::infinity();
+    };
+    size_t halos = 0;
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            ThicknessClass expected = ThicknessClass::Sky;
+            if (mask[size_t(y) * size_t(width) + size_t(x)]) {
+                const double here = depth.at(x, y);
+                const double step = std::max(0.1, 0.05 * here);
+                bool silhouette = false;
+                const int neighbours[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
+                for (const auto& offset : neighbours) {
+                    const int nx = x + offset[0], ny = y + offset[1];
+                    if (nx >= 0 && ny >= 0 && nx < width && ny < height && far_at(nx, ny) > here + step) silhouette = true;
+                }
+                const int half = int(std::floor(std::min(cap, radius * scale / here)));
+                double nearest = std::numeric_limits<double>::infinity();
+                for (int wy = std::max(0, y - half); wy <= std::min(height - 1, y + half); ++wy) {
+                    for (int wx = std::max(0, x - half); wx <= std::min(width - 1, x + half); ++wx) {
+                        nearest = std::min(nearest, far_at(wx, wy));
+                    }
+                }
+                expected = silhouette                      ? ThicknessClass::Silhouette
+                           : nearest < here - thickness    ? ThicknessClass::Halo
+                                                           : ThicknessClass::Rest;
+            }
+            halos += expected == ThicknessClass::Halo;
+            ASSERT_EQ(class_at(classes, width, x, y), expected) << "pixel " << x << ", " << y;
+        }
+    }
+    EXPECT_GT(halos, 0u);
+}
+
+TEST(WindowMinimum, MatchesABruteForceScan) {
+    // Every pixel and half size of a random 19x13 image with some +infinity, against a plain scan of the window
+    // clipped to the image (half sizes up to 12: windows wider than the image both ways).
+    const int width = 19;
+    const int height = 13;
+    std::mt19937 random(3);
+    std::uniform_real_distribution<float> values(-5.0f, 5.0f);
+    FloatImage image = constant_image(width, height, 0.0f);
+    for (size_t i = 0; i < image.pixels.size(); ++i) {
+        image.pixels[i] = i % 7 == 3 ? std::numeric_limits<float>::infinity() : values(random);
+    }
+    const int max_half_size = 12;
+    const WindowMinimum window(image, max_half_size);
+    for (int half = 0; half <= max_half_size; ++half) {
+        for (int y = 0; y < height; ++y) {
+            for (int x = 0; x < width; ++x) {
+                float expected = std::numeric_limits<float>::infinity();
+                for (int wy = std::max(0, y - half); wy <= std::min(height - 1, y + half); ++wy) {
+                    for (int wx = std::max(0, x - half); wx <= std::min(width - 1, x + half); ++wx) {
+                        expected = std::min(expected, image.at(wx, wy));
+                    }
+                }
+                ASSERT_EQ(window.query(x, y, half), expected) << "pixel " << x << ", " << y << ", half size " << half;
+            }
+        }
+    }
+    EXPECT_THROW(window.query(width, 0, 1), std::out_of_range);
+    EXPECT_THROW(window.query(0, 0, max_half_size + 1), std::out_of_range);
+    EXPECT_THROW(WindowMinimum(image, -1), std::invalid_argument);
+    EXPECT_THROW(WindowMinimum(constant_image(2, 2, 0.0f, 3), 1), std::invalid_argument);
+    EXPECT_THROW(WindowMinimum(make_image(2, 1, {0.0f, kNaN}), 1), std::invalid_argument);
+}
+
+TEST(ThicknessClasses, RejectsBadInput) {
+    const DepthScene scene(8, 8, 10.0f, 5.0f, 2, 2, 2);
+    // Mask and depth of different sizes; a depth image whose pixel count does not match; several channels.
+    EXPECT_THROW(thickness_classes(scene.depth, std::vector<uint8_t>(63, 1), 1.0, 0.3, 40.0, 256.0), std::invalid_argument);
+    FloatImage short_depth = scene.depth;
+    short_depth.pixels.pop_back();
+    EXPECT_THROW(thickness_classes(short_depth, scene.mask, 1.0, 0.3, 40.0, 256.0), std::invalid_argument);
+    EXPECT_THROW(thickness_classes(constant_image(8, 8, 1.0f, 3), scene.mask, 1.0, 0.3, 40.0, 256.0), std::invalid_argument);
+    // Parameters out of range.
+    EXPECT_THROW(thickness_classes(scene.depth, scene.mask, 0.0, 0.3, 40.0, 256.0), std::invalid_argument);
+    EXPECT_THROW(thickness_classes(scene.depth, scene.mask, 1.0, -0.1, 40.0, 256.0), std::invalid_argument);
+    EXPECT_THROW(thickness_classes(scene.depth, scene.mask, 1.0, 0.3, kInf, 256.0), std::invalid_argument);
+    EXPECT_THROW(thickness_classes(scene.depth, scene.mask, 1.0, 0.3, 40.0, kNaN), std::invalid_argument);
+    // A geometry pixel without a depth.
+    FloatImage holed = scene.depth;
+    holed.pixels[5] = 0.0f;
+    EXPECT_THROW(thickness_classes(holed, scene.mask, 1.0, 0.3, 40.0, 256.0), std::invalid_argument);
+    // Sky is allowed any depth, a geometry-less image is all sky.
+    FloatImage sky = scene.depth;
+    sky.pixels.assign(sky.pixels.size(), kNaN);
+    const std::vector<uint8_t> none(64, 0);
+    EXPECT_EQ(count_class(thickness_classes(sky, none, 1.0, 0.3, 40.0, 256.0), ThicknessClass::Sky), 64u);
+}
+
+TEST(ThicknessClassImage, ColoursPerClass) {
+    const FloatImage image = obscura::samples::thickness_class_image({0, 1, 2, 3}, 2, 2);
+    ASSERT_EQ(image.channels, 3);
+    EXPECT_EQ(rgb_at(image, 0, 0), (std::vector<float>{0.0f, 0.0f, 0.0f}));  // sky black
+    EXPECT_EQ(rgb_at(image, 1, 0), (std::vector<float>{1.0f, 1.0f, 1.0f}));  // rest white
+    EXPECT_GT(rgb_at(image, 0, 1)[2], rgb_at(image, 0, 1)[0]);             // halo blue
+    EXPECT_GT(rgb_at(image, 1, 1)[0], rgb_at(image, 1, 1)[2]);             // silhouette red
+    EXPECT_THROW(obscura::samples::thickness_class_image({0, 1, 2}, 2, 2), std::invalid_argument);
+    EXPECT_THROW(obscura::samples::thickness_class_image({0, 1, 2, 4}, 2, 2), std::invalid_argument);
+    EXPECT_STREQ(obscura::samples::thickness_class_name(ThicknessClass::Halo), "halo");
+}
+
+}  // namespace
