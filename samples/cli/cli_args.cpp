@@ -56,6 +56,29 @@ std::optional<std::string> ArgumentList::take_value(const std::string& name) {
     return values.front();
 }
 
+std::optional<std::string> ArgumentList::take_optional_value(const std::string& name) {
+    std::optional<std::string> found;
+    const std::string with_equals = name + "=";
+    for (size_t i = 0; i < arguments_.size();) {
+        std::optional<std::string> value;
+        if (arguments_[i] == name) {
+            const bool has_value = i + 1 < arguments_.size() && arguments_[i + 1].compare(0, 2, "--") != 0;
+            value = has_value ? arguments_[i + 1] : std::string();
+            arguments_.erase(arguments_.begin() + long(i), arguments_.begin() + long(i) + (has_value ? 2 : 1));
+        } else if (arguments_[i].compare(0, with_equals.size(), with_equals) == 0) {
+            value = arguments_[i].substr(with_equals.size());
+            if (value->empty()) throw UsageError(with_equals + " needs a value (or give " + name + " alone)");
+            arguments_.erase(arguments_.begin() + long(i));
+        } else {
+            ++i;
+            continue;
+        }
+        if (found) throw UsageError(name + " given more than once");
+        found = std::move(value);
+    }
+    return found;
+}
+
 std::vector<std::string> ArgumentList::take_positionals() {
     std::vector<std::string> positionals;
     for (auto it = arguments_.begin(); it != arguments_.end();) {

@@ -26,6 +26,10 @@ public:
     std::vector<std::string> take_values(const std::string& name);
     // The single value of "--name"; UsageError if given more than once.
     std::optional<std::string> take_value(const std::string& name);
+    // An option whose value may be left out: removes "--name=VALUE", "--name VALUE" (VALUE being the next
+    // argument when it does not start with "--") or a bare "--name". nullopt when absent; otherwise the value,
+    // or an empty string for a bare "--name". UsageError if given more than once or as "--name=" (empty).
+    std::optional<std::string> take_optional_value(const std::string& name);
     // Removes and returns the arguments that do not start with "--".
     std::vector<std::string> take_positionals();
     // Whether "--name" or "--name=..." is still there (for hints about options of other commands).

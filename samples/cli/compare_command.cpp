@@ -41,6 +41,7 @@ struct CompareConfig {
     std::optional<double> orbit_degrees;
     int frames = 1;
     bool sync_timing = false;
+    std::optional<PixelClasses> classes;  // --classes: radius and thickness
 };
 
 std::string default_method_list() {
@@ -52,13 +53,30 @@ std::string default_method_list() {
     return list;
 }
 
+// --classes [RADIUS_M[,THICKNESS_M]].
+PixelClasses parse_classes(const std::string& text) {
+    PixelClasses classes;
+    if (text.empty()) return classes;
+    const std::vector<std::string> values = split_list("--classes", text);
+    if (values.size() > 2) throw UsageError("--classes '" + text + "' is not RADIUS_M[,THICKNESS_M] (e.g. 1,0.3)");
+    classes.radius_m = parse_double_in("--classes (radius in metres)", values[0], 0.001, 1000.0);
+    if (values.size() == 2) classes.thickness_m = parse_double_in("--classes (thickness in metres)", values[1], 0.0, 1000.0);
+    return classes;
+}
+
 CompareConfig take_compare_config(ArgumentList& arguments) {
     if (arguments.contains("--method")) throw UsageError("compare takes --methods SPEC,SPEC,... (not --method)");
     CompareConfig config;
+    // First: its value is optional, so it must see the argument after it before another option takes that.
+    if (auto classes = arguments.take_optional_value("--classes")) config.classes = parse_classes(*classes);
     const std::optional<std::string> methods = arguments.take_value("--methods");
     const std::vector<std::string> sets = arguments.take_values("--set");
     config.methods = parse_method_specs("--methods", methods ? *methods : default_method_list(), sets);
     config.scene = take_scene_source_options(arguments, /*takes_size=*/true);
+    if (config.classes && !config.scene.depth_file && config.scene.raster.projection == samples::ProjectionKind::Orthographic) {
+        throw UsageError("--classes needs a perspective projection (the radius's size on screen shrinks with depth); "
+                         "--projection ortho has none");
+    }
     if (auto rays = arguments.take_value("--reference-rays")) {
         config.reference_rays = parse_int("--reference-rays", *rays, 1, 65536);
     }
@@ -146,7 +164,8 @@ void render_screen_references(const ObscuraSession& session, const std::vector<s
 }
 
 void trace_geometry_truth(const TruthTracer& tracer, const std::vector<samples::RenderedScene>& frames,
-                          ComparedTruth& truth, std::vector<std::vector<uint8_t>>& masks) {
+                          ComparedTruth& truth, std::vector<std::vector<uint8_t>>& masks,
+                          std::vector<samples::FloatImage>& view_depths) {
     std::vector<obscura_settings> falloffs;
     for (const ComparedReference& reference : truth.references) falloffs.push_back(reference.settings);
     for (size_t f = 0; f < frames.size(); ++f) {
@@ -158,12 +177,39 @@ void trace_geometry_truth(const TruthTracer& tracer, const std::vector<samples::
             truth.references[k].bent_frames.push_back(std::move(images.bent_normal[k]));
         }
         masks[f] = std::move(images.geometry_mask);
+        view_depths[f] = std::move(images.view_depth);
         truth.seconds += images.seconds;
         truth.rays_cast += images.rays_cast;
     }
     std::printf("geometry truth: %d triangles, %zu falloff(s), %d rays x %zu frame(s): %.1f s (%.2f Mrays/s)\n",
                 truth.triangles, falloffs.size(), truth.rays, frames.size(), truth.seconds,
                 truth.seconds > 0.0 ? double(truth.rays_cast) / truth.seconds * 1e-6 : 0.0);
+}
+
+// A method's error against one reference in each class, every frame's pixels pooled.
+std::vector<ClassErrors> measure_classes(const ComparedMethod& method, const ComparedReference& reference,
+                                         const PixelClasses& classes) {
+    std::vector<ClassErrors> measured;
+    for (samples::ThicknessClass value : kMeasuredClasses) {
+        ClassErrors errors;
+        double sum_abs = 0.0, sum_signed = 0.0, sum_within = 0.0;
+        for (size_t f = 0; f < classes.frames.size(); ++f) {
+            std::vector<uint8_t> mask(classes.frames[f].size());
+            for (size_t i = 0; i < mask.size(); ++i) mask[i] = classes.frames[f][i] == uint8_t(value);
+            const samples::ErrorMetrics metrics = samples::compare_images(method.frames[f], reference.frames[f], &mask);
+            errors.pixels += metrics.pixels;
+            sum_abs += metrics.mean_abs * double(metrics.pixels);
+            sum_signed += metrics.mean_signed * double(metrics.pixels);
+            sum_within += metrics.within_5pct * double(metrics.pixels);
+        }
+        if (errors.pixels > 0) {
+            errors.mean_abs = sum_abs / double(errors.pixels);
+            errors.mean_signed = sum_signed / double(errors.pixels);
+            errors.within_5pct = sum_within / double(errors.pixels);
+        }
+        measured.push_back(errors);
+    }
+    return measured;
 }
 
 void measure_method(const ObscuraSession& session, const std::vector<samples::RenderedScene>& frames,
@@ -239,7 +285,28 @@ void measure_method(const ObscuraSession& session, const std::vector<samples::Re
             errors.flicker =
                 samples::flicker(method.frames, reference.frames, result.all_pixels ? nullptr : &result.masks);
         }
+        if (result.classes) errors.classes = measure_classes(method, reference, *result.classes);
         method.errors.push_back(errors);
+    }
+}
+
+// Classifies every frame's geometry pixels (samples::thickness_classes) from its view depth and mask, and counts
+// the classes.
+void split_into_classes(const std::vector<samples::RenderedScene>& frames,
+                        const std::vector<samples::FloatImage>& view_depths, CompareResult& result) {
+    PixelClasses& classes = *result.classes;
+    for (size_t f = 0; f < frames.size(); ++f) {
+        const samples::SceneFrame& frame = frames[f].frame();
+        if (frame.orthographic) throw UsageError("--classes needs a perspective projection");
+        // Pixels per metre at 1 m: half the image's height in pixels times the projection's y scale (P[1][1]).
+        const double pixels_per_metre = 0.5 * double(frame.depth_height) * std::fabs(double(frame.projection[5]));
+        classes.frames.push_back(samples::thickness_classes(view_depths[f], result.masks[f], classes.radius_m,
+                                                            classes.thickness_m, pixels_per_metre,
+                                                            classes.max_radius_px));
+        for (uint8_t value : classes.frames.back()) {
+            for (size_t c = 0; c < kMeasuredClassCount; ++c) classes.pixels[c] += value == uint8_t(kMeasuredClasses[c]);
+            classes.geometry_pixels += value != uint8_t(samples::ThicknessClass::Sky);
+        }
     }
 }
 
@@ -279,6 +346,7 @@ int run_compare(ArgumentList& arguments) {
     // The geometry pixels: where the camera sees the scene (the truth's primary rays, which the tests hold to
     // the rasteriser's pixels), or a depth file's non-sky texels.
     result.masks.resize(frames.size());
+    std::vector<samples::FloatImage> view_depths(frames.size());  // with a scene: the primary hits'
     std::optional<TruthTracer> tracer;
     if (const samples::Scene* scene = source.scene()) tracer.emplace(*scene);
     for (TruthKind kind : config.truths) {
@@ -299,7 +367,7 @@ int run_compare(ArgumentList& arguments) {
         if (kind == TruthKind::Geometry) {
             truth.seed = config.truth_seed;
             truth.triangles = tracer->triangle_count();
-            trace_geometry_truth(*tracer, frames, truth, result.masks);
+            trace_geometry_truth(*tracer, frames, truth, result.masks, view_depths);
         } else {
             render_screen_references(session, frames, source.use_normals(), truth);
         }
@@ -307,8 +375,14 @@ int run_compare(ArgumentList& arguments) {
     }
     for (size_t f = 0; f < frames.size(); ++f) {
         if (!result.masks[f].empty()) continue;
-        result.masks[f] = tracer ? tracer->trace(frames[f].frame(), falloffs, 0, config.truth_seed, "primary rays").geometry_mask
-                                 : samples::read_geometry_mask(frames[f].frame());
+        if (tracer) {
+            TruthImages primary = tracer->trace(frames[f].frame(), falloffs, 0, config.truth_seed, "primary rays");
+            result.masks[f] = std::move(primary.geometry_mask);
+            view_depths[f] = std::move(primary.view_depth);
+        } else {
+            result.masks[f] = samples::read_geometry_mask(frames[f].frame());
+            if (config.classes) view_depths[f] = samples::read_view_depth(frames[f].frame());
+        }
     }
     for (size_t f = 0; f < frames.size() && !result.all_pixels; ++f) {
         if (std::count(result.masks[f].begin(), result.masks[f].end(), uint8_t(1)) == 0) {
@@ -316,6 +390,10 @@ int run_compare(ArgumentList& arguments) {
                                      "nothing to measure; aim the camera at the scene, or count every pixel with "
                                      "--metrics-pixels all");
         }
+    }
+    if (config.classes) {
+        result.classes = config.classes;
+        split_into_classes(frames, view_depths, result);
     }
     for (ComparedMethod& method : result.methods) measure_method(session, frames, source.use_normals(), result, method);
 

@@ -24,6 +24,43 @@ std::string describe_truth(const ComparedTruth& truth) {
 }
 
 constexpr int kStripMaxColumns = 4;
+constexpr const char* kClassesImage = "classes.png";
+
+// "1 m", "0.3 m".
+std::string format_metres(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g m", value);
+    return text;
+}
+
+// The classes' pixel counts and the table of each method's error per class against truth t.
+void print_class_table(const CompareResult& result, size_t t) {
+    const PixelClasses& classes = *result.classes;
+    std::printf("\nclasses (radius %s, thickness %s, window <= %g px):", format_metres(classes.radius_m).c_str(),
+                format_metres(classes.thickness_m).c_str(), classes.max_radius_px);
+    for (size_t c = 0; c < kMeasuredClassCount; ++c) {
+        const double share = classes.geometry_pixels > 0 ? double(classes.pixels[c]) / double(classes.geometry_pixels) : 0.0;
+        std::printf("%s %s %zu px (%.1f %%)", c == 0 ? "" : ",", samples::thickness_class_name(kMeasuredClasses[c]),
+                    classes.pixels[c], 100.0 * share);
+    }
+    std::printf(" of %zu geometry pixels%s\n", classes.geometry_pixels,
+                classes.frames.size() > 1 ? (", " + std::to_string(classes.frames.size()) + " frames pooled").c_str() : "");
+    std::vector<std::string> header = {"method"};
+    for (samples::ThicknessClass value : kMeasuredClasses) {
+        header.push_back(std::string(samples::thickness_class_name(value)) + ": mean_abs");
+        header.push_back("signed");
+    }
+    TextTable table(header);
+    for (const ComparedMethod& method : result.methods) {
+        std::vector<std::string> row = {method.spec.text};
+        for (const ClassErrors& errors : method.errors[t].classes) {
+            row.push_back(errors.pixels > 0 ? format_fixed(errors.mean_abs, 5) : "-");
+            row.push_back(errors.pixels > 0 ? format_signed(errors.mean_signed, 5) : "-");
+        }
+        table.add_row(row);
+    }
+    table.print(stdout);
+}
 
 // A method's label in the strip: its spec, less "NAME:" when every spec of the run names the same method
 // (a 320-pixel tile holds 26 characters of the sheet's font).
@@ -120,6 +157,9 @@ std::vector<std::string> write_compare_images(const CompareResult& result, const
         for (size_t k = 0; k < truth.references.size(); ++k) write(truth_file(truth.kind, k), truth.references[k].frames.front());
     }
     write("contact_sheet.png", samples::contact_sheet(sheet, labels, int(1 + 2 * result.truths.size())));
+    if (result.classes) {
+        write(kClassesImage, samples::thickness_class_image(result.classes->frames.front(), result.width, result.height));
+    }
     return written;
 }
 
@@ -186,6 +226,7 @@ void print_compare_table(const CompareResult& result) {
                             method.spec.text.c_str(), *errors.bent_degrees, errors.normal_degrees.value_or(0.0));
             }
         }
+        if (result.classes) print_class_table(result, t);
     }
     std::printf("signed = mean of method - truth: > 0 brighter (less occlusion) than the truth, < 0 darker\n");
 }
@@ -203,6 +244,24 @@ void write_compare_json(const CompareResult& result, const std::string& path) {
     json.field("sky_fraction", result.sky_fraction());
     json.end_object();
     if (result.orbit_degrees) json.field("orbit_degrees", *result.orbit_degrees).field("frames", result.frames);
+    if (result.classes) {
+        const PixelClasses& classes = *result.classes;
+        json.key("classes").begin_object();
+        json.field("radius_m", classes.radius_m);
+        json.field("thickness_m", classes.thickness_m);
+        json.field("max_radius_px", classes.max_radius_px);
+        json.field("frames", double(classes.frames.size()));
+        json.field("image", kClassesImage);
+        json.field("geometry_pixels", double(classes.geometry_pixels));
+        for (size_t c = 0; c < kMeasuredClassCount; ++c) {
+            json.key(samples::thickness_class_name(kMeasuredClasses[c])).begin_object();
+            json.field("pixels", double(classes.pixels[c]));
+            json.field("fraction", classes.geometry_pixels > 0
+                                       ? double(classes.pixels[c]) / double(classes.geometry_pixels) : 0.0);
+            json.end_object();
+        }
+        json.end_object();
+    }
     json.key("methods").begin_array();
     for (size_t i = 0; i < result.methods.size(); ++i) {
         const ComparedMethod& method = result.methods[i];
@@ -226,6 +285,28 @@ void write_compare_json(const CompareResult& result, const std::string& path) {
             if (errors.flicker) json.field("flicker", *errors.flicker);
             if (errors.bent_degrees) json.field("bent_normal_degrees", *errors.bent_degrees);
             if (errors.normal_degrees) json.field("surface_normal_degrees", *errors.normal_degrees);
+            if (!errors.classes.empty()) {
+                json.key("classes").begin_object();
+                for (size_t c = 0; c < errors.classes.size(); ++c) {
+                    const ClassErrors& class_errors = errors.classes[c];
+                    // A class without pixels has no error: null, not a perfect 0.
+                    const auto error_field = [&](const char* name, double value) {
+                        json.key(name);
+                        if (class_errors.pixels > 0) {
+                            json.value(value);
+                        } else {
+                            json.null();
+                        }
+                    };
+                    json.key(samples::thickness_class_name(kMeasuredClasses[c])).begin_object();
+                    json.field("pixels", double(class_errors.pixels));
+                    error_field("mean_abs", class_errors.mean_abs);
+                    error_field("signed_mean", class_errors.mean_signed);
+                    error_field("within_5pct", class_errors.within_5pct);
+                    json.end_object();
+                }
+                json.end_object();
+            }
             json.field("error_image", error_file(result, i, result.truths[t].kind));
             json.field("signed_error_image", signed_error_file(result, i, result.truths[t].kind));
             json.field("truth_image", truth_file(result.truths[t].kind, method.reference));

@@ -45,12 +45,41 @@ struct ComparedTruth {
     std::vector<ComparedReference> references;  // ComparedMethod::reference indexes it
 };
 
+// --classes: the geometry pixels split by where a screen-space method's thickness assumption matters
+// (samples::thickness_classes): silhouettes, halos and the rest.
+constexpr double kClassesDefaultRadius = 1.0;     // metres: GTAO's and HBAO's default radius
+constexpr double kClassesDefaultThickness = 0.3;  // metres
+constexpr double kClassesMaxRadiusPx = 256.0;     // the window's largest half size
+// The classes measured, in the order tables and reports list them.
+constexpr samples::ThicknessClass kMeasuredClasses[] = {samples::ThicknessClass::Silhouette,
+                                                       samples::ThicknessClass::Halo, samples::ThicknessClass::Rest};
+constexpr size_t kMeasuredClassCount = sizeof kMeasuredClasses / sizeof kMeasuredClasses[0];
+
+struct PixelClasses {
+    double radius_m = kClassesDefaultRadius;
+    double thickness_m = kClassesDefaultThickness;
+    double max_radius_px = kClassesMaxRadiusPx;
+    std::vector<std::vector<uint8_t>> frames;  // per frame, one samples::ThicknessClass per pixel (rows bottom-up)
+    size_t pixels[kMeasuredClassCount] = {};   // per measured class, summed over the frames
+    size_t geometry_pixels = 0;                // summed over the frames
+};
+
+// A method's error over the pixels of one class, pooled over the frames (every pixel of every frame weighs the
+// same).
+struct ClassErrors {
+    size_t pixels = 0;
+    double mean_abs = 0.0;
+    double mean_signed = 0.0;  // method - truth
+    double within_5pct = 0.0;
+};
+
 // A method's error against one truth, averaged over the frames.
 struct MethodErrors {
     samples::ErrorMetrics metrics;
     std::optional<double> flicker;  // with --orbit: samples::flicker against the truth's frames
     std::optional<double> bent_degrees;  // geometry truth, methods that write bent normals: mean angle to the truth's
     std::optional<double> normal_degrees;  // the same for the surface normals the method used (the baseline)
+    std::vector<ClassErrors> classes;      // with --classes: one per kMeasuredClasses
 };
 
 struct ComparedMethod {
@@ -76,6 +105,7 @@ struct CompareResult {
     std::vector<std::vector<uint8_t>> masks;  // per frame, one byte per pixel: 1 geometry, 0 sky
     std::vector<ComparedTruth> truths;        // in the order asked for; the first one is the headline
     std::vector<ComparedMethod> methods;
+    std::optional<PixelClasses> classes;      // --classes
 
     // Of the first frame.
     size_t geometry_pixels() const;
@@ -92,7 +122,8 @@ std::string truth_file(TruthKind truth, size_t reference_index);
 
 // Writes <stem>.png, <stem>_error_<truth>.png and <stem>_signed_<truth>.png per method and truth, each truth's
 // image per falloff (first frame) and contact_sheet.png (per method: AO, then for each truth the truth and the
-// signed error map) into `directory` (created if needed). Returns the file names written.
+// signed error map) into `directory` (created if needed), and with --classes classes.png (first frame: sky black,
+// rest white, halo blue, silhouette red). Returns the file names written.
 std::vector<std::string> write_compare_images(const CompareResult& result, const std::filesystem::path& directory);
 // The --strip sheet, for documentation: each method's AO (first frame) labelled with its settings (the
 // spec without the method's name when every spec names the same method), then, when the methods were
@@ -100,8 +131,12 @@ std::vector<std::string> write_compare_images(const CompareResult& result, const
 // "ref: " (screen) and the label of the first method measured against it; at most four images per row, the rows balanced. Gray when every
 // image is.
 samples::FloatImage compare_strip(const CompareResult& result);
-// One table per truth: a line per method with spec, times and errors (and flicker with --orbit).
+// One table per truth: a line per method with spec, times and errors (and flicker with --orbit); with --classes
+// then the classes' pixel counts and a line per method with its error in each class.
 void print_compare_table(const CompareResult& result);
+// With --classes the report adds "classes" (radius_m, thickness_m, max_radius_px, frames, image, geometry_pixels and
+// per class {pixels, fraction}) and per method and truth errors.<truth>.classes (per class {pixels, mean_abs,
+// signed_mean, within_5pct}; the errors null for a class without pixels).
 void write_compare_json(const CompareResult& result, const std::string& path);
 
 }  // namespace obscura::cli

@@ -18,7 +18,7 @@ const char* const kUsage = R"(usage:
   obscura compare [--methods SPEC,SPEC,...] [--set KEY=VALUE]... [--truth geometry|screen|both]
                   [--truth-rays 1024] [--truth-seed 1] [--reference-rays 256] [--metrics-pixels geometry|all]
                   [--out-dir compare-output] [--json REPORT.json] [--strip STRIP.png]
-                  [--orbit DEG --frames N] [--sync-timing] [SCENE]
+                  [--orbit DEG --frames N] [--classes [RADIUS_M[,THICKNESS_M]]] [--sync-timing] [SCENE]
   obscura truth --out TRUTH.pfm [--depth-out DEPTH.pfm] [--png TRUTH.png] [--falloff SPEC]
                 [--rays 1024] [--seed 1] [SCENE without --depth]
   obscura bench [--methods SPEC,SPEC,...] [--set KEY=VALUE]... [--sizes 1280x720,1920x1080,...]
@@ -70,6 +70,12 @@ compare renders each method and measures it against its truth with the same fall
   N: N frames along an orbit of DEG degrees in total (images of the first); errors are averaged over them
   and flicker measures the temporal error. --strip writes one sheet of the methods' AO labelled with their
   settings, then the first truth's images if there are several (falloffs differ).
+  --classes [RADIUS_M[,THICKNESS_M]] (default 1,0.3) splits the geometry pixels by where a screen-space method's
+  thickness assumption matters and prints per truth and method mean_abs and signed over each class: silhouette
+  (a 4-neighbour, or sky, farther by more than max(0.1 m, 5 % of the depth)), halo (not silhouette, and a pixel
+  nearer by more than THICKNESS_M within RADIUS_M on screen at the pixel's depth, window capped at 256 px) and
+  rest. View depth: the scene's primary rays, or a --depth file's depth; perspective projections only. Adds
+  classes.png (sky black, rest white, halo blue, silhouette red) and "classes" to the --json report.
 truth ray-traces the geometry truth of one view (--falloff: a method spec whose falloff it weighs hits
   with, default the reference's rho0 r=1 m) and writes it as PFM (and PNG); --depth-out writes the view's
   linear depth (positive view depth in metres, whole buffer with guard band, sky +inf) as --depth reads it,

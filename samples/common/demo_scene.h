@@ -17,6 +17,7 @@
 #include <glm/glm.hpp>
 
 #include "host_gl.h"
+#include "image_io.h"
 #include "obscura/obscura.h"
 #include "scene_projection.h"
 
@@ -110,6 +111,12 @@ RenderedScene render_scene(const SceneMesh& mesh, const SceneRenderOptions& opti
 // count by default (compare_images' mask), so that a view with much sky does not score better than its
 // geometry deserves. Reads the depth texture back: std::runtime_error for a multisampled one.
 std::vector<uint8_t> read_geometry_mask(const SceneFrame& frame);
+
+// Positive view depth in metres (distance from the eye plane) of each pixel of the frame's output rectangle (one
+// channel, rows bottom-up), 0 where read_geometry_mask says sky: linear depth as stored, hardware depth taken back
+// through the inverse of the frame's projection (its clip depth convention). Reads the depth texture back:
+// std::runtime_error for a multisampled one.
+FloatImage read_view_depth(const SceneFrame& frame);
 
 // render_scene(build_demo_scene_mesh(options.ceiling), options).
 RenderedScene render_demo_scene(const SceneRenderOptions& options = {});

@@ -72,6 +72,19 @@ obscura_cli_command_test(compare_strip 0
 obscura_cli_command_test(compare_orbit_flicker 0
   "compare|${scene}|--methods|hbao|--truth-rays|64|--orbit|4|--frames|2|--json|report.json"
   GL CHECK orbit EXPECT_FILES "compare-output/1_hbao.png|compare-output/contact_sheet.png" EXPECT_STDOUT "flicker")
+# --classes: the geometry pixels split into silhouette, halo and rest, a line of counts and a table of each method's
+# error per class, classes.png and the report's "classes" (check classes). Bare --classes (the defaults) before
+# another option; a depth file's classes come from its depth.
+obscura_cli_command_test(compare_classes 0
+  "compare|${scene}|--methods|hbao,hbao:blur=off|--truth-rays|16|--classes|1,0.3|--out-dir|out|--json|report.json"
+  GL CHECK classes EXPECT_FILES "out/classes.png|out/contact_sheet.png"
+  EXPECT_STDOUT "\nclasses [(]radius 1 m, thickness 0.3 m, window <= 256 px[)]: silhouette [0-9]+ px [(][0-9.]+ %[)], halo [0-9]+ px [(][0-9.]+ %[)], rest [0-9]+ px [(][0-9.]+ %[)] of [0-9]+ geometry pixels\nmethod +silhouette: mean_abs +signed +halo: mean_abs +signed +rest: mean_abs +signed\nhbao +[0-9.]+ +[-+][0-9.]+ +[0-9.]+ +[-+][0-9.]+ +[0-9.]+ +[-+][0-9.]+\nhbao:blur=off ")
+obscura_cli_command_test(compare_classes_defaults 0
+  "compare|${scene}|--methods|hbao|--truth-rays|4|--classes|--out-dir|out"
+  GL EXPECT_FILES "out/classes.png" EXPECT_STDOUT "classes [(]radius 1 m, thickness 0.3 m, ")
+obscura_cli_command_test(compare_classes_depth_file 0
+  "compare|--depth|${OBSCURA_CLI_COMMANDS_DIR}/data/plane_64x36_linear.pfm|--methods|hbao|--reference-rays|4|--classes|0.5"
+  GL EXPECT_FILES "compare-output/classes.png" EXPECT_STDOUT "classes [(]radius 0.5 m, thickness 0.3 m, [^\n]* of 2304 geometry pixels\n")
 obscura_cli_command_test(bench_two_sizes 0
   "bench|--scene|analytic|--sizes|160x90,96x54|--methods|hbao|--frames|2|--warmup|1|--json|bench.json|--csv|bench.csv"
   GL CHECK bench EXPECT_FILES "bench.csv" EXPECT_STDOUT "clock: ")
@@ -154,6 +167,11 @@ obscura_cli_command_test(unknown_scene 2 "render|--scene|no_such_scene|--out|ao.
 obscura_cli_command_test(depth_with_size 2 "render|--depth|plane.pfm|--size|64x36|--out|ao.png")
 obscura_cli_command_test(orbit_without_frames 2 "compare|--orbit|4")
 obscura_cli_command_test(unknown_truth 2 "compare|--truth|nosuch" EXPECT_STDERR "unknown --truth 'nosuch' [(]valid: geometry, screen, both[)]")
+obscura_cli_command_test(compare_classes_not_a_number 2 "compare|--classes|abc"
+  EXPECT_STDERR "^obscura: --classes [(]radius in metres[)]: 'abc' is not a number [^\n]*\n$")
+obscura_cli_command_test(compare_classes_three_values 2 "compare|--classes|1,0.3,2" EXPECT_STDERR "is not RADIUS_M[[],THICKNESS_M[]]")
+obscura_cli_command_test(compare_classes_orthographic 2 "compare|--scene|analytic|--projection|ortho|--classes"
+  EXPECT_STDERR "--classes needs a perspective projection")
 obscura_cli_command_test(depth_file_has_no_geometry_truth 2
   "compare|--depth|${OBSCURA_CLI_COMMANDS_DIR}/data/plane_64x36_linear.pfm|--truth|both"
   EXPECT_STDERR "needs a scene's triangles")
