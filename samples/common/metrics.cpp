@@ -539,12 +539,15 @@ std::vector<uint8_t> thickness_classes(const FloatImage& view_depth, const std::
     const double radius_cap = std::min(max_radius_px, double(std::max(width, height)));
     const auto half_size_at = [&](double pixel_depth) { return int(std::floor(std::min(radius_cap, reach / pixel_depth))); };
     const int largest_half_size = std::isfinite(nearest) ? half_size_at(nearest) : 0;
-    const WindowMinimum window(depth, largest_half_size);
 
+    // Silhouettes first; their depths (everything else +infinity) are the occluders a halo lies behind, so a
+    // surface that merely recedes (a floor, a wall seen at an angle) is no halo of its own nearer part.
     std::vector<uint8_t> classes(pixel_count, uint8_t(ThicknessClass::Sky));
+    FloatImage silhouette_depth = depth;
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
             const size_t index = size_t(y) * size_t(width) + size_t(x);
+            silhouette_depth.pixels[index] = infinity;
             if (geometry_mask[index] == 0) continue;
             const double here = depth.pixels[index];
             const double step = std::max(kSilhouetteMinStep, kSilhouetteRelativeStep * here);
@@ -554,11 +557,22 @@ std::vector<uint8_t> thickness_classes(const FloatImage& view_depth, const std::
             };
             if (farther(x - 1, y) || farther(x + 1, y) || farther(x, y - 1) || farther(x, y + 1)) {
                 classes[index] = uint8_t(ThicknessClass::Silhouette);
-                continue;
+                silhouette_depth.pixels[index] = depth.pixels[index];
+            } else {
+                classes[index] = uint8_t(ThicknessClass::Rest);
             }
+        }
+    }
+    const WindowMinimum window(silhouette_depth, largest_half_size);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const size_t index = size_t(y) * size_t(width) + size_t(x);
+            if (classes[index] != uint8_t(ThicknessClass::Rest)) continue;
+            const double here = depth.pixels[index];
             const int half_size = half_size_at(here);
-            const bool halo = half_size > 0 && double(window.query(x, y, half_size)) < here - thickness_m;
-            classes[index] = uint8_t(halo ? ThicknessClass::Halo : ThicknessClass::Rest);
+            if (half_size > 0 && double(window.query(x, y, half_size)) < here - thickness_m) {
+                classes[index] = uint8_t(ThicknessClass::Halo);
+            }
         }
     }
     return classes;

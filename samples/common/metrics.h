@@ -90,10 +90,12 @@ double mean_angle_degrees(const FloatImage& image, const FloatImage& reference, 
 //   Silhouette  the near side of a depth discontinuity: a geometry pixel p with a 4-neighbour q whose view
 //               depth exceeds p's by more than max(kSilhouetteMinStep, kSilhouetteRelativeStep * depth(p));
 //               a sky neighbour counts as infinitely far; neighbours outside the image do not count.
-//   Halo        not a silhouette, and some pixel within the AO radius on screen is nearer to the camera than
-//               p by more than the thickness T: min of the view depth over the square window of half-size
-//               r_px(p) around p (clipped to the image) < depth(p) - T. An occluder a method takes as
-//               infinitely thick darkens p there although the truth's rays may pass behind it.
+//   Halo        not a silhouette, and some silhouette pixel within the AO radius on screen is nearer to the
+//               camera than p by more than the thickness T: min of the silhouettes' view depth over the square
+//               window of half-size r_px(p) around p (clipped to the image) < depth(p) - T. p lies behind an
+//               occluder's edge: a method that takes the occluder as infinitely thick darkens p there although
+//               the truth's rays may pass behind it. (Any nearer pixel would make every receding floor a halo
+//               of its own nearer part: 79 % of the atrium at 320x180.)
 //   Rest        every other geometry pixel.
 //   Sky         no geometry (the mask's 0).
 // r_px(p) = min(max_radius_px, radius_m * pixels_per_metre_at_1m / depth(p)), rounded down: how many pixels the

@@ -453,15 +453,26 @@ TEST(ThicknessClasses, NearSquareInFrontOfAFarPlane) {
 }
 
 TEST(ThicknessClasses, ThicknessThresholdIsRespected) {
-    // The square only 0.2 m in front of the plane: not thicker than T = 0.3, so no halo; and no silhouette either
-    // (0.2 < max(0.1, 0.05 * 9.8)). With T = 0.1 its 4-pixel footprint is a halo again.
-    const DepthScene scene(64, 64, 10.0f, 9.8f, 28, 28, 8);
-    const std::vector<uint8_t> thick = thickness_classes(scene.depth, scene.mask, 1.0, 0.3, 40.0, 256.0);
+    // The square 0.6 m in front of the plane: a silhouette (0.6 > max(0.1, 0.05 * 9.4)), but not thicker than
+    // T = 0.7, so no halo; with T = 0.3 its 4-pixel footprint is a halo.
+    const DepthScene scene(64, 64, 10.0f, 9.4f, 28, 28, 8);
+    const std::vector<uint8_t> thick = thickness_classes(scene.depth, scene.mask, 1.0, 0.7, 40.0, 256.0);
     EXPECT_EQ(count_class(thick, ThicknessClass::Halo), 0u);
-    EXPECT_EQ(count_class(thick, ThicknessClass::Silhouette), 0u);
-    EXPECT_EQ(count_class(thick, ThicknessClass::Rest), 64u * 64u);
-    const std::vector<uint8_t> thin = thickness_classes(scene.depth, scene.mask, 1.0, 0.1, 40.0, 256.0);
+    EXPECT_EQ(count_class(thick, ThicknessClass::Silhouette), 28u);
+    const std::vector<uint8_t> thin = thickness_classes(scene.depth, scene.mask, 1.0, 0.3, 40.0, 256.0);
     EXPECT_EQ(count_class(thin, ThicknessClass::Halo), 16u * 16u - 8u * 8u);
+}
+
+TEST(ThicknessClasses, ARecedingFloorIsNoHaloOfItself) {
+    // Depth growing smoothly with y (a floor seen from above it): nearer pixels everywhere in the window, but no
+    // depth step, so no silhouette and no halo.
+    FloatImage depth = constant_image(48, 48, 0.0f);
+    for (int y = 0; y < 48; ++y) {
+        for (int x = 0; x < 48; ++x) depth.pixels[size_t(y) * 48u + size_t(x)] = 2.0f + 0.05f * float(y);
+    }
+    const std::vector<uint8_t> mask(48u * 48u, 1);
+    const std::vector<uint8_t> classes = thickness_classes(depth, mask, 1.0, 0.3, 40.0, 256.0);
+    EXPECT_EQ(count_class(classes, ThicknessClass::Rest), 48u * 48u);
 }
 
 TEST(ThicknessClasses, SilhouetteStepIsTenCentimetresOrFivePercent) {
@@ -510,29 +521,38 @@ TEST(ThicknessClasses, MatchesABruteForceClassification) {
     const auto far_at = [&](int x, int y) {
         return mask[size_t(y) * size_t(width) + size_t(x)] ? double(depth.at(x, y)) : std::numeric_limits<double>::infinity();
     };
+    // First the silhouettes (a 4-neighbour farther by more than the step), then the halos behind them.
+    std::vector<bool> silhouette(mask.size(), false);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            if (!mask[size_t(y) * size_t(width) + size_t(x)]) continue;
+            const double here = depth.at(x, y);
+            const double step = std::max(0.1, 0.05 * here);
+            const int neighbours[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
+            for (const auto& offset : neighbours) {
+                const int nx = x + offset[0], ny = y + offset[1];
+                if (nx >= 0 && ny >= 0 && nx < width && ny < height && far_at(nx, ny) > here + step) {
+                    silhouette[size_t(y) * size_t(width) + size_t(x)] = true;
+                }
+            }
+        }
+    }
     size_t halos = 0;
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
             ThicknessClass expected = ThicknessClass::Sky;
             if (mask[size_t(y) * size_t(width) + size_t(x)]) {
                 const double here = depth.at(x, y);
-                const double step = std::max(0.1, 0.05 * here);
-                bool silhouette = false;
-                const int neighbours[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
-                for (const auto& offset : neighbours) {
-                    const int nx = x + offset[0], ny = y + offset[1];
-                    if (nx >= 0 && ny >= 0 && nx < width && ny < height && far_at(nx, ny) > here + step) silhouette = true;
-                }
                 const int half = int(std::floor(std::min(cap, radius * scale / here)));
-                double nearest = std::numeric_limits<double>::infinity();
+                double nearest = std::numeric_limits<double>::infinity();  // the nearest silhouette in the window
                 for (int wy = std::max(0, y - half); wy <= std::min(height - 1, y + half); ++wy) {
                     for (int wx = std::max(0, x - half); wx <= std::min(width - 1, x + half); ++wx) {
-                        nearest = std::min(nearest, far_at(wx, wy));
+                        if (silhouette[size_t(wy) * size_t(width) + size_t(wx)]) nearest = std::min(nearest, far_at(wx, wy));
                     }
                 }
-                expected = silhouette                      ? ThicknessClass::Silhouette
-                           : nearest < here - thickness    ? ThicknessClass::Halo
-                                                           : ThicknessClass::Rest;
+                expected = silhouette[size_t(y) * size_t(width) + size_t(x)] ? ThicknessClass::Silhouette
+                           : nearest < here - thickness                      ? ThicknessClass::Halo
+                                                                             : ThicknessClass::Rest;
             }
             halos += expected == ThicknessClass::Halo;
             ASSERT_EQ(class_at(classes, width, x, y), expected) << "pixel " << x << ", " << y;
