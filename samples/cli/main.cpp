@@ -72,7 +72,7 @@ compare renders each method and measures it against its truth with the same fall
   settings, then the first truth's images if there are several (falloffs differ).
   --classes [RADIUS_M[,THICKNESS_M]] (default 1,0.3) splits the geometry pixels by where a screen-space method's
   thickness assumption matters and prints per truth and method mean_abs and signed over each class: silhouette
-  (a 4-neighbour, or sky, farther by more than max(0.1 m, 5 % of the depth)), halo (not silhouette, and a pixel
+  (a 4-neighbour, or sky, farther by more than max(0.1 m, 5 % of the depth)), halo (not silhouette, and a silhouette
   nearer by more than THICKNESS_M within RADIUS_M on screen at the pixel's depth, window capped at 256 px) and
   rest. View depth: the scene's primary rays, or a --depth file's depth; perspective projections only. Adds
   classes.png (sky black, rest white, halo blue, silhouette red) and "classes" to the --json report.
