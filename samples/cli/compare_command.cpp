@@ -166,15 +166,24 @@ void render_screen_references(const ObscuraSession& session, const std::vector<s
 void trace_geometry_truth(const TruthTracer& tracer, const std::vector<samples::RenderedScene>& frames,
                           ComparedTruth& truth, std::vector<std::vector<uint8_t>>& masks,
                           std::vector<samples::FloatImage>& view_depths) {
+    // References that differ only in what the geometry truth ignores (the thickness: GTAO's horizon and bitmask
+    // modes) are the same falloff here: weighed once, shared.
     std::vector<obscura_settings> falloffs;
-    for (const ComparedReference& reference : truth.references) falloffs.push_back(reference.settings);
+    std::vector<size_t> falloff_of(truth.references.size());
+    for (size_t k = 0; k < truth.references.size(); ++k) {
+        falloff_of[k] = falloffs.size();
+        for (size_t j = 0; j < falloffs.size(); ++j) {
+            if (same_reference(falloffs[j], truth.references[k].settings)) falloff_of[k] = j;
+        }
+        if (falloff_of[k] == falloffs.size()) falloffs.push_back(truth.references[k].settings);
+    }
     for (size_t f = 0; f < frames.size(); ++f) {
         std::string label = "geometry truth";
         if (frames.size() > 1) label += ", frame " + std::to_string(f + 1) + "/" + std::to_string(frames.size());
         TruthImages images = tracer.trace(frames[f].frame(), falloffs, truth.rays, truth.seed, label);
-        for (size_t k = 0; k < falloffs.size(); ++k) {
-            truth.references[k].frames.push_back(std::move(images.visibility[k]));
-            truth.references[k].bent_frames.push_back(std::move(images.bent_normal[k]));
+        for (size_t k = 0; k < truth.references.size(); ++k) {
+            truth.references[k].frames.push_back(images.visibility[falloff_of[k]]);
+            truth.references[k].bent_frames.push_back(images.bent_normal[falloff_of[k]]);
         }
         masks[f] = std::move(images.geometry_mask);
         view_depths[f] = std::move(images.view_depth);
