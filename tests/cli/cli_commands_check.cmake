@@ -374,7 +374,9 @@ elseif(CHECK STREQUAL "tune")
     problem("history has '${history}' entries, expected ${used} ${error}")
   endif()
   expect_type(BOOLEAN verifications 0 within)
-  expect_number(verifications 0 ratio MIN 0 MAX 2)
+  # A frame at 64x36 takes about a millisecond and the suite runs in parallel: one re-timing against the same-cost
+  # default measured 2.56x in a CI run. The bound is the budget (100x); `within` says whether it held.
+  expect_number(verifications 0 ratio MIN 0 MAX 100)
   string(JSON best_spec ERROR_VARIABLE error GET "${json}" best spec)
   if(NOT best_spec MATCHES "^hbao:power=[0-9.e+-]+$")
     problem("best spec is '${best_spec}' ${error}")
