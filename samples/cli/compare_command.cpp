@@ -390,7 +390,7 @@ int run_compare(ArgumentList& arguments) {
             view_depths[f] = std::move(primary.view_depth);
         } else {
             result.masks[f] = samples::read_geometry_mask(frames[f].frame());
-            if (config.classes) view_depths[f] = samples::read_view_depth(frames[f].frame());
+            if (config.classes) view_depths[f] = samples::read_view_depth(frames[f].frame(), frames[f]->output_rect);
         }
     }
     for (size_t f = 0; f < frames.size() && !result.all_pixels; ++f) {

@@ -6,10 +6,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <limits>
-
-#include <glm/glm.hpp>
-#include <glm/gtc/type_ptr.hpp>
 
 #include "cli_errors.h"
 #include "commands.h"
@@ -59,29 +55,6 @@ TruthConfig take_truth_config(ArgumentList& arguments) {
     return config;
 }
 
-// Positive view depth of every texel of the frame's depth texture (sky +inf), unprojected through the frame's
-// own projection, so every projection variant reads back as the same linear depth.
-samples::FloatImage linear_depth(const samples::SceneFrame& frame) {
-    samples::FloatImage window = samples::read_texture_region(frame.depth_texture, 0, 0, frame.depth_width,
-                                                              frame.depth_height, samples::TextureReadFormat::Depth);
-    const glm::dmat4 inverse_projection = glm::inverse(glm::dmat4(glm::make_mat4(frame.projection)));
-    const float sky = frame.reversed_z ? 0.0f : 1.0f;
-    for (int y = 0; y < window.height; ++y) {
-        for (int x = 0; x < window.width; ++x) {
-            float& value = window.pixels[size_t(y) * size_t(window.width) + size_t(x)];
-            if (value == sky) {
-                value = std::numeric_limits<float>::infinity();
-                continue;
-            }
-            const double ndc_z = frame.clip_depth == OBSCURA_CLIP_DEPTH_ZERO_TO_ONE ? double(value) : 2.0 * value - 1.0;
-            const glm::dvec4 view = inverse_projection * glm::dvec4(2.0 * (x + 0.5) / window.width - 1.0,
-                                                                    2.0 * (y + 0.5) / window.height - 1.0, ndc_z, 1.0);
-            value = float(-view.z / view.w);
-        }
-    }
-    return window;
-}
-
 }  // namespace
 
 int run_truth(ArgumentList& arguments) {
@@ -108,7 +81,9 @@ int run_truth(ArgumentList& arguments) {
         std::printf("wrote %s\n", config.png_path->c_str());
     }
     if (config.depth_path) {
-        samples::write_pfm(*config.depth_path, linear_depth(frame.frame()));
+        const samples::SceneFrame& scene_frame = frame.frame();
+        samples::write_pfm(*config.depth_path,
+                           samples::read_view_depth(scene_frame, {0, 0, scene_frame.depth_width, scene_frame.depth_height}));
         std::printf("wrote %s: read it with --depth %s --guard-band %g --fovy %g\n", config.depth_path->c_str(),
                     config.depth_path->c_str(), double(source.guard_band()), double(source.camera().fov_y_degrees));
     }

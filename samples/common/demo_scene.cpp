@@ -3,10 +3,11 @@
 #include "demo_scene.h"
 
 #include <algorithm>
-#include <cmath>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <utility>
 
@@ -401,26 +402,22 @@ std::vector<uint8_t> read_geometry_mask(const SceneFrame& frame) {
     return mask;
 }
 
-FloatImage read_view_depth(const SceneFrame& frame) {
+FloatImage read_view_depth(const SceneFrame& frame, const obscura_rect& region) {
     if (frame.samples > 1 || frame.depth_target != GL_TEXTURE_2D) {
         throw std::runtime_error("read_view_depth: the depth texture is multisampled");
     }
-    const obscura_rect& rect = frame.output_rect;
     const bool linear = frame.depth_kind == OBSCURA_DEPTH_LINEAR_VIEW;
-    FloatImage depth = read_texture_region(frame.depth_texture, rect.x, rect.y, rect.width, rect.height,
+    FloatImage depth = read_texture_region(frame.depth_texture, region.x, region.y, region.width, region.height,
                                            linear ? TextureReadFormat::Red : TextureReadFormat::Depth);
     const glm::dmat4 inverse = glm::inverse(glm::dmat4(glm::make_mat4(frame.projection)));
     const bool zero_to_one = frame.clip_depth == OBSCURA_CLIP_DEPTH_ZERO_TO_ONE;
     const float sky = frame.reversed_z ? 0.0f : 1.0f;
     for (float& value : depth.pixels) {
-        if (linear) {
-            if (!(std::isfinite(value) && value > 0.0f)) value = 0.0f;
+        if (linear ? !(std::isfinite(value) && value > 0.0f) : value == sky) {
+            value = std::numeric_limits<float>::infinity();
             continue;
         }
-        if (value == sky) {
-            value = 0.0f;
-            continue;
-        }
+        if (linear) continue;
         // Window depth -> NDC z -> view space; the view depth does not depend on x and y for these projections.
         const double ndc_z = zero_to_one ? double(value) : 2.0 * double(value) - 1.0;
         const glm::dvec4 view = inverse * glm::dvec4(0.0, 0.0, ndc_z, 1.0);

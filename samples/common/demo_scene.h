@@ -112,11 +112,11 @@ RenderedScene render_scene(const SceneMesh& mesh, const SceneRenderOptions& opti
 // geometry deserves. Reads the depth texture back: std::runtime_error for a multisampled one.
 std::vector<uint8_t> read_geometry_mask(const SceneFrame& frame);
 
-// Positive view depth in metres (distance from the eye plane) of each pixel of the frame's output rectangle (one
-// channel, rows bottom-up), 0 where read_geometry_mask says sky: linear depth as stored, hardware depth taken back
-// through the inverse of the frame's projection (its clip depth convention). Reads the depth texture back:
-// std::runtime_error for a multisampled one.
-FloatImage read_view_depth(const SceneFrame& frame);
+// Positive view depth in metres (distance from the eye plane) of each texel of `region` of the frame's depth texture
+// (one channel, rows bottom-up), +infinity where read_geometry_mask says sky: linear depth as stored, hardware depth
+// taken back through the inverse of the frame's projection (its clip depth convention). Reads the depth texture
+// back: std::runtime_error for a multisampled one.
+FloatImage read_view_depth(const SceneFrame& frame, const obscura_rect& region);
 
 // render_scene(build_demo_scene_mesh(options.ceiling), options).
 RenderedScene render_demo_scene(const SceneRenderOptions& options = {});
