@@ -83,6 +83,12 @@ vec2 pixel_noise(ivec2 p) {
     return (vec2(float(index), float(jitter)) + gtao.noise.xy) * (1.0 / 16.0);
 }
 
+// The mask of sectors [0, n) for n in [0, 32], per lane: 32 is every sector (1u << 32 is undefined; clamping the
+// shift to 31 once marked the top sector for every side + sample, and tilted planes came out 0.004 dark).
+uvec2 sectors_below(uvec2 n) {
+    return uvec2(n.x >= 32u ? 0xffffffffu : (1u << n.x) - 1u, n.y >= 32u ? 0xffffffffu : (1u << n.y) - 1u);
+}
+
 void store(ivec2 p, float visibility, vec3 bent) {
 #if OBSCURA_GTAO_BENT_NORMALS
     imageStore(u_ao, p, vec4(visibility, bent));
@@ -216,14 +222,7 @@ void main() {
             vec2 lo = clamp((min(front_h, back_h) - lowest) / sector_angle, 0.0, float(sectors));
             vec2 hi = clamp((max(front_h, back_h) - lowest) / sector_angle, 0.0, float(sectors));
             uvec2 first = uvec2(lo + 0.5), last = uvec2(hi + 0.5);  // sectors [first, last)
-            // Masks of the sectors below `last` and below `first`; 32 (a run that ends, or an empty one that starts,
-            // at the top of the half-circle) is every sector (1u << 32 is undefined, and clamping it to 31 marked
-            // sector 31 for every side + sample: tilted planes came out 0.004 dark).
-            uvec2 below_last = uvec2(last.x >= 32u ? 0xffffffffu : (1u << last.x) - 1u,
-                                     last.y >= 32u ? 0xffffffffu : (1u << last.y) - 1u);
-            uvec2 below_first = uvec2(first.x >= 32u ? 0xffffffffu : (1u << first.x) - 1u,
-                                      first.y >= 32u ? 0xffffffffu : (1u << first.y) - 1u);
-            uvec2 marked = below_last & ~below_first;
+            uvec2 marked = sectors_below(last) & ~sectors_below(first);
             occupied |= (weight.x > chance ? marked.x : 0u) | (weight.y > chance ? marked.y : 0u);
 #else
             vec2 sample_cos = max(mix(low_cos, cos_h, greaterThan(weight, vec2(0.0))), low_cos);

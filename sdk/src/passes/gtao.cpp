@@ -54,9 +54,7 @@ GtaoConstants GtaoPass::constants(const obscura_gtao_settings& settings, const F
     c.shaping[0] = settings.intensity;
     c.shaping[1] = settings.power;
     c.shaping[2] = settings.albedo;
-    c.config[0] = settings.slices;  // (compiled in too: GtaoPass::prepare)
-    c.config[1] = settings.steps;
-    c.config[2] = settings.sectors;
+    c.config[2] = settings.sectors;  // (slices and steps are compiled in: GtaoPass::prepare)
     c.config[3] = deepest_level;
     // The frame moves the pattern inside its 1/16 strata along an R2 sequence (frame 0: the strata's centres).
     const double frame = double(settings.frame_index);
