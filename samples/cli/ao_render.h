@@ -41,6 +41,11 @@ struct AoRenderRequest {
     const AoTarget* bent_target = nullptr;  // RGBA: output.bent_normal_texture (methods that write bent normals)
     bool use_normals = false;
     obscura_debug_view debug_view = OBSCURA_DEBUG_NONE;
+    // Temporal accumulation: the previous frame's camera (null: this one, a static camera), the frame index that
+    // moves the methods' noise, and whether the history starts anew.
+    const samples::SceneFrame* previous_scene = nullptr;
+    uint32_t frame_index = 0;
+    bool reset_history = false;
 };
 
 // One obscura_render into the target; throws ApiError on failure.

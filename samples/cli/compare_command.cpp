@@ -70,7 +70,12 @@ CompareConfig take_compare_config(ArgumentList& arguments) {
     // First: its value is optional, so it must see the argument after it before another option takes that.
     if (auto classes = arguments.take_optional_value("--classes")) config.classes = parse_classes(*classes);
     const std::optional<std::string> methods = arguments.take_value("--methods");
-    const std::vector<std::string> sets = arguments.take_values("--set");
+    std::vector<std::string> sets = arguments.take_values("--set");
+    // --temporal on|off: every method's temporal accumulation (the setting `temporal`; a spec's own key wins).
+    if (auto temporal = arguments.take_value("--temporal")) {
+        if (*temporal != "on" && *temporal != "off") throw UsageError("--temporal takes on or off, not '" + *temporal + "'");
+        sets.insert(sets.begin(), "temporal=" + *temporal);
+    }
     config.methods = parse_method_specs("--methods", methods ? *methods : default_method_list(), sets);
     config.scene = take_scene_source_options(arguments, /*takes_size=*/true);
     if (config.classes && !config.scene.depth_file && config.scene.raster.projection == samples::ProjectionKind::Orthographic) {
@@ -239,7 +244,18 @@ void measure_method(const ObscuraSession& session, const std::vector<samples::Re
             warm_up(session, request);
             const FramePlan plan = quick_frame_plan(method.spec.method());
             method.timing = time_frames(session, request, plan.warmup, plan.frames);
+            // With temporal accumulation the sequence starts here: a history of its own, the first frame's noise.
+            if (method.spec.settings.temporal.enabled == OBSCURA_TOGGLE_ON) {
+                request.reset_history = true;
+                render_ao(session, request);
+                request.reset_history = false;
+            }
         } else {
+            // The frames follow each other: the previous camera for the reprojection and, when the frames
+            // accumulate, the next noise pattern (without accumulation the pattern stays, as a host would keep it:
+            // a pattern that moves every frame only adds flicker).
+            request.previous_scene = &frames[f - 1].frame();
+            request.frame_index = method.spec.settings.temporal.enabled == OBSCURA_TOGGLE_ON ? uint32_t(f) : 0u;
             render_ao(session, request);
         }
         method.frames.push_back(target.read());
@@ -293,6 +309,9 @@ void measure_method(const ObscuraSession& session, const std::vector<samples::Re
         if (frames.size() > 1) {
             errors.flicker =
                 samples::flicker(method.frames, reference.frames, result.all_pixels ? nullptr : &result.masks);
+            errors.last_mean_abs = samples::compare_images(method.frames.back(), reference.frames.back(),
+                                                           result.all_pixels ? nullptr : &result.masks.back())
+                                       .mean_abs;
         }
         if (result.classes) errors.classes = measure_classes(method, reference, *result.classes);
         method.errors.push_back(errors);

@@ -201,7 +201,10 @@ void print_compare_table(const CompareResult& result) {
                     result.frames > 1 ? ", averaged over the frames" : "");
         std::vector<std::string> header = {"method", "gpu ms", "wall ms", "mean_abs", "within_5pct", "psnr dB", "max_abs",
                                            "signed"};
-        if (result.orbit_degrees) header.push_back("flicker");
+        if (result.orbit_degrees) {
+            header.push_back("flicker");
+            header.push_back("last");
+        }
         header.push_back(truth.kind == TruthKind::Geometry ? "truth" : "ref");
         TextTable table(header);
         for (const ComparedMethod& method : result.methods) {
@@ -214,7 +217,10 @@ void print_compare_table(const CompareResult& result) {
                                             format_psnr(errors.metrics.psnr),
                                             format_fixed(errors.metrics.max_abs, 4),
                                             format_signed(errors.metrics.mean_signed, 5)};
-            if (result.orbit_degrees) row.push_back(format_fixed(errors.flicker.value_or(0.0), 5));
+            if (result.orbit_degrees) {
+                row.push_back(format_fixed(errors.flicker.value_or(0.0), 5));
+                row.push_back(format_fixed(errors.last_mean_abs.value_or(0.0), 5));
+            }
             row.push_back(std::to_string(method.reference + 1));
             table.add_row(row);
         }
@@ -283,6 +289,7 @@ void write_compare_json(const CompareResult& result, const std::string& path) {
             json.field("max_abs", errors.metrics.max_abs);
             json.field("pixels", double(errors.metrics.pixels));
             if (errors.flicker) json.field("flicker", *errors.flicker);
+            if (errors.last_mean_abs) json.field("last_frame_mean_abs", *errors.last_mean_abs);
             if (errors.bent_degrees) json.field("bent_normal_degrees", *errors.bent_degrees);
             if (errors.normal_degrees) json.field("surface_normal_degrees", *errors.normal_degrees);
             if (!errors.classes.empty()) {

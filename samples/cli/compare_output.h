@@ -77,6 +77,7 @@ struct ClassErrors {
 struct MethodErrors {
     samples::ErrorMetrics metrics;
     std::optional<double> flicker;  // with --orbit: samples::flicker against the truth's frames
+    std::optional<double> last_mean_abs;  // with --orbit: the last frame's mean_abs (temporal: the converged error)
     std::optional<double> bent_degrees;  // geometry truth, methods that write bent normals: mean angle to the truth's
     std::optional<double> normal_degrees;  // the same for the surface normals the method used (the baseline)
     std::vector<ClassErrors> classes;      // with --classes: one per kMeasuredClasses

@@ -18,7 +18,8 @@ const char* const kUsage = R"(usage:
   obscura compare [--methods SPEC,SPEC,...] [--set KEY=VALUE]... [--truth geometry|screen|both]
                   [--truth-rays 1024] [--truth-seed 1] [--reference-rays 256] [--metrics-pixels geometry|all]
                   [--out-dir compare-output] [--json REPORT.json] [--strip STRIP.png]
-                  [--orbit DEG --frames N] [--classes [RADIUS_M[,THICKNESS_M]]] [--sync-timing] [SCENE]
+                  [--orbit DEG --frames N] [--temporal on|off] [--classes [RADIUS_M[,THICKNESS_M]]]
+                  [--sync-timing] [SCENE]
   obscura truth --out TRUTH.pfm [--depth-out DEPTH.pfm] [--png TRUTH.png] [--falloff SPEC]
                 [--rays 1024] [--seed 1] [SCENE without --depth]
   obscura bench [--methods SPEC,SPEC,...] [--set KEY=VALUE]... [--sizes 1280x720,1920x1080,...]
@@ -67,8 +68,10 @@ compare renders each method and measures it against its truth with the same fall
   <n>_<method>_error_<geometry|screen>.png (white 0, black >= 0.2), <n>_<method>_signed_<truth>.png (red
   too dark, blue too bright, full at 0.2), geometry_truth_<k>.png and/or reference_<k>.png (one per
   falloff) and contact_sheet.png (method | truth | signed error). --orbit DEG --frames
-  N: N frames along an orbit of DEG degrees in total (images of the first); errors are averaged over them
-  and flicker measures the temporal error. --strip writes one sheet of the methods' AO labelled with their
+  N: N frames along an orbit of DEG degrees in total (images of the first); errors are averaged over them,
+  flicker measures the temporal error and last is the last frame's mean_abs. The frames pass their cameras and
+  frame index to the SDK; --temporal on|off sets every method's temporal accumulation (the setting "temporal",
+  also as a spec key: hbao,hbao:temporal=on), which then runs through the frames in order. --strip writes one sheet of the methods' AO labelled with their
   settings, then the first truth's images if there are several (falloffs differ).
   --classes [RADIUS_M[,THICKNESS_M]] (default 1,0.3) splits the geometry pixels by where a screen-space method's
   thickness assumption matters and prints per truth and method mean_abs and signed over each class: silhouette

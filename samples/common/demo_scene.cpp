@@ -249,7 +249,7 @@ GLenum depth_internal_format(DepthFormat format) {
     return GL_DEPTH_COMPONENT32F;
 }
 
-obscura_input SceneFrame::make_input(bool use_normals) const {
+obscura_input SceneFrame::make_input(bool use_normals, const SceneFrame* previous, uint32_t frame_index) const {
     obscura_input input{};
     input.struct_size = sizeof input;
     input.depth_texture = depth_texture;
@@ -262,6 +262,14 @@ obscura_input SceneFrame::make_input(bool use_normals) const {
     input.clip_depth = clip_depth;
     input.meters_to_view_units = 1.0f;
     input.normal_texture = use_normals ? normal_texture : 0;
+    // World -> clip, the depth's: the projection (guard band included) after the view.
+    auto view_projection = [](const SceneFrame& frame, float out[16]) {
+        const glm::mat4 m = glm::make_mat4(frame.projection) * frame.view;
+        std::memcpy(out, glm::value_ptr(m), sizeof(float) * 16);
+    };
+    view_projection(*this, input.view_projection);
+    view_projection(previous ? *previous : *this, input.previous_view_projection);
+    input.frame_index = frame_index;
     return input;
 }
 

@@ -78,8 +78,10 @@ struct SceneFrame {
     glm::mat4 view{1.0f};        // world -> view (identity for depth files)
 
     // The obscura_input for this frame (depth_kind, column-major projection, 1 view unit per metre);
-    // normal_texture is passed only when `use_normals` and normals were rendered.
-    obscura_input make_input(bool use_normals = false) const;
+    // normal_texture is passed only when `use_normals` and normals were rendered. The view-projections for the
+    // temporal accumulation: this frame's, and `previous`'s (null: this frame's again, a static camera).
+    obscura_input make_input(bool use_normals = false, const SceneFrame* previous = nullptr,
+                             uint32_t frame_index = 0) const;
 };
 
 // Owns the textures of a SceneFrame and deletes them (needs the same GL context current).

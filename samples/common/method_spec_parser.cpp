@@ -145,7 +145,15 @@ std::vector<obscura_setting_info> setting_infos(obscura_method method) {
     if (status != OBSCURA_OK) {
         throw SettingsLibraryError(std::string("obscura_get_setting_infos failed: ") + obscura_status_string(status));
     }
-    return std::vector<obscura_setting_info>(infos, infos + count);
+    std::vector<obscura_setting_info> rows(infos, infos + count);
+    // The rows every method shares (temporal accumulation) follow the method's own.
+    const obscura_setting_info* shared = nullptr;
+    uint32_t shared_count = 0;
+    if (obscura_get_temporal_setting_infos(&shared, &shared_count) != OBSCURA_OK) {
+        throw SettingsLibraryError("obscura_get_temporal_setting_infos failed");
+    }
+    rows.insert(rows.end(), shared, shared + shared_count);
+    return rows;
 }
 
 const obscura_setting_info* find_setting(const std::vector<obscura_setting_info>& infos, std::string_view name) {

@@ -51,7 +51,8 @@ std::vector<obscura_method> all_methods();
 std::string method_names();
 // "hbao" -> OBSCURA_METHOD_HBAO; MethodSpecError listing the method names otherwise.
 obscura_method find_method(std::string_view name);
-// The settings metadata of `method` (an empty list when it has none); SettingsLibraryError when the call fails.
+// The settings metadata of `method` (an empty list when it has none), then the rows every method shares (temporal
+// accumulation); SettingsLibraryError when a call fails.
 std::vector<obscura_setting_info> setting_infos(obscura_method method);
 // The row named `name`, or nullptr.
 const obscura_setting_info* find_setting(const std::vector<obscura_setting_info>& infos, std::string_view name);

@@ -29,7 +29,7 @@ vec2 rotation(ivec2 p) {
     uvec2 u = uvec2(p);
     double n = double((30u * u.x) ^ u.y) + double(10u * u.x * u.y);
     double turns = n * (1.0LF / 6.283185307179586LF);
-    float phi = float((turns - floor(turns)) * 6.283185307179586LF);
+    float phi = float((turns - floor(turns)) * 6.283185307179586LF) + noise_offset.x * (2.0 * OBSCURA_PI);
     return vec2(cos(phi), sin(phi));
 }
 

@@ -8,6 +8,7 @@
 #include "host_enum.h"
 #include "method_registry.h"
 #include "settings.h"
+#include "temporal_settings.h"
 
 using obscura::Context;
 using obscura::Error;
@@ -118,6 +119,30 @@ OBSCURA_API obscura_status obscura_create_context(const obscura_context_desc* de
 
 OBSCURA_API void obscura_destroy_context(obscura_context* context) { Context::destroy(as_context(context)); }
 
+OBSCURA_API obscura_status obscura_create_view(obscura_context* context, obscura_view** out_view) {
+    if (out_view) *out_view = nullptr;
+    if (!context || !out_view) {
+        return report_without_context(
+            Error::make(OBSCURA_STATUS_NULL_ARGUMENT, "obscura_create_view: context and out_view are required"));
+    }
+    Context* ctx = as_context(context);
+    return guarded(ctx, [&]() -> Error {
+        obscura::View* view = nullptr;
+        Error error = ctx->create_view(&view);
+        if (!error) *out_view = view;
+        return error;
+    });
+}
+
+OBSCURA_API obscura_status obscura_destroy_view(obscura_context* context, obscura_view* view) {
+    if (!context) {
+        return report_without_context(Error::make(OBSCURA_STATUS_NULL_ARGUMENT, "obscura_destroy_view: context is NULL"));
+    }
+    if (!view) return OBSCURA_OK;
+    Context* ctx = as_context(context);
+    return guarded(ctx, [&]() -> Error { return ctx->destroy_view(view); });
+}
+
 OBSCURA_API const char* obscura_get_last_error(const obscura_context* context) {
     if (!context) return t_last_error;
     return static_cast<const Context*>(context)->last_error();
@@ -189,6 +214,16 @@ OBSCURA_API obscura_status(obscura_default_settings)(obscura_method method, obsc
 OBSCURA_API obscura_status(obscura_get_setting_infos)(obscura_method method, const obscura_setting_info** out_infos,
                                                       uint32_t* out_count) {
     return setting_infos_of_size(method, out_infos, out_count, uint32_t(sizeof(obscura::SettingInfo03)));
+}
+
+OBSCURA_API obscura_status obscura_get_temporal_setting_infos(const obscura_setting_info** out_infos,
+                                                              uint32_t* out_count) {
+    if (!out_infos || !out_count) {
+        return report_without_context(Error::make(OBSCURA_STATUS_NULL_ARGUMENT,
+                                                  "obscura_get_temporal_setting_infos: out_infos and out_count are required"));
+    }
+    *out_infos = obscura::temporal_setting_infos(out_count);
+    return report_without_context(Error());
 }
 
 OBSCURA_API obscura_status obscura_resolve_settings(obscura_context* context, const obscura_settings* in,
@@ -266,7 +301,18 @@ OBSCURA_API obscura_status obscura_render(obscura_context* context, const obscur
         if (!input || !settings || !output) {
             return Error::make(OBSCURA_STATUS_NULL_ARGUMENT, "obscura_render: input, settings and output are required");
         }
-        Error error = check_struct(input->struct_size, sizeof(obscura_input), "obscura_input");
+        // obscura_input: this header's, or 0.4's (without the temporal fields, which then read 0).
+        obscura_input whole_input;
+        std::memset(&whole_input, 0, sizeof whole_input);
+        // (Its last field is normal_texture: the 0.4 struct ends there, before the padding that aligns `view`.)
+        const uint32_t input_size_04 = uint32_t(offsetof(obscura_input, normal_texture) + sizeof(uint32_t));
+        Error error = input->struct_size == input_size_04
+                          ? Error()
+                          : check_struct(input->struct_size, sizeof(obscura_input), "obscura_input");
+        if (!error) {
+            std::memcpy(&whole_input, input, input->struct_size);
+            whole_input.struct_size = sizeof whole_input;
+        }
         // obscura_output: this header's, or 0.4's (without bent_normal_texture, which then reads 0).
         obscura_output whole_output;
         std::memset(&whole_output, 0, sizeof whole_output);
@@ -278,7 +324,7 @@ OBSCURA_API obscura_status obscura_render(obscura_context* context, const obscur
         obscura_settings whole;
         if (!error) error = obscura::read_host_settings(settings, &whole, "obscura_render");
         if (error) return error;
-        return ctx->render(*input, whole, whole_output);
+        return ctx->render(whole_input, whole, whole_output);
     });
 }
 

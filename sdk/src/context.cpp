@@ -36,6 +36,21 @@ private:
     Error error_;
 };
 
+// What a history was computed with: the method and its settings block (FNV-1a over the bytes). GTAO's own
+// frame_index only moves its noise, as obscura_input.frame_index does, so it is left out. A change starts anew.
+uint64_t history_signature(const obscura_settings& settings, bool bent_normals) {
+    const MethodDescriptor* row = find_method(settings.method);
+    obscura_settings copy = settings;
+    copy.gtao.frame_index = 0;
+    const unsigned char* bytes = reinterpret_cast<const unsigned char*>(&copy) + row->settings_offset;
+    uint64_t hash = 1469598103934665603ull;
+    auto mix = [&](unsigned char b) { hash = (hash ^ b) * 1099511628211ull; };
+    for (size_t i = 0; i < row->settings_size; ++i) mix(bytes[i]);
+    mix(static_cast<unsigned char>(settings.method));
+    mix(bent_normals ? 1 : 0);
+    return hash;
+}
+
 // The raw-AO debug views show the AO pass's own output: no reconstruction runs.
 bool is_raw_view(obscura_debug_view view) { return view == OBSCURA_DEBUG_AO_BEFORE_BLUR || view == OBSCURA_DEBUG_TAP_COUNT; }
 
@@ -49,6 +64,12 @@ Context::Context(const obscura_context_desc& desc)
       device_(desc) {}
 
 Context::~Context() {
+    while (views_) {
+        View* view = views_;
+        views_ = view->next;
+        view->~View();
+        alloc_.release(view);
+    }
     for (Technique*& technique : techniques_) {
         destroy_technique(technique, alloc_);
         technique = nullptr;
@@ -132,7 +153,8 @@ obscura_status Context::report(const Error& error) {
 }
 
 uint64_t Context::memory_bytes() const {
-    uint64_t bytes = resources_.bytes() + planner_.bytes() + output_.bytes();
+    uint64_t bytes = resources_.bytes() + planner_.bytes() + output_.bytes() + own_view_.history.bytes();
+    for (const View* view = views_; view; view = view->next) bytes += view->history.bytes();
     for (const Technique* technique : techniques_) bytes += technique ? technique->memory_bytes() : 0;
     return bytes;
 }
@@ -153,7 +175,7 @@ Error Context::technique_for(obscura_method method, Technique** out) {
 Error Context::ensure_resources(int width, int height, int depth_levels) {
     const PassEnv pass_env = env();
     if (resources_.width != width || resources_.height != height || !resources_.linear_depth) {
-        release_resources();
+        release_frame_resources();  // the views' histories stay: each follows its own view's size
         FrameResources r;
         r.width = width;
         r.height = height;
@@ -178,12 +200,55 @@ Error Context::ensure_resources(int width, int height, int depth_levels) {
     return Error();
 }
 
-void Context::release_resources() {
+Error Context::create_view(View** out) {
+    void* memory = alloc_.allocate(sizeof(View));
+    if (!memory) return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating a view failed");
+    View* view = new (memory) View();
+    view->next = views_;
+    views_ = view;
+    *out = view;
+    return Error();
+}
+
+Error Context::destroy_view(obscura_view* handle) {
+    View** link = &views_;
+    while (*link && *link != handle) link = &(*link)->next;
+    if (!*link) {
+        return Error::make(OBSCURA_STATUS_INVALID_VIEW, "obscura_destroy_view: %p is not a view of this context",
+                           static_cast<void*>(handle));
+    }
+    if (!device_.lost() && device_.check_gl_context()) {
+        return Error::make(OBSCURA_STATUS_WRONG_GL_CONTEXT,
+                           "obscura_destroy_view: the context's GL context is not current; nothing was freed");
+    }
+    View* view = *link;
+    *link = view->next;
+    if (device_.lost()) device_.disarm_deletes();  // its textures went with the GL context
+    view->~View();
+    alloc_.release(view);
+    return Error();
+}
+
+View* Context::find_view(const obscura_view* handle) {
+    if (!handle) return &own_view_;
+    for (View* view = views_; view; view = view->next) {
+        if (view == handle) return view;
+    }
+    return nullptr;
+}
+
+void Context::release_frame_resources() {
     resources_ = FrameResources();
     output_.release();
     for (Technique* technique : techniques_) {
         if (technique) technique->release();
     }
+}
+
+void Context::release_resources() {
+    release_frame_resources();
+    own_view_.history.release();
+    for (View* view = views_; view; view = view->next) view->history.release();
 }
 
 void Context::release_resources_from_host() {
@@ -227,6 +292,10 @@ Error Context::render(const obscura_input& input, const obscura_settings& settin
     OutputTarget target;
     if (!error) error = check_input_fields(input, device_.max_texture_size(), &frame);
     if (!error) error = check_output_fields(output, &target);
+    if (!error && !find_view(frame.view)) {
+        error = Error::make(OBSCURA_STATUS_INVALID_VIEW, "obscura_input.view %p is not a view of this context",
+                            static_cast<void*>(frame.view));
+    }
     if (error) return error;
     // Stage 2: the GL context, then the objects the input and output name.
     error = device_.check_host_state("obscura_render");
@@ -271,12 +340,30 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
     if (!error) error = depth_prepare_.prepare(pass_env, input);
     if (!error) error = output_.prepare(pass_env, target, input.output_rect);
     if (error) return error;
+    // Temporal accumulation: the view's history continues when the frame can be reprojected and nothing it was
+    // computed with changed. A debug view shows this frame alone and leaves the history as it is.
+    View* view = find_view(input.view);
+    const bool debug_view = target.debug_view != OBSCURA_DEBUG_NONE;
+    const bool temporal = settings.temporal.enabled == OBSCURA_TOGGLE_ON && !debug_view;
+    bool history_continues = false;
+    if (temporal) {
+        const bool reproject = input.has_matrices || input.motion_vector_texture != 0;
+        error = view->history.prepare(pass_env, input, request.bent_normals,
+                                      history_signature(settings, request.bent_normals), reproject,
+                                      &history_continues);
+        if (!error) error = temporal_.prepare(pass_env, request.bent_normals);
+        if (error) return error;
+    } else if (!debug_view) {
+        view->history.release();  // the context holds what its latest configuration needs
+    }
 
     const FrameRegions regions = FramePlanner::regions(input, plan);
     const FrameUniforms uniforms = planner_.begin(input, OutputWriter::composite_target(target), regions, plan);
     const Frame frame{pass_env, input, settings, regions, uniforms, resources_, raw_view, request.bent_normals};
     technique->write_constants(frame, planner_);
     const UniformRange bent_pass = request.bent_normals ? planner_.push(OutputWriter::bent_constants(target)) : UniformRange();
+    const UniformRange temporal_pass =
+        temporal ? planner_.push(TemporalPass::constants(settings.temporal, input, history_continues)) : UniformRange();
     planner_.upload(device_.gl());
 
     FramePassRecorder recorder(device_, timer_, (flags_ & OBSCURA_CONTEXT_FLAG_VALIDATE_PASSES) != 0);
@@ -285,10 +372,22 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
     error = recorder.end(PassId::DepthPrepare);
     TechniqueOutput result;
     if (!error) error = technique->record(frame, recorder, &result);
+    if (!error && temporal) {
+        temporal_.run(pass_env, uniforms.output, temporal_pass, regions.output, input, resources_, *result.result,
+                      result.bent, view->history);
+        error = recorder.end(PassId::Temporal);
+        result.result = &view->history.next();
+        if (result.bent) result.bent = &view->history.next_bent();
+    }
     if (!error) {
         output_.write(pass_env, uniforms.output, input, raw_view ? *result.raw : *result.result, resources_, target,
                       result.bent, bent_pass);
         error = recorder.end(PassId::Composite);
+    }
+    // The frame's blend is the view's history from now on (a failed frame leaves it for the next to start anew).
+    if (temporal) {
+        if (error) view->history.invalidate();
+        else view->history.swap();
     }
     // The host may read the result any way (sampling, image load, framebuffer, readback).
     device_.gl().MemoryBarrier(GL_ALL_BARRIER_BITS);

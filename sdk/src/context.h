@@ -15,11 +15,20 @@
 #include "output_writer.h"
 #include "passes/depth_prepare.h"
 #include "passes/pass_common.h"
+#include "passes/temporal.h"
 #include "technique.h"
 
 struct obscura_context {};  // the opaque handle type; Context derives from it
+struct obscura_view {};     // the opaque handle type; View derives from it
 
 namespace obscura {
+
+// A view: one camera's temporal history, owned by its context (a list, so a handle can be checked).
+class View : public obscura_view {
+public:
+    TemporalHistory history;
+    View* next = nullptr;
+};
 
 class Context : public obscura_context {
 public:
@@ -36,6 +45,9 @@ public:
         return timer_.latest(out, capacity, frame_index);
     }
     uint64_t memory_bytes() const;
+    // obscura_create_view / obscura_destroy_view. Views are freed with the context.
+    Error create_view(View** out);
+    Error destroy_view(obscura_view* view);
 
     // Records an error for obscura_get_last_error and forwards it to the log callback; returns its status.
     obscura_status report(const Error& error);
@@ -51,8 +63,12 @@ private:
     Error technique_for(obscura_method method, Technique** out);
     // The shared per-size textures, and the linear depth's MIP levels.
     Error ensure_resources(int width, int height, int depth_levels);
+    // Every per-size resource: the frame's (shared textures, output staging, the techniques') and the views'.
     void release_resources();
+    void release_frame_resources();
     Error record_frame(const FrameInput& input, const obscura_settings& settings, const OutputTarget& target);
+    // The view a frame names (null: the context's own); null if it is none of this context's.
+    View* find_view(const obscura_view* view);
 
     AllocatorCallbacks alloc_;
     obscura_log_fn log_;
@@ -67,6 +83,9 @@ private:
     Technique* techniques_[OBSCURA_METHOD_COUNT_] = {};
     obscura_method current_method_ = OBSCURA_METHOD_COUNT_;
     FrameResources resources_;
+    TemporalPass temporal_;
+    View own_view_;            // the history of renders that name no view
+    View* views_ = nullptr;    // obscura_create_view's, newest first
     GpuTimer timer_;
     char last_error_[1024] = {};
 };

@@ -3,6 +3,9 @@
 #include <cmath>
 #include <cstring>
 
+#include <glm/mat4x4.hpp>
+#include <glm/matrix.hpp>
+
 #include "common/shader_interface.h"
 #include "gl/texture_probe.h"
 #include "host_enum.h"
@@ -37,6 +40,75 @@ int normal_mode_for_format(GLenum format) {
             return OBSCURA_NORMALS_UNSIGNED;
         default: return -1;
     }
+}
+
+bool all_zero(const float (&m)[16]) {
+    for (float v : m) {
+        if (v != 0.0f) return false;
+    }
+    return true;
+}
+
+// A host matrix (in `layout`) as a double column-major glm matrix.
+glm::dmat4 host_matrix(const float (&m)[16], int32_t layout) {
+    glm::dmat4 r;
+    for (int column = 0; column < 4; ++column) {
+        for (int row = 0; row < 4; ++row) {
+            r[column][row] = layout == OBSCURA_MATRIX_ROW_MAJOR ? m[row * 4 + column] : m[column * 4 + row];
+        }
+    }
+    return r;
+}
+
+void store_matrix(const glm::dmat4& m, float (&out)[16]) {
+    for (int column = 0; column < 4; ++column) {
+        for (int row = 0; row < 4; ++row) out[column * 4 + row] = float(m[column][row]);
+    }
+}
+
+// The temporal fields: view, frame index, flags, matrices, motion vectors (their texture is checked in stage 2).
+Error check_temporal_fields(const obscura_input& input, int32_t layout, FrameInput* frame) {
+    if ((input.flags & ~uint32_t(OBSCURA_INPUT_FLAG_RESET_HISTORY)) != 0) {
+        return Error::make(OBSCURA_STATUS_INVALID_SETTING, "obscura_input.flags = 0x%x has unknown bits",
+                           unsigned(input.flags));
+    }
+    const int32_t units = stored_enum(input.motion_vector_units);
+    if (units != OBSCURA_MOTION_PIXELS && units != OBSCURA_MOTION_NDC) {
+        return Error::make(OBSCURA_STATUS_INVALID_ENUM, "motion_vector_units = %d is not an obscura_motion_units",
+                           int(units));
+    }
+    frame->view = input.view;
+    frame->frame_index = input.frame_index;
+    frame->reset_history = (input.flags & OBSCURA_INPUT_FLAG_RESET_HISTORY) != 0;
+    frame->motion_vector_texture = input.motion_vector_texture;
+    frame->motion_units = units;
+    if (all_zero(input.view_projection) || all_zero(input.previous_view_projection)) return Error();  // no reprojection from matrices (motion vectors may still give one)
+    for (int i = 0; i < 16; ++i) {
+        if (!std::isfinite(input.view_projection[i]) || !std::isfinite(input.previous_view_projection[i])) {
+            return Error::make(OBSCURA_STATUS_INVALID_PROJECTION, "%sview_projection[%d] is not finite",
+                               std::isfinite(input.view_projection[i]) ? "previous_" : "", i);
+        }
+    }
+    const glm::dmat4 view_projection = host_matrix(input.view_projection, layout);
+    const glm::dmat4 previous = host_matrix(input.previous_view_projection, layout);
+    // The SDK's view space maps to this frame's clip space through the decoded projection (normalised, an
+    // orthographic near plane shifted: same clip coordinates up to scale); world space is one inverse away.
+    glm::dmat4 projection;
+    for (int column = 0; column < 4; ++column) {
+        for (int row = 0; row < 4; ++row) projection[column][row] = frame->projection.m[column * 4 + row];
+    }
+    const double det = glm::determinant(view_projection);
+    if (!std::isfinite(det) || std::fabs(det) < 1e-30) {
+        return Error::make(OBSCURA_STATUS_INVALID_PROJECTION, "view_projection is singular (determinant %g)", det);
+    }
+    frame->has_matrices = true;
+    frame->identity_reprojection = std::memcmp(input.view_projection, input.previous_view_projection,
+                                               sizeof input.view_projection) == 0;
+    const glm::dmat4 previous_clip = previous * glm::inverse(view_projection) * projection;
+    const glm::dmat4 reprojection = glm::inverse(projection) * previous_clip;
+    store_matrix(frame->identity_reprojection ? projection : previous_clip, frame->previous_clip);
+    store_matrix(frame->identity_reprojection ? glm::dmat4(1.0) : reprojection, frame->reprojection);
+    return Error();
 }
 
 }  // namespace
@@ -89,6 +161,8 @@ Error check_input_fields(const obscura_input& input, GLint max_texture_size, Fra
     if (error) return error;
     frame.depth_texture = input.depth_texture;
     frame.normal_texture = input.normal_texture;
+    error = check_temporal_fields(input, layout, &frame);
+    if (error) return error;
     *out = frame;
     return Error();
 }
@@ -163,6 +237,29 @@ Error check_input_textures(const gl::Table& gl, const obscura_input& input, Fram
         }
     } else {
         frame.normal_mode = OBSCURA_NORMALS_RECONSTRUCT;
+    }
+
+    // Optional motion vectors: a 2D texture of the depth's size with two float channels.
+    if (input.motion_vector_texture != 0) {
+        gl.ActiveTexture(GL_TEXTURE0 + OBSCURA_UNIT_MOTION);
+        if (!gl.IsTexture(input.motion_vector_texture) ||
+            !texture_has_target(gl, input.motion_vector_texture, GL_TEXTURE_2D)) {
+            return Error::make(OBSCURA_STATUS_INVALID_TEXTURE, "motion_vector_texture %u is not a GL_TEXTURE_2D",
+                               input.motion_vector_texture);
+        }
+        gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &width);
+        gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &height);
+        gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+        gl.BindTexture(GL_TEXTURE_2D, 0);
+        if (width != frame.width || height != frame.height) {
+            return Error::make(OBSCURA_STATUS_INVALID_TEXTURE, "motion_vector_texture %u is %dx%d; the depth is %dx%d",
+                               input.motion_vector_texture, width, height, frame.width, frame.height);
+        }
+        if (format != GL_RG16F && format != GL_RG32F) {
+            return Error::make(OBSCURA_STATUS_UNSUPPORTED_FORMAT,
+                               "motion_vector_texture %u has format 0x%04X; use GL_RG16F or GL_RG32F",
+                               input.motion_vector_texture, unsigned(format));
+        }
     }
     *out = frame;
     return Error();

@@ -25,6 +25,19 @@ struct FrameInput {
     // Depth-stencil textures sample stencil when the host set GL_DEPTH_STENCIL_TEXTURE_MODE to it: the host's
     // mode, which the depth preparation switches to depth for its dispatch and back (0: depth already).
     GLint host_depth_stencil_mode = 0;
+    // Temporal accumulation (obscura_input 0.5 fields): the view, the frame's noise index, and the reprojection.
+    obscura_view* view = nullptr;
+    uint32_t frame_index = 0;
+    bool reset_history = false;
+    // The matrices were given: `reprojection` maps this frame's view space (the SDK's: ProjectionInfo) to the
+    // previous frame's (homogeneous; the projection assumed unchanged), `previous_clip` to the previous clip space;
+    // both column-major. `identity`: the two view-projections are equal (a static camera), the maps exactly 1.
+    bool has_matrices = false;
+    bool identity_reprojection = false;
+    float reprojection[16] = {};
+    float previous_clip[16] = {};
+    GLuint motion_vector_texture = 0;
+    int motion_units = OBSCURA_MOTION_PIXELS;
 };
 
 // Stage 1, no GL: every field of `input` (sizes against `max_texture_size`, the rectangle, the enums, the

@@ -1,5 +1,7 @@
 #include "frame_planner.h"
 
+#include <cmath>
+
 namespace obscura {
 namespace {
 
@@ -26,6 +28,12 @@ FrameConstants base_constants(const FrameInput& input, const OutputTarget& targe
     c.target_params[2] = int(target.blend);
     c.target_params[3] = int(target.debug_view);
     c.debug_params[0] = debug_depth_scale;
+    // Frame n moves every pixel's noise by the n-th point of the R2 sequence (Roberts 2018: the plastic number's
+    // powers), in double so that late frames keep their offsets; accumulated frames then cover the strata evenly.
+    const double n = double(input.frame_index);
+    const double rx = n * 0.7548776662466927, ry = n * 0.5698402909980532;
+    c.noise_offset[0] = float(rx - std::floor(rx));
+    c.noise_offset[1] = float(ry - std::floor(ry));
     return c;
 }
 

@@ -26,6 +26,7 @@ namespace obscura {
     X(Gtao, "gtao")                          \
     X(GtaoDenoise, "gtao_denoise")           \
     X(Blur, "blur")                          \
+    X(Temporal, "temporal")                  \
     X(Composite, "composite")
 
 #define OBSCURA_PASS_ENUM_ENTRY_(id, label) id,

@@ -2,6 +2,7 @@
 
 #include "host_enum.h"
 #include "method_registry.h"
+#include "temporal_settings.h"
 
 #include <cmath>
 #include <cstddef>
@@ -28,9 +29,25 @@ obscura_method resolve_method_value(int32_t value) {
     return row ? row->method : OBSCURA_METHOD_COUNT_;
 }
 
+// Calls f(block name, rows, count) for every method's table, then for the rows every method shares (temporal).
+template <class F>
+void for_each_table(F f) {
+    uint32_t method_count = 0;
+    const MethodDescriptor* const* methods = method_descriptors(&method_count);
+    for (uint32_t m = 0; m < method_count; ++m) f(methods[m]->name, methods[m]->settings, methods[m]->setting_count);
+    uint32_t temporal_count = 0;
+    const obscura_setting_info* temporal = temporal_setting_infos(&temporal_count);
+    f("temporal", temporal, temporal_count);
+}
+
+// The method's row of that name, or the shared (temporal) row.
 const obscura_setting_info* find_info(obscura_method method, const char* name) {
     uint32_t count = 0;
     const obscura_setting_info* infos = setting_infos(method, &count);
+    for (uint32_t i = 0; i < count; ++i) {
+        if (std::strcmp(infos[i].name, name) == 0) return &infos[i];
+    }
+    infos = temporal_setting_infos(&count);
     for (uint32_t i = 0; i < count; ++i) {
         if (std::strcmp(infos[i].name, name) == 0) return &infos[i];
     }
@@ -67,10 +84,10 @@ double stored_value(const obscura_settings& settings, const obscura_setting_info
     return 0.0;
 }
 
-Error check_value(const obscura_setting_info& info, obscura_method method, double value) {
+// `block` names the settings block in messages ("hbao", "temporal").
+Error check_value(const obscura_setting_info& info, const char* block, double value) {
     if (!std::isfinite(value)) {
-        return Error::make(OBSCURA_STATUS_INVALID_SETTING, "%s.%s is %g; it must be finite", obscura_method_name(method),
-                           info.name, value);
+        return Error::make(OBSCURA_STATUS_INVALID_SETTING, "%s.%s is %g; it must be finite", block, info.name, value);
     }
     // Float settings live in floats: compare the value a float field holds (or will hold) with the range's edges
     // as floats hold them. Compared as doubles, the documented edges themselves were refused once stored:
@@ -82,13 +99,13 @@ Error check_value(const obscura_setting_info& info, obscura_method method, doubl
     const double min_value = as_float ? double(float(info.min_value)) : info.min_value;
     const double max_value = as_float ? double(float(info.max_value)) : info.max_value;
     if (stored < min_value || stored > max_value) {
-        return Error::make(OBSCURA_STATUS_INVALID_SETTING, "%s.%s = %g is outside [%g, %g]%s%s",
-                           obscura_method_name(method), info.name, value, info.min_value, info.max_value,
+        return Error::make(OBSCURA_STATUS_INVALID_SETTING, "%s.%s = %g is outside [%g, %g]%s%s", block, info.name,
+                           value, info.min_value, info.max_value,
                            info.unit[0] ? " " : "", info.unit);
     }
     if (info.type != OBSCURA_SETTING_FLOAT && value != std::floor(value)) {
-        return Error::make(OBSCURA_STATUS_INVALID_SETTING, "%s.%s = %g must be a whole number",
-                           obscura_method_name(method), info.name, value);
+        return Error::make(OBSCURA_STATUS_INVALID_SETTING, "%s.%s = %g must be a whole number", block, info.name,
+                           value);
     }
     return Error();
 }
@@ -215,14 +232,12 @@ Error default_settings(const obscura_method& method, obscura_settings* out) {
     settings.flags = OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE;
     // Every method's block, so that switching `method` later starts from its defaults too. Derived fields and
     // arrays stay 0 ("derive", and a table that only the TABLE falloff reads).
-    uint32_t method_count = 0;
-    const MethodDescriptor* const* methods = method_descriptors(&method_count);
-    for (uint32_t m = 0; m < method_count; ++m) {
-        for (uint32_t i = 0; i < methods[m]->setting_count; ++i) {
-            const obscura_setting_info& info = methods[m]->settings[i];
+    for_each_table([&](const char*, const obscura_setting_info* rows, uint32_t count) {
+        for (uint32_t i = 0; i < count; ++i) {
+            const obscura_setting_info& info = rows[i];
             if (!is_derived(info) && info.type != OBSCURA_SETTING_FLOAT_ARRAY) store_value(&settings, info, info.default_value);
         }
-    }
+    });
     *out = settings;
     return Error();
 }
@@ -244,19 +259,19 @@ Error resolve_settings(const obscura_settings& in, obscura_settings* out) {
     const bool zero_is_value = (in.flags & OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE) != 0;
     obscura_settings resolved = in;
     resolved.method = method;
-    // Every method's block is defaulted and validated, so a later method switch cannot surprise.
-    uint32_t method_count = 0;
-    const MethodDescriptor* const* methods = method_descriptors(&method_count);
-    for (uint32_t m = 0; m < method_count; ++m) {
-        const MethodDescriptor& row = *methods[m];
-        for (uint32_t i = 0; i < row.setting_count; ++i) {
-            const obscura_setting_info& info = row.settings[i];
+    // Every method's block (and the shared temporal block) is defaulted and validated, so a later method switch
+    // cannot surprise.
+    Error row_error;
+    for_each_table([&](const char* block, const obscura_setting_info* rows, uint32_t count) {
+        for (uint32_t i = 0; i < count && !row_error; ++i) {
+            const obscura_setting_info& info = rows[i];
             if (info.type == OBSCURA_SETTING_FLOAT_ARRAY) continue;  // the method's derive step checks it
             if (info.type == OBSCURA_SETTING_TOGGLE) {
                 int32_t toggle = *field_at<int32_t>(&resolved, info.offset);
                 if (toggle < OBSCURA_TOGGLE_DEFAULT || toggle > OBSCURA_TOGGLE_OFF) {
-                    return Error::make(OBSCURA_STATUS_INVALID_ENUM, "%s.%s = %d is not an obscura_toggle", row.name,
-                                       info.name, toggle);
+                    row_error = Error::make(OBSCURA_STATUS_INVALID_ENUM, "%s.%s = %d is not an obscura_toggle", block,
+                                            info.name, toggle);
+                    return;
                 }
                 if (toggle == OBSCURA_TOGGLE_DEFAULT) {
                     *field_at<int32_t>(&resolved, info.offset) =
@@ -269,10 +284,12 @@ Error resolve_settings(const obscura_settings& in, obscura_settings* out) {
                 store_value(&resolved, info, info.default_value);  // derived fields: 0 until the derive step
                 continue;
             }
-            Error error = check_value(info, row.method, value);
-            if (error) return error;
+            row_error = check_value(info, block, value);
         }
-    }
+    });
+    if (row_error) return row_error;
+    uint32_t method_count = 0;
+    const MethodDescriptor* const* methods = method_descriptors(&method_count);
     for (uint32_t m = 0; m < method_count; ++m) {
         Error error = methods[m]->derive(in, &resolved);
         if (error) return error;
@@ -368,21 +385,19 @@ Error set_setting(obscura_settings* settings, const char* name, double value, ui
                                    "obscura_settings has no field for",
                                    obscura_method_name(method), info->name);
             }
-            uint32_t method_count = 0;
-            const MethodDescriptor* const* methods = method_descriptors(&method_count);
-            for (uint32_t m = 0; m < method_count; ++m) {
-                for (uint32_t i = 0; i < methods[m]->setting_count; ++i) {
-                    const obscura_setting_info& other = methods[m]->settings[i];
+            for_each_table([&](const char*, const obscura_setting_info* rows, uint32_t count) {
+                for (uint32_t i = 0; i < count; ++i) {
+                    const obscura_setting_info& other = rows[i];
                     if (zero_can_be_value(other) && stored_value(*settings, other) == 0.0) {
                         store_value(settings, other, other.default_value);
                     }
                 }
-            }
+            });
             settings->flags |= OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE;
         }
     } else if (!(value == 0.0 && (info->min_value > 0.0 || is_derived(*info)))) {
         // 0 means "default" (or "derive") for fields whose range excludes it.
-        Error error = check_value(*info, method, value);
+        Error error = check_value(*info, obscura_method_name(method), value);
         if (error) return error;
     }
     store_value(settings, *info, value);

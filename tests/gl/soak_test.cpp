@@ -1,5 +1,6 @@
 // Soak: 2,000 frames of random methods, settings (drawn from the SDK's own metadata), sizes (1x1, 3x7, 4097x9,
-// 9x4097 among ordinary ones), depth kinds, output targets, prepares, releases and context re-creations, the way
+// 9x4097 among ordinary ones), depth kinds, output targets, prepares, releases, context re-creations and temporal
+// frames (random history settings, matrices, camera cuts, views created and destroyed), the way
 // an engine's editor drives the SDK for hours. Every call must return OK or, for random settings outside what
 // the method accepts together, INVALID_SETTING; no GL error may be left; sampled outputs are finite and in
 // [0, 1]; the memory report for one fixed configuration never drifts; and at the end no GL object and no byte
@@ -15,6 +16,8 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "analytic_scene.h"
 #include "gl_test_support.h"
@@ -170,6 +173,7 @@ TEST_F(Soak, TwoThousandRandomFramesLeakNothing) {
         };
         ContextPtr context = create();
         ASSERT_NE(context, nullptr);
+        std::vector<obscura_view*> views;  // the current context's (destroyed with it)
 
         // The anchor: one fixed configuration rendered every 100 frames; its memory report must never change.
         obscura_settings anchor_settings;
@@ -205,7 +209,42 @@ TEST_F(Soak, TwoThousandRandomFramesLeakNothing) {
             }
 
             const double action = anchor ? 1.0 : unit(rng);
+            // Temporal frames: a random history length and clamp, the camera's matrices (the same camera, or a
+            // previous one nudged aside), a camera cut now and then, and one of the context's views.
+            if (!anchor && unit(rng) < 0.3) {
+                settings.temporal.enabled = OBSCURA_TOGGLE_ON;
+                settings.temporal.max_frames = std::uniform_int_distribution<int>(1, 64)(rng);
+                settings.temporal.clamp = float(0.25 * std::pow(256.0, unit(rng)));
+                settings.temporal.plane_tolerance = float(1e-4 * std::pow(1e4, unit(rng)));
+            }
+            if (!anchor && unit(rng) < 0.5) {
+                glm::dmat4 projection;
+                for (int i = 0; i < 16; ++i) projection[i / 4][i % 4] = camera.matrix()[i];
+                const glm::dmat4 view_projection = projection * camera.view();
+                const glm::dvec3 nudge(0.05 * (unit(rng) - 0.5), 0.05 * (unit(rng) - 0.5), 0.0);
+                const glm::dmat4 previous = unit(rng) < 0.5 ? view_projection
+                                                            : view_projection * glm::translate(glm::dmat4(1.0), nudge);
+                for (int i = 0; i < 16; ++i) {
+                    input.view_projection[i] = float(view_projection[i / 4][i % 4]);
+                    input.previous_view_projection[i] = float(previous[i / 4][i % 4]);
+                }
+                input.frame_index = uint32_t(frame);
+                if (unit(rng) < 0.1) input.flags = OBSCURA_INPUT_FLAG_RESET_HISTORY;
+                if (views.size() < 2 && unit(rng) < 0.05) {
+                    obscura_view* view = nullptr;
+                    ASSERT_EQ(obscura_create_view(context.get(), &view), OBSCURA_OK);
+                    views.push_back(view);
+                }
+                if (!views.empty() && unit(rng) < 0.6) input.view = views[size_t(frame) % views.size()];
+            }
+            if (!views.empty() && unit(rng) < 0.01) {
+                ASSERT_EQ(obscura_destroy_view(context.get(), views.back()), OBSCURA_OK);
+                if (input.view == views.back()) input.view = nullptr;
+                views.pop_back();
+            }
             if (action < 0.006) {
+                views.clear();  // destroyed with the context
+                input.view = nullptr;
                 context.reset();
                 context = create();
                 ASSERT_NE(context, nullptr);

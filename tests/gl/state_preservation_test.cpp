@@ -451,6 +451,35 @@ TEST_F(StatePreservation, EveryMethod) {
     expect_unchanged(before, "a render of every method");
 }
 
+// Temporal accumulation binds the history, the bent-normal history, the motion vectors (unit 0) and two image
+// units; every frame of a sequence (the first starts the history, the second reads it), with and without
+// matrices and motion vectors, in a view of its own.
+TEST_F(StatePreservation, TemporalAccumulation) {
+    HostTexture motion = make_texture(GL_RG16F, input_.depth_width, input_.depth_height);
+    fill_texture(motion.get(), input_.depth_width, input_.depth_height, 0.25f, -0.5f, 0.0f, 0.0f);
+    HostTexture bent = make_texture(GL_RGBA16F, kWidth, kHeight);
+    obscura_view* view = nullptr;
+    ASSERT_EQ(obscura_create_view(ctx(), &view), OBSCURA_OK);
+    set_sentinel_state();
+    Snapshot before = capture();
+    obscura_settings settings;
+    ASSERT_EQ(obscura_default_settings(OBSCURA_METHOD_GTAO, &settings), OBSCURA_OK);
+    settings.temporal.enabled = OBSCURA_TOGGLE_ON;
+    obscura_input input = input_;
+    std::memcpy(input.view_projection, input_.projection, sizeof input.view_projection);
+    std::memcpy(input.previous_view_projection, input_.projection, sizeof input.previous_view_projection);
+    for (uint32_t frame = 0; frame < 4; ++frame) {
+        input.frame_index = frame;
+        input.view = frame % 2 ? view : nullptr;
+        input.motion_vector_texture = frame >= 2 ? motion.get() : 0;
+        obscura_output output = texture_output();
+        output.bent_normal_texture = frame == 3 ? bent.get() : 0;
+        ASSERT_EQ(obscura_render(ctx(), &input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    }
+    ASSERT_EQ(obscura_destroy_view(ctx(), view), OBSCURA_OK);
+    expect_unchanged(before, "temporal frames");
+}
+
 TEST_F(StatePreservation, FailedRender) {
     set_sentinel_state();
     Snapshot before = capture();

@@ -55,6 +55,7 @@ const ExpectedStatus kExpectedStatuses[] = {
     {OBSCURA_STATUS_UNKNOWN_SETTING, 22, "UNKNOWN_SETTING"},
     {OBSCURA_STATUS_INTERNAL_ERROR, 23, "INTERNAL_ERROR"},
     {OBSCURA_STATUS_CONTEXT_LOST, 24, "CONTEXT_LOST"},
+    {OBSCURA_STATUS_INVALID_VIEW, 25, "INVALID_VIEW"},
 };
 
 // Any int as a status, as a C caller may pass it (raw_enum_calls.c): no out-of-range value of the C++ enum is

@@ -1,4 +1,5 @@
-// Deterministic per-pixel noise (the same every frame and run): a PCG-style integer hash.
+// Deterministic per-pixel noise (the same in every run for a frame index): a PCG-style integer hash, moved by
+// the frame's offsets (FrameConstants.noise_offset, 0 at frame 0) so that accumulated frames see other samples.
 
 uint obscura_hash(uint v) {
     uint state = v * 747796405u + 2891336453u;
@@ -10,5 +11,5 @@ uint obscura_hash(uint v) {
 vec2 obscura_pixel_noise(ivec2 pixel) {
     uint h = obscura_hash(uint(pixel.x) + obscura_hash(uint(pixel.y)));
     uint g = obscura_hash(h);
-    return vec2(float(h >> 8u), float(g >> 8u)) * (1.0 / 16777216.0);
+    return fract(vec2(float(h >> 8u), float(g >> 8u)) * (1.0 / 16777216.0) + noise_offset.xy);
 }

@@ -15,6 +15,10 @@
 #define OBSCURA_UNIT_FFAO_TABLE 4   // FFAO's estimator table L (sampler3D, R32F, linear filtering)
 #define OBSCURA_UNIT_FFAO_PEAKS 5   // FFAO's peaks read by the obscurance pass (samplerBuffer, RGBA32F; CPU rasterisers)
 #define OBSCURA_UNIT_FFAO_COLUMNS 6 // FFAO's column records read by the obscurance pass (usamplerBuffer; CPU rasterisers)
+#define OBSCURA_UNIT_MOTION 0       // the temporal pass: host motion vectors (the host depth is read only before)
+#define OBSCURA_UNIT_HISTORY 4      // the temporal pass: the view's AO history (RGBA16F)
+#define OBSCURA_UNIT_BENT_SOURCE 5  // the temporal pass: this frame's bent normals (RGBA16F)
+#define OBSCURA_UNIT_BENT_HISTORY 6 // the temporal pass: the view's bent-normal history (RGBA16F)
 #define OBSCURA_TEXTURE_UNIT_COUNT 7
 
 // Image units (imageStore / imageLoad).
@@ -65,6 +69,9 @@
 #define OBSCURA_GTAO_GROUP_Y 8
 #define OBSCURA_GTAO_DENOISE_GROUP_X 8
 #define OBSCURA_GTAO_DENOISE_GROUP_Y 8
+// Temporal accumulation: 8x8 groups over the output rectangle.
+#define OBSCURA_TEMPORAL_GROUP_X 8
+#define OBSCURA_TEMPORAL_GROUP_Y 8
 // Pixels one denoise invocation filters along the pass's axis (the dispatch covers the region in runs of this).
 #define OBSCURA_GTAO_DENOISE_RUN 4
 // LSAO: one invocation per line segment, 64 per group, each keeping its hull in shared memory (64 x hull
@@ -150,6 +157,8 @@ OBSCURA_BLOCK_BEGIN(FrameConstants)
   OBSCURA_IVEC4(work_rect);     // x, y, width, height of the region a pass computes (rect + apron)
   OBSCURA_IVEC4(target_params); // target x, target y, blend mode, debug view
   OBSCURA_VEC4(debug_params);   // linear-depth debug scale (1 / (4 * radius in view units)), unused x3
+  OBSCURA_VEC4(noise_offset);   // the frame index's offsets of the per-pixel noise in [0, 1) (R2 sequence; frame 0: 0),
+                                // unused x2
 OBSCURA_BLOCK_END(FrameConstants)
 
 // ---- Uniform blocks of single passes (binding OBSCURA_UBO_PASS) --------------------------------
@@ -249,6 +258,20 @@ OBSCURA_PASS_BLOCK_BEGIN(GtaoDenoiseConstants)
   OBSCURA_VEC4(params);    // sharpness (per relative distance to the pixel's plane), unused x3
   OBSCURA_IVEC4(config);   // axis x, axis y, unused x2
 OBSCURA_PASS_BLOCK_END(GtaoDenoiseConstants, gtao_denoise)
+#endif
+
+#if defined(__cplusplus) || defined(OBSCURA_TEMPORAL_PASS)
+// Where the previous frame's position of a pixel comes from.
+#define OBSCURA_TEMPORAL_REPROJECT_MATRICES 0 // the two view-projections (through the depth)
+#define OBSCURA_TEMPORAL_REPROJECT_MOTION 1   // the host's motion vectors
+#define OBSCURA_TEMPORAL_REPROJECT_IDENTITY 2 // a static camera: the same texel
+OBSCURA_PASS_BLOCK_BEGIN(TemporalConstants)
+  OBSCURA_VEC4(reprojection[4]);  // columns: this frame's view space -> the previous frame's (homogeneous)
+  OBSCURA_VEC4(previous_clip[4]); // columns: this frame's view space -> the previous frame's clip space
+  OBSCURA_VEC4(params);    // max frames, clamp (deviations), plane tolerance, unused
+  OBSCURA_VEC4(motion);    // motion vector -> texels: scale x, scale y (1 for pixels, size / 2 for NDC), unused x2
+  OBSCURA_IVEC4(config);   // history valid (0: start anew), reprojection (OBSCURA_TEMPORAL_REPROJECT_*), unused x2
+OBSCURA_PASS_BLOCK_END(TemporalConstants, temporal)
 #endif
 
 #if defined(__cplusplus) || defined(OBSCURA_BENT_NORMAL_WRITE_PASS)

@@ -143,7 +143,8 @@ OBSCURA_API uint32_t obscura_version(void);
     X(GL_ERROR, 21, "a GL error was raised inside the SDK; the message names the pass")               \
     X(UNKNOWN_SETTING, 22, "no setting of that name exists for the method")                           \
     X(INTERNAL_ERROR, 23, "an unexpected internal failure; please report it")                         \
-    X(CONTEXT_LOST, 24, "the GL context was lost (GPU reset); destroy the obscura context, recreate both")
+    X(CONTEXT_LOST, 24, "the GL context was lost (GPU reset); destroy the obscura context, recreate both") \
+    X(INVALID_VIEW, 25, "the view was not created by this context, or was destroyed")
 
 #define OBSCURA_STATUS_ENUM_ENTRY_(name, value, desc) OBSCURA_STATUS_##name = value,
 typedef enum obscura_status {
@@ -462,6 +463,28 @@ typedef struct obscura_gtao_settings {
                              [0, 16777216]. Default 0 */
 } obscura_gtao_settings;
 
+/* TEMPORAL ACCUMULATION (0.5), for every method: a pass after the method blends its result into a history kept per
+   view (obscura_view), reprojected from the frame's depth and the two view-projection matrices of obscura_input (or
+   its motion vectors). A history pixel is dropped where the reprojected surface does not lie on the stored one's
+   plane (disocclusion), clamped to the current frame's 3x3 neighbourhood (mean +- clamp * deviation) to bound
+   ghosting, and blended with weight 1 / (frames seen + 1) up to max_frames, so a static view converges to the
+   mean of that many frames. Each method moves its noise with obscura_input.frame_index. Without the matrices and
+   motion vectors, or with OBSCURA_INPUT_FLAG_RESET_HISTORY, the frame starts a new history; so does a change of
+   size, output rectangle, method, method settings or bent-normal output. A debug view (obscura_output.debug_view)
+   shows its frame alone and leaves the history as it is; a frame with `enabled` off frees the view's history.
+   Timing label "temporal" (after the method's passes). Memory: 16 bytes per depth texel per view, 32 with bent
+   normals.
+   Every field: 0 selects the default given after it. */
+typedef struct obscura_temporal_settings {
+    obscura_toggle enabled; /* accumulate frames. Default off */
+    int32_t max_frames;     /* N: the history weighs at most N - 1 frames against the current one's 1, [1, 64].
+                               Default 8 */
+    float clamp;            /* neighbourhood clamp: the history is held within mean +- clamp * standard deviation of
+                               the current 3x3 neighbourhood, [0.25, 64]. Default 2 */
+    float plane_tolerance;  /* disocclusion: a history texel farther from the pixel's tangent plane than this fraction
+                               of its distance is dropped, [1e-4, 1]. Default 0.02 */
+} obscura_temporal_settings;
+
 /* SETTINGS: what a user edits and what the SDK uses.
    The editable form is what obscura_default_settings() returns and what hosts, UIs and files keep: every field
    holds its default, except the derived fields (the metadata flags them OBSCURA_SETTING_FLAG_DERIVED), which
@@ -491,6 +514,7 @@ typedef struct obscura_settings {
     obscura_ffao_settings ffao;
     uint32_t flags;         /* OBSCURA_SETTINGS_FLAG_* (0.4). obscura_default_settings sets ZERO_IS_VALUE */
     obscura_gtao_settings gtao; /* 0.5 */
+    obscura_temporal_settings temporal; /* 0.5: every method's (their metadata tables list its rows) */
 } obscura_settings;
 
 /* Fills `out` with the editable form of `method`'s defaults (see SETTINGS above; struct_size set). Writes
@@ -566,6 +590,12 @@ OBSCURA_API obscura_status obscura_get_setting_infos_sized(obscura_method method
 #define obscura_get_setting_infos(method, out_infos, out_count) \
     obscura_get_setting_infos_sized((method), (out_infos), (out_count), (uint32_t)sizeof(obscura_setting_info))
 
+/* Sets *out_infos to the static table of the settings every method shares (0.5: obscura_temporal_settings, the rows
+   "temporal", "temporal_frames", ...; offsets inside obscura_settings), *out_count to its length. The get/set
+   functions below find these names for every method. Returns OK, NULL_ARGUMENT. */
+OBSCURA_API obscura_status obscura_get_temporal_setting_infos(const obscura_setting_info** out_infos,
+                                                              uint32_t* out_count);
+
 /* Sets the setting `name` of settings->method to `value` (toggles: 0 off, 1 on; enums: their value). The value
    is range-checked. 0 in a derived field derives it; 0 in a field whose range includes 0 is stored as 0 (and
    sets OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE, the fields whose zero meant "default" then holding their
@@ -598,6 +628,28 @@ typedef struct obscura_rect {
     int32_t x, y, width, height; /* pixels, origin at the bottom-left as in GL */
 } obscura_rect;
 
+/* A view: one camera's temporal history (split screen, stereo eyes, a mirror: one view each, so histories never
+   mix). Created and destroyed with the context's GL context current; obscura_destroy_context destroys the views
+   it still has. A render that names no view uses the context's own. */
+typedef struct obscura_view obscura_view;
+
+/* Creates a view of `context`. Returns OK, NULL_ARGUMENT, OUT_OF_MEMORY. */
+OBSCURA_API obscura_status obscura_create_view(obscura_context* context, obscura_view** out_view);
+
+/* Destroys a view of `context` and frees its history textures (NULL: nothing). Returns OK, NULL_ARGUMENT (no
+   context), INVALID_VIEW (not this context's view), WRONG_GL_CONTEXT (nothing freed). */
+OBSCURA_API obscura_status obscura_destroy_view(obscura_context* context, obscura_view* view);
+
+typedef enum obscura_motion_units {
+    OBSCURA_MOTION_PIXELS = 0, /* texels of the depth texture */
+    OBSCURA_MOTION_NDC = 1     /* normalised device coordinates: the whole depth texture spans 2 on each axis */
+} obscura_motion_units;
+
+enum {
+    /* A camera cut, or anything else that makes the previous frame unrelated: the view's history is dropped. */
+    OBSCURA_INPUT_FLAG_RESET_HISTORY = 1u << 0
+};
+
 typedef struct obscura_input {
     uint32_t struct_size;           /* sizeof(obscura_input); required */
     uint32_t depth_texture;         /* GL texture name; required */
@@ -610,6 +662,17 @@ typedef struct obscura_input {
     obscura_clip_depth clip_depth;  /* default [-1, 1] */
     float meters_to_view_units;     /* view units per metre, (0, 1e6]; default 1 */
     uint32_t normal_texture;        /* optional view-space normals, same size as the depth; 0: reconstruct */
+    /* 0.5, temporal accumulation (settings.temporal; without it these only move the noise): */
+    obscura_view* view;             /* the history this frame reads and writes; NULL: the context's own view */
+    uint32_t frame_index;           /* advance by 1 each frame: every method moves its per-pixel noise with it */
+    uint32_t flags;                 /* OBSCURA_INPUT_FLAG_* */
+    float view_projection[16];      /* world -> clip of this frame, the depth's (projection_layout; jitter included);
+                                       all zero: none, and the frame starts a new history */
+    float previous_view_projection[16]; /* the same of the previous frame; all zero: none */
+    uint32_t motion_vector_texture; /* optional GL_TEXTURE_2D (RG16F or RG32F, the depth's size): per texel, the offset
+                                       from this frame's position to the previous frame's (previous = current +
+                                       vector); used instead of the matrices, which may then be zero. 0: none */
+    obscura_motion_units motion_vector_units; /* default PIXELS */
 } obscura_input;
 
 /* ---- Per-frame output ------------------------------------------------------------------------ */

@@ -57,7 +57,7 @@ GtaoConstants GtaoPass::constants(const obscura_gtao_settings& settings, const F
     c.config[2] = settings.sectors;  // (slices and steps are compiled in: GtaoPass::prepare)
     c.config[3] = deepest_level;
     // The frame moves the pattern inside its 1/16 strata along an R2 sequence (frame 0: the strata's centres).
-    const double frame = double(settings.frame_index);
+    const double frame = double(settings.frame_index) + double(input.frame_index);
     const double rotation = 0.5 + frame * 0.7548776662466927, jitter = 0.5 + frame * 0.5698402909980532;
     c.noise[0] = float(rotation - std::floor(rotation));
     c.noise[1] = float(jitter - std::floor(jitter));

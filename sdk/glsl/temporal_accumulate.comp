@@ -1,0 +1,138 @@
+// Temporal accumulation, after every method's reconstruction: this frame's AO blended into the view's history.
+// Per pixel of the output rectangle:
+//   1. reproject: the pixel's surface point in the previous frame, from the two view-projections (through the
+//      depth) or the host's motion vectors; a static camera reads the same texel;
+//   2. read the history bilinearly, each of the 4 texels only if it lies on the pixel's tangent plane as the
+//      previous frame saw it (its stored depth within plane_tolerance of the plane, relative to the distance):
+//      disocclusions and moving edges fall out; a reprojection within 1/256 texel of a centre reads that texel
+//      alone, so a static camera does not blur its history frame after frame;
+//   3. clamp the history to this frame's 3x3 neighbourhood, mean +- clamp * standard deviation, which bounds
+//      ghosting where the AO changed under a surface that did not (a moving object's contact shadow);
+//   4. blend with weight 1 / age, age = min(history age + 1, max frames): a static pixel is the mean of its last
+//      frames, exponential once it reaches max_frames.
+// The history texel packs visibility, age (frames, 0: none) and the linear depth it was computed at (rgba16f);
+// with bent normals (OBSCURA_TEMPORAL_BENT_NORMALS) a second history holds visibility and the bent normal, rotated
+// from the previous view into this one.
+#define OBSCURA_TEMPORAL_PASS 1
+#include "common/shader_interface.h"
+#include "common/depth.glsl"
+#include "common/normal_encoding.glsl"
+
+layout(local_size_x = OBSCURA_TEMPORAL_GROUP_X, local_size_y = OBSCURA_TEMPORAL_GROUP_Y) in;
+
+layout(binding = OBSCURA_UNIT_LINEAR_DEPTH) uniform sampler2D u_linear_depth;
+layout(binding = OBSCURA_UNIT_NORMALS) uniform sampler2D u_normals;
+layout(binding = OBSCURA_UNIT_SOURCE) uniform sampler2D u_source;
+layout(binding = OBSCURA_UNIT_HISTORY) uniform sampler2D u_history;
+layout(binding = OBSCURA_UNIT_MOTION) uniform sampler2D u_motion;
+layout(binding = OBSCURA_IMAGE_OUT0, rgba16f) writeonly uniform image2D u_next;
+#if OBSCURA_TEMPORAL_BENT_NORMALS
+layout(binding = OBSCURA_UNIT_BENT_SOURCE) uniform sampler2D u_bent_source;
+layout(binding = OBSCURA_UNIT_BENT_HISTORY) uniform sampler2D u_bent_history;
+layout(binding = OBSCURA_IMAGE_OUT1, rgba16f) writeonly uniform image2D u_bent_next;
+#endif
+
+mat4 columns(vec4 c[4]) { return mat4(c[0], c[1], c[2], c[3]); }
+
+void main() {
+    ivec2 p = work_rect.xy + ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(gl_GlobalInvocationID.xy, uvec2(work_rect.zw)))) return;
+    float depth = texelFetch(u_linear_depth, p, 0).r;
+    float current = texelFetch(u_source, p, 0).r;
+#if OBSCURA_TEMPORAL_BENT_NORMALS
+    vec3 current_bent = texelFetch(u_bent_source, p, 0).gba;
+#endif
+    if (obscura_is_sky(depth)) {  // sky keeps no history
+        imageStore(u_next, p, vec4(current, 0.0, depth, 0.0));
+#if OBSCURA_TEMPORAL_BENT_NORMALS
+        imageStore(u_bent_next, p, vec4(current, current_bent));
+#endif
+        return;
+    }
+
+    // 3. The neighbourhood's mean and deviation (this frame, 3x3, clamped at the texture's edges).
+    float sum = 0.0, sum_sq = 0.0;
+    for (int y = -1; y <= 1; ++y) {
+        for (int x = -1; x <= 1; ++x) {
+            float v = texelFetch(u_source, clamp(p + ivec2(x, y), ivec2(0), depth_size.xy - 1), 0).r;
+            sum += v;
+            sum_sq += v * v;
+        }
+    }
+    float mean = sum * (1.0 / 9.0);
+    float deviation = sqrt(max(0.0, sum_sq * (1.0 / 9.0) - mean * mean));
+
+    // 1. Where the pixel's point was.
+    vec3 position = obscura_view_position(p, depth);
+    vec3 normal = obscura_decode_normal(texelFetch(u_normals, p, 0).xy);
+    mat4 reprojection = columns(temporal.reprojection);
+    vec4 previous_h = reprojection * vec4(position, 1.0);
+    vec3 previous_position = previous_h.xyz / previous_h.w;
+    mat3 rotation = mat3(reprojection);  // rigid up to the projections' jitter
+    vec3 previous_normal = normalize(rotation * normal);
+    vec2 previous_pixel;
+    if (temporal.config.y == OBSCURA_TEMPORAL_REPROJECT_MOTION) {
+        previous_pixel = vec2(p) + 0.5 + texelFetch(u_motion, p, 0).xy * temporal.motion.xy;
+    } else if (temporal.config.y == OBSCURA_TEMPORAL_REPROJECT_MATRICES) {
+        vec4 clip = columns(temporal.previous_clip) * vec4(position, 1.0);
+        previous_pixel = (clip.xy / clip.w * 0.5 + 0.5) * vec2(depth_size.xy);
+    } else {
+        previous_pixel = vec2(p) + 0.5;
+    }
+
+    // 2. The history's texels that lie on the point's plane, bilinearly weighted.
+    vec2 f = previous_pixel - 0.5;
+    ivec2 base = ivec2(floor(f));
+    vec2 t = f - vec2(base);
+    const float kSnap = 1.0 / 256.0;
+    bvec2 snap_low = lessThan(t, vec2(kSnap)), snap_high = greaterThan(t, vec2(1.0 - kSnap));
+    t = mix(t, vec2(0.0), snap_low);
+    t = mix(t, vec2(1.0), snap_high);
+    float history = 0.0, age = 0.0, weight_sum = 0.0;
+#if OBSCURA_TEMPORAL_BENT_NORMALS
+    vec3 history_bent = vec3(0.0);
+#endif
+    float tolerance = temporal.params.z * length(previous_position);
+    if (temporal.config.x != 0) {
+        for (int i = 0; i < 4; ++i) {
+            ivec2 o = ivec2(i & 1, i >> 1);
+            float w = (o.x == 1 ? t.x : 1.0 - t.x) * (o.y == 1 ? t.y : 1.0 - t.y);
+            ivec2 q = base + o;
+            // Only the output rectangle was written (a change of it starts a new history).
+            if (w <= 0.0 || any(lessThan(q, output_rect.xy)) || any(greaterThanEqual(q, output_rect.xy + output_rect.zw))) continue;
+            vec4 h = texelFetch(u_history, q, 0);
+            if (!(h.y >= 1.0) || obscura_is_sky(h.z)) continue;  // no history there
+            float plane_distance = abs(dot(obscura_view_position(q, h.z) - previous_position, previous_normal));
+            if (plane_distance > tolerance) continue;  // another surface: disoccluded or moved
+            history += w * h.x;
+            age += w * h.y;
+            weight_sum += w;
+#if OBSCURA_TEMPORAL_BENT_NORMALS
+            history_bent += w * texelFetch(u_bent_history, q, 0).gba;
+#endif
+        }
+    }
+    float result = current, new_age = 1.0;
+#if OBSCURA_TEMPORAL_BENT_NORMALS
+    vec3 result_bent = current_bent;
+#endif
+    // Less than a texel's worth of support (a quarter of the bilinear weight): start anew.
+    if (weight_sum >= 0.25) {
+        // The box holds the pixel's own value too: an image equal to its history is kept as it is.
+        float spread = temporal.params.y * deviation;
+        history = clamp(history / weight_sum, min(mean - spread, current), max(mean + spread, current));
+        new_age = min(floor(age / weight_sum + 0.5) + 1.0, temporal.params.x);
+        float alpha = 1.0 / new_age;
+        result = mix(history, current, alpha);
+#if OBSCURA_TEMPORAL_BENT_NORMALS
+        // The previous view's bent normal in this view: the inverse rotation.
+        vec3 previous_bent = transpose(rotation) * history_bent;
+        float previous_length = length(previous_bent);
+        if (previous_length > 0.0) result_bent = normalize(mix(previous_bent / previous_length, current_bent, alpha));
+#endif
+    }
+    imageStore(u_next, p, vec4(result, new_age, depth, 0.0));
+#if OBSCURA_TEMPORAL_BENT_NORMALS
+    imageStore(u_bent_next, p, vec4(result, result_bent));
+#endif
+}

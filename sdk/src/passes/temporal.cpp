@@ -1,0 +1,106 @@
+#include "passes/temporal.h"
+
+namespace obscura {
+
+Error TemporalHistory::prepare(const PassEnv& env, const FrameInput& input, bool bent_normals, uint64_t signature,
+                               bool reproject, bool* continues) {
+    const int width = input.width, height = input.height;
+    const bool resized = ao_[0].width() != width || ao_[0].height() != height;
+    if (resized || !ao_[0]) {
+        release();
+        ao_[0] = env.create_texture(GL_RGBA16F, width, height);
+        ao_[1] = env.create_texture(GL_RGBA16F, width, height);
+        if (!ao_[0] || !ao_[1]) {
+            release();
+            return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating the %dx%d temporal history failed", width, height);
+        }
+    }
+    if (bent_normals != static_cast<bool>(bent_[0])) {
+        valid_ = false;  // the bent-normal history starts with this frame
+        if (bent_normals) {
+            bent_[0] = env.create_texture(GL_RGBA16F, width, height);
+            bent_[1] = env.create_texture(GL_RGBA16F, width, height);
+            if (!bent_[0] || !bent_[1]) {
+                release();
+                return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating the %dx%d bent-normal history failed",
+                                   width, height);
+            }
+        } else {
+            bent_[0] = gl::Texture2D();
+            bent_[1] = gl::Texture2D();
+        }
+    }
+    const obscura_rect& rect = input.output_rect;
+    const bool same_rect = rect.x == rect_.x && rect.y == rect_.y && rect.width == rect_.width &&
+                           rect.height == rect_.height;
+    *continues = valid_ && same_rect && signature == signature_ && reproject && !input.reset_history;
+    rect_ = rect;
+    signature_ = signature;
+    return Error();
+}
+
+void TemporalHistory::release() {
+    for (gl::Texture2D& t : ao_) t = gl::Texture2D();
+    for (gl::Texture2D& t : bent_) t = gl::Texture2D();
+    valid_ = false;
+    current_ = 0;
+}
+
+Error TemporalPass::prepare(const PassEnv& env, bool bent_normals) {
+    gl::Object& program = programs_[bent_normals ? 1 : 0];
+    if (program) return Error();
+    return env.build("temporal_accumulate.comp", bent_normals ? "OBSCURA_TEMPORAL_BENT_NORMALS 1\n" : "OBSCURA_TEMPORAL_BENT_NORMALS 0\n",
+                     &program);
+}
+
+TemporalConstants TemporalPass::constants(const obscura_temporal_settings& settings, const FrameInput& input,
+                                          bool continues) {
+    TemporalConstants c = {};
+    for (int column = 0; column < 4; ++column) {
+        for (int row = 0; row < 4; ++row) {
+            c.reprojection[column][row] = input.reprojection[column * 4 + row];
+            c.previous_clip[column][row] = input.previous_clip[column * 4 + row];
+        }
+    }
+    if (!input.has_matrices) {  // motion vectors alone: the point is taken as static in view space
+        for (int i = 0; i < 4; ++i) c.reprojection[i][i] = 1.0f;
+    }
+    c.params[0] = float(settings.max_frames);
+    c.params[1] = settings.clamp;
+    c.params[2] = settings.plane_tolerance;
+    const bool ndc = input.motion_units == OBSCURA_MOTION_NDC;
+    c.motion[0] = ndc ? 0.5f * float(input.width) : 1.0f;
+    c.motion[1] = ndc ? 0.5f * float(input.height) : 1.0f;
+    c.config[0] = continues ? 1 : 0;
+    c.config[1] = input.motion_vector_texture != 0  ? OBSCURA_TEMPORAL_REPROJECT_MOTION
+                  : input.identity_reprojection ? OBSCURA_TEMPORAL_REPROJECT_IDENTITY
+                                                : OBSCURA_TEMPORAL_REPROJECT_MATRICES;
+    return c;
+}
+
+void TemporalPass::run(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
+                       const FrameInput& input, const FrameResources& resources, const gl::Texture2D& source,
+                       const gl::Texture2D* bent_source, const TemporalHistory& history) {
+    const gl::Table& gl = env.gl;
+    const bool bent = bent_source != nullptr;
+    gl.UseProgram(programs_[bent ? 1 : 0].name());
+    env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
+    env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
+    env.bind_texture(OBSCURA_UNIT_SOURCE, GL_TEXTURE_2D, source.name());
+    env.bind_texture(OBSCURA_UNIT_HISTORY, GL_TEXTURE_2D, history.previous().name());
+    // Without motion vectors the sampler still needs a complete texture: the history stands in (never read).
+    env.bind_texture(OBSCURA_UNIT_MOTION, GL_TEXTURE_2D,
+                     input.motion_vector_texture ? input.motion_vector_texture : history.previous().name());
+    gl.BindImageTexture(OBSCURA_IMAGE_OUT0, history.next().name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    if (bent) {
+        env.bind_texture(OBSCURA_UNIT_BENT_SOURCE, GL_TEXTURE_2D, bent_source->name());
+        env.bind_texture(OBSCURA_UNIT_BENT_HISTORY, GL_TEXTURE_2D, history.previous_bent().name());
+        gl.BindImageTexture(OBSCURA_IMAGE_OUT1, history.next_bent().name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    }
+    env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
+    env.bind_uniforms(OBSCURA_UBO_PASS, pass);
+    env.dispatch(region.width, region.height, OBSCURA_TEMPORAL_GROUP_X, OBSCURA_TEMPORAL_GROUP_Y);
+    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+}  // namespace obscura

@@ -1,0 +1,57 @@
+// TemporalPass: temporal accumulation after every method (sdk/glsl/temporal_accumulate.comp), and the history it
+// reads and writes, one per view (obscura_view). The history ping-pongs between two RGBA16F textures (visibility,
+// age, linear depth), two more with bent normals.
+#ifndef OBSCURA_TEMPORAL_H
+#define OBSCURA_TEMPORAL_H
+
+#include "frame_input.h"
+#include "passes/pass_common.h"
+
+namespace obscura {
+
+// One view's history. A frame continues it only when the frame has the same size, output rectangle and outputs,
+// the same method and method settings (`signature`), a reprojection, and no reset.
+class TemporalHistory {
+public:
+    // The texture a frame writes (and the composite then reads), and the one it reads.
+    const gl::Texture2D& next() const { return ao_[1 - current_]; }
+    const gl::Texture2D& previous() const { return ao_[current_]; }
+    const gl::Texture2D& next_bent() const { return bent_[1 - current_]; }
+    const gl::Texture2D& previous_bent() const { return bent_[current_]; }
+    // Makes the history fit a frame: (re)allocates on a size or outputs change, and says whether the previous
+    // frame's history may be read (`*continues`).
+    Error prepare(const PassEnv& env, const FrameInput& input, bool bent_normals, uint64_t signature, bool reproject,
+                  bool* continues);
+    // The frame's writes become the history.
+    void swap() { current_ = 1 - current_; valid_ = true; }
+    // Drops the history (the next frame starts anew) but keeps the textures.
+    void invalidate() { valid_ = false; }
+    void release();
+    uint64_t bytes() const { return ao_[0].bytes() + ao_[1].bytes() + bent_[0].bytes() + bent_[1].bytes(); }
+
+private:
+    gl::Texture2D ao_[2], bent_[2];
+    int current_ = 0;
+    bool valid_ = false;
+    obscura_rect rect_ = {};
+    uint64_t signature_ = 0;
+};
+
+class TemporalPass {
+public:
+    Error prepare(const PassEnv& env, bool bent_normals);
+    static TemporalConstants constants(const obscura_temporal_settings& settings, const FrameInput& input,
+                                       bool continues);
+    // Blends `source` (R16F visibility; `bent_source`, RGBA16F, with bent normals) over `region` into the history's
+    // next textures; the caller swaps the history after the frame.
+    void run(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
+             const FrameInput& input, const FrameResources& resources, const gl::Texture2D& source,
+             const gl::Texture2D* bent_source, const TemporalHistory& history);
+
+private:
+    gl::Object programs_[2];  // without, with bent normals
+};
+
+}  // namespace obscura
+
+#endif  // OBSCURA_TEMPORAL_H
