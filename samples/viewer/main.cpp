@@ -13,13 +13,15 @@ constexpr const char* kUsage =
     "usage: obscura-viewer [--scene NAME|FILE.obj|FILE.pfm] [--viewpoint NAME] [--method SPEC]\n"
     "                      [--settings FILE.json] [--view ao|lit|lit-no-ao|split|error]\n"
     "                      [--compare reference|truth|SPEC] [--size WxH] [--normals] [--reference-rays N]\n"
-    "                      [--truth-rays N] [--screenshot OUT.png --frames N]\n"
+    "                      [--truth-rays N] [--spin DEG] [--screenshot OUT.png --frames N]\n"
     "SPEC is NAME[:KEY=VALUE...] as in `obscura --list-settings`, e.g. hbao:directions=16:steps=48 or\n"
     "  lsao:preset=k32 (enums by name or number; the falloff table as falloff_table=V0/.../V15 or @FILE).\n"
     "--compare: what the error heat map and the split view compare the method with: `reference`, the\n"
     "  screen-space reference (REFERENCE: the depth buffer ray-traced, infinitely thick; the default), or\n"
     "  `truth`, the geometry truth (the scene's triangles ray-traced on the CPU, --truth-rays per pixel,\n"
     "  default 256; not for .pfm depth files); a SPEC puts a second method on the split view's right.\n"
+    "--spin DEG turns the orbit camera DEG degrees every frame: with --method M:temporal=on --compare M --view\n"
+    "  split, temporal accumulation on (left) and off (right) side by side while the camera moves.\n"
     "--screenshot with --frames N renders N frames, saves the window (panel included) and exits; with\n"
     "  --compare truth the frame before the last waits for the geometry truth to complete.\n"
     "Mouse: drag to orbit (fly: to look), wheel to dolly; fly mode moves with W A S D Q E.\n";
@@ -66,6 +68,11 @@ int main(int argc, char** argv) {
             if (*rest != 0 || n < 1 || n > 100000) return usage_error(arg + " needs a count in [1, 100000]");
             (arg == "--frames" ? options.frames : arg == "--truth-rays" ? options.truth_rays : options.reference_rays) =
                 int(n);
+        } else if (arg == "--spin") {
+            char* rest = nullptr;
+            const double degrees = std::strtod(value.c_str(), &rest);
+            if (*rest != 0 || !(degrees >= -45.0 && degrees <= 45.0)) return usage_error("--spin needs degrees in [-45, 45]");
+            options.spin = float(degrees);
         } else if (arg == "--size") {
             int w = 0, h = 0;
             char tail = 0;

@@ -21,12 +21,12 @@ namespace {
 
 using samples::JsonValue;
 
+// The method's metadata rows, then the rows every method shares (temporal accumulation): samples::setting_infos.
 struct SettingTable {
-    const obscura_setting_info* infos = nullptr;
-    uint32_t count = 0;
+    std::vector<obscura_setting_info> rows;
 
-    const obscura_setting_info* begin() const { return infos; }
-    const obscura_setting_info* end() const { return infos + count; }
+    const obscura_setting_info* begin() const { return rows.data(); }
+    const obscura_setting_info* end() const { return rows.data() + rows.size(); }
     const obscura_setting_info* find(std::string_view name) const {
         for (const obscura_setting_info& info : *this) {
             if (name == info.name) return &info;
@@ -36,12 +36,11 @@ struct SettingTable {
 };
 
 SettingTable setting_table(obscura_method method) {
-    SettingTable table;
-    const obscura_status status = obscura_get_setting_infos(method, &table.infos, &table.count);
-    if (status != OBSCURA_OK) {
-        throw SettingsDocumentError(std::string("obscura_get_setting_infos failed: ") + obscura_status_string(status));
+    try {
+        return SettingTable{samples::setting_infos(method)};
+    } catch (const std::exception& e) {
+        throw SettingsDocumentError(e.what());
     }
-    return table;
 }
 
 // settings.method as the SDK reads it (DEFAULT is HBAO). The field is read as the int a C host may have

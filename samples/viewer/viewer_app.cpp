@@ -70,11 +70,13 @@ std::vector<obscura_method> methods() {
     return out;
 }
 
+// The method's rows and the shared (temporal) ones.
 std::vector<obscura_setting_info> infos_of(obscura_method method) {
-    const obscura_setting_info* infos = nullptr;
-    uint32_t count = 0;
-    if (obscura_get_setting_infos(method, &infos, &count) != OBSCURA_STATUS_OK) return {};
-    return std::vector<obscura_setting_info>(infos, infos + count);
+    try {
+        return samples::setting_infos(method);
+    } catch (const std::exception&) {
+        return {};
+    }
 }
 
 // Settings that reproduce configurations of the papers (spec keys over the method's defaults). LSAO's own
@@ -167,6 +169,7 @@ private:
     bool split_reference_ = true;
     int reference_rays_ = 64;
     bool use_normals_ = false;
+    float spin_ = 0.0f;  // degrees per frame the camera turns by itself
     Comparison comparison_ = Comparison::ScreenSpaceReference;
     ReferenceJob job_;
     // The geometry truth: the worker, and what the GL thread has of it.
@@ -610,6 +613,7 @@ void ViewerApp::build_panel() {
         ImGui::SameLine();
         ImGui::RadioButton("fly (WASD QE)", &mode, 1);
         camera_.mode = ViewerCamera::Mode(mode);
+        ImGui::SliderFloat("spin (deg/frame)", &spin_, -2.0f, 2.0f, "%.2f");
         ImGui::Checkbox("pass the scene's normals", &use_normals_);
     }
     if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
@@ -843,6 +847,7 @@ int ViewerApp::run() {
                               renderer.find("softpipe") != std::string::npos;
         renderer_ = std::make_unique<ViewerRenderer>(glfw_proc, software);
         use_normals_ = options_.use_normals;
+        spin_ = options_.spin;
         reference_rays_ = options_.reference_rays;
         truth_rays_ = options_.truth_rays;
         comparison_ = options_.comparison;
@@ -880,6 +885,7 @@ int ViewerApp::run() {
             glClearColor(0.1f, 0.1f, 0.12f, 1.0f);
             glClear(GL_COLOR_BUFFER_BIT);
             if (width > 0 && height > 0) {
+                if (spin_ != 0.0f) camera_.rotate(spin_, 0.0f);  // moves the camera for temporal accumulation to follow
                 renderer_->render_scene(scene_, camera_.camera(), width, height, glfw_proc);
                 bool ok = renderer_->render_ao(0, panels_[0].settings, use_normals_);
                 if (ok && view_ == ViewMode::Split && !split_reference_) {

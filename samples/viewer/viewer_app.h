@@ -21,6 +21,7 @@ struct ViewerOptions {
     bool use_normals = false;       // hand the scene's normals to the SDK (else it reconstructs them)
     int reference_rays = 64;        // rays per pixel of the on-demand screen-space reference
     int truth_rays = 256;           // rays per pixel of the geometry truth (worker thread)
+    float spin = 0.0f;              // degrees the orbit camera turns each frame (watch temporal accumulation move)
     std::string screenshot;         // with frames > 0: render `frames` frames, save the window, exit
     int frames = 0;
 };

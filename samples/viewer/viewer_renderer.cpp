@@ -168,6 +168,11 @@ ViewerRenderer::ViewerRenderer(obscura_get_proc_address_fn get_proc_address, boo
     if (status != OBSCURA_STATUS_OK) {
         throw std::runtime_error(std::string("obscura_create_context: ") + obscura_status_string(status));
     }
+    for (obscura_view*& view : views_) {
+        if (obscura_create_view(context_, &view) != OBSCURA_STATUS_OK) {
+            throw std::runtime_error(std::string("obscura_create_view: ") + obscura_get_last_error(context_));
+        }
+    }
     composite_ = samples::link_host_program(kFullscreenVertex, kCompositeFragment, "viewer composite");
     empty_vao_ = samples::HostVertexArray::create();
     const GLubyte* renderer = glGetString(GL_RENDERER);
@@ -203,11 +208,18 @@ void ViewerRenderer::render_scene(const ViewerScene& scene, const samples::Camer
 bool ViewerRenderer::render_ao(int slot, const obscura_settings& settings, bool use_scene_normals) {
     if (!scene_) return false;
     ao_[slot].ensure(visible_width_, visible_height_, GL_R16F);
-    return render_into(ao_[slot].texture.get(), settings, use_scene_normals);
+    return render_into(ao_[slot].texture.get(), settings, use_scene_normals, slot);
 }
 
-bool ViewerRenderer::render_into(GLuint texture, const obscura_settings& settings, bool use_scene_normals) {
-    const obscura_input input = scene_->frame().make_input(use_scene_normals);
+bool ViewerRenderer::render_into(GLuint texture, const obscura_settings& settings, bool use_scene_normals, int slot) {
+    const samples::SceneFrame& frame = scene_->frame();
+    obscura_input input = frame.make_input(use_scene_normals);
+    if (slot >= 0) {
+        const samples::SceneFrame* previous = previous_[slot] ? &*previous_[slot] : nullptr;
+        input = frame.make_input(use_scene_normals, previous, frame_index_[slot]++);
+        input.view = views_[slot];
+        previous_[slot] = frame;  // its camera, for the next frame's reprojection
+    }
     obscura_output output = {};
     output.struct_size = sizeof output;
     output.texture = texture;

@@ -98,7 +98,9 @@ public:
     // Throws std::runtime_error.
     void render_scene(const ViewerScene& scene, const samples::Camera& camera, int width, int height,
                       obscura_get_proc_address_fn get_proc_address);
-    // AO of `settings` for the current scene into slot 0 or 1. False on failure, with last_error() set.
+    // AO of `settings` for the current scene into slot 0 or 1. False on failure, with last_error() set. Each slot
+    // is one obscura_view with its own frame index and previous camera, so with `temporal` on the two sides of the
+    // split accumulate their own histories as the camera moves.
     bool render_ao(int slot, const obscura_settings& settings, bool use_scene_normals);
     // One step of `job` (a chunk of reference rays) for the current scene, given slot 0 holds the method's
     // AO. False on failure (last_error()).
@@ -133,9 +135,13 @@ public:
     const std::string& renderer_name() const { return renderer_name_; }
 
 private:
-    // obscura_render of the current scene into `texture`; false with last_error() set on failure.
-    bool render_into(GLuint texture, const obscura_settings& settings, bool use_scene_normals);
+    // obscura_render of the current scene into `texture` (in `slot`'s view and frame sequence; -1: none, a static
+    // view of the context's own); false with last_error() set on failure.
+    bool render_into(GLuint texture, const obscura_settings& settings, bool use_scene_normals, int slot = -1);
     obscura_context* context_ = nullptr;
+    obscura_view* views_[2] = {};                        // the AO slots' temporal histories
+    std::optional<samples::SceneFrame> previous_[2];     // each slot's previous frame (its camera), not owned
+    uint32_t frame_index_[2] = {};
     std::optional<samples::RenderedScene> scene_;
     std::string scene_key_;  // a depth file is loaded once
     int visible_width_ = 0, visible_height_ = 0;

@@ -6,7 +6,7 @@
 //      previous frame saw it (its stored depth within plane_tolerance of the plane, relative to the distance):
 //      disocclusions and moving edges fall out; a reprojection within 1/256 texel of a centre reads that texel
 //      alone, so a static camera does not blur its history frame after frame;
-//   3. clamp the history to this frame's 3x3 neighbourhood, mean +- clamp * standard deviation, which bounds
+//   3. clamp the history to this frame's neighbourhood (7 texels), mean +- clamp * standard deviation, which bounds
 //      ghosting where the AO changed under a surface that did not (a moving object's contact shadow);
 //   4. blend with weight 1 / age, age = min(history age + 1, max frames): a static pixel is the mean of its last
 //      frames, exponential once it reaches max_frames.
@@ -50,26 +50,31 @@ void main() {
         return;
     }
 
-    // 3. The neighbourhood's mean and deviation (this frame, 3x3, clamped at the texture's edges).
-    float sum = 0.0, sum_sq = 0.0;
-    for (int y = -1; y <= 1; ++y) {
-        for (int x = -1; x <= 1; ++x) {
-            float v = texelFetch(u_source, clamp(p + ivec2(x, y), ivec2(0), depth_size.xy - 1), 0).r;
-            sum += v;
-            sum_sq += v * v;
-        }
-    }
-    float mean = sum * (1.0 / 9.0);
-    float deviation = sqrt(max(0.0, sum_sq * (1.0 / 9.0) - mean * mean));
+    // 3. The neighbourhood's mean and deviation (this frame): two gathers, at p + 0.25 and p + 1.25 texels, whose
+    // 2x2 footprints [p-1, p]^2 and [p, p+1]^2 make the 3x3 window less its corners (+1, -1) and (-1, +1), centre
+    // once (clamped at the texture's edges). Gathers halve the texture reads of the 3x3's nine fetches.
+    vec2 texel = 1.0 / vec2(depth_size.xy);
+    vec4 g00 = textureGather(u_source, (vec2(p) + 0.25) * texel, 0);
+    vec4 g11 = textureGather(u_source, (vec2(p) + 1.25) * texel, 0);
+    vec3 c = vec3(g11.z, g11.x, g11.y);  // (1, 0), (0, 1), (1, 1); g11.w is the centre, g00.y again
+    float sum = dot(g00, vec4(1.0)) + dot(c, vec3(1.0));
+    float sum_sq = dot(g00, g00) + dot(c, c);
+    float mean = sum * (1.0 / 7.0);
+    float deviation = sqrt(max(0.0, sum_sq * (1.0 / 7.0) - mean * mean));
 
     // 1. Where the pixel's point was.
     vec3 position = obscura_view_position(p, depth);
     vec3 normal = obscura_decode_normal(texelFetch(u_normals, p, 0).xy);
+    // A static camera (the same view-projection) reads its own texel: no matrix work.
+    bool identity = temporal.config.y == OBSCURA_TEMPORAL_REPROJECT_IDENTITY;
     mat4 reprojection = columns(temporal.reprojection);
-    vec4 previous_h = reprojection * vec4(position, 1.0);
-    vec3 previous_position = previous_h.xyz / previous_h.w;
     mat3 rotation = mat3(reprojection);  // rigid up to the projections' jitter
-    vec3 previous_normal = normalize(rotation * normal);
+    vec3 previous_position = position, previous_normal = normal;
+    if (!identity) {
+        vec4 previous_h = reprojection * vec4(position, 1.0);
+        previous_position = previous_h.xyz / previous_h.w;
+        previous_normal = normalize(rotation * normal);
+    }
     vec2 previous_pixel;
     if (temporal.config.y == OBSCURA_TEMPORAL_REPROJECT_MOTION) {
         previous_pixel = vec2(p) + 0.5 + texelFetch(u_motion, p, 0).xy * temporal.motion.xy;
