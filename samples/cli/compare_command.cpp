@@ -221,6 +221,16 @@ std::vector<ClassErrors> measure_classes(const ComparedMethod& method, const Com
             errors.mean_signed = sum_signed / double(errors.pixels);
             errors.within_5pct = sum_within / double(errors.pixels);
         }
+        // Flicker within the class (pixels of the class in both frames of a pair): the rest class holds what
+        // sampling noise does, apart from the moving edges whose error changes as they move.
+        if (classes.frames.size() > 1) {
+            std::vector<std::vector<uint8_t>> masks(classes.frames.size());
+            for (size_t f = 0; f < classes.frames.size(); ++f) {
+                masks[f].resize(classes.frames[f].size());
+                for (size_t i = 0; i < masks[f].size(); ++i) masks[f][i] = classes.frames[f][i] == uint8_t(value);
+            }
+            errors.flicker = samples::flicker(method.frames, reference.frames, &masks);
+        }
         measured.push_back(errors);
     }
     return measured;

@@ -49,6 +49,7 @@ void print_class_table(const CompareResult& result, size_t t) {
     for (samples::ThicknessClass value : kMeasuredClasses) {
         header.push_back(std::string(samples::thickness_class_name(value)) + ": mean_abs");
         header.push_back("signed");
+        if (result.orbit_degrees) header.push_back("flicker");
     }
     TextTable table(header);
     for (const ComparedMethod& method : result.methods) {
@@ -56,6 +57,7 @@ void print_class_table(const CompareResult& result, size_t t) {
         for (const ClassErrors& errors : method.errors[t].classes) {
             row.push_back(errors.pixels > 0 ? format_fixed(errors.mean_abs, 5) : "-");
             row.push_back(errors.pixels > 0 ? format_signed(errors.mean_signed, 5) : "-");
+            if (result.orbit_degrees) row.push_back(errors.flicker ? format_fixed(*errors.flicker, 5) : "-");
         }
         table.add_row(row);
     }
@@ -308,6 +310,7 @@ void write_compare_json(const CompareResult& result, const std::string& path) {
                     json.key(samples::thickness_class_name(kMeasuredClasses[c])).begin_object();
                     json.field("pixels", double(class_errors.pixels));
                     error_field("mean_abs", class_errors.mean_abs);
+                    if (class_errors.flicker) json.field("flicker", *class_errors.flicker);
                     error_field("signed_mean", class_errors.mean_signed);
                     error_field("within_5pct", class_errors.within_5pct);
                     json.end_object();

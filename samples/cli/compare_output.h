@@ -71,6 +71,7 @@ struct ClassErrors {
     double mean_abs = 0.0;
     double mean_signed = 0.0;  // method - truth
     double within_5pct = 0.0;
+    std::optional<double> flicker;  // with --orbit: samples::flicker over the class's pixels
 };
 
 // A method's error against one truth, averaged over the frames.

@@ -34,6 +34,29 @@ layout(binding = OBSCURA_IMAGE_OUT1, rgba16f) writeonly uniform image2D u_bent_n
 
 mat4 columns(vec4 c[4]) { return mat4(c[0], c[1], c[2], c[3]); }
 
+// The history's visibility at `position` (texels) through a Catmull-Rom filter, in 5 bilinear reads (the 4x4
+// kernel's 3x3 of bilinear groups less its corners, renormalised; u_history's sampler filters linearly). A
+// bilinear read of a moving history blurs it a little every frame: at 8 frames about a texel, which smeared
+// contact shadows; the cubic keeps them.
+float catmull_rom_history(vec2 position) {
+    vec2 size = vec2(depth_size.xy);
+    vec2 centre = floor(position - 0.5) + 0.5;  // texel centre at or below the position
+    vec2 f = position - centre;
+    vec2 w0 = f * (-0.5 + f * (1.0 - 0.5 * f));
+    vec2 w1 = 1.0 + f * f * (-2.5 + 1.5 * f);
+    vec2 w2 = f * (0.5 + f * (2.0 - 1.5 * f));
+    vec2 w3 = f * f * (-0.5 + 0.5 * f);
+    vec2 w12 = w1 + w2;
+    vec2 at0 = (centre - 1.0) / size, at12 = (centre + w2 / w12) / size, at3 = (centre + 2.0) / size;
+    float sum = textureLod(u_history, vec2(at12.x, at0.y), 0.0).x * (w12.x * w0.y) +
+                textureLod(u_history, vec2(at0.x, at12.y), 0.0).x * (w0.x * w12.y) +
+                textureLod(u_history, at12, 0.0).x * (w12.x * w12.y) +
+                textureLod(u_history, vec2(at3.x, at12.y), 0.0).x * (w3.x * w12.y) +
+                textureLod(u_history, vec2(at12.x, at3.y), 0.0).x * (w12.x * w3.y);
+    float weight = w12.x * w0.y + w0.x * w12.y + w12.x * w12.y + w3.x * w12.y + w12.x * w3.y;
+    return sum / weight;
+}
+
 void main() {
     ivec2 p = work_rect.xy + ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(gl_GlobalInvocationID.xy, uvec2(work_rect.zw)))) return;
@@ -52,10 +75,13 @@ void main() {
 
     // 3. The neighbourhood's mean and deviation (this frame): two gathers, at p + 0.25 and p + 1.25 texels, whose
     // 2x2 footprints [p-1, p]^2 and [p, p+1]^2 make the 3x3 window less its corners (+1, -1) and (-1, +1), centre
-    // once (clamped at the texture's edges). Gathers halve the texture reads of the 3x3's nine fetches.
+    // once. Gathers halve the texture reads of the 3x3's nine fetches.
+    // Only the output rectangle holds this frame's AO: at its edges the window moves inwards to stay inside it.
+    ivec2 rect_last = output_rect.xy + output_rect.zw - 1;
+    ivec2 window = clamp(p, min(output_rect.xy + 1, rect_last), max(rect_last - 1, output_rect.xy));
     vec2 texel = 1.0 / vec2(depth_size.xy);
-    vec4 g00 = textureGather(u_source, (vec2(p) + 0.25) * texel, 0);
-    vec4 g11 = textureGather(u_source, (vec2(p) + 1.25) * texel, 0);
+    vec4 g00 = textureGather(u_source, (vec2(window) + 0.25) * texel, 0);
+    vec4 g11 = textureGather(u_source, (vec2(window) + 1.25) * texel, 0);
     vec3 c = vec3(g11.z, g11.x, g11.y);  // (1, 0), (0, 1), (1, 1); g11.w is the centre, g00.y again
     float sum = dot(g00, vec4(1.0)) + dot(c, vec3(1.0));
     float sum_sq = dot(g00, g00) + dot(c, c);
@@ -98,6 +124,7 @@ void main() {
     vec3 history_bent = vec3(0.0);
 #endif
     float tolerance = temporal.params.z * length(previous_position);
+    int valid_taps = 0;
     if (temporal.config.x != 0) {
         for (int i = 0; i < 4; ++i) {
             ivec2 o = ivec2(i & 1, i >> 1);
@@ -112,6 +139,7 @@ void main() {
             history += w * h.x;
             age += w * h.y;
             weight_sum += w;
+            ++valid_taps;
 #if OBSCURA_TEMPORAL_BENT_NORMALS
             history_bent += w * texelFetch(u_bent_history, q, 0).gba;
 #endif
@@ -123,6 +151,12 @@ void main() {
 #endif
     // Less than a texel's worth of support (a quarter of the bilinear weight): start anew.
     if (weight_sum >= 0.25) {
+        // Between texels, with all four on the pixel's surface: the cubic read instead of the bilinear one (its
+        // wider footprint can reach another surface at an edge; the clamp below bounds what that brings).
+        // The cubic's 4x4 texels must lie in the output rectangle, the only part of the history that was written.
+        bool cubic_inside = all(greaterThanEqual(base - 1, output_rect.xy)) &&
+                            all(lessThanEqual(base + 2, output_rect.xy + output_rect.zw - 1));
+        if (valid_taps == 4 && cubic_inside) history = catmull_rom_history(previous_pixel) * weight_sum;
         // The box holds the pixel's own value too: an image equal to its history is kept as it is.
         float spread = temporal.params.y * deviation;
         history = clamp(history / weight_sum, min(mean - spread, current), max(mean + spread, current));

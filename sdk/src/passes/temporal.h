@@ -50,6 +50,7 @@ public:
 
 private:
     gl::Object programs_[2];  // without, with bent normals
+    gl::Object linear_sampler_;  // the history's cubic read filters bilinear groups
 };
 
 }  // namespace obscura
