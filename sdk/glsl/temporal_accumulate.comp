@@ -120,6 +120,7 @@ void main() {
     t = mix(t, vec2(0.0), snap_low);
     t = mix(t, vec2(1.0), snap_high);
     float history = 0.0, age = 0.0, weight_sum = 0.0;
+    float history_low = 1.0, history_high = 0.0;  // the range of the valid texels' visibility
 #if OBSCURA_TEMPORAL_BENT_NORMALS
     vec3 history_bent = vec3(0.0);
 #endif
@@ -140,6 +141,8 @@ void main() {
             age += w * h.y;
             weight_sum += w;
             ++valid_taps;
+            history_low = min(history_low, h.x);
+            history_high = max(history_high, h.x);
 #if OBSCURA_TEMPORAL_BENT_NORMALS
             history_bent += w * texelFetch(u_bent_history, q, 0).gba;
 #endif
@@ -156,7 +159,11 @@ void main() {
         // The cubic's 4x4 texels must lie in the output rectangle, the only part of the history that was written.
         bool cubic_inside = all(greaterThanEqual(base - 1, output_rect.xy)) &&
                             all(lessThanEqual(base + 2, output_rect.xy + output_rect.zw - 1));
-        if (valid_taps == 4 && cubic_inside) history = catmull_rom_history(previous_pixel) * weight_sum;
+        // Held within the four texels' range: the cubic's outer ring may lie on another surface (a silhouette one
+        // texel away), and its negative lobes overshoot at steps.
+        if (valid_taps == 4 && cubic_inside) {
+            history = clamp(catmull_rom_history(previous_pixel), history_low, history_high) * weight_sum;
+        }
         // The box holds the pixel's own value too: an image equal to its history is kept as it is.
         float spread = temporal.params.y * deviation;
         history = clamp(history / weight_sum, min(mean - spread, current), max(mean + spread, current));

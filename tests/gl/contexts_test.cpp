@@ -348,6 +348,10 @@ TEST_F(SyncTimings, AtOnceAfterRenderWithExactlyTheMethodsPasses) {
     ffao_saao.ffao.saao_blur = OBSCURA_TOGGLE_ON;
     obscura_settings ffao_rho0 = ffao;
     ffao_rho0.ffao.falloff = OBSCURA_FALLOFF_RHO0;
+    obscura_settings hbao_temporal = hbao;
+    hbao_temporal.temporal.enabled = OBSCURA_TOGGLE_ON;
+    obscura_settings gtao_temporal = method_defaults(OBSCURA_METHOD_GTAO);
+    gtao_temporal.temporal.enabled = OBSCURA_TOGGLE_ON;
     const Case cases[] = {
         {"hbao, blur", hbao, {"depth_prepare", "hbao", "blur", "composite"}},
         {"hbao, no blur", hbao_no_blur, {"depth_prepare", "hbao", "composite"}},
@@ -368,6 +372,8 @@ TEST_F(SyncTimings, AtOnceAfterRenderWithExactlyTheMethodsPasses) {
         {"ffao, another falloff shape: a new table",
          ffao_rho0,
          {"depth_prepare", "ffao_table", "ffao_scan", "ffao_prefix", "ffao_obscurance", "composite"}},
+        {"hbao, temporal", hbao_temporal, {"depth_prepare", "hbao", "blur", "temporal", "composite"}},
+        {"gtao, temporal", gtao_temporal, {"depth_prepare", "z_pyramid", "gtao", "gtao_denoise", "temporal", "composite"}},
     };
     Frame frame = box_frame(96, 64);
     uint64_t renders = 0;

@@ -743,7 +743,8 @@ typedef struct obscura_timing {
                           "line_sweep" "gather"; FFAO ["ffao_table" when the falloff's shape changed], then
                           "ffao_scan" ["ffao_prefix"] (geometry=mipmap: ["z_pyramid"] instead),
                           ["ffao_box_average"] "ffao_obscurance" ["ffao_gather" "blur"] (the last three with saao);
-                          GTAO ["z_pyramid"] "gtao" ["gtao_denoise"]; then "composite". Static strings */
+                          GTAO ["z_pyramid"] "gtao" ["gtao_denoise"]; then ["temporal"] (settings.temporal on),
+                          then "composite". Static strings */
     double milliseconds;
 } obscura_timing;
 
