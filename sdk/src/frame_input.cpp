@@ -42,6 +42,27 @@ int normal_mode_for_format(GLenum format) {
     }
 }
 
+// A texture that goes with the depth (normals, motion vectors): a GL_TEXTURE_2D of the depth's size, probed on
+// `unit` (the state guard restores it); its internal format in *format.
+Error check_companion_texture(const gl::Table& gl, GLuint texture, const char* field, int unit, const FrameInput& frame,
+                              GLenum* format) {
+    gl.ActiveTexture(GLenum(GL_TEXTURE0 + unit));
+    if (!gl.IsTexture(texture) || !texture_has_target(gl, texture, GL_TEXTURE_2D)) {
+        return Error::make(OBSCURA_STATUS_INVALID_TEXTURE, "%s %u is not a GL_TEXTURE_2D", field, texture);
+    }
+    GLint width = 0, height = 0, internal_format = 0;
+    gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &width);
+    gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &height);
+    gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTERNAL_FORMAT, &internal_format);
+    gl.BindTexture(GL_TEXTURE_2D, 0);
+    if (width != frame.width || height != frame.height) {
+        return Error::make(OBSCURA_STATUS_INVALID_TEXTURE, "%s %u is %dx%d; the depth is %dx%d", field, texture, width,
+                           height, frame.width, frame.height);
+    }
+    *format = GLenum(internal_format);
+    return Error();
+}
+
 bool all_zero(const float (&m)[16]) {
     for (float v : m) {
         if (v != 0.0f) return false;
@@ -216,24 +237,15 @@ Error check_input_textures(const gl::Table& gl, const obscura_input& input, Fram
 
     // Optional normals: a 2D texture of the same size with a signed or unsigned-normalised RGB(A) format.
     if (input.normal_texture != 0) {
-        gl.ActiveTexture(GL_TEXTURE0 + OBSCURA_UNIT_NORMALS);
-        if (!gl.IsTexture(input.normal_texture) || !texture_has_target(gl, input.normal_texture, GL_TEXTURE_2D)) {
-            return Error::make(OBSCURA_STATUS_INVALID_TEXTURE, "normal_texture %u is not a GL_TEXTURE_2D",
-                               input.normal_texture);
-        }
-        gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &width);
-        gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &height);
-        gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
-        gl.BindTexture(GL_TEXTURE_2D, 0);
-        if (width != frame.width || height != frame.height) {
-            return Error::make(OBSCURA_STATUS_INVALID_TEXTURE, "normal_texture %u is %dx%d; the depth is %dx%d",
-                               input.normal_texture, width, height, frame.width, frame.height);
-        }
-        frame.normal_mode = normal_mode_for_format(GLenum(format));
+        GLenum normal_format = 0;
+        Error error = check_companion_texture(gl, input.normal_texture, "normal_texture", OBSCURA_UNIT_NORMALS, frame,
+                                              &normal_format);
+        if (error) return error;
+        frame.normal_mode = normal_mode_for_format(normal_format);
         if (frame.normal_mode < 0) {
             return Error::make(OBSCURA_STATUS_UNSUPPORTED_FORMAT,
                                "normal_texture %u has format 0x%04X; use a float, snorm or unorm RGB(A) format",
-                               input.normal_texture, unsigned(format));
+                               input.normal_texture, unsigned(normal_format));
         }
     } else {
         frame.normal_mode = OBSCURA_NORMALS_RECONSTRUCT;
@@ -241,24 +253,14 @@ Error check_input_textures(const gl::Table& gl, const obscura_input& input, Fram
 
     // Optional motion vectors: a 2D texture of the depth's size with two float channels.
     if (input.motion_vector_texture != 0) {
-        gl.ActiveTexture(GL_TEXTURE0 + OBSCURA_UNIT_MOTION);
-        if (!gl.IsTexture(input.motion_vector_texture) ||
-            !texture_has_target(gl, input.motion_vector_texture, GL_TEXTURE_2D)) {
-            return Error::make(OBSCURA_STATUS_INVALID_TEXTURE, "motion_vector_texture %u is not a GL_TEXTURE_2D",
-                               input.motion_vector_texture);
-        }
-        gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &width);
-        gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &height);
-        gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
-        gl.BindTexture(GL_TEXTURE_2D, 0);
-        if (width != frame.width || height != frame.height) {
-            return Error::make(OBSCURA_STATUS_INVALID_TEXTURE, "motion_vector_texture %u is %dx%d; the depth is %dx%d",
-                               input.motion_vector_texture, width, height, frame.width, frame.height);
-        }
-        if (format != GL_RG16F && format != GL_RG32F) {
+        GLenum motion_format = 0;
+        Error error = check_companion_texture(gl, input.motion_vector_texture, "motion_vector_texture",
+                                              OBSCURA_UNIT_MOTION, frame, &motion_format);
+        if (error) return error;
+        if (motion_format != GL_RG16F && motion_format != GL_RG32F) {
             return Error::make(OBSCURA_STATUS_UNSUPPORTED_FORMAT,
                                "motion_vector_texture %u has format 0x%04X; use GL_RG16F or GL_RG32F",
-                               input.motion_vector_texture, unsigned(format));
+                               input.motion_vector_texture, unsigned(motion_format));
         }
     }
     *out = frame;
