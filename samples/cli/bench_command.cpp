@@ -43,6 +43,7 @@ struct BenchConfig {
     Clock clock = Clock::Auto;
     std::optional<std::string> json_path;
     std::optional<std::string> csv_path;
+    double motion_degrees = 0.0;  // --motion: the previous frame's camera, turned back along the orbit by this much
 };
 
 BenchConfig take_bench_config(ArgumentList& arguments) {
@@ -63,6 +64,10 @@ BenchConfig take_bench_config(ArgumentList& arguments) {
     if (auto clock = arguments.take_value("--clock")) config.clock = parse_clock(*clock);
     config.json_path = arguments.take_value("--json");
     config.csv_path = arguments.take_value("--csv");
+    if (auto motion = arguments.take_value("--motion")) {
+        if (config.scene.depth_file) throw UsageError("--motion needs a scene (a depth file has one camera)");
+        config.motion_degrees = parse_double_in("--motion", *motion, -45.0, 45.0);
+    }
     arguments.require_all_taken();
     return config;
 }
@@ -193,9 +198,14 @@ int run_bench(ArgumentList& arguments) {
         const samples::RenderedScene scene = source.render(source.camera(), size);
         std::printf("\nscene: %s\n", source.describe(scene.frame()).c_str());
         const AoTarget target(scene->output_rect.width, scene->output_rect.height, GL_R8);
+        // --motion: every frame reprojects from a camera turned by that much (temporal accumulation's moving path;
+        // only the previous frame's matrices are needed, not its depth).
+        samples::SceneFrame previous = scene.frame();
+        previous.view = samples::orbit_camera(source.camera(), float(-config.motion_degrees)).view();
         for (const MethodSpec& method : config.methods) {
             AoRenderRequest request;
             request.scene = &scene.frame();
+            if (config.motion_degrees != 0.0) request.previous_scene = &previous;
             request.settings = &method.settings;
             request.target = &target;
             request.use_normals = source.use_normals();

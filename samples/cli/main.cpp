@@ -23,7 +23,7 @@ const char* const kUsage = R"(usage:
   obscura truth --out TRUTH.pfm [--depth-out DEPTH.pfm] [--png TRUTH.png] [--falloff SPEC]
                 [--rays 1024] [--seed 1] [SCENE without --depth]
   obscura bench [--methods SPEC,SPEC,...] [--set KEY=VALUE]... [--sizes 1280x720,1920x1080,...]
-                [--frames 50] [--warmup 5] [--clock auto|gpu-timer|wall] [--json BENCH.json]
+                [--frames 50] [--warmup 5] [--clock auto|gpu-timer|wall] [--motion DEG] [--json BENCH.json]
                 [--csv BENCH.csv] [SCENE without --size]
   obscura tune --method SPEC --scenes NAME[@VIEWPOINT],... [--size 320x180] [--budget RATIOx:SPEC]
                [--keys KEY,KEY,...] [--evaluations 60] [--truth-rays 256] [--seed 1] [--json TUNE.json]
@@ -87,7 +87,9 @@ truth ray-traces the geometry truth of one view (--falloff: a method spec whose 
 bench times warm frames, median and min, in total and per pass. Clock: GL timer queries on a GPU
   ("gpu-timer"), wall time around render + glFinish on llvmpipe/softpipe, whose timer queries read 0
   ("wall"; passes then by glFinish + CPU clock). A configuration the SDK refuses is reported (JSON
-  "error", CSV pass "failed") and the others still run; the exit status is then 1.
+  "error", CSV pass "failed") and the others still run; the exit status is then 1. --motion DEG: each frame
+  passes the previous camera turned DEG degrees back along the orbit, so temporal accumulation times its
+  moving path (reprojection through the matrices) instead of a still camera's.
 tune searches SPEC's settings, starting from them, for the lowest mean_abs against the geometry truth
   averaged over the --scenes views (e.g. atrium,objects,clutter@VIEWPOINT; default viewpoints otherwise), the
   truth weighed with each candidate's own falloff (obscura_reference_settings_for; one truth traced per

@@ -1,7 +1,7 @@
 // Temporal accumulation, after every method's reconstruction: this frame's AO blended into the view's history.
 // Per pixel of the output rectangle:
 //   1. reproject: the pixel's surface point in the previous frame, from the two view-projections (through the
-//      depth) or the host's motion vectors; a static camera reads the same texel;
+//      depth) or the host's motion vectors; a static camera reads the same texel (OBSCURA_TEMPORAL_STATIC);
 //   2. read the history bilinearly, each of the 4 texels only if it lies on the pixel's tangent plane as the
 //      previous frame saw it (its stored depth within plane_tolerance of the plane, relative to the distance):
 //      disocclusions and moving edges fall out; a reprojection within 1/256 texel of a centre reads that texel
@@ -91,25 +91,27 @@ void main() {
     // 1. Where the pixel's point was.
     vec3 position = obscura_view_position(p, depth);
     vec3 normal = obscura_decode_normal(texelFetch(u_normals, p, 0).xy);
-    // A static camera (the same view-projection) reads its own texel: no matrix work.
-    bool identity = temporal.config.y == OBSCURA_TEMPORAL_REPROJECT_IDENTITY;
+#if OBSCURA_TEMPORAL_STATIC
+    // A static camera (the same view-projection: its own variant, since CPU rasterisers run every lane through
+    // every branch) reads its own texel: no matrix work, one history texel, no cubic.
+    vec3 previous_position = position, previous_normal = normal;
+    vec2 previous_pixel = vec2(p) + 0.5;
+    const int kTaps = 1;
+#else
     mat4 reprojection = columns(temporal.reprojection);
     mat3 rotation = mat3(reprojection);  // rigid up to the projections' jitter
-    vec3 previous_position = position, previous_normal = normal;
-    if (!identity) {
-        vec4 previous_h = reprojection * vec4(position, 1.0);
-        previous_position = previous_h.xyz / previous_h.w;
-        previous_normal = normalize(rotation * normal);
-    }
+    vec4 previous_h = reprojection * vec4(position, 1.0);
+    vec3 previous_position = previous_h.xyz / previous_h.w;
+    vec3 previous_normal = normalize(rotation * normal);
     vec2 previous_pixel;
     if (temporal.config.y == OBSCURA_TEMPORAL_REPROJECT_MOTION) {
         previous_pixel = vec2(p) + 0.5 + texelFetch(u_motion, p, 0).xy * temporal.motion.xy;
-    } else if (temporal.config.y == OBSCURA_TEMPORAL_REPROJECT_MATRICES) {
+    } else {
         vec4 clip = columns(temporal.previous_clip) * vec4(position, 1.0);
         previous_pixel = (clip.xy / clip.w * 0.5 + 0.5) * vec2(depth_size.xy);
-    } else {
-        previous_pixel = vec2(p) + 0.5;
     }
+    const int kTaps = 4;
+#endif
 
     // 2. The history's texels that lie on the point's plane, bilinearly weighted.
     vec2 f = previous_pixel - 0.5;
@@ -127,7 +129,7 @@ void main() {
     float tolerance = temporal.params.z * length(previous_position);
     int valid_taps = 0;
     if (temporal.config.x != 0) {
-        for (int i = 0; i < 4; ++i) {
+        for (int i = 0; i < kTaps; ++i) {
             ivec2 o = ivec2(i & 1, i >> 1);
             float w = (o.x == 1 ? t.x : 1.0 - t.x) * (o.y == 1 ? t.y : 1.0 - t.y);
             ivec2 q = base + o;
@@ -157,6 +159,7 @@ void main() {
         // Between texels, with all four on the pixel's surface: the cubic read instead of the bilinear one (its
         // wider footprint can reach another surface at an edge; the clamp below bounds what that brings).
         // The cubic's 4x4 texels must lie in the output rectangle, the only part of the history that was written.
+#if !OBSCURA_TEMPORAL_STATIC
         bool cubic_inside = all(greaterThanEqual(base - 1, output_rect.xy)) &&
                             all(lessThanEqual(base + 2, output_rect.xy + output_rect.zw - 1));
         // Held within the four texels' range: the cubic's outer ring may lie on another surface (a silhouette one
@@ -164,6 +167,7 @@ void main() {
         if (valid_taps == 4 && cubic_inside) {
             history = clamp(catmull_rom_history(previous_pixel), history_low, history_high) * weight_sum;
         }
+#endif
         // The box holds the pixel's own value too: an image equal to its history is kept as it is.
         float spread = temporal.params.y * deviation;
         history = clamp(history / weight_sum, min(mean - spread, current), max(mean + spread, current));
@@ -172,7 +176,11 @@ void main() {
         result = mix(history, current, alpha);
 #if OBSCURA_TEMPORAL_BENT_NORMALS
         // The previous view's bent normal in this view: the inverse rotation.
+#if OBSCURA_TEMPORAL_STATIC
+        vec3 previous_bent = history_bent;
+#else
         vec3 previous_bent = transpose(rotation) * history_bent;
+#endif
         float previous_length = length(previous_bent);
         if (previous_length > 0.0) result_bent = normalize(mix(previous_bent / previous_length, current_bent, alpha));
 #endif

@@ -1,5 +1,7 @@
 #include "passes/temporal.h"
 
+#include <cstdio>
+
 namespace obscura {
 
 Error TemporalHistory::prepare(const PassEnv& env, const FrameInput& input, bool bent_normals, uint64_t signature,
@@ -46,12 +48,14 @@ void TemporalHistory::release() {
     current_ = 0;
 }
 
-Error TemporalPass::prepare(const PassEnv& env, bool bent_normals) {
+Error TemporalPass::prepare(const PassEnv& env, bool bent_normals, bool static_camera) {
     if (!linear_sampler_) linear_sampler_ = gl::create_sampler_linear_clamp(env.gl);
-    gl::Object& program = programs_[bent_normals ? 1 : 0];
+    gl::Object& program = programs_[bent_normals ? 1 : 0][static_camera ? 1 : 0];
     if (program) return Error();
-    return env.build("temporal_accumulate.comp", bent_normals ? "OBSCURA_TEMPORAL_BENT_NORMALS 1\n" : "OBSCURA_TEMPORAL_BENT_NORMALS 0\n",
-                     &program);
+    char defines[96];
+    std::snprintf(defines, sizeof defines, "OBSCURA_TEMPORAL_BENT_NORMALS %d\nOBSCURA_TEMPORAL_STATIC %d\n",
+                  bent_normals ? 1 : 0, static_camera ? 1 : 0);
+    return env.build("temporal_accumulate.comp", defines, &program);
 }
 
 TemporalConstants TemporalPass::constants(const obscura_temporal_settings& settings, const FrameInput& input,
@@ -84,7 +88,7 @@ void TemporalPass::run(const PassEnv& env, const UniformRange& frame, const Unif
                        const gl::Texture2D* bent_source, const TemporalHistory& history) {
     const gl::Table& gl = env.gl;
     const bool bent = bent_source != nullptr;
-    gl.UseProgram(programs_[bent ? 1 : 0].name());
+    gl.UseProgram(programs_[bent ? 1 : 0][static_camera(input) ? 1 : 0].name());
     env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
     env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
     env.bind_texture(OBSCURA_UNIT_SOURCE, GL_TEXTURE_2D, source.name());

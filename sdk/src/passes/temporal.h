@@ -39,7 +39,11 @@ private:
 
 class TemporalPass {
 public:
-    Error prepare(const PassEnv& env, bool bent_normals);
+    // A frame whose camera did not move (equal view-projections, no motion vectors): its own program variant.
+    static bool static_camera(const FrameInput& input) {
+        return input.identity_reprojection && input.motion_vector_texture == 0;
+    }
+    Error prepare(const PassEnv& env, bool bent_normals, bool static_camera);
     static TemporalConstants constants(const obscura_temporal_settings& settings, const FrameInput& input,
                                        bool continues);
     // Blends `source` (R16F visibility; `bent_source`, RGBA16F, with bent normals) over `region` into the history's
@@ -49,7 +53,8 @@ public:
              const gl::Texture2D* bent_source, const TemporalHistory& history);
 
 private:
-    gl::Object programs_[2];  // without, with bent normals
+    // [bent normals][static camera]: a static camera's variant reads one history texel and does no matrix work.
+    gl::Object programs_[2][2];
     gl::Object linear_sampler_;  // the history's cubic read filters bilinear groups
 };
 
