@@ -71,10 +71,10 @@ CompareConfig take_compare_config(ArgumentList& arguments) {
     if (auto classes = arguments.take_optional_value("--classes")) config.classes = parse_classes(*classes);
     const std::optional<std::string> methods = arguments.take_value("--methods");
     std::vector<std::string> sets = arguments.take_values("--set");
-    // --temporal on|off: every method's temporal accumulation (the setting `temporal`; a spec's own key wins).
+    // --temporal on|off: every method's temporal accumulation (the setting `temporal.enabled`; a spec's own key wins).
     if (auto temporal = arguments.take_value("--temporal")) {
         if (*temporal != "on" && *temporal != "off") throw UsageError("--temporal takes on or off, not '" + *temporal + "'");
-        sets.insert(sets.begin(), "temporal=" + *temporal);
+        sets.insert(sets.begin(), "temporal.enabled=" + *temporal);
     }
     config.methods = parse_method_specs("--methods", methods ? *methods : default_method_list(), sets);
     config.scene = take_scene_source_options(arguments, /*takes_size=*/true);

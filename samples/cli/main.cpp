@@ -69,10 +69,11 @@ compare renders each method and measures it against its truth with the same fall
   too dark, blue too bright, full at 0.2), geometry_truth_<k>.png and/or reference_<k>.png (one per
   falloff) and contact_sheet.png (method | truth | signed error). --orbit DEG --frames
   N: N frames along an orbit of DEG degrees in total (images of the first); errors are averaged over them,
-  flicker measures the temporal error and last is the last frame's mean_abs. The frames pass their cameras and
-  frame index to the SDK; --temporal on|off sets every method's temporal accumulation (the setting "temporal",
-  also as a spec key: hbao,hbao:temporal=on), which then runs through the frames in order. --strip writes one sheet of the methods' AO labelled with their
-  settings, then the first truth's images if there are several (falloffs differ).
+  flicker measures the temporal error and last is the last frame's mean_abs. The frames pass their cameras
+  and frame index to the SDK; --temporal on|off sets every method's temporal accumulation (the setting
+  temporal.enabled, also a spec key: hbao,hbao:temporal.enabled=on), which then runs through the frames in
+  order. --strip writes one sheet of the methods' AO labelled with their settings, then the first truth's
+  images if there are several (falloffs differ).
   --classes [RADIUS_M[,THICKNESS_M]] (default 1,0.3) splits the geometry pixels by where a screen-space method's
   thickness assumption matters and prints per truth and method mean_abs and signed over each class: silhouette
   (a 4-neighbour, or sky, farther by more than max(0.1 m, 5 % of the depth)), halo (not silhouette, and a silhouette

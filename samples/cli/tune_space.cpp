@@ -40,10 +40,10 @@ constexpr NeverSearched kNeverSearched[] = {
     {"frame_index", "moves the noise pattern only"},
     {"first_ray", "picks which rays of the sequence are traced, not how many"},
     {"rays_per_dispatch", "batches the rays into dispatches: scheduling only"},
-    {"temporal", "accumulates over frames; tune weighs one frame"},
-    {"temporal_frames", "accumulates over frames; tune weighs one frame"},
-    {"temporal_clamp", "accumulates over frames; tune weighs one frame"},
-    {"temporal_plane_tolerance", "accumulates over frames; tune weighs one frame"},
+    {"temporal.enabled", "accumulates over frames; tune weighs one frame"},
+    {"temporal.max_frames", "accumulates over frames; tune weighs one frame"},
+    {"temporal.clamp", "accumulates over frames; tune weighs one frame"},
+    {"temporal.plane_tolerance", "accumulates over frames; tune weighs one frame"},
 };
 
 const char* never_searched_reason(const std::string& name) {

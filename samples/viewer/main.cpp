@@ -20,7 +20,7 @@ constexpr const char* kUsage =
     "  screen-space reference (REFERENCE: the depth buffer ray-traced, infinitely thick; the default), or\n"
     "  `truth`, the geometry truth (the scene's triangles ray-traced on the CPU, --truth-rays per pixel,\n"
     "  default 256; not for .pfm depth files); a SPEC puts a second method on the split view's right.\n"
-    "--spin DEG turns the orbit camera DEG degrees every frame: with --method M:temporal=on --compare M --view\n"
+    "--spin DEG turns the orbit camera DEG degrees every frame: with --method M:temporal.enabled=on --compare M --view\n"
     "  split, temporal accumulation on (left) and off (right) side by side while the camera moves.\n"
     "--screenshot with --frames N renders N frames, saves the window (panel included) and exits; with\n"
     "  --compare truth the frame before the last waits for the geometry truth to complete.\n"

@@ -111,9 +111,9 @@ const Preset kPresets[] = {
     {OBSCURA_METHOD_GTAO, "visibility bitmask, 0.3 m thick", "gtao:thickness_mode=bitmask"},
     // Temporal presets: fewer samples a frame, accumulated over up to 16 (docs/quality.md, "Temporal presets": each
     // converges, on a still camera, to less error than its method's defaults).
-    {OBSCURA_METHOD_HBAO, "temporal: K=4, no blur, 16 frames", "hbao:directions=4:blur=off:temporal=on:temporal_frames=16"},
-    {OBSCURA_METHOD_SAO, "temporal: s=3, 16 frames", "sao:samples=3:temporal=on:temporal_frames=16"},
-    {OBSCURA_METHOD_GTAO, "temporal: 1 slice x 4 steps, 16 frames", "gtao:slices=1:steps=4:temporal=on:temporal_frames=16"},
+    {OBSCURA_METHOD_HBAO, "temporal: K=4, no blur, 16 frames", "hbao:directions=4:blur=off:temporal.enabled=on:temporal.max_frames=16"},
+    {OBSCURA_METHOD_SAO, "temporal: s=3, 16 frames", "sao:samples=3:temporal.enabled=on:temporal.max_frames=16"},
+    {OBSCURA_METHOD_GTAO, "temporal: 1 slice x 4 steps, 16 frames", "gtao:slices=1:steps=4:temporal.enabled=on:temporal.max_frames=16"},
 };
 
 // One method's panel state: its settings and the text boxes of save/load, copy-as-C and the falloff table's

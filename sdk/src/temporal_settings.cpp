@@ -9,16 +9,16 @@ namespace {
 // disocclusion recovers within a few frames), a clamp of 2 deviations (wide enough that the per-frame noise of a
 // converged pixel stays inside it), a 2 % plane tolerance (the denoisers' own scale of "the same surface").
 const obscura_setting_info kTemporalSettings[] = {
-    setting_row("temporal", OBSCURA_SETTING_TOGGLE, 0, 0, 1, "",
+    setting_row("temporal.enabled", OBSCURA_SETTING_TOGGLE, 0, 0, 1, "",
      "accumulate frames per view: reprojected history, disocclusion rejection, neighbourhood clamp",
      OBSCURA_SETTING_OFFSET(temporal, enabled)),
-    setting_row("temporal_frames", OBSCURA_SETTING_INT, 8, 1, 64, "frames",
+    setting_row("temporal.max_frames", OBSCURA_SETTING_INT, 8, 1, 64, "frames",
      "the most frames the history averages (exponential blend with weight 1 / min(age + 1, N))",
      OBSCURA_SETTING_OFFSET(temporal, max_frames)),
-    setting_row("temporal_clamp", OBSCURA_SETTING_FLOAT, 2.0, 0.25, 64.0, "sigma",
+    setting_row("temporal.clamp", OBSCURA_SETTING_FLOAT, 2.0, 0.25, 64.0, "sigma",
      "the history is held within the current 3x3 mean +- this many standard deviations (bounds ghosting)",
      OBSCURA_SETTING_OFFSET(temporal, clamp)),
-    setting_row("temporal_plane_tolerance", OBSCURA_SETTING_FLOAT, 0.02, 1e-4, 1.0, "",
+    setting_row("temporal.plane_tolerance", OBSCURA_SETTING_FLOAT, 0.02, 1e-4, 1.0, "",
      "a history texel farther from the pixel's tangent plane than this fraction of its distance is dropped",
      OBSCURA_SETTING_OFFSET(temporal, plane_tolerance)),
 };

@@ -9,7 +9,7 @@
 #   depth        render.json of a depth file: the file's 64x36
 #   compare      report.json (--truth both): one block per truth (geometry, then screen), methods[0] errors
 #                against each in range, settings, times, the pixel counts
-#   orbit        report.json: methods[0] has a flicker against the geometry truth in range
+#   orbit        report.json: methods[0] has a flicker and a last frame's error against the geometry truth in range
 #   classes      report.json of --classes 1,0.3: the "classes" block (radius, thickness, its image, the counts adding
 #                up to the geometry pixels) and each method's errors per class; the other keys as without it
 #   truth        the capture `truth` wrote reads back: `render --depth` of its depth gives the scene's own
@@ -251,6 +251,7 @@ elseif(CHECK STREQUAL "compare" OR CHECK STREQUAL "orbit")
   expect_string(1_hbao_error_geometry.png methods 0 errors geometry error_image)
   if(CHECK STREQUAL "orbit")
     expect_number(methods 0 errors geometry flicker MIN 0 MAX 0.1)
+    expect_number(methods 0 errors geometry last_frame_mean_abs MIN 0.001 MAX 0.05)
   else()
     expect_string(screen truths 1 truth kind)
     expect_number(truths 1 truth rays MIN 16 MAX 16)

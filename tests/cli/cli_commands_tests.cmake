@@ -72,6 +72,16 @@ obscura_cli_command_test(compare_strip 0
 obscura_cli_command_test(compare_orbit_flicker 0
   "compare|${scene}|--methods|hbao|--truth-rays|64|--orbit|4|--frames|2|--json|report.json"
   GL CHECK orbit EXPECT_FILES "compare-output/1_hbao.png|compare-output/contact_sheet.png" EXPECT_STDOUT "flicker")
+# --temporal on: the frames accumulate (the cameras and frame index reach the SDK); the table and the report add the
+# last frame's error (check orbit).
+obscura_cli_command_test(compare_orbit_temporal 0
+  "compare|${scene}|--methods|hbao|--temporal|on|--truth-rays|64|--orbit|4|--frames|3|--json|report.json"
+  GL CHECK orbit EXPECT_STDOUT "flicker +last")
+obscura_cli_command_test(compare_temporal_bad_value 2 "compare|--temporal|maybe" EXPECT_STDERR "--temporal takes on or off")
+# bench --motion: the temporal pass's moving path is timed and reported.
+obscura_cli_command_test(bench_temporal_motion 0
+  "bench|--scene|analytic|--sizes|96x54|--methods|hbao:temporal.enabled=on|--motion|1|--frames|2|--warmup|1"
+  GL EXPECT_STDOUT "\n  temporal +[0-9.]+")
 # --classes: the geometry pixels split into silhouette, halo and rest, a line of counts and a table of each method's
 # error per class, classes.png and the report's "classes" (check classes). Bare --classes (the defaults) before
 # another option; a depth file's classes come from its depth.

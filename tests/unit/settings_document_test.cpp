@@ -37,7 +37,11 @@ std::vector<obscura_setting_info> infos_of(obscura_method method) {
     const obscura_setting_info* infos = nullptr;
     uint32_t count = 0;
     EXPECT_EQ(obscura_get_setting_infos(method, &infos, &count), OBSCURA_OK);
-    return std::vector<obscura_setting_info>(infos, infos + count);
+    std::vector<obscura_setting_info> rows(infos, infos + count);
+    // Then the rows every method shares (temporal accumulation), which the document holds too.
+    EXPECT_EQ(obscura_get_temporal_setting_infos(&infos, &count), OBSCURA_OK);
+    rows.insert(rows.end(), infos, infos + count);
+    return rows;
 }
 
 obscura_settings defaults_of(obscura_method method) {
@@ -113,6 +117,10 @@ const obscura_setting_info& info_of(obscura_method method, const char* name) {
     const obscura_setting_info* infos = nullptr;
     uint32_t count = 0;
     EXPECT_EQ(obscura_get_setting_infos(method, &infos, &count), OBSCURA_OK);
+    for (uint32_t i = 0; i < count; ++i) {
+        if (std::strcmp(infos[i].name, name) == 0) return infos[i];
+    }
+    EXPECT_EQ(obscura_get_temporal_setting_infos(&infos, &count), OBSCURA_OK);
     for (uint32_t i = 0; i < count; ++i) {
         if (std::strcmp(infos[i].name, name) == 0) return infos[i];
     }
@@ -485,11 +493,17 @@ TEST(SettingsDocument, CRebuildsTheSettingsOfEveryMethod) {
                 ASSERT_EQ(line.compare(line.size() - 3, 3, " */"), 0) << line;
                 line.erase(comment);
             }
-            ASSERT_EQ(line.compare(0, prefix.size(), prefix), 0) << line;
+            // A shared row (temporal accumulation) is settings.<block>.<field>, its key "<block>.<field>".
+            const std::string shared_prefix = "settings.temporal.";
+            const bool shared = line.compare(0, shared_prefix.size(), shared_prefix) == 0;
+            if (!shared) {
+                ASSERT_EQ(line.compare(0, prefix.size(), prefix), 0) << line;
+            }
             const size_t equals = line.find(" = ");
             ASSERT_NE(equals, std::string::npos) << line;
             ASSERT_EQ(line.back(), ';') << line;
-            const std::string key = line.substr(prefix.size(), equals - prefix.size());
+            const size_t key_start = shared ? std::string("settings.").size() : prefix.size();
+            const std::string key = line.substr(key_start, equals - key_start);
             EXPECT_EQ(key, expected_keys[i - 2]);
             const std::string literal = line.substr(equals + 3, line.size() - equals - 4);
             double value = 0.0;
@@ -604,8 +618,27 @@ TEST(SettingsDocument, MetadataKeysAreTheCFieldNames) {
         OBSCURA_TEST_FIELD(gtao, denoise_sharpness), OBSCURA_TEST_FIELD(gtao, frame_index),
     };
 #undef OBSCURA_TEST_FIELD
+    // The rows every method shares name their block: "temporal.enabled" is settings.temporal.enabled.
+#define OBSCURA_TEST_SHARED_FIELD(block, field) {#block "." #field, offsetof(obscura_settings, block.field)}
+    const struct {
+        const char* name;
+        size_t offset;
+    } shared_fields[] = {
+        OBSCURA_TEST_SHARED_FIELD(temporal, enabled), OBSCURA_TEST_SHARED_FIELD(temporal, max_frames),
+        OBSCURA_TEST_SHARED_FIELD(temporal, clamp), OBSCURA_TEST_SHARED_FIELD(temporal, plane_tolerance),
+    };
+#undef OBSCURA_TEST_SHARED_FIELD
+    const obscura_setting_info* shared = nullptr;
+    uint32_t shared_count = 0;
+    ASSERT_EQ(obscura_get_temporal_setting_infos(&shared, &shared_count), OBSCURA_OK);
+    ASSERT_EQ(shared_count, sizeof shared_fields / sizeof shared_fields[0]);
+    for (uint32_t i = 0; i < shared_count; ++i) {
+        EXPECT_STREQ(shared[i].name, shared_fields[i].name);
+        EXPECT_EQ(shared[i].offset, shared_fields[i].offset) << shared[i].name;
+    }
     for (obscura_method method : all_methods()) {
         for (const obscura_setting_info& info : infos_of(method)) {
+            if (std::strchr(info.name, '.')) continue;  // a shared row: checked above
             const Field* match = nullptr;
             for (const Field& field : fields) {
                 if (std::strcmp(field.method, obscura_method_name(method)) == 0 &&

@@ -591,7 +591,8 @@ OBSCURA_API obscura_status obscura_get_setting_infos_sized(obscura_method method
     obscura_get_setting_infos_sized((method), (out_infos), (out_count), (uint32_t)sizeof(obscura_setting_info))
 
 /* Sets *out_infos to the static table of the settings every method shares (0.5: obscura_temporal_settings, the rows
-   "temporal", "temporal_frames", ...; offsets inside obscura_settings), *out_count to its length. The get/set
+   "temporal.enabled", "temporal.max_frames", ...: the block's name, a dot and the C field's name; offsets inside
+   obscura_settings), *out_count to its length. The get/set
    functions below find these names for every method. Returns OK, NULL_ARGUMENT. */
 OBSCURA_API obscura_status obscura_get_temporal_setting_infos(const obscura_setting_info** out_infos,
                                                               uint32_t* out_count);
