@@ -16,7 +16,7 @@ const obscura_setting_info kTemporalSettings[] = {
      "the most frames the history averages (exponential blend with weight 1 / min(age + 1, N))",
      OBSCURA_SETTING_OFFSET(temporal, max_frames)),
     setting_row("temporal.clamp", OBSCURA_SETTING_FLOAT, 2.0, 0.25, 64.0, "sigma",
-     "the history is held within the current 3x3 mean +- this many standard deviations (bounds ghosting)",
+     "the history is held within this frame's 7-texel mean +- this many standard deviations (bounds ghosting)",
      OBSCURA_SETTING_OFFSET(temporal, clamp)),
     setting_row("temporal.plane_tolerance", OBSCURA_SETTING_FLOAT, 0.02, 1e-4, 1.0, "",
      "a history texel farther from the pixel's tangent plane than this fraction of its distance is dropped",

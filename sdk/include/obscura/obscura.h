@@ -465,8 +465,9 @@ typedef struct obscura_gtao_settings {
 
 /* TEMPORAL ACCUMULATION (0.5), for every method: a pass after the method blends its result into a history kept per
    view (obscura_view), reprojected from the frame's depth and the two view-projection matrices of obscura_input (or
-   its motion vectors). A history pixel is dropped where the reprojected surface does not lie on the stored one's
-   plane (disocclusion), clamped to the current frame's 3x3 neighbourhood (mean +- clamp * deviation) to bound
+   its motion vectors; the projection is taken as unchanged between the two frames, jitter aside). A history pixel
+   is dropped where the reprojected surface does not lie on the stored one's plane (disocclusion), clamped to the
+   current frame's neighbourhood (7 texels: mean +- clamp * deviation, and the pixel's own value) to bound
    ghosting, and blended with weight 1 / (frames seen + 1) up to max_frames, so a static view converges to the
    mean of that many frames. Each method moves its noise with obscura_input.frame_index. Without the matrices and
    motion vectors, or with OBSCURA_INPUT_FLAG_RESET_HISTORY, the frame starts a new history; so does a change of
@@ -480,7 +481,7 @@ typedef struct obscura_temporal_settings {
     int32_t max_frames;     /* N: the history weighs at most N - 1 frames against the current one's 1, [1, 64].
                                Default 8 */
     float clamp;            /* neighbourhood clamp: the history is held within mean +- clamp * standard deviation of
-                               the current 3x3 neighbourhood, [0.25, 64]. Default 2 */
+                               the current frame's 7-texel neighbourhood, [0.25, 64]. Default 2 */
     float plane_tolerance;  /* disocclusion: a history texel farther from the pixel's tangent plane than this fraction
                                of its distance is dropped, [1e-4, 1]. Default 0.02 */
 } obscura_temporal_settings;
@@ -592,8 +593,8 @@ OBSCURA_API obscura_status obscura_get_setting_infos_sized(obscura_method method
 
 /* Sets *out_infos to the static table of the settings every method shares (0.5: obscura_temporal_settings, the rows
    "temporal.enabled", "temporal.max_frames", ...: the block's name, a dot and the C field's name; offsets inside
-   obscura_settings), *out_count to its length. The get/set
-   functions below find these names for every method. Returns OK, NULL_ARGUMENT. */
+   obscura_settings), *out_count to its length. The get/set functions below find these names for every method.
+   Returns OK, NULL_ARGUMENT. */
 OBSCURA_API obscura_status obscura_get_temporal_setting_infos(const obscura_setting_info** out_infos,
                                                               uint32_t* out_count);
 
