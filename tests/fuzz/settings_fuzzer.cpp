@@ -227,7 +227,8 @@ const obscura_setting_info* find_info(int32_t method, const char* name) {
     return nullptr;
 }
 
-// Calls `visit(method, info)` for every row of every method (each method's block is its own).
+// Calls `visit(method, info)` for every row of every method (each method's block is its own), then for the rows
+// every method shares (temporal accumulation, their own block), given with HBAO (any method reaches them by name).
 template <class Visit>
 void for_each_row(Visit&& visit) {
     for (int32_t m = OBSCURA_METHOD_HBAO; m < int32_t(OBSCURA_METHOD_COUNT_); ++m) {
@@ -235,6 +236,11 @@ void for_each_row(Visit&& visit) {
         const obscura_setting_info* infos = infos_of(m, &count);
         for (uint32_t i = 0; i < count; ++i) visit(m, infos[i]);
     }
+    uint32_t shared_count = 0;
+    const obscura_setting_info* shared = nullptr;
+    FUZZ_CHECK(obscura_get_temporal_setting_infos(&shared, &shared_count) == kOk && shared_count > 0,
+               "obscura_get_temporal_setting_infos failed");
+    for (uint32_t i = 0; i < shared_count; ++i) visit(int32_t(OBSCURA_METHOD_HBAO), shared[i]);
 }
 
 // ---- obscura_get_last_error(NULL) ------------------------------------------------------------------------------
