@@ -35,6 +35,7 @@ void main() {
         if (obscura_is_sky(q_depth)) continue;
         float dz = (q_depth - depth) * sharpness;
         float w = exp(-float(i * i) * blur.params.y - dz * dz);
+        w = w >= 0.0 ? w : 0.0;  // a depth near 0 makes the sharpness infinite and 0 * inf a NaN
         delta_sum += w * (texelFetch(u_source, q, 0).r - center_ao);
         weight_sum += w;
     }

@@ -147,7 +147,12 @@ void main() {
     for (int s = 0; s < slices; ++s, dir = vec2(dir.x * turn.x - dir.y * turn.y, dir.x * turn.y + dir.y * turn.x)) {
         // The slice's axes: `along` is the screen direction in view space made orthogonal to V.
         vec3 line = vec3(normalize(dir * view_per_pixel), 0.0);
-        vec3 along = normalize(line - towards_eye * dot(line, towards_eye));
+        vec3 across = line - towards_eye * dot(line, towards_eye);
+        float across_length = length(across);
+        // A point (almost) on the eye plane sees the screen direction along V: there is no slice plane (normalize
+        // would return NaN).
+        if (!(across_length > 1e-6)) continue;
+        vec3 along = across / across_length;
         vec3 slice_normal = cross(along, towards_eye);
         // The normal projected into the slice: its length weighs the slice, its angle n from V.
         float n_along = dot(normal, along), n_view = dot(normal, towards_eye);

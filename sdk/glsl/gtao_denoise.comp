@@ -84,7 +84,8 @@ void main() {
             continue;
         }
         vec3 origin = position[i + 2];
-        float sharpness = gtao_denoise.params.x / length(origin);
+        // Bounded: a point at (almost) the eye would make it infinite, and 0 * inf a NaN weight.
+        float sharpness = gtao_denoise.params.x / max(length(origin), 1e-20);
         // The mean is the centre plus the weighted mean of the differences, so a uniform window returns its value
         // exactly (see bilateral_blur.comp: r16f truncates a sum that lands a rounding step below it).
         Value delta_sum = Value(0.0);
@@ -94,6 +95,7 @@ void main() {
             int k = i + 2 + j;
             float plane_distance = dot(position[k] - origin, normal) * sharpness;
             float w = valid[k] * (abs(j) == 2 ? 0.5 : 1.0) / (1.0 + plane_distance * plane_distance);
+            w = w >= 0.0 ? w : 0.0;  // positions near the float range give inf * 0 = NaN in the plane distance
             delta_sum += w * (value[k] - center);
             weight_sum += w;
         }

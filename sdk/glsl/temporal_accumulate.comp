@@ -82,6 +82,20 @@ void main() {
     vec2 texel = 1.0 / vec2(depth_size.xy);
     vec4 g00 = textureGather(u_source, (vec2(window) + 0.25) * texel, 0);
     vec4 g11 = textureGather(u_source, (vec2(window) + 1.25) * texel, 0);
+    // A rectangle under 3 texels on an axis leaves texels of the footprints outside it (never written: any value,
+    // NaN included): those count as the pixel's own value, chosen by selection so that nothing of theirs is left.
+    ivec2 rect_end = output_rect.xy + output_rect.zw;
+    ivec2 before = window - 1, after = window + 1;
+    bvec4 inside00 = bvec4(all(greaterThanEqual(ivec2(before.x, window.y), output_rect.xy)),  // x: (-1, 0)
+                           true,                                                                 // y: (0, 0)
+                           all(greaterThanEqual(ivec2(window.x, before.y), output_rect.xy)),  // z: (0, -1)
+                           all(greaterThanEqual(before, output_rect.xy)));                      // w: (-1, -1)
+    bvec4 inside11 = bvec4(all(lessThan(ivec2(window.x, after.y), rect_end)),                   // x: (0, 1)
+                           all(lessThan(after, rect_end)),                                      // y: (1, 1)
+                           all(lessThan(ivec2(after.x, window.y), rect_end)),                   // z: (1, 0)
+                           true);                                                                // w: (0, 0)
+    g00 = mix(vec4(current), g00, inside00);
+    g11 = mix(vec4(current), g11, inside11);
     vec3 c = vec3(g11.z, g11.x, g11.y);  // (1, 0), (0, 1), (1, 1); g11.w is the centre, g00.y again
     float sum = dot(g00, vec4(1.0)) + dot(c, vec3(1.0));
     float sum_sq = dot(g00, g00) + dot(c, c);
@@ -138,7 +152,7 @@ void main() {
             vec4 h = texelFetch(u_history, q, 0);
             if (!(h.y >= 1.0) || obscura_is_sky(h.z)) continue;  // no history there
             float plane_distance = abs(dot(obscura_view_position(q, h.z) - previous_position, previous_normal));
-            if (plane_distance > tolerance) continue;  // another surface: disoccluded or moved
+            if (!(plane_distance <= tolerance)) continue;  // another surface (disoccluded or moved), or not finite
             history += w * h.x;
             age += w * h.y;
             weight_sum += w;
