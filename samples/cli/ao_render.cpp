@@ -28,6 +28,8 @@ samples::FloatImage AoTarget::read() const {
 void render_ao(const ObscuraSession& session, const AoRenderRequest& request) {
     obscura_input input = request.scene->make_input(request.use_normals, request.previous_scene, request.frame_index);
     if (request.reset_history) input.flags |= OBSCURA_INPUT_FLAG_RESET_HISTORY;
+    input.view = request.view;
+    if (!request.use_motion_vectors) input.motion_vector_texture = 0;
     obscura_output output{};
     output.struct_size = sizeof output;
     output.texture = request.target->texture();

@@ -46,6 +46,8 @@ struct AoRenderRequest {
     const samples::SceneFrame* previous_scene = nullptr;
     uint32_t frame_index = 0;
     bool reset_history = false;
+    obscura_view* view = nullptr;  // the history read and written; null: the context's own
+    bool use_motion_vectors = true;  // hand the scene's motion vectors over when it has them
 };
 
 // One obscura_render into the target; throws ApiError on failure.

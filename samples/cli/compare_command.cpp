@@ -1,11 +1,13 @@
 // obscura compare: renders each method and its truths with the same falloff (the geometry truth, rays
 // against the scene's triangles; the screen-space reference, REFERENCE through the depth buffer; or both),
 // measures the error (FFAO paper sec. 8: mean absolute error, fraction within 5 %; plus the signed mean, PSNR
-// and the largest error) over the geometry pixels of the output rectangle, and with --orbit the flicker along
-// a camera path.
+// and the largest error) over the geometry pixels of the output rectangle; with --frames the flicker along a camera
+// path (--orbit) or through an animated scene, and with --converged each frame's many-sample image: the flicker of the
+// sampling noise alone and, on an animated scene seen still, the temporal accumulation's ghosting.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <cstdio>
@@ -26,6 +28,7 @@ namespace obscura::cli {
 namespace {
 
 constexpr int kDefaultReferenceRays = 256;
+constexpr int kDefaultConvergedFrames = 16;  // an animated scene's --converged
 
 struct CompareConfig {
     std::vector<MethodSpec> methods;
@@ -40,6 +43,10 @@ struct CompareConfig {
     std::optional<std::string> strip_path;
     std::optional<double> orbit_degrees;
     int frames = 1;
+    // Unset: what the scene asks for (resolve_scene_defaults): an animated scene hands its motion vectors over (the
+    // moving object is what they are for) and renders the converged images of the ghosting measure.
+    std::optional<bool> motion_vectors;  // rasterised and handed to the SDK
+    std::optional<int> converged_frames;  // 0: no many-sample images
     bool sync_timing = false;
     std::optional<PixelClasses> classes;  // --classes: radius and thickness
 };
@@ -113,15 +120,31 @@ CompareConfig take_compare_config(ArgumentList& arguments) {
     config.strip_path = arguments.take_value("--strip");
     const std::optional<std::string> orbit = arguments.take_value("--orbit");
     const std::optional<std::string> frames = arguments.take_value("--frames");
+    const std::optional<std::string> motion_vectors = arguments.take_value("--motion-vectors");
+    const std::optional<std::string> converged = arguments.take_value("--converged");
     config.sync_timing = arguments.take_flag("--sync-timing");
     arguments.require_all_taken();
-    if (orbit.has_value() != frames.has_value()) throw UsageError("--orbit DEG and --frames N go together");
-    if (orbit) {
-        if (config.scene.depth_file) throw UsageError("--orbit needs a scene (a depth file has one camera)");
-        config.orbit_degrees = parse_double_in("--orbit", *orbit, -360.0, 360.0);
+    if (orbit && !frames) throw UsageError("--orbit DEG needs --frames N (the frames along the orbit)");
+    if (frames) {
+        if (config.scene.depth_file) throw UsageError("--frames needs a scene (a depth file has one frame)");
         config.frames = parse_int("--frames", *frames, 2, 1000);
     }
+    if (orbit) config.orbit_degrees = parse_double_in("--orbit", *orbit, -360.0, 360.0);
+    if (motion_vectors && *motion_vectors != "on" && *motion_vectors != "off") {
+        throw UsageError("--motion-vectors takes on or off, not '" + *motion_vectors + "'");
+    }
+    if (motion_vectors) config.motion_vectors = *motion_vectors == "on";
+    if (converged) {
+        if (config.frames < 2) throw UsageError("--converged needs --frames N");
+        config.converged_frames = *converged == "off" ? 0 : parse_int("--converged", *converged, 2, 64);
+    }
     return config;
+}
+
+void resolve_scene_defaults(CompareConfig& config, const SceneSource& source) {
+    const bool animated = source.scene() && source.scene()->animated();
+    if (!config.motion_vectors) config.motion_vectors = animated;
+    if (!config.converged_frames) config.converged_frames = animated && config.frames > 1 ? kDefaultConvergedFrames : 0;
 }
 
 // The cameras of the frames: the chosen one, or N along an orbit of `degrees` in total.
@@ -168,9 +191,24 @@ void render_screen_references(const ObscuraSession& session, const std::vector<s
     }
 }
 
-void trace_geometry_truth(const TruthTracer& tracer, const std::vector<samples::RenderedScene>& frames,
+// The scene's ray-tracing structures: one, or one per frame of an animated scene.
+class FrameTracers {
+public:
+    FrameTracers(const samples::Scene& scene, int frames) {
+        for (int f = 0; f < (scene.animated() ? frames : 1); ++f) {
+            tracers_.push_back(std::make_unique<TruthTracer>(scene.animated() ? scene.mesh_at(f) : scene.mesh));
+        }
+    }
+    const TruthTracer& operator[](size_t frame) const { return *tracers_[std::min(frame, tracers_.size() - 1)]; }
+
+private:
+    std::vector<std::unique_ptr<TruthTracer>> tracers_;
+};
+
+void trace_geometry_truth(const FrameTracers& tracers, const std::vector<samples::RenderedScene>& frames,
                           ComparedTruth& truth, std::vector<std::vector<uint8_t>>& masks,
-                          std::vector<samples::FloatImage>& view_depths) {
+                          std::vector<samples::FloatImage>& view_depths,
+                          std::vector<std::vector<uint32_t>>& primary_triangles) {
     // References that differ only in what the geometry truth ignores (the thickness: GTAO's horizon and bitmask
     // modes) are the same falloff here: weighed once, shared.
     std::vector<obscura_settings> falloffs;
@@ -185,13 +223,14 @@ void trace_geometry_truth(const TruthTracer& tracer, const std::vector<samples::
     for (size_t f = 0; f < frames.size(); ++f) {
         std::string label = "geometry truth";
         if (frames.size() > 1) label += ", frame " + std::to_string(f + 1) + "/" + std::to_string(frames.size());
-        TruthImages images = tracer.trace(frames[f].frame(), falloffs, truth.rays, truth.seed, label);
+        TruthImages images = tracers[f].trace(frames[f].frame(), falloffs, truth.rays, truth.seed, label);
         for (size_t k = 0; k < truth.references.size(); ++k) {
             truth.references[k].frames.push_back(images.visibility[falloff_of[k]]);
             truth.references[k].bent_frames.push_back(images.bent_normal[falloff_of[k]]);
         }
         masks[f] = std::move(images.geometry_mask);
         view_depths[f] = std::move(images.view_depth);
+        primary_triangles[f] = std::move(images.primary_triangles);
         truth.seconds += images.seconds;
         truth.rays_cast += images.rays_cast;
     }
@@ -230,10 +269,68 @@ std::vector<ClassErrors> measure_classes(const ComparedMethod& method, const Com
                 for (size_t i = 0; i < masks[f].size(); ++i) masks[f][i] = classes.frames[f][i] == uint8_t(value);
             }
             errors.flicker = samples::flicker(method.frames, reference.frames, &masks);
+            if (!method.converged_frames.empty()) {
+                errors.noise_flicker = samples::flicker(method.frames, method.converged_frames, &masks);
+            }
         }
         measured.push_back(errors);
     }
     return measured;
+}
+
+// Each frame's many-sample image: the frame held still for `count` frames with the method's noise moving and every
+// frame weighed alike (temporal accumulation over `count` frames, no clamp), in a view of its own. What the method
+// converges to where nothing moves: the flicker against it is the sampling noise's alone, and the ghosting compares
+// with it.
+std::vector<samples::FloatImage> render_converged(const ObscuraSession& session,
+                                                  const std::vector<samples::RenderedScene>& frames,
+                                                  const AoRenderRequest& base, int count) {
+    obscura_settings many = *base.settings;
+    many.temporal.enabled = OBSCURA_TOGGLE_ON;
+    many.temporal.max_frames = count;
+    many.temporal.clamp = 64.0f;  // the largest: a clamp would hold the mean to one frame's neighbourhood
+    const ObscuraView view(session);
+    AoRenderRequest request = base;
+    request.settings = &many;
+    request.bent_target = nullptr;
+    request.view = view.get();
+    request.previous_scene = nullptr;
+    request.use_motion_vectors = false;
+    std::vector<samples::FloatImage> converged;
+    for (const samples::RenderedScene& frame : frames) {
+        request.scene = &frame.frame();
+        for (int k = 0; k < count; ++k) {
+            request.reset_history = k == 0;
+            request.frame_index = uint32_t(k);
+            render_ao(session, request);
+        }
+        converged.push_back(request.target->read());
+    }
+    return converged;
+}
+
+// The ghosting of an animated scene seen still: each pixel's frames since the moving object uncovered it, and since
+// the method's converged image there last changed (or the object uncovered it), and the method's error by those ages.
+GhostErrors measure_ghosting(const CompareResult& result, const ComparedMethod& method,
+                             const ComparedReference& reference) {
+    const std::vector<std::vector<uint8_t>>& uncovered = result.uncovered;
+    std::vector<std::vector<uint8_t>> changed(uncovered.size());
+    for (size_t f = 0; f < uncovered.size(); ++f) {
+        changed[f] = uncovered[f];
+        if (f == 0) continue;
+        const std::vector<float>& now = method.converged_frames[f].pixels;
+        const std::vector<float>& before = method.converged_frames[f - 1].pixels;
+        for (size_t i = 0; i < changed[f].size(); ++i) {
+            changed[f][i] |= uint8_t(std::fabs(double(now[i]) - double(before[i])) > kGhostChangedThreshold);
+        }
+    }
+    GhostErrors ghosting;
+    ghosting.uncovered = samples::error_by_age(method.frames, method.converged_frames, reference.frames,
+                                               samples::frames_since_event(uncovered, result.still_geometry),
+                                               kGhostMaxAge);
+    ghosting.changed = samples::error_by_age(method.frames, method.converged_frames, reference.frames,
+                                             samples::frames_since_event(changed, result.still_geometry), kGhostMaxAge);
+    return ghosting;
 }
 
 void measure_method(const ObscuraSession& session, const std::vector<samples::RenderedScene>& frames,
@@ -283,6 +380,10 @@ void measure_method(const ObscuraSession& session, const std::vector<samples::Re
             method.normal_frames.push_back(std::move(decoded));
         }
     }
+    if (result.converged_frames > 0) {
+        request.scene = &frames.front().frame();
+        method.converged_frames = render_converged(session, frames, request, result.converged_frames);
+    }
 
     for (const ComparedTruth& truth : result.truths) {
         const ComparedReference& reference = truth.references[method.reference];
@@ -323,6 +424,19 @@ void measure_method(const ObscuraSession& session, const std::vector<samples::Re
                                                            result.all_pixels ? nullptr : &result.masks.back())
                                        .mean_abs;
         }
+        if (!method.converged_frames.empty()) {
+            errors.noise_flicker =
+                samples::flicker(method.frames, method.converged_frames, result.all_pixels ? nullptr : &result.masks);
+            errors.converged_mean_abs = 0.0;
+            for (size_t f = 0; f < frames.size(); ++f) {
+                *errors.converged_mean_abs += weight * samples::compare_images(method.converged_frames[f], reference.frames[f],
+                                                                               result.all_pixels ? nullptr : &result.masks[f])
+                                                           .mean_abs;
+            }
+        }
+        if (!result.still_geometry.empty() && !method.converged_frames.empty()) {
+            errors.ghosting = measure_ghosting(result, method, reference);
+        }
         if (result.classes) errors.classes = measure_classes(method, reference, *result.classes);
         method.errors.push_back(errors);
     }
@@ -348,19 +462,50 @@ void split_into_classes(const std::vector<samples::RenderedScene>& frames,
     }
 }
 
+// Per frame and pixel: whether the camera sees the still part of the scene there, and whether the moving part was
+// there the frame before (it has just uncovered the pixel).
+void mark_still_geometry(const std::vector<std::vector<uint32_t>>& primary_triangles, int first_moving_triangle,
+                         CompareResult& result) {
+    const auto moving = [&](uint32_t triangle) {
+        return triangle != samples::GeometryTruth::kSky && triangle >= uint32_t(first_moving_triangle);
+    };
+    for (size_t f = 0; f < primary_triangles.size(); ++f) {
+        const std::vector<uint32_t>& now = primary_triangles[f];
+        std::vector<uint8_t> still(now.size()), uncovered(now.size(), 0);
+        for (size_t i = 0; i < now.size(); ++i) {
+            still[i] = uint8_t(now[i] != samples::GeometryTruth::kSky && !moving(now[i]));
+            if (f > 0) uncovered[i] = uint8_t(still[i] && moving(primary_triangles[f - 1][i]));
+        }
+        result.still_geometry.push_back(std::move(still));
+        result.uncovered.push_back(std::move(uncovered));
+    }
+}
+
 }  // namespace
 
 int run_compare(ArgumentList& arguments) {
-    const CompareConfig config = take_compare_config(arguments);
+    CompareConfig config = take_compare_config(arguments);
     const SceneSource source(config.scene);
+    resolve_scene_defaults(config, source);
 
     samples::HeadlessGL gl;
     std::printf("GL: %s\n", gl.describe().c_str());
     ObscuraSession session(timing_flags(gl, config.sync_timing));
     std::vector<samples::RenderedScene> frames;
-    for (const samples::Camera& camera : frame_cameras(source, config)) frames.push_back(source.render(camera, source.size()));
+    const std::vector<samples::Camera> cameras = frame_cameras(source, config);
+    for (size_t f = 0; f < cameras.size(); ++f) {
+        const samples::Camera* previous = f > 0 && *config.motion_vectors ? &cameras[f - 1] : nullptr;
+        frames.push_back(source.render_frame(int(f), cameras[f], source.size(), previous));
+    }
+    const bool animated = source.scene() && source.scene()->animated();
     std::printf("scene: %s", source.describe(frames.front().frame()).c_str());
-    if (config.orbit_degrees) std::printf(", orbit of %g degrees in %d frames", *config.orbit_degrees, config.frames);
+    if (config.orbit_degrees) {
+        std::printf(", orbit of %g degrees in %d frames", *config.orbit_degrees, config.frames);
+    } else if (config.frames > 1) {
+        std::printf(", %d frames of a still camera", config.frames);
+    }
+    if (animated && config.frames > 1) std::printf(", the scene moving");
+    if (*config.motion_vectors && config.frames > 1) std::printf(", motion vectors handed over");
     std::printf("\n");
 
     CompareResult result;
@@ -370,6 +515,8 @@ int run_compare(ArgumentList& arguments) {
     result.height = frames.front()->output_rect.height;
     result.frames = config.frames;
     result.orbit_degrees = config.orbit_degrees;
+    result.motion_vectors = *config.motion_vectors && config.frames > 1;
+    result.converged_frames = *config.converged_frames;
     result.all_pixels = config.all_pixels;
     // Resolved through the session first: obscura_reference_settings_for has no context to tell why it
     // refuses settings, and this call's log and last error do. (The spec parser already refused the settings
@@ -385,8 +532,9 @@ int run_compare(ArgumentList& arguments) {
     // the rasteriser's pixels), or a depth file's non-sky texels.
     result.masks.resize(frames.size());
     std::vector<samples::FloatImage> view_depths(frames.size());  // with a scene: the primary hits'
-    std::optional<TruthTracer> tracer;
-    if (const samples::Scene* scene = source.scene()) tracer.emplace(*scene);
+    std::vector<std::vector<uint32_t>> primary_triangles(frames.size());  // with a scene
+    std::optional<FrameTracers> tracer;
+    if (const samples::Scene* scene = source.scene()) tracer.emplace(*scene, config.frames);
     for (TruthKind kind : config.truths) {
         ComparedTruth truth;
         truth.kind = kind;
@@ -404,8 +552,8 @@ int run_compare(ArgumentList& arguments) {
         }
         if (kind == TruthKind::Geometry) {
             truth.seed = config.truth_seed;
-            truth.triangles = tracer->triangle_count();
-            trace_geometry_truth(*tracer, frames, truth, result.masks, view_depths);
+            truth.triangles = (*tracer)[0].triangle_count();
+            trace_geometry_truth(*tracer, frames, truth, result.masks, view_depths, primary_triangles);
         } else {
             render_screen_references(session, frames, source.use_normals(), truth);
         }
@@ -414,9 +562,10 @@ int run_compare(ArgumentList& arguments) {
     for (size_t f = 0; f < frames.size(); ++f) {
         if (!result.masks[f].empty()) continue;
         if (tracer) {
-            TruthImages primary = tracer->trace(frames[f].frame(), falloffs, 0, config.truth_seed, "primary rays");
+            TruthImages primary = (*tracer)[f].trace(frames[f].frame(), falloffs, 0, config.truth_seed, "primary rays");
             result.masks[f] = std::move(primary.geometry_mask);
             view_depths[f] = std::move(primary.view_depth);
+            primary_triangles[f] = std::move(primary.primary_triangles);
         } else {
             result.masks[f] = samples::read_geometry_mask(frames[f].frame());
             if (config.classes) view_depths[f] = samples::read_view_depth(frames[f].frame(), frames[f]->output_rect);
@@ -432,6 +581,10 @@ int run_compare(ArgumentList& arguments) {
     if (config.classes) {
         result.classes = config.classes;
         split_into_classes(frames, view_depths, result);
+    }
+    // The ghosting needs the pixels to stay where they are: an animated scene through a still camera.
+    if (animated && !config.orbit_degrees && config.frames > 1 && result.converged_frames > 0) {
+        mark_still_geometry(primary_triangles, source.scene()->first_moving_triangle(), result);
     }
     for (ComparedMethod& method : result.methods) measure_method(session, frames, source.use_normals(), result, method);
 

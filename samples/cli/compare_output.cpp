@@ -49,7 +49,8 @@ void print_class_table(const CompareResult& result, size_t t) {
     for (samples::ThicknessClass value : kMeasuredClasses) {
         header.push_back(std::string(samples::thickness_class_name(value)) + ": mean_abs");
         header.push_back("signed");
-        if (result.orbit_degrees) header.push_back("flicker");
+        if (result.frames > 1) header.push_back("flicker");
+        if (result.converged_frames > 0) header.push_back("noise");
     }
     TextTable table(header);
     for (const ComparedMethod& method : result.methods) {
@@ -57,9 +58,51 @@ void print_class_table(const CompareResult& result, size_t t) {
         for (const ClassErrors& errors : method.errors[t].classes) {
             row.push_back(errors.pixels > 0 ? format_fixed(errors.mean_abs, 5) : "-");
             row.push_back(errors.pixels > 0 ? format_signed(errors.mean_signed, 5) : "-");
-            if (result.orbit_degrees) row.push_back(errors.flicker ? format_fixed(*errors.flicker, 5) : "-");
+            if (result.frames > 1) row.push_back(errors.flicker ? format_fixed(*errors.flicker, 5) : "-");
+            if (result.converged_frames > 0) row.push_back(errors.noise_flicker ? format_fixed(*errors.noise_flicker, 5) : "-");
         }
         table.add_row(row);
+    }
+    table.print(stdout);
+}
+
+// The first age from which a curve's error stays within `tolerance` of its converged error (the last bucket counts as
+// one age), or -1 when it never does.
+int settles_at(const std::vector<samples::AgeErrors>& curve, double tolerance) {
+    int settled = -1;
+    for (int age = int(curve.size()) - 1; age >= 0; --age) {
+        const samples::AgeErrors& bucket = curve[size_t(age)];
+        if (bucket.pixels > 0 && bucket.mean_abs - bucket.converged_mean_abs > tolerance) break;
+        if (bucket.pixels > 0) settled = age;
+    }
+    return settled;
+}
+
+// Each method's ghosting against truth t: per curve the pixels, then per age the error above the converged one.
+void print_ghosting_table(const CompareResult& result, size_t t) {
+    std::printf("\nghosting (the moving object, a still camera): error - converged error (%d still frames) of the pixels "
+                "it uncovered and of those whose converged AO it changed by > %g, by frames since; within 0.02 from: "
+                "the first age after which it stays within\n",
+                result.converged_frames, kGhostChangedThreshold);
+    std::vector<std::string> header = {"method", "pixels", "within 0.02 from"};
+    for (int age = 0; age < kGhostMaxAge; ++age) header.push_back(std::to_string(age));
+    header.push_back(">=" + std::to_string(kGhostMaxAge));
+    TextTable table(header);
+    for (const ComparedMethod& method : result.methods) {
+        const std::optional<GhostErrors>& ghosting = method.errors[t].ghosting;
+        if (!ghosting) continue;
+        for (int curve = 0; curve < 2; ++curve) {
+            const std::vector<samples::AgeErrors>& buckets = curve == 0 ? ghosting->uncovered : ghosting->changed;
+            size_t pixels = 0;
+            for (const samples::AgeErrors& bucket : buckets) pixels += bucket.pixels;
+            const int settled = settles_at(buckets, kGhostTolerance);
+            std::vector<std::string> row = {method.spec.text + (curve == 0 ? " uncovered" : " changed"),
+                                            std::to_string(pixels), settled < 0 ? "never" : std::to_string(settled)};
+            for (const samples::AgeErrors& bucket : buckets) {
+                row.push_back(bucket.pixels > 0 ? format_signed(bucket.mean_abs - bucket.converged_mean_abs, 4) : "-");
+            }
+            table.add_row(row);
+        }
     }
     table.print(stdout);
 }
@@ -203,9 +246,13 @@ void print_compare_table(const CompareResult& result) {
                     result.frames > 1 ? ", averaged over the frames" : "");
         std::vector<std::string> header = {"method", "gpu ms", "wall ms", "mean_abs", "within_5pct", "psnr dB", "max_abs",
                                            "signed"};
-        if (result.orbit_degrees) {
+        if (result.frames > 1) {
             header.push_back("flicker");
             header.push_back("last");
+        }
+        if (result.converged_frames > 0) {
+            header.push_back("noise flicker");
+            header.push_back("converged");
         }
         header.push_back(truth.kind == TruthKind::Geometry ? "truth" : "ref");
         TextTable table(header);
@@ -219,9 +266,13 @@ void print_compare_table(const CompareResult& result) {
                                             format_psnr(errors.metrics.psnr),
                                             format_fixed(errors.metrics.max_abs, 4),
                                             format_signed(errors.metrics.mean_signed, 5)};
-            if (result.orbit_degrees) {
+            if (result.frames > 1) {
                 row.push_back(format_fixed(errors.flicker.value_or(0.0), 5));
                 row.push_back(format_fixed(errors.last_mean_abs.value_or(0.0), 5));
+            }
+            if (result.converged_frames > 0) {
+                row.push_back(format_fixed(errors.noise_flicker.value_or(0.0), 5));
+                row.push_back(format_fixed(errors.converged_mean_abs.value_or(0.0), 5));
             }
             row.push_back(std::to_string(method.reference + 1));
             table.add_row(row);
@@ -235,6 +286,7 @@ void print_compare_table(const CompareResult& result) {
             }
         }
         if (result.classes) print_class_table(result, t);
+        if (!result.still_geometry.empty()) print_ghosting_table(result, t);
     }
     std::printf("signed = mean of method - truth: > 0 brighter (less occlusion) than the truth, < 0 darker\n");
 }
@@ -251,7 +303,9 @@ void write_compare_json(const CompareResult& result, const std::string& path) {
     json.field("geometry", double(result.geometry_pixels()));
     json.field("sky_fraction", result.sky_fraction());
     json.end_object();
-    if (result.orbit_degrees) json.field("orbit_degrees", *result.orbit_degrees).field("frames", result.frames);
+    if (result.orbit_degrees) json.field("orbit_degrees", *result.orbit_degrees);
+    if (result.frames > 1) json.field("frames", result.frames).field("motion_vectors", result.motion_vectors);
+    if (result.converged_frames > 0) json.field("converged_frames", result.converged_frames);
     if (result.classes) {
         const PixelClasses& classes = *result.classes;
         json.key("classes").begin_object();
@@ -292,6 +346,31 @@ void write_compare_json(const CompareResult& result, const std::string& path) {
             json.field("pixels", double(errors.metrics.pixels));
             if (errors.flicker) json.field("flicker", *errors.flicker);
             if (errors.last_mean_abs) json.field("last_frame_mean_abs", *errors.last_mean_abs);
+            if (errors.noise_flicker) json.field("noise_flicker", *errors.noise_flicker);
+            if (errors.converged_mean_abs) json.field("converged_mean_abs", *errors.converged_mean_abs);
+            if (errors.ghosting) {
+                json.key("ghosting").begin_object();
+                for (int curve = 0; curve < 2; ++curve) {
+                    const std::vector<samples::AgeErrors>& buckets =
+                        curve == 0 ? errors.ghosting->uncovered : errors.ghosting->changed;
+                    json.key(curve == 0 ? "uncovered" : "changed").begin_object();
+                    const int settled = settles_at(buckets, kGhostTolerance);
+                    json.key("within_0_02_from");  // null: never
+                    if (settled < 0) json.null(); else json.value(settled);
+                    json.key("ages").begin_array();
+                    for (size_t age = 0; age < buckets.size(); ++age) {
+                        json.begin_object();
+                        json.field("age", int(age)).field("older", age + 1 == buckets.size());
+                        json.field("pixels", double(buckets[age].pixels));
+                        json.field("mean_abs", buckets[age].mean_abs);
+                        json.field("converged_mean_abs", buckets[age].converged_mean_abs);
+                        json.end_object();
+                    }
+                    json.end_array();
+                    json.end_object();
+                }
+                json.end_object();
+            }
             if (errors.bent_degrees) json.field("bent_normal_degrees", *errors.bent_degrees);
             if (errors.normal_degrees) json.field("surface_normal_degrees", *errors.normal_degrees);
             if (!errors.classes.empty()) {
@@ -311,6 +390,7 @@ void write_compare_json(const CompareResult& result, const std::string& path) {
                     json.field("pixels", double(class_errors.pixels));
                     error_field("mean_abs", class_errors.mean_abs);
                     if (class_errors.flicker) json.field("flicker", *class_errors.flicker);
+                    if (class_errors.noise_flicker) json.field("noise_flicker", *class_errors.noise_flicker);
                     error_field("signed_mean", class_errors.mean_signed);
                     error_field("within_5pct", class_errors.within_5pct);
                     json.end_object();

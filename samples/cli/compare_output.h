@@ -71,14 +71,32 @@ struct ClassErrors {
     double mean_abs = 0.0;
     double mean_signed = 0.0;  // method - truth
     double within_5pct = 0.0;
-    std::optional<double> flicker;  // with --orbit: samples::flicker over the class's pixels
+    std::optional<double> flicker;  // with --frames: samples::flicker over the class's pixels
+    std::optional<double> noise_flicker;  // with --converged: against the converged frames, over the class's pixels
+};
+
+// The ghosting of a temporal accumulation, on an animated scene seen by a still camera: the method's error in the
+// pixels the moving object uncovered, and in those whose converged image it changed by more than 0.02 (its contact
+// shadow passing; uncovered pixels included), by the frames since (samples::error_by_age: ages 0 .. kGhostMaxAge - 1,
+// then every older one pooled), beside the error of the method's converged images in the same pixels and frames.
+constexpr int kGhostMaxAge = 8;
+constexpr double kGhostChangedThreshold = 0.02;
+constexpr double kGhostTolerance = 0.02;  // the "back within 0.02 of the converged error"
+struct GhostErrors {
+    std::vector<samples::AgeErrors> uncovered;  // kGhostMaxAge + 1 buckets
+    std::vector<samples::AgeErrors> changed;
 };
 
 // A method's error against one truth, averaged over the frames.
 struct MethodErrors {
     samples::ErrorMetrics metrics;
     std::optional<double> flicker;  // with --orbit: samples::flicker against the truth's frames
-    std::optional<double> last_mean_abs;  // with --orbit: the last frame's mean_abs (temporal: the converged error)
+    std::optional<double> last_mean_abs;  // with --frames: the last frame's mean_abs (temporal: the converged error)
+    // With --converged: the flicker against the method's own converged frames (the sampling noise's alone), and those
+    // frames' mean_abs averaged over the frames.
+    std::optional<double> noise_flicker;
+    std::optional<double> converged_mean_abs;
+    std::optional<GhostErrors> ghosting;  // an animated scene seen still, with --converged
     std::optional<double> bent_degrees;  // geometry truth, methods that write bent normals: mean angle to the truth's
     std::optional<double> normal_degrees;  // the same for the surface normals the method used (the baseline)
     std::vector<ClassErrors> classes;      // with --classes: one per kMeasuredClasses
@@ -91,6 +109,7 @@ struct ComparedMethod {
     std::vector<samples::FloatImage> frames;  // one per camera
     std::vector<samples::FloatImage> bent_frames;  // methods that write bent normals: RGBA, one per camera
     std::vector<samples::FloatImage> normal_frames;  // and the normals they used (debug view, decoded), per camera
+    std::vector<samples::FloatImage> converged_frames;  // --converged: the many-sample image of each frame
     std::vector<MethodErrors> errors;         // one per CompareResult::truths
 };
 
@@ -101,6 +120,12 @@ struct CompareResult {
     int height = 0;
     int frames = 1;
     std::optional<double> orbit_degrees;
+    bool motion_vectors = false;  // the frames handed their motion vectors over
+    int converged_frames = 0;     // --converged: still frames accumulated into each frame's many-sample image
+    // The ghosting's pixels (an animated scene seen still), per frame: the still geometry the camera sees, and the
+    // pixels the moving object has just uncovered. Empty: no ghosting measured.
+    std::vector<std::vector<uint8_t>> still_geometry;
+    std::vector<std::vector<uint8_t>> uncovered;
     // Metrics cover the geometry pixels (sky left out: a view of much sky would otherwise score better than
     // its geometry deserves) unless all_pixels (--metrics-pixels all).
     bool all_pixels = false;

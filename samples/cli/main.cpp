@@ -18,7 +18,8 @@ const char* const kUsage = R"(usage:
   obscura compare [--methods SPEC,SPEC,...] [--set KEY=VALUE]... [--truth geometry|screen|both]
                   [--truth-rays 1024] [--truth-seed 1] [--reference-rays 256] [--metrics-pixels geometry|all]
                   [--out-dir compare-output] [--json REPORT.json] [--strip STRIP.png]
-                  [--orbit DEG --frames N] [--temporal on|off] [--classes [RADIUS_M[,THICKNESS_M]]]
+                  [[--orbit DEG] --frames N] [--temporal on|off] [--motion-vectors on|off]
+                  [--converged N|off] [--classes [RADIUS_M[,THICKNESS_M]]]
                   [--sync-timing] [SCENE]
   obscura truth --out TRUTH.pfm [--depth-out DEPTH.pfm] [--png TRUTH.png] [--falloff SPEC]
                 [--rays 1024] [--seed 1] [SCENE without --depth]
@@ -34,7 +35,8 @@ const char* const kUsage = R"(usage:
   obscura --list-scenes | --list-methods | --list-settings [METHOD] | --help
 
 SCENE (render, compare, bench, truth; tune takes the scenes as --scenes):
-  --scene NAME|FILE.obj   atrium (default), terrain, objects, clutter, analytic, room, bunny, or an OBJ file
+  --scene NAME|FILE.obj   atrium (default), terrain, objects, clutter, analytic, room, sliding (animated),
+                          bunny, or an OBJ file
   --viewpoint NAME        one of the scene's cameras (--list-scenes; default: default)
   --eye X,Y,Z --target X,Y,Z [--fovy DEG]   a camera of your own instead
   --size WxH              the visible image (default 640x360); the depth texture adds the guard band
@@ -67,11 +69,17 @@ compare renders each method and measures it against its truth with the same fall
   --metrics-pixels all counts every pixel). --out-dir gets <n>_<method>.png,
   <n>_<method>_error_<geometry|screen>.png (white 0, black >= 0.2), <n>_<method>_signed_<truth>.png (red
   too dark, blue too bright, full at 0.2), geometry_truth_<k>.png and/or reference_<k>.png (one per
-  falloff) and contact_sheet.png (method | truth | signed error). --orbit DEG --frames
-  N: N frames along an orbit of DEG degrees in total (images of the first); errors are averaged over them,
-  flicker measures the temporal error and last is the last frame's mean_abs. The frames pass their cameras
-  and frame index to the SDK; --temporal on|off sets every method's temporal accumulation (the setting
-  temporal.enabled, also a spec key: hbao,hbao:temporal.enabled=on), which then runs through the frames in
+  falloff) and contact_sheet.png (method | truth | signed error). --frames N: N frames (images of the first), a
+  still camera, or along an orbit of DEG degrees in total with --orbit DEG; an animated scene (sliding) moves
+  through them. Errors are averaged over the frames, flicker measures the temporal error and last is the last
+  frame's mean_abs. The frames pass their cameras and frame index to the SDK, and their motion vectors with
+  --motion-vectors on (the default on an animated scene); --temporal on|off sets every method's temporal
+  accumulation (the setting temporal.enabled, also a spec key: hbao,hbao:temporal.enabled=on), which then runs
+  through the frames in order. --converged N (default 16 on an animated scene, else off) also renders each
+  frame's many-sample image (N still frames accumulated): noise flicker is the flicker against those (the
+  sampling noise's, apart from what the view itself changes) and converged their mean_abs; on an animated
+  scene seen still a ghosting table follows: the error above the converged one of the pixels the moving object
+  uncovered and of those whose converged AO it changed by > 0.02, by the frames since.
   order. --strip writes one sheet of the methods' AO labelled with their settings, then the first truth's
   images if there are several (falloffs differ).
   --classes [RADIUS_M[,THICKNESS_M]] (default 1,0.3) splits the geometry pixels by where a screen-space method's

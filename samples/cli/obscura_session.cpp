@@ -30,6 +30,14 @@ void ObscuraSession::check(obscura_status status, const std::string& call) const
     if (status != OBSCURA_OK) throw ApiError(api_error_message(status, call, context_));
 }
 
+ObscuraView::ObscuraView(const ObscuraSession& session) : context_(session.get()) {
+    session.check(obscura_create_view(context_, &view_), "obscura_create_view");
+}
+
+ObscuraView::~ObscuraView() {
+    if (view_) obscura_destroy_view(context_, view_);
+}
+
 std::string api_error_message(obscura_status status, const std::string& call, const obscura_context* context) {
     std::string message = call + " failed: " + obscura_status_string(status);
     const char* detail = context ? obscura_get_last_error(context) : "";

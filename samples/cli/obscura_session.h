@@ -32,6 +32,21 @@ private:
     uint32_t flags_ = 0;
 };
 
+// One obscura_view of a session (a temporal history of its own), destroyed with this object (before the session).
+class ObscuraView {
+public:
+    // Throws ApiError when obscura_create_view fails.
+    explicit ObscuraView(const ObscuraSession& session);
+    ~ObscuraView();
+    ObscuraView(const ObscuraView&) = delete;
+    ObscuraView& operator=(const ObscuraView&) = delete;
+    obscura_view* get() const { return view_; }
+
+private:
+    obscura_context* context_ = nullptr;
+    obscura_view* view_ = nullptr;
+};
+
 // Builds the ApiError message for a failed call; `context` may be NULL.
 std::string api_error_message(obscura_status status, const std::string& call, const obscura_context* context);
 

@@ -145,6 +145,26 @@ samples::RenderedScene SceneSource::render(const samples::Camera& camera, ImageS
     return samples::render_scene(scene_.mesh, raster);
 }
 
+samples::RenderedScene SceneSource::render_frame(int frame, const samples::Camera& camera, ImageSize size,
+                                                 const samples::Camera* previous_camera) const {
+    if (is_depth_file()) return render(camera, size);
+    samples::SceneRenderOptions raster = options_.raster;
+    raster.width = size.width;
+    raster.height = size.height;
+    raster.camera = camera;
+    const samples::SceneMesh mesh = scene_.mesh_at(frame);
+    samples::SceneMesh previous_mesh;
+    if (previous_camera) {
+        raster.motion_vectors = true;
+        raster.previous_camera = *previous_camera;
+        if (scene_.animated()) {
+            previous_mesh = scene_.mesh_at(frame - 1);
+            raster.previous_mesh = &previous_mesh;
+        }
+    }
+    return samples::render_scene(mesh, raster);
+}
+
 std::string SceneSource::describe(const samples::SceneFrame& frame) const {
     char text[512];
     const obscura_rect& rect = frame.output_rect;

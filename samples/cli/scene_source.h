@@ -60,6 +60,11 @@ public:
     samples::RenderedScene render(const samples::Camera& camera, ImageSize size) const;
     samples::RenderedScene render() const { return render(camera_, size()); }
 
+    // Frame `frame` of a sequence (an animated scene's moving part where that frame has it) through `camera`;
+    // `previous_camera` set: the motion vectors too, from the previous frame (frame - 1 through it). Scenes only.
+    samples::RenderedScene render_frame(int frame, const samples::Camera& camera, ImageSize size,
+                                        const samples::Camera* previous_camera) const;
+
     // "atrium (viewpoint default): 640x360, depth 768x432 (guard band 0.10), perspective, d32f".
     std::string describe(const samples::SceneFrame& frame) const;
 

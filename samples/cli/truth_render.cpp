@@ -13,9 +13,11 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-TruthTracer::TruthTracer(const samples::Scene& scene) {
+TruthTracer::TruthTracer(const samples::Scene& scene) : TruthTracer(scene.mesh) {}
+
+TruthTracer::TruthTracer(const samples::SceneMesh& mesh) {
     const auto start = std::chrono::steady_clock::now();
-    scene_ = std::make_unique<samples::TruthScene>(scene.mesh);
+    scene_ = std::make_unique<samples::TruthScene>(mesh);
     build_seconds_ = seconds_since(start);
 }
 
@@ -36,6 +38,7 @@ TruthImages TruthTracer::trace(const samples::SceneFrame& frame, const std::vect
         images.bent_normal.push_back(truth.bent_normal(k));
     }
     images.geometry_mask = truth.geometry_mask();
+    images.primary_triangles = truth.primary_triangles();
     images.view_depth = truth.view_depth();
     images.rays_cast = truth.rays_cast();
     images.seconds = seconds_since(start);

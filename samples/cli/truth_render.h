@@ -24,6 +24,7 @@ struct TruthImages {
     std::vector<samples::FloatImage> visibility;  // one per falloff
     std::vector<samples::FloatImage> bent_normal; // one per falloff: view-space unit bent normals (3 channels)
     std::vector<uint8_t> geometry_mask;           // 1 where the camera sees the scene
+    std::vector<uint32_t> primary_triangles;      // the triangle each pixel sees, GeometryTruth::kSky on sky
     samples::FloatImage view_depth;               // of the primary hits, 0 on sky
     double seconds = 0.0;                         // the whole trace, primary rays included
     uint64_t rays_cast = 0;                       // hemisphere rays
@@ -33,6 +34,8 @@ class TruthTracer {
 public:
     // Builds the scene's ray-tracing structure (Embree) once for every frame traced.
     explicit TruthTracer(const samples::Scene& scene);
+    // The same for one mesh (an animated scene's in one frame: Scene::mesh_at).
+    explicit TruthTracer(const samples::SceneMesh& mesh);
 
     int triangle_count() const { return scene_->triangle_count(); }
     double build_seconds() const { return build_seconds_; }

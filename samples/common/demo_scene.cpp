@@ -26,21 +26,34 @@ constexpr DepthFormat kAllDepthFormats[] = {DepthFormat::D32F, DepthFormat::D24,
 const char* const kVertexShader = R"(#version 330 core
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
+layout(location = 2) in vec3 a_previous_position;
 uniform mat4 u_view;
 uniform mat4 u_projection;
+uniform mat4 u_previous_view_projection;
 out vec3 v_view_normal;
+out vec4 v_clip;
+out vec4 v_previous_clip;
 void main() {
     // The view matrix is rigid, so its upper 3x3 transforms normals too.
     v_view_normal = mat3(u_view) * a_normal;
-    gl_Position = u_projection * (u_view * vec4(a_position, 1.0));
+    v_clip = u_projection * (u_view * vec4(a_position, 1.0));
+    v_previous_clip = u_previous_view_projection * vec4(a_previous_position, 1.0);
+    gl_Position = v_clip;
 }
 )";
 
+// The clip positions interpolate perspective-correctly, so each fragment divides its own: the surface point's place
+// in both frames.
 const char* const kFragmentShader = R"(#version 330 core
 in vec3 v_view_normal;
+in vec4 v_clip;
+in vec4 v_previous_clip;
+uniform vec2 u_viewport_size;
 layout(location = 0) out vec4 o_normal;
+layout(location = 1) out vec2 o_motion;
 void main() {
     o_normal = vec4(normalize(v_view_normal), 1.0);
+    o_motion = (v_previous_clip.xy / v_previous_clip.w - v_clip.xy / v_clip.w) * 0.5 * u_viewport_size;
 }
 )";
 
@@ -197,10 +210,19 @@ void check_sample_count(const SceneRenderOptions& options) {
     }
 }
 
-void draw_mesh(const SceneMesh& mesh, const glm::mat4& view, const glm::mat4& projection) {
+struct DrawMatrices {
+    glm::mat4 view{1.0f};
+    glm::mat4 projection{1.0f};
+    glm::mat4 previous_view_projection{1.0f};
+    glm::vec2 viewport_size{1.0f};
+};
+
+// `previous` (may be null): the previous frame's vertices, positions and normals as `mesh` has them.
+void draw_mesh(const SceneMesh& mesh, const SceneMesh* previous, const DrawMatrices& matrices) {
     HostProgram program = link_scene_program();
     HostVertexArray vertex_array = HostVertexArray::create();
     HostBuffer buffer = HostBuffer::create();
+    HostBuffer previous_buffer;
     glBindVertexArray(vertex_array.get());
     glBindBuffer(GL_ARRAY_BUFFER, buffer.get());
     glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(mesh.vertices.size() * sizeof(float)), mesh.vertices.data(),
@@ -210,14 +232,39 @@ void draw_mesh(const SceneMesh& mesh, const glm::mat4& view, const glm::mat4& pr
     glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride, nullptr);
     glEnableVertexAttribArray(1);
     glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(3 * sizeof(float)));
+    if (previous) {
+        previous_buffer = HostBuffer::create();
+        glBindBuffer(GL_ARRAY_BUFFER, previous_buffer.get());
+        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(previous->vertices.size() * sizeof(float)), previous->vertices.data(),
+                     GL_STATIC_DRAW);
+    }
+    glEnableVertexAttribArray(2);
+    glVertexAttribPointer(2, 3, GL_FLOAT, GL_FALSE, stride, nullptr);
 
     glUseProgram(program.get());
-    glUniformMatrix4fv(glGetUniformLocation(program.get(), "u_view"), 1, GL_FALSE, glm::value_ptr(view));
-    glUniformMatrix4fv(glGetUniformLocation(program.get(), "u_projection"), 1, GL_FALSE, glm::value_ptr(projection));
+    const auto matrix = [&](const char* name, const glm::mat4& value) {
+        glUniformMatrix4fv(glGetUniformLocation(program.get(), name), 1, GL_FALSE, glm::value_ptr(value));
+    };
+    matrix("u_view", matrices.view);
+    matrix("u_projection", matrices.projection);
+    matrix("u_previous_view_projection", matrices.previous_view_projection);
+    glUniform2f(glGetUniformLocation(program.get(), "u_viewport_size"), matrices.viewport_size.x,
+                matrices.viewport_size.y);
     glDrawArrays(GL_TRIANGLES, 0, mesh.vertex_count());
     // Unbind before the owners delete the objects; the state guard then restores the host's bindings.
     glUseProgram(0);
     glBindVertexArray(0);
+}
+
+HostTexture create_motion_texture(int width, int height) {
+    HostTexture texture = HostTexture::create();
+    glBindTexture(GL_TEXTURE_2D, texture.get());
+    glTexStorage2D(GL_TEXTURE_2D, 1, GL_RG32F, width, height);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return texture;
 }
 
 }  // namespace
@@ -270,6 +317,10 @@ obscura_input SceneFrame::make_input(bool use_normals, const SceneFrame* previou
     view_projection(*this, input.view_projection);
     view_projection(previous ? *previous : *this, input.previous_view_projection);
     input.frame_index = frame_index;
+    if (motion_texture != 0) {
+        input.motion_vector_texture = motion_texture;
+        input.motion_vector_units = OBSCURA_MOTION_PIXELS;
+    }
     return input;
 }
 
@@ -288,12 +339,13 @@ RenderedScene& RenderedScene::operator=(RenderedScene&& other) noexcept {
 }
 
 void RenderedScene::destroy() {
-    const GLuint textures[] = {frame_.depth_texture, frame_.normal_texture};
+    const GLuint textures[] = {frame_.depth_texture, frame_.normal_texture, frame_.motion_texture};
     for (GLuint texture : textures) {
         if (texture != 0) glDeleteTextures(1, &texture);
     }
     frame_.depth_texture = 0;
     frame_.normal_texture = 0;
+    frame_.motion_texture = 0;
 }
 
 RenderedScene render_scene(const SceneMesh& mesh, const SceneRenderOptions& options) {
@@ -302,6 +354,13 @@ RenderedScene render_scene(const SceneMesh& mesh, const SceneRenderOptions& opti
     }
     const GuardBandLayout layout = guard_band_layout(options.width, options.height, options.guard_band);
     check_sample_count(options);
+    if (options.motion_vectors && options.samples > 1) {
+        throw std::invalid_argument("render_scene: motion vectors need a single-sample depth (MSAA " +
+                                    std::to_string(options.samples) + ")");
+    }
+    if (options.previous_mesh && options.previous_mesh->vertices.size() != mesh.vertices.size()) {
+        throw std::invalid_argument("render_scene: the previous frame's mesh has another vertex count");
+    }
     const bool reversed = options.projection == ProjectionKind::ReversedZ ||
                           options.projection == ProjectionKind::ReversedInfinite;
     const obscura_get_proc_address_fn get_proc_address =
@@ -313,6 +372,16 @@ RenderedScene render_scene(const SceneMesh& mesh, const SceneRenderOptions& opti
                                                   float(options.width) / float(options.height), zero_to_one);
     const glm::mat4 widened = widen_for_guard_band(projection.matrix, layout);
     const glm::mat4 view = options.camera.view();
+    DrawMatrices matrices;
+    matrices.view = view;
+    matrices.projection = widened;
+    matrices.previous_view_projection = widened * view;
+    matrices.viewport_size = glm::vec2(float(layout.depth_width), float(layout.depth_height));
+    if (options.previous_camera) {
+        const Projection previous = make_projection(options.projection, *options.previous_camera,
+                                                    float(options.width) / float(options.height), zero_to_one);
+        matrices.previous_view_projection = widen_for_guard_band(previous.matrix, layout) * options.previous_camera->view();
+    }
 
     SceneStateGuard state(clip_control);
     HostTexture depth = create_depth_texture(options, layout.depth_width, layout.depth_height);
@@ -327,6 +396,9 @@ RenderedScene render_scene(const SceneMesh& mesh, const SceneRenderOptions& opti
                                          layout.depth_height);
     }
 
+    HostTexture motion = options.motion_vectors ? create_motion_texture(layout.depth_width, layout.depth_height)
+                                                : HostTexture();
+
     HostFramebuffer framebuffer = HostFramebuffer::create();
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.get());
     const bool has_stencil = options.depth_format == DepthFormat::D24S8;
@@ -337,9 +409,11 @@ RenderedScene render_scene(const SceneMesh& mesh, const SceneRenderOptions& opti
     } else if (options.normals) {
         glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, normals.get(), 0);
     }
-    const GLenum draw_buffer = options.normals ? GL_COLOR_ATTACHMENT0 : GL_NONE;
-    glDrawBuffers(1, &draw_buffer);
-    glReadBuffer(draw_buffer);
+    if (options.motion_vectors) glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, motion.get(), 0);
+    const GLenum draw_buffers[2] = {options.normals ? GL_COLOR_ATTACHMENT0 : GLenum(GL_NONE),
+                                    options.motion_vectors ? GL_COLOR_ATTACHMENT1 : GLenum(GL_NONE)};
+    glDrawBuffers(2, draw_buffers);
+    glReadBuffer(draw_buffers[0]);
     require_complete(GL_FRAMEBUFFER, "scene");
 
     if (clip_control) clip_control(GL_LOWER_LEFT, zero_to_one ? GL_ZERO_TO_ONE : GL_NEGATIVE_ONE_TO_ONE);
@@ -354,7 +428,7 @@ RenderedScene render_scene(const SceneMesh& mesh, const SceneRenderOptions& opti
     glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
     glClearStencil(0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | (has_stencil ? GL_STENCIL_BUFFER_BIT : 0));
-    draw_mesh(mesh, view, widened);
+    draw_mesh(mesh, options.previous_mesh, matrices);
 
     if (multisampled_normals.get() != 0) {
         HostFramebuffer resolve = HostFramebuffer::create();
@@ -385,6 +459,7 @@ RenderedScene render_scene(const SceneMesh& mesh, const SceneRenderOptions& opti
     // Hand the names over only once nothing can throw any more.
     frame.depth_texture = depth.release();
     frame.normal_texture = normals.release();
+    frame.motion_texture = motion.release();
     return RenderedScene(frame);
 }
 

@@ -11,6 +11,7 @@
 #define OBSCURA_SAMPLES_DEMO_SCENE_H
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,14 @@ struct SceneRenderOptions {
     bool use_clip_control = true;
     bool ceiling = false;    // render_demo_scene only
     Camera camera;
+    // Motion vectors, what the temporal accumulation of a scene with moving objects needs: also write a GL_RG32F
+    // texture (the depth texture's size) of how far each texel's surface point moved on screen since the previous
+    // frame, in pixels, previous - current (OBSCURA_MOTION_PIXELS): the previous frame seen by previous_camera
+    // (unset: `camera`), its vertices where previous_mesh has them (the same vertex count and order; nullptr: where
+    // the mesh has them). Single-sample depth only (std::invalid_argument otherwise).
+    bool motion_vectors = false;
+    std::optional<Camera> previous_camera;
+    const SceneMesh* previous_mesh = nullptr;
     // Looks up glClipControl; nullptr: HeadlessGL::get_proc_address.
     obscura_get_proc_address_fn get_proc_address = nullptr;
 };
@@ -62,6 +71,7 @@ struct SceneFrame {
     obscura_depth_kind depth_kind = OBSCURA_DEPTH_HARDWARE;
     GLuint depth_texture = 0;
     GLuint normal_texture = 0;  // GL_RGBA16F, view-space normal in rgb, alpha 1 on geometry, 0 on sky
+    GLuint motion_texture = 0;  // GL_RG32F motion vectors in pixels (SceneRenderOptions::motion_vectors), or 0
     GLenum depth_target = GL_TEXTURE_2D;  // GL_TEXTURE_2D_MULTISAMPLE when samples > 1
     GLenum depth_internal_format = GL_DEPTH_COMPONENT32F;
     int samples = 1;
@@ -79,7 +89,8 @@ struct SceneFrame {
 
     // The obscura_input for this frame (depth_kind, column-major projection, 1 view unit per metre);
     // normal_texture is passed only when `use_normals` and normals were rendered. The view-projections for the
-    // temporal accumulation: this frame's, and `previous`'s (null: this frame's again, a static camera).
+    // temporal accumulation: this frame's, and `previous`'s (null: this frame's again, a static camera); the motion
+    // vectors when they were rendered (they then take precedence over the matrices, as the SDK has it).
     obscura_input make_input(bool use_normals = false, const SceneFrame* previous = nullptr,
                              uint32_t frame_index = 0) const;
 };

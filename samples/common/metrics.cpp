@@ -276,6 +276,63 @@ FloatImage signed_error_map(const FloatImage& image, const FloatImage& reference
     });
 }
 
+std::vector<std::vector<int>> frames_since_event(const std::vector<std::vector<uint8_t>>& event,
+                                                 const std::vector<std::vector<uint8_t>>& alive) {
+    if (event.size() != alive.size()) {
+        throw std::invalid_argument("frames_since_event: " + std::to_string(event.size()) + " event frames but " +
+                                    std::to_string(alive.size()) + " alive frames");
+    }
+    std::vector<std::vector<int>> ages(event.size());
+    for (size_t f = 0; f < event.size(); ++f) {
+        if (event[f].size() != alive[f].size() || event[f].size() != event[0].size()) {
+            throw std::invalid_argument("frames_since_event: frames of different sizes");
+        }
+        ages[f].assign(event[f].size(), -1);
+        for (size_t i = 0; i < event[f].size(); ++i) {
+            if (!alive[f][i]) continue;
+            if (event[f][i]) {
+                ages[f][i] = 0;
+            } else if (f > 0 && ages[f - 1][i] >= 0) {
+                ages[f][i] = ages[f - 1][i] + 1;
+            }
+        }
+    }
+    return ages;
+}
+
+std::vector<AgeErrors> error_by_age(const std::vector<FloatImage>& frames, const std::vector<FloatImage>& converged,
+                                    const std::vector<FloatImage>& truth, const std::vector<std::vector<int>>& ages,
+                                    int max_age) {
+    if (max_age < 0) throw std::invalid_argument("error_by_age: max_age < 0");
+    if (frames.size() != ages.size() || converged.size() != ages.size() || truth.size() != ages.size()) {
+        throw std::invalid_argument("error_by_age: " + std::to_string(frames.size()) + " frames, " +
+                                    std::to_string(converged.size()) + " converged, " + std::to_string(truth.size()) +
+                                    " truth frames and " + std::to_string(ages.size()) + " age maps");
+    }
+    std::vector<AgeErrors> buckets(size_t(max_age) + 1);
+    for (size_t f = 0; f < ages.size(); ++f) {
+        check_same_size(frames[f], truth[f]);
+        check_same_size(converged[f], truth[f]);
+        const size_t pixels = size_t(truth[f].width) * size_t(truth[f].height);
+        if (ages[f].size() != pixels) throw std::invalid_argument("error_by_age: an age map of another size");
+        const auto first = [](const FloatImage& image, size_t i) { return double(image.pixels[i * size_t(image.channels)]); };
+        for (size_t i = 0; i < pixels; ++i) {
+            if (ages[f][i] < 0) continue;
+            AgeErrors& bucket = buckets[size_t(std::min(ages[f][i], max_age))];
+            const double t = first(truth[f], i);
+            ++bucket.pixels;
+            bucket.mean_abs += std::fabs(first(frames[f], i) - t);
+            bucket.converged_mean_abs += std::fabs(first(converged[f], i) - t);
+        }
+    }
+    for (AgeErrors& bucket : buckets) {
+        if (bucket.pixels == 0) continue;
+        bucket.mean_abs /= double(bucket.pixels);
+        bucket.converged_mean_abs /= double(bucket.pixels);
+    }
+    return buckets;
+}
+
 double mean_angle_degrees(const FloatImage& image, const FloatImage& reference, const std::vector<uint8_t>* mask) {
     if (image.channels < 3 || reference.channels < 3 || image.width != reference.width ||
         image.height != reference.height) {

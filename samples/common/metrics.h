@@ -76,6 +76,28 @@ FloatImage signed_error_map(const FloatImage& image, const FloatImage& reference
 double flicker(const std::vector<FloatImage>& method_frames, const std::vector<FloatImage>& reference_frames,
                const std::vector<std::vector<uint8_t>>* masks = nullptr);
 
+// ---- Ghosting: how far a temporal accumulation lags behind a change -------------------------------------
+//
+// Frames since each pixel's last event, per frame: ages[f][i] = 0 where alive[f][i] and event[f][i]; ages[f-1][i] + 1
+// where alive[f][i], no event, and ages[f-1][i] >= 0; -1 otherwise (no event since the pixel came alive, or not alive
+// now: on the moving object, sky). `event` and `alive`: one byte per pixel per frame, as many frames and pixels each
+// (std::invalid_argument otherwise).
+std::vector<std::vector<int>> frames_since_event(const std::vector<std::vector<uint8_t>>& event,
+                                                 const std::vector<std::vector<uint8_t>>& alive);
+
+// The error of the pixels of one age, pooled over the frames.
+struct AgeErrors {
+    size_t pixels = 0;
+    double mean_abs = 0.0;            // |frames - truth|
+    double converged_mean_abs = 0.0;  // |converged - truth| of the same pixels in the same frames
+};
+// Buckets 0 .. max_age - 1 hold the pixels of that age (frames_since_event), bucket max_age every age >= max_age.
+// First channels; every image of one size and as many frames of each as `ages` has (std::invalid_argument
+// otherwise). A bucket without pixels has errors 0.
+std::vector<AgeErrors> error_by_age(const std::vector<FloatImage>& frames, const std::vector<FloatImage>& converged,
+                                    const std::vector<FloatImage>& truth, const std::vector<std::vector<int>>& ages,
+                                    int max_age);
+
 // Mean angle in degrees between the directions in the first three channels of `image` and of `reference` (each
 // normalised; a zero or non-finite vector counts 180 degrees), over the pixels `mask` (compare_images' kind) keeps:
 // bent normals against the geometry truth's. Both need >= 3 channels and one size (std::invalid_argument

@@ -33,6 +33,8 @@ const BuiltInScene kBuiltInScenes[] = {
      &scenes::build_clutter},
     {"analytic", "floor, wall and box with exactly known obscurance (analytic_ao.h)", &scenes::build_analytic},
     {"room", "the demo room: walls, boxes and a sphere (build_demo_scene_mesh)", &scenes::build_room},
+    {"sliding", "the objects scene with a box sliding across the floor, 5 cm a frame (animated)",
+     &scenes::build_sliding},
 };
 constexpr const char* kBunnyName = "bunny";
 constexpr const char* kBunnyDescription = "Stanford bunny (glmark2-data, ~70k triangles) on a floor";
@@ -234,6 +236,18 @@ Scene load_scene(const std::string& name_or_obj_path) {
     if (name_or_obj_path == kBunnyName) return load_bunny_scene();
     if (ends_with_obj(name_or_obj_path)) return load_obj_scene(name_or_obj_path);
     throw std::invalid_argument("unknown scene '" + name_or_obj_path + "' (valid: " + valid_scene_names() + ")");
+}
+
+SceneMesh Scene::mesh_at(int frame) const {
+    SceneMesh moved = mesh;
+    if (!animated() || frame == 0) return moved;
+    const glm::vec3 offset = float(frame) * motion.velocity;
+    for (size_t i = size_t(std::max(motion.first_vertex, 0)) * 6; i + 5 < moved.vertices.size(); i += 6) {
+        moved.vertices[i] += offset.x;
+        moved.vertices[i + 1] += offset.y;
+        moved.vertices[i + 2] += offset.z;
+    }
+    return moved;
 }
 
 const NamedCamera& find_viewpoint(const Scene& scene, const std::string& name) {

@@ -17,6 +17,9 @@
 //   analytic  floor, wall and box whose exact obscurance analytic_ao.h computes. Viewpoints: default,
 //             corner, box, top.
 //   room      the demo room of build_demo_scene_mesh(). Viewpoints: default, left, right, high.
+//   sliding   the objects scene with a box sliding across the floor in front of them (+x, 5 cm a frame): the
+//             moving object of the temporal accumulation's ghosting measure (compare --frames). Viewpoints:
+//             those of objects.
 //   bunny     /usr/share/glmark2/models/bunny.obj (package glmark2-data) standing on a floor quad,
 //             auto-framed; listed as unavailable when the file is missing. Viewpoints: default, left,
 //             right, top.
@@ -40,12 +43,26 @@ struct NamedCamera {
     Camera camera;
 };
 
+// A rigid part of a scene that moves from frame to frame: the mesh's vertices from `first_vertex` on, placed for
+// frame 0, are moved by frame * velocity in frame `frame`.
+struct SceneMotion {
+    int first_vertex = 0;
+    glm::vec3 velocity{0.0f};  // metres per frame
+};
+
 struct Scene {
     std::string name;         // "atrium", or the OBJ path
     std::string description;  // one line
-    SceneMesh mesh;           // world space, metres, y up
+    SceneMesh mesh;           // world space, metres, y up; an animated scene's as of frame 0
     std::vector<NamedCamera> viewpoints;  // [0] is the default camera, named "default"
-    glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};  // of the mesh
+    glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};  // of the mesh (frame 0)
+    SceneMotion motion;       // velocity 0: a still scene
+
+    bool animated() const { return motion.velocity != glm::vec3(0.0f); }
+    // The mesh in frame `frame` (any integer; frame 0 is `mesh`): the same vertices in the same order, the moving
+    // part moved. Its triangles from first_moving_triangle() on are the moving part's.
+    SceneMesh mesh_at(int frame) const;
+    int first_moving_triangle() const { return animated() ? motion.first_vertex / 3 : mesh.triangle_count(); }
 };
 
 struct SceneInfo {

@@ -78,6 +78,14 @@ obscura_cli_command_test(compare_orbit_temporal 0
   "compare|${scene}|--methods|hbao|--temporal|on|--truth-rays|64|--orbit|4|--frames|3|--json|report.json"
   GL CHECK orbit EXPECT_STDOUT "flicker +last")
 obscura_cli_command_test(compare_temporal_bad_value 2 "compare|--temporal|maybe" EXPECT_STDERR "--temporal takes on or off")
+# The animated scene through a still camera: motion vectors handed over, each frame's converged image (--converged),
+# the noise flicker against it, and the ghosting table with both curves.
+obscura_cli_command_test(compare_sliding_ghosting 0
+  "compare|--scene|sliding|--size|96x54|--methods|hbao:temporal.enabled=on|--truth-rays|8|--frames|3|--converged|2|--json|report.json"
+  GL EXPECT_FILES "report.json"
+  EXPECT_STDOUT "3 frames of a still camera, the scene moving, motion vectors handed over\n.*noise flicker +converged.*\nghosting [^\n]*\nmethod +pixels +within 0.02 from +0 +1[^\n]*\nhbao:temporal.enabled=on uncovered +[0-9]+ [^\n]*\nhbao:temporal.enabled=on changed ")
+obscura_cli_command_test(compare_converged_without_frames 2 "compare|--converged|4" EXPECT_STDERR "--converged needs --frames N")
+obscura_cli_command_test(compare_motion_vectors_bad_value 2 "compare|--motion-vectors|yes" EXPECT_STDERR "--motion-vectors takes on or off")
 # bench --motion: the temporal pass's moving path is timed and reported.
 obscura_cli_command_test(bench_temporal_motion 0
   "bench|--scene|analytic|--sizes|96x54|--methods|hbao:temporal.enabled=on|--motion|1|--frames|2|--warmup|1"
@@ -175,7 +183,7 @@ obscura_cli_command_test(empty_method_entry 2 "compare|--methods|hbao,,hbao:blur
 obscura_cli_command_test(set_key_of_no_method 2 "compare|--methods|hbao|--set|no_such_key=1")
 obscura_cli_command_test(unknown_scene 2 "render|--scene|no_such_scene|--out|ao.png")
 obscura_cli_command_test(depth_with_size 2 "render|--depth|plane.pfm|--size|64x36|--out|ao.png")
-obscura_cli_command_test(orbit_without_frames 2 "compare|--orbit|4")
+obscura_cli_command_test(orbit_without_frames 2 "compare|--orbit|4" EXPECT_STDERR "--orbit DEG needs --frames N")
 obscura_cli_command_test(unknown_truth 2 "compare|--truth|nosuch" EXPECT_STDERR "unknown --truth 'nosuch' [(]valid: geometry, screen, both[)]")
 obscura_cli_command_test(compare_classes_not_a_number 2 "compare|--classes|abc"
   EXPECT_STDERR "^obscura: --classes [(]radius in metres[)]: 'abc' is not a number [^\n]*\n$")

@@ -41,7 +41,7 @@ using obscura::samples::read_texture_region;
 
 constexpr int kWidth = 160;
 constexpr int kHeight = 90;
-const char* const kBuiltIns[] = {"atrium", "terrain", "objects", "clutter", "analytic", "room"};
+const char* const kBuiltIns[] = {"atrium", "terrain", "objects", "clutter", "analytic", "room", "sliding"};
 
 // A file in the temporary directory, removed when the test ends.
 class TempFile {

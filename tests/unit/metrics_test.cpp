@@ -253,6 +253,51 @@ TEST(Flicker, NeedsMatchingFrameLists) {
     EXPECT_THROW(flicker(two, {two[0], constant_image(1, 1, 0.5f)}), std::invalid_argument);
 }
 
+// ---- frames_since_event, error_by_age ----------------------------------------------------------------
+
+TEST(Ghosting, FramesSinceEventCountUpWhileAliveAndRestartAtEachEvent) {
+    using obscura::samples::frames_since_event;
+    // Pixel 0: event in frame 1, then alive: 0 1 2 (and -1 before). Pixel 1: event in 0, dies in 2, alive again in 3
+    // without an event: -1 from the death on. Pixel 2: events in 0 and 2: 0 1 0 1.
+    const std::vector<std::vector<uint8_t>> event = {{0, 1, 1}, {1, 0, 0}, {0, 0, 1}, {0, 0, 0}};
+    const std::vector<std::vector<uint8_t>> alive = {{1, 1, 1}, {1, 1, 1}, {1, 0, 1}, {1, 1, 1}};
+    const std::vector<std::vector<int>> ages = frames_since_event(event, alive);
+    ASSERT_EQ(ages.size(), 4u);
+    EXPECT_EQ(ages[0], (std::vector<int>{-1, 0, 0}));
+    EXPECT_EQ(ages[1], (std::vector<int>{0, 1, 1}));
+    EXPECT_EQ(ages[2], (std::vector<int>{1, -1, 0}));
+    EXPECT_EQ(ages[3], (std::vector<int>{2, -1, 1}));
+    // An event where the pixel is not alive does not count.
+    EXPECT_EQ(frames_since_event({{1}}, {{0}})[0], std::vector<int>{-1});
+    EXPECT_THROW(frames_since_event({{1}}, {{1}, {1}}), std::invalid_argument);
+    EXPECT_THROW(frames_since_event({{1, 0}}, {{1}}), std::invalid_argument);
+}
+
+TEST(Ghosting, ErrorByAgePoolsTheOldestAgesAndComparesWithTheConvergedImages) {
+    using obscura::samples::error_by_age;
+    // Two frames of 3 pixels. Ages: frame 0 {0, -1, 5}, frame 1 {1, 2, 6}; max_age 2 -> buckets 0, 1, >=2.
+    const std::vector<FloatImage> truth(2, constant_image(3, 1, 0.5f));
+    const std::vector<FloatImage> frames = {make_image(3, 1, {0.7f, 0.0f, 0.5f}), make_image(3, 1, {0.6f, 0.25f, 0.75f})};
+    const std::vector<FloatImage> converged = {make_image(3, 1, {0.5f, 0.0f, 0.5f}), make_image(3, 1, {0.55f, 0.5f, 0.5f})};
+    const std::vector<std::vector<int>> ages = {{0, -1, 5}, {1, 2, 6}};
+    const std::vector<obscura::samples::AgeErrors> buckets = error_by_age(frames, converged, truth, ages, 2);
+    ASSERT_EQ(buckets.size(), 3u);
+    EXPECT_EQ(buckets[0].pixels, 1u);  // |0.7 - 0.5|, converged 0
+    EXPECT_NEAR(buckets[0].mean_abs, 0.2, 1e-6);
+    EXPECT_NEAR(buckets[0].converged_mean_abs, 0.0, 1e-6);
+    EXPECT_EQ(buckets[1].pixels, 1u);  // |0.6 - 0.5|, converged |0.55 - 0.5|
+    EXPECT_NEAR(buckets[1].mean_abs, 0.1, 1e-6);
+    EXPECT_NEAR(buckets[1].converged_mean_abs, 0.05, 1e-6);
+    EXPECT_EQ(buckets[2].pixels, 3u);  // ages 5, 2 and 6: (0 + 0.25 + 0.25) / 3, converged (0 + 0 + 0) / 3
+    EXPECT_NEAR(buckets[2].mean_abs, 0.5 / 3.0, 1e-6);
+    EXPECT_NEAR(buckets[2].converged_mean_abs, 0.0, 1e-6);
+    // An empty bucket stays 0; mismatched inputs are refused.
+    EXPECT_EQ(error_by_age(frames, converged, truth, {{-1, -1, -1}, {-1, -1, -1}}, 2)[0].pixels, 0u);
+    EXPECT_THROW(error_by_age(frames, converged, truth, {{0, 0, 0}}, 2), std::invalid_argument);
+    EXPECT_THROW(error_by_age(frames, converged, truth, {{0, 0}, {0, 0}}, 2), std::invalid_argument);
+    EXPECT_THROW(error_by_age(frames, converged, truth, ages, -1), std::invalid_argument);
+}
+
 // ---- contact_sheet -----------------------------------------------------------------------------------
 
 TEST(ContactSheet, GridSize) {

@@ -16,6 +16,7 @@ Scene build_objects();
 Scene build_clutter();
 Scene build_analytic();
 Scene build_room();
+Scene build_sliding();
 
 inline NamedCamera viewpoint(const std::string& name, const glm::vec3& eye, const glm::vec3& target,
                              float near_plane, float far_plane) {
