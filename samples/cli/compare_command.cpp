@@ -24,6 +24,8 @@
 #include "scene_source.h"
 #include "truth_render.h"
 
+#include <glm/gtc/type_ptr.hpp>
+
 namespace obscura::cli {
 namespace {
 
@@ -434,6 +436,12 @@ void measure_method(const ObscuraSession& session, const std::vector<samples::Re
                                                            .mean_abs;
             }
         }
+        if (!result.geometry.empty()) {
+            errors.surface_flicker = samples::surface_flicker(method.frames, result.geometry);
+            if (!method.converged_frames.empty()) {
+                errors.converged_surface_flicker = samples::surface_flicker(method.converged_frames, result.geometry);
+            }
+        }
         if (!result.still_geometry.empty() && !method.converged_frames.empty()) {
             errors.ghosting = measure_ghosting(result, method, reference);
         }
@@ -581,6 +589,23 @@ int run_compare(ArgumentList& arguments) {
     if (config.classes) {
         result.classes = config.classes;
         split_into_classes(frames, view_depths, result);
+    }
+    if (source.scene() && config.frames > 1) {
+        for (size_t f = 0; f < frames.size(); ++f) {
+            const samples::SceneFrame& frame = frames[f].frame();
+            samples::FrameGeometry geometry;
+            geometry.view_depth = view_depths[f];
+            geometry.view = glm::dmat4(frame.view);
+            geometry.projection = glm::dmat4(glm::make_mat4(frame.projection));
+            geometry.depth_width = frame.depth_width;
+            geometry.depth_height = frame.depth_height;
+            geometry.rect_x = frame.output_rect.x;
+            geometry.rect_y = frame.output_rect.y;
+            result.geometry.push_back(std::move(geometry));
+        }
+        for (const ComparedTruth& truth : result.truths) {
+            result.truth_surface_flicker.push_back(samples::surface_flicker(truth.references.front().frames, result.geometry));
+        }
     }
     // The ghosting needs the pixels to stay where they are: an animated scene through a still camera.
     if (animated && !config.orbit_degrees && config.frames > 1 && result.converged_frames > 0) {

@@ -250,9 +250,11 @@ void print_compare_table(const CompareResult& result) {
             header.push_back("flicker");
             header.push_back("last");
         }
+        if (!result.geometry.empty()) header.push_back("surface flicker");
         if (result.converged_frames > 0) {
             header.push_back("noise flicker");
             header.push_back("converged");
+            header.push_back("its surface flicker");
         }
         header.push_back(truth.kind == TruthKind::Geometry ? "truth" : "ref");
         TextTable table(header);
@@ -270,14 +272,21 @@ void print_compare_table(const CompareResult& result) {
                 row.push_back(format_fixed(errors.flicker.value_or(0.0), 5));
                 row.push_back(format_fixed(errors.last_mean_abs.value_or(0.0), 5));
             }
+            if (!result.geometry.empty()) row.push_back(format_fixed(errors.surface_flicker.value_or(0.0), 5));
             if (result.converged_frames > 0) {
                 row.push_back(format_fixed(errors.noise_flicker.value_or(0.0), 5));
                 row.push_back(format_fixed(errors.converged_mean_abs.value_or(0.0), 5));
+                row.push_back(format_fixed(errors.converged_surface_flicker.value_or(0.0), 5));
             }
             row.push_back(std::to_string(method.reference + 1));
             table.add_row(row);
         }
         table.print(stdout);
+        if (t < result.truth_surface_flicker.size()) {
+            std::printf("surface flicker: how much a surface point's AO changes from frame to frame (reprojected); the "
+                        "%s's own: %.5f (its sampling noise: the floor)\n",
+                        truth.kind == TruthKind::Geometry ? "truth" : "reference", result.truth_surface_flicker[t]);
+        }
         for (const ComparedMethod& method : result.methods) {
             const MethodErrors& errors = method.errors[t];
             if (errors.bent_degrees) {
@@ -347,6 +356,8 @@ void write_compare_json(const CompareResult& result, const std::string& path) {
             if (errors.flicker) json.field("flicker", *errors.flicker);
             if (errors.last_mean_abs) json.field("last_frame_mean_abs", *errors.last_mean_abs);
             if (errors.noise_flicker) json.field("noise_flicker", *errors.noise_flicker);
+            if (errors.surface_flicker) json.field("surface_flicker", *errors.surface_flicker);
+            if (errors.converged_surface_flicker) json.field("converged_surface_flicker", *errors.converged_surface_flicker);
             if (errors.converged_mean_abs) json.field("converged_mean_abs", *errors.converged_mean_abs);
             if (errors.ghosting) {
                 json.key("ghosting").begin_object();
@@ -407,8 +418,10 @@ void write_compare_json(const CompareResult& result, const std::string& path) {
     }
     json.end_array();
     json.key("truths").begin_array();
-    for (const ComparedTruth& truth : result.truths) {
+    for (size_t t = 0; t < result.truths.size(); ++t) {
+        const ComparedTruth& truth = result.truths[t];
         json.begin_object();
+        if (t < result.truth_surface_flicker.size()) json.field("surface_flicker", result.truth_surface_flicker[t]);
         json.key("truth").begin_object();
         json.field("kind", truth_kind_name(truth.kind));
         json.field("rays", truth.rays);

@@ -96,6 +96,10 @@ struct MethodErrors {
     // frames' mean_abs averaged over the frames.
     std::optional<double> noise_flicker;
     std::optional<double> converged_mean_abs;
+    // With --frames on a scene: samples::surface_flicker of the method's frames (how much a surface point's AO changes
+    // from frame to frame, what a viewer sees flicker), and of its converged frames with --converged.
+    std::optional<double> surface_flicker;
+    std::optional<double> converged_surface_flicker;
     std::optional<GhostErrors> ghosting;  // an animated scene seen still, with --converged
     std::optional<double> bent_degrees;  // geometry truth, methods that write bent normals: mean angle to the truth's
     std::optional<double> normal_degrees;  // the same for the surface normals the method used (the baseline)
@@ -125,6 +129,9 @@ struct CompareResult {
     // The ghosting's pixels (an animated scene seen still), per frame: the still geometry the camera sees, and the
     // pixels the moving object has just uncovered. Empty: no ghosting measured.
     std::vector<std::vector<uint8_t>> still_geometry;
+    // With --frames on a scene: each frame's view depth (the truth's primary hits) and matrices (surface_flicker).
+    std::vector<samples::FrameGeometry> geometry;
+    std::vector<double> truth_surface_flicker;  // per truth, its first reference's: the floor its own noise sets
     std::vector<std::vector<uint8_t>> uncovered;
     // Metrics cover the geometry pixels (sky left out: a view of much sky would otherwise score better than
     // its geometry deserves) unless all_pixels (--metrics-pixels all).

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 namespace obscura::samples {
 namespace {
@@ -274,6 +275,83 @@ FloatImage signed_error_map(const FloatImage& image, const FloatImage& reference
         // Too dark: red stays 1 and the others fade; too bright: blue stays 1.
         return std::array<float, 3>{difference < 0.0 ? 1.0f : fade, fade, difference > 0.0 ? 1.0f : fade};
     });
+}
+
+namespace {
+
+bool sees_surface(float depth) { return std::isfinite(depth) && depth > 0.0f; }
+
+// The world point a pixel (centre) of `frame` sees at view depth `depth`: the view-space point on the pixel's ray at
+// z = -depth (the projections here are affine in x and y for a given depth, perspective or not), to the world.
+glm::dvec3 pixel_to_world(const FrameGeometry& frame, int x, int y, double depth) {
+    const glm::dvec2 ndc((double(x + frame.rect_x) + 0.5) / double(frame.depth_width) * 2.0 - 1.0,
+                         (double(y + frame.rect_y) + 0.5) / double(frame.depth_height) * 2.0 - 1.0);
+    const glm::dmat4& p = frame.projection;
+    const double z = -depth;
+    const double w = p[2][3] * z + p[3][3];
+    // p[0][0] x + p[1][0] y = ndc.x w - p[2][0] z - p[3][0], likewise for y (p[0][3] = p[1][3] = 0 here).
+    const glm::dmat2 a(p[0][0], p[0][1], p[1][0], p[1][1]);
+    const glm::dvec2 b(ndc.x * w - p[2][0] * z - p[3][0], ndc.y * w - p[2][1] * z - p[3][1]);
+    const glm::dvec2 xy = glm::inverse(a) * b;
+    const glm::dvec4 world = glm::inverse(frame.view) * glm::dvec4(xy, z, 1.0);
+    return glm::dvec3(world) / world.w;
+}
+
+}  // namespace
+
+double surface_flicker(const std::vector<FloatImage>& frames, const std::vector<FrameGeometry>& geometry,
+                       double depth_tolerance) {
+    if (frames.size() != geometry.size() || frames.size() < 2) {
+        throw std::invalid_argument("surface_flicker: " + std::to_string(frames.size()) + " frames and " +
+                                    std::to_string(geometry.size()) + " geometries (two or more of each)");
+    }
+    const int width = frames[0].width, height = frames[0].height;
+    for (size_t f = 0; f < frames.size(); ++f) {
+        check_same_size(frames[f], frames[0]);
+        check_same_size(geometry[f].view_depth, geometry[0].view_depth);
+        if (geometry[f].view_depth.width != width || geometry[f].view_depth.height != height) {
+            throw std::invalid_argument("surface_flicker: a depth image of another size than the frames");
+        }
+    }
+    double sum = 0.0;
+    size_t counted = 0;
+    for (size_t f = 1; f < frames.size(); ++f) {
+        const FrameGeometry& now = geometry[f];
+        const FrameGeometry& before = geometry[f - 1];
+        const glm::dmat4 to_before = before.projection * before.view;
+        const FloatImage& image = frames[f];
+        const FloatImage& previous = frames[f - 1];
+        for (int y = 0; y < height; ++y) {
+            for (int x = 0; x < width; ++x) {
+                const float depth = now.view_depth.at(x, y);
+                if (!sees_surface(depth)) continue;
+                const glm::dvec3 world = pixel_to_world(now, x, y, double(depth));
+                const glm::dvec4 clip = to_before * glm::dvec4(world, 1.0);
+                if (!(clip.w > 0.0)) continue;
+                const double expected_depth = -(before.view * glm::dvec4(world, 1.0)).z;
+                // Texel coordinates of the point in the previous output image (texel centres at integers).
+                const double u = (clip.x / clip.w * 0.5 + 0.5) * before.depth_width - before.rect_x - 0.5;
+                const double v = (clip.y / clip.w * 0.5 + 0.5) * before.depth_height - before.rect_y - 0.5;
+                if (!(u >= 0.0 && v >= 0.0 && u <= width - 1 && v <= height - 1)) continue;
+                const int x0 = std::clamp(int(u), 0, std::max(width - 2, 0)), y0 = std::clamp(int(v), 0, std::max(height - 2, 0));
+                const int x1 = std::min(x0 + 1, width - 1), y1 = std::min(y0 + 1, height - 1);
+                bool same_surface = true;
+                for (const auto& [tx, ty] : {std::pair{x0, y0}, std::pair{x1, y0}, std::pair{x0, y1}, std::pair{x1, y1}}) {
+                    const float texel_depth = before.view_depth.at(tx, ty);
+                    same_surface = same_surface && sees_surface(texel_depth) &&
+                                   std::fabs(double(texel_depth) - expected_depth) <= depth_tolerance * expected_depth;
+                }
+                if (!same_surface) continue;
+                const double fx = u - x0, fy = v - y0;
+                const double value = (1.0 - fy) * ((1.0 - fx) * previous.at(x0, y0) + fx * previous.at(x1, y0)) +
+                                     fy * ((1.0 - fx) * previous.at(x0, y1) + fx * previous.at(x1, y1));
+                const double change = double(image.at(x, y)) - value;
+                sum += std::isfinite(change) ? std::fabs(change) : 1.0;
+                ++counted;
+            }
+        }
+    }
+    return counted > 0 ? sum / double(counted) : 0.0;
 }
 
 std::vector<std::vector<int>> frames_since_event(const std::vector<std::vector<uint8_t>>& event,

@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "image_io.h"
 
 namespace obscura::samples {
@@ -75,6 +77,27 @@ FloatImage signed_error_map(const FloatImage& image, const FloatImage& reference
 // frames of a pair count (the geometry seen in both); with none counted the flicker is 0.
 double flicker(const std::vector<FloatImage>& method_frames, const std::vector<FloatImage>& reference_frames,
                const std::vector<std::vector<uint8_t>>* masks = nullptr);
+
+// How the camera saw one frame: each output pixel's view depth and the matrices that take it to the world.
+struct FrameGeometry {
+    FloatImage view_depth;        // positive view depth of each pixel of the output rectangle; sky: 0 or not finite
+    glm::dmat4 view{1.0};         // world -> view
+    glm::dmat4 projection{1.0};   // view -> clip of the whole depth texture (guard band included)
+    int depth_width = 0;          // the depth texture's size, and where the output rectangle sits in it
+    int depth_height = 0;
+    int rect_x = 0;
+    int rect_y = 0;
+};
+
+// Flicker as a viewer sees it: how much the AO of a surface point changes from one frame to the next. Each geometry
+// pixel of frame f is taken to the world through its view depth, projected into frame f - 1 and compared with frame
+// f - 1's image there (bilinear), where all four texels around that point see the same surface (their view depth
+// within depth_tolerance of the point's, relative); other pixels (disoccluded, off screen, sky) do not count. The
+// mean of |difference| over the counted pixels and frame pairs (first channels), 0 when none counts. A still camera
+// and scene make it the plain mean change per pixel. `frames` and `geometry` of one count, >= 2, and one size
+// (std::invalid_argument otherwise).
+double surface_flicker(const std::vector<FloatImage>& frames, const std::vector<FrameGeometry>& geometry,
+                       double depth_tolerance = 0.02);
 
 // ---- Ghosting: how far a temporal accumulation lags behind a change -------------------------------------
 //

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
 #include <gtest/gtest.h>
 
 #include "json_writer.h"
@@ -296,6 +297,54 @@ TEST(Ghosting, ErrorByAgePoolsTheOldestAgesAndComparesWithTheConvergedImages) {
     EXPECT_THROW(error_by_age(frames, converged, truth, {{0, 0, 0}}, 2), std::invalid_argument);
     EXPECT_THROW(error_by_age(frames, converged, truth, {{0, 0}, {0, 0}}, 2), std::invalid_argument);
     EXPECT_THROW(error_by_age(frames, converged, truth, ages, -1), std::invalid_argument);
+}
+
+// ---- surface_flicker -------------------------------------------------------------------------------
+
+// A wall 4 m in front of a camera looking down -z (a plain perspective, 90 degrees, no guard band) seen in 8x8 pixels:
+// one pixel is 1 m wide there.
+obscura::samples::FrameGeometry wall_frame(double camera_x) {
+    obscura::samples::FrameGeometry frame;
+    frame.view_depth = constant_image(8, 8, 4.0f);
+    frame.view = glm::dmat4(1.0);
+    frame.view[3][0] = -camera_x;  // world -> view: the camera at (camera_x, 0, 0)
+    const double n = 0.1, f = 100.0;
+    frame.projection = glm::dmat4(0.0);
+    frame.projection[0][0] = 1.0;
+    frame.projection[1][1] = 1.0;
+    frame.projection[2][2] = -(f + n) / (f - n);
+    frame.projection[2][3] = -1.0;
+    frame.projection[3][2] = -2.0 * f * n / (f - n);
+    frame.depth_width = 8;
+    frame.depth_height = 8;
+    return frame;
+}
+
+TEST(SurfaceFlicker, FollowsTheSurfaceAcrossACameraMove) {
+    using obscura::samples::surface_flicker;
+    // AO painted on the wall (a ramp in world x): the camera moves one metre (one pixel) to the right, so the image
+    // moves one pixel to the left and every surface point keeps its value: 0, while the per-pixel change is 0.1.
+    std::vector<float> ramp(64), shifted(64);
+    for (int y = 0; y < 8; ++y) {
+        for (int x = 0; x < 8; ++x) {
+            ramp[size_t(y * 8 + x)] = 0.1f * float(x);
+            shifted[size_t(y * 8 + x)] = 0.1f * float(x + 1);
+        }
+    }
+    const std::vector<FloatImage> frames = {make_image(8, 8, ramp), make_image(8, 8, shifted)};
+    EXPECT_NEAR(surface_flicker(frames, {wall_frame(0.0), wall_frame(1.0)}), 0.0, 1e-6);
+    // A still camera: the plain mean change, 0.1 per pixel.
+    EXPECT_NEAR(surface_flicker(frames, {wall_frame(0.0), wall_frame(0.0)}), 0.1, 1e-6);
+    // Where the previous frame saw another surface (its depth 10 % off) nothing counts.
+    obscura::samples::FrameGeometry farther = wall_frame(0.0);
+    farther.view_depth = constant_image(8, 8, 4.4f);
+    EXPECT_EQ(surface_flicker(frames, {farther, wall_frame(0.0)}), 0.0);
+    // Sky does not count either.
+    obscura::samples::FrameGeometry sky = wall_frame(0.0);
+    sky.view_depth = constant_image(8, 8, 0.0f);
+    EXPECT_EQ(surface_flicker(frames, {wall_frame(0.0), sky}), 0.0);
+    EXPECT_THROW(surface_flicker({frames[0]}, {wall_frame(0.0)}), std::invalid_argument);
+    EXPECT_THROW(surface_flicker(frames, {wall_frame(0.0)}), std::invalid_argument);
 }
 
 // ---- contact_sheet -----------------------------------------------------------------------------------
