@@ -383,7 +383,6 @@ void measure_method(const ObscuraSession& session, const std::vector<samples::Re
         }
     }
     if (result.converged_frames > 0) {
-        request.scene = &frames.front().frame();
         method.converged_frames = render_converged(session, frames, request, result.converged_frames);
     }
 

@@ -179,10 +179,11 @@ HostTexture create_depth_texture(const SceneRenderOptions& options, int width, i
     return texture;
 }
 
-HostTexture create_normal_texture(int width, int height) {
+// A single-sample colour target (normals, motion vectors) read with nearest filtering.
+HostTexture create_color_texture(GLenum internal_format, int width, int height) {
     HostTexture texture = HostTexture::create();
     glBindTexture(GL_TEXTURE_2D, texture.get());
-    glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA16F, width, height);
+    glTexStorage2D(GL_TEXTURE_2D, 1, internal_format, width, height);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -254,17 +255,6 @@ void draw_mesh(const SceneMesh& mesh, const SceneMesh* previous, const DrawMatri
     // Unbind before the owners delete the objects; the state guard then restores the host's bindings.
     glUseProgram(0);
     glBindVertexArray(0);
-}
-
-HostTexture create_motion_texture(int width, int height) {
-    HostTexture texture = HostTexture::create();
-    glBindTexture(GL_TEXTURE_2D, texture.get());
-    glTexStorage2D(GL_TEXTURE_2D, 1, GL_RG32F, width, height);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    return texture;
 }
 
 }  // namespace
@@ -385,7 +375,7 @@ RenderedScene render_scene(const SceneMesh& mesh, const SceneRenderOptions& opti
 
     SceneStateGuard state(clip_control);
     HostTexture depth = create_depth_texture(options, layout.depth_width, layout.depth_height);
-    HostTexture normals = options.normals ? create_normal_texture(layout.depth_width, layout.depth_height)
+    HostTexture normals = options.normals ? create_color_texture(GL_RGBA16F, layout.depth_width, layout.depth_height)
                                           : HostTexture();
     // Multisampled normals are drawn into a renderbuffer and resolved into `normals`.
     HostRenderbuffer multisampled_normals;
@@ -396,7 +386,7 @@ RenderedScene render_scene(const SceneMesh& mesh, const SceneRenderOptions& opti
                                          layout.depth_height);
     }
 
-    HostTexture motion = options.motion_vectors ? create_motion_texture(layout.depth_width, layout.depth_height)
+    HostTexture motion = options.motion_vectors ? create_color_texture(GL_RG32F, layout.depth_width, layout.depth_height)
                                                 : HostTexture();
 
     HostFramebuffer framebuffer = HostFramebuffer::create();
