@@ -149,8 +149,8 @@ std::vector<obscura_setting_info> setting_infos(obscura_method method) {
     // The rows every method shares (temporal accumulation) follow the method's own.
     const obscura_setting_info* shared = nullptr;
     uint32_t shared_count = 0;
-    if (obscura_get_temporal_setting_infos(&shared, &shared_count) != OBSCURA_OK) {
-        throw SettingsLibraryError("obscura_get_temporal_setting_infos failed");
+    if (obscura_get_shared_setting_infos(&shared, &shared_count) != OBSCURA_OK) {
+        throw SettingsLibraryError("obscura_get_shared_setting_infos failed");
     }
     rows.insert(rows.end(), shared, shared + shared_count);
     return rows;

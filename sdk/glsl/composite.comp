@@ -15,19 +15,23 @@ void main() {
     ivec2 i = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(i, output_rect.zw))) return;
     ivec2 source = output_rect.xy + i;
+    // After a reduced-resolution frame the working textures (depth, normals, the raw AO of the debug views) hold
+    // the host's texel t at t >> k: each covers its 2^k x 2^k pixels.
+    ivec2 working = source >> resolution.x;
+    ivec2 ao_source = resolution.y != 0 ? working : source;
     ivec2 destination = target_params.xy + i;
     int debug_view = target_params.w;
 
     vec4 value;
     if (debug_view == OBSCURA_DEBUG_VIEW_LINEAR_DEPTH) {
-        float depth = texelFetch(u_linear_depth, source, 0).r;
+        float depth = texelFetch(u_linear_depth, working, 0).r;
         float v = obscura_is_sky(depth) ? 1.0 : clamp(depth * debug_params.x, 0.0, 1.0);
         value = vec4(v, v, v, 1.0);
     } else if (debug_view == OBSCURA_DEBUG_VIEW_NORMALS) {
-        vec3 n = obscura_decode_normal(texelFetch(u_normals, source, 0).xy) * 0.5 + 0.5;
+        vec3 n = obscura_decode_normal(texelFetch(u_normals, working, 0).xy) * 0.5 + 0.5;
         value = OUTPUT_CHANNELS == 1 ? vec4(n.z) : vec4(n, 1.0);
     } else {
-        float v = texelFetch(u_ao, source, 0).r;
+        float v = texelFetch(u_ao, ao_source, 0).r;
         value = vec4(v, v, v, 1.0);
     }
     if (target_params.z == OBSCURA_BLEND_MODE_MULTIPLY) {

@@ -1,33 +1,23 @@
 // Depth preparation, shared by every method: linear view depth for the whole depth texture (every
 // texel can occlude) and view-space normals, from the host's normals or reconstructed from depth
 // (SAO paper eq. 4, with the one-sided difference of the side that continues the centre's surface).
+// At reduced resolution (resolution.x = k > 0) texel p is the host's texel p << k, read alone: its depth at its
+// own position (the reduced frame's projection puts p's centre there), so planes stay exact planes; the normals
+// are reconstructed on the reduced grid (or read from the host's at that texel).
 // Variants: DEPTH_LINEAR (host gives linear view depth), DEPTH_MULTISAMPLE (sample 0 is used).
 #include "common/shader_interface.h"
 #include "common/depth.glsl"
+#include "common/host_depth.glsl"
 #include "common/normal_encoding.glsl"
 
 layout(local_size_x = OBSCURA_DEPTH_PREPARE_GROUP_X, local_size_y = OBSCURA_DEPTH_PREPARE_GROUP_Y) in;
 
-#if DEPTH_MULTISAMPLE
-layout(binding = OBSCURA_UNIT_DEPTH) uniform sampler2DMS u_depth;
-float fetch_raw_depth(ivec2 p) { return texelFetch(u_depth, p, 0).r; }
-#else
-layout(binding = OBSCURA_UNIT_DEPTH) uniform sampler2D u_depth;
-float fetch_raw_depth(ivec2 p) { return texelFetch(u_depth, p, 0).r; }
-#endif
 layout(binding = OBSCURA_UNIT_NORMALS) uniform sampler2D u_host_normals;
 
 layout(binding = OBSCURA_IMAGE_OUT0, r32f) writeonly uniform image2D u_linear_depth;
 layout(binding = OBSCURA_IMAGE_OUT1, rg16_snorm) writeonly uniform image2D u_normals;
 
-float linear_depth_at(ivec2 p) {
-    float raw = fetch_raw_depth(p);
-#if DEPTH_LINEAR
-    return obscura_sanitize_linear_depth(raw);
-#else
-    return obscura_linearize_window_depth(raw);
-#endif
-}
+float linear_depth_at(ivec2 p) { return obscura_host_linear_depth(p << resolution.x); }
 
 bool inside(ivec2 p) { return all(lessThan(p, depth_size.xy)) && all(greaterThanEqual(p, ivec2(0))); }
 
@@ -125,7 +115,7 @@ void main() {
             }
         }
     } else {
-        vec3 host = texelFetch(u_host_normals, p, 0).xyz;
+        vec3 host = texelFetch(u_host_normals, p << resolution.x, 0).xyz;
         if (depth_size.w == OBSCURA_NORMALS_UNSIGNED) host = host * 2.0 - 1.0;
         bool finite = obscura_is_finite(host.x) && obscura_is_finite(host.y) && obscura_is_finite(host.z);
         if (finite && dot(host, host) > 1e-12) n = normalize(host);

@@ -119,7 +119,8 @@ void main() {
     vec3 previous_normal = normalize(rotation * normal);
     vec2 previous_pixel;
     if (temporal.config.y == OBSCURA_TEMPORAL_REPROJECT_MOTION) {
-        previous_pixel = vec2(p) + 0.5 + texelFetch(u_motion, p, 0).xy * temporal.motion.xy;
+        // At reduced resolution the host's vector is read at the host's texel (p << k) and scaled to reduced texels.
+        previous_pixel = vec2(p) + 0.5 + texelFetch(u_motion, p << resolution.x, 0).xy * temporal.motion.xy;
     } else {
         vec4 clip = columns(temporal.previous_clip) * vec4(position, 1.0);
         previous_pixel = (clip.xy / clip.w * 0.5 + 0.5) * vec2(depth_size.xy);

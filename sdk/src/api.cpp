@@ -8,7 +8,7 @@
 #include "host_enum.h"
 #include "method_registry.h"
 #include "settings.h"
-#include "temporal_settings.h"
+#include "shared_settings.h"
 
 using obscura::Context;
 using obscura::Error;
@@ -216,13 +216,13 @@ OBSCURA_API obscura_status(obscura_get_setting_infos)(obscura_method method, con
     return setting_infos_of_size(method, out_infos, out_count, uint32_t(sizeof(obscura::SettingInfo03)));
 }
 
-OBSCURA_API obscura_status obscura_get_temporal_setting_infos(const obscura_setting_info** out_infos,
+OBSCURA_API obscura_status obscura_get_shared_setting_infos(const obscura_setting_info** out_infos,
                                                               uint32_t* out_count) {
     if (!out_infos || !out_count) {
         return report_without_context(Error::make(OBSCURA_STATUS_NULL_ARGUMENT,
-                                                  "obscura_get_temporal_setting_infos: out_infos and out_count are required"));
+                                                  "obscura_get_shared_setting_infos: out_infos and out_count are required"));
     }
-    *out_infos = obscura::temporal_setting_infos(out_count);
+    *out_infos = obscura::shared_setting_infos(out_count);
     return report_without_context(Error());
 }
 

@@ -4,6 +4,7 @@
 
 #include "gl/state_guard.h"
 #include "method_registry.h"
+#include "reduced_resolution.h"
 #include "settings.h"
 
 namespace obscura {
@@ -48,6 +49,7 @@ uint64_t history_signature(const obscura_settings& settings, bool bent_normals) 
     for (size_t i = 0; i < row->settings_size; ++i) mix(bytes[i]);
     mix(static_cast<unsigned char>(settings.method));
     mix(bent_normals ? 1 : 0);
+    mix(static_cast<unsigned char>(settings.resolution.scale));  // a 1x1 frame is 1x1 at every resolution
     return hash;
 }
 
@@ -153,7 +155,8 @@ obscura_status Context::report(const Error& error) {
 }
 
 uint64_t Context::memory_bytes() const {
-    uint64_t bytes = resources_.bytes() + planner_.bytes() + output_.bytes() + own_view_.history.bytes();
+    uint64_t bytes = resources_.bytes() + planner_.bytes() + output_.bytes() + upsample_.bytes() +
+                     own_view_.history.bytes();
     for (const View* view = views_; view; view = view->next) bytes += view->history.bytes();
     for (const Technique* technique : techniques_) bytes += technique ? technique->memory_bytes() : 0;
     return bytes;
@@ -240,6 +243,7 @@ View* Context::find_view(const obscura_view* handle) {
 void Context::release_frame_resources() {
     resources_ = FrameResources();
     output_.release();
+    upsample_.release();
     for (Technique* technique : techniques_) {
         if (technique) technique->release();
     }
@@ -278,9 +282,13 @@ Error Context::prepare(int width, int height, const obscura_settings& settings) 
     if (error) return error;
     FrameRequest request;  // no output yet: the AO, and whatever extra outputs the last render asked for
     request.output_known = false;
-    const TechniquePlan plan = technique->plan(resolved, width, height, request);
-    error = ensure_resources(width, height, plan.depth_levels);
+    const int shift = resolution_shift(resolved);
+    const int working_width = reduced_extent(width, shift), working_height = reduced_extent(height, shift);
+    const TechniquePlan plan = technique->plan(resolved, working_width, working_height, request);
+    error = ensure_resources(working_width, working_height, plan.depth_levels);
     if (!error) error = technique->prepare(env(), resolved, request, resources_);
+    if (!error && shift > 0) error = upsample_.allocate(env(), width, height, upsample_.bent() != nullptr);
+    if (!error && shift == 0) upsample_.release();
     return error;
 }
 
@@ -320,11 +328,14 @@ Error Context::render(const obscura_input& input, const obscura_settings& settin
     return error;
 }
 
-Error Context::record_frame(const FrameInput& input, const obscura_settings& settings, const OutputTarget& target) {
+Error Context::record_frame(const FrameInput& host, const obscura_settings& settings, const OutputTarget& target) {
     const PassEnv pass_env = env();
     Technique* technique = nullptr;
     Error error = technique_for(settings.method, &technique);
     if (error) return error;
+    // The frame the method runs on: the host's, or at reduced resolution the reduced grid's.
+    const int shift = resolution_shift(settings);
+    const FrameInput input = shift > 0 ? reduced_frame_input(host, shift) : host;
     FrameRequest request;
     request.raw_view = is_raw_view(target.debug_view);
     request.bent_normals = target.bent_texture != 0;
@@ -338,8 +349,10 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
     error = ensure_resources(input.width, input.height, plan.depth_levels);
     if (!error) error = technique->prepare(pass_env, settings, request, resources_);
     if (!error) error = depth_prepare_.prepare(pass_env, input);
-    if (!error) error = output_.prepare(pass_env, target, input.output_rect);
+    if (!error) error = output_.prepare(pass_env, target, host.output_rect);
+    if (!error && shift > 0) error = upsample_.prepare(pass_env, host, request.bent_normals);
     if (error) return error;
+    if (shift == 0) upsample_.release();  // the context holds what its latest configuration needs
     // Temporal accumulation: the view's history continues when the frame can be reprojected and nothing it was
     // computed with changed. A debug view shows this frame alone and leaves the history as it is.
     View* view = find_view(input.view);
@@ -364,6 +377,12 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
     const UniformRange bent_pass = request.bent_normals ? planner_.push(OutputWriter::bent_constants(target)) : UniformRange();
     const UniformRange temporal_pass =
         temporal ? planner_.push(TemporalPass::constants(settings.temporal, input, history_continues)) : UniformRange();
+    // The passes on the host's texels: at full resolution the frame's own output constants.
+    const UniformRange host_output =
+        shift > 0 ? planner_.host_constants(host, OutputWriter::composite_target(target), plan, shift, raw_view)
+                  : uniforms.output;
+    const UniformRange upsample_pass =
+        shift > 0 ? planner_.push(UpsamplePass::constants(settings.resolution, input)) : UniformRange();
     planner_.upload(device_.gl());
 
     FramePassRecorder recorder(device_, timer_, (flags_ & OBSCURA_CONTEXT_FLAG_VALIDATE_PASSES) != 0);
@@ -379,8 +398,15 @@ Error Context::record_frame(const FrameInput& input, const obscura_settings& set
         result.result = &view->history.next();
         if (result.bent) result.bent = &view->history.next_bent();
     }
+    if (!error && shift > 0) {
+        // The raw debug views show the reduced grid itself; bent normals are upsampled for every view.
+        upsample_.run(pass_env, host_output, upsample_pass, host, resources_, *result.result, result.bent);
+        error = recorder.end(PassId::Upsample);
+        if (!raw_view) result.result = &upsample_.result();
+        result.bent = upsample_.bent();
+    }
     if (!error) {
-        output_.write(pass_env, uniforms.output, input, raw_view ? *result.raw : *result.result, resources_, target,
+        output_.write(pass_env, host_output, host, raw_view ? *result.raw : *result.result, resources_, target,
                       result.bent, bent_pass);
         error = recorder.end(PassId::Composite);
     }

@@ -2,7 +2,9 @@
 // table, identity, loss), one technique per method used so far (created from the method registry), the depth
 // preparation every method shares, the frame planner, the output writer and the timer, and runs a frame:
 // check the host's state -> resolve settings -> validate input and output -> plan -> prepare -> constants ->
-// depth preparation -> the technique's passes -> output, all under one StateGuard.
+// depth preparation -> the technique's passes -> [temporal] -> [upsample] -> output, all under one StateGuard. At
+// reduced resolution everything from the depth preparation to the temporal pass runs on the reduced frame
+// (reduced_resolution.h), the upsample and the output on the host's.
 #ifndef OBSCURA_CONTEXT_H
 #define OBSCURA_CONTEXT_H
 
@@ -16,6 +18,7 @@
 #include "passes/depth_prepare.h"
 #include "passes/pass_common.h"
 #include "passes/temporal.h"
+#include "passes/upsample.h"
 #include "technique.h"
 
 struct obscura_context {};  // the opaque handle type; Context derives from it
@@ -84,6 +87,7 @@ private:
     obscura_method current_method_ = OBSCURA_METHOD_COUNT_;
     FrameResources resources_;
     TemporalPass temporal_;
+    UpsamplePass upsample_;    // reduced resolution: the full-size result
     View own_view_;            // the history of renders that name no view
     View* views_ = nullptr;    // obscura_create_view's, newest first
     GpuTimer timer_;

@@ -144,6 +144,8 @@ Error check_input_fields(const obscura_input& input, GLint max_texture_size, Fra
     }
     frame.width = input.depth_width;
     frame.height = input.depth_height;
+    frame.host_width = frame.width;
+    frame.host_height = frame.height;
 
     obscura_rect rect = input.output_rect;
     if (rect.x == 0 && rect.y == 0 && rect.width == 0 && rect.height == 0) rect = {0, 0, frame.width, frame.height};

@@ -38,6 +38,10 @@ struct FrameInput {
     float previous_clip[16] = {};
     GLuint motion_vector_texture = 0;
     int motion_units = OBSCURA_MOTION_PIXELS;
+    // Reduced resolution (reduced_resolution.h): this frame's texel t is the host's texel t << resolution_shift in a
+    // host depth texture of host_width x host_height; 0 and the frame's own size at full resolution.
+    int resolution_shift = 0;
+    int host_width = 0, host_height = 0;
 };
 
 // Stage 1, no GL: every field of `input` (sizes against `max_texture_size`, the rectangle, the enums, the

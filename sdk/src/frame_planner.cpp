@@ -34,6 +34,8 @@ FrameConstants base_constants(const FrameInput& input, const OutputTarget& targe
     const double rx = n * 0.7548776662466927, ry = n * 0.5698402909980532;
     c.noise_offset[0] = float(rx - std::floor(rx));
     c.noise_offset[1] = float(ry - std::floor(ry));
+    c.resolution[0] = input.resolution_shift;
+    c.resolution[1] = 1;  // a working-size frame reads working-size textures
     return c;
 }
 
@@ -75,6 +77,19 @@ FrameUniforms FramePlanner::begin(const FrameInput& input, const OutputTarget& t
     u.blur_x = frame_constants(regions.blur_x);
     u.output = frame_constants(regions.output);
     return u;
+}
+
+UniformRange FramePlanner::host_constants(const FrameInput& host, const OutputTarget& target,
+                                          const TechniquePlan& plan, int shift, bool ao_reduced) {
+    FrameConstants c = base_constants(host, target, 1.0f / (4.0f * plan.radius * host.meters_to_view_units));
+    const obscura_rect& rect = host.output_rect;
+    c.work_rect[0] = rect.x;
+    c.work_rect[1] = rect.y;
+    c.work_rect[2] = rect.width;
+    c.work_rect[3] = rect.height;
+    c.resolution[0] = shift;
+    c.resolution[1] = ao_reduced ? 1 : 0;
+    return arena_.push(c);
 }
 
 UniformRange FramePlanner::frame_constants(const Region& work) {

@@ -23,6 +23,11 @@ public:
     FrameUniforms begin(const FrameInput& input, const OutputTarget& target, const FrameRegions& regions,
                         const TechniquePlan& plan);
     UniformRange frame_constants(const Region& work) override;
+    // After a reduced-resolution frame: the host frame's constants over its output rectangle, for the passes that
+    // work on the host's texels (the upsample, the composite). `ao_reduced`: the composite reads a working-size AO
+    // (the raw debug views) rather than the upsampled one.
+    UniformRange host_constants(const FrameInput& host, const OutputTarget& target, const TechniquePlan& plan,
+                                int shift, bool ao_reduced);
     // Uploads the frame's blocks (after the technique wrote its own).
     void upload(const gl::Table& gl) { arena_.upload(gl, buffer_.name()); }
 

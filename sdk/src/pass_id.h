@@ -27,6 +27,7 @@ namespace obscura {
     X(GtaoDenoise, "gtao_denoise")           \
     X(Blur, "blur")                          \
     X(Temporal, "temporal")                  \
+    X(Upsample, "upsample")                  \
     X(Composite, "composite")
 
 #define OBSCURA_PASS_ENUM_ENTRY_(id, label) id,

@@ -2,7 +2,7 @@
 
 #include "host_enum.h"
 #include "method_registry.h"
-#include "temporal_settings.h"
+#include "shared_settings.h"
 
 #include <cmath>
 #include <cstddef>
@@ -29,25 +29,26 @@ obscura_method resolve_method_value(int32_t value) {
     return row ? row->method : OBSCURA_METHOD_COUNT_;
 }
 
-// Calls f(block name, rows, count) for every method's table, then for the rows every method shares (temporal).
+// Calls f(block name, rows, count) for every method's table, then for the rows every method shares (temporal
+// accumulation, resolution), whose names carry their block ("temporal.enabled").
 template <class F>
 void for_each_table(F f) {
     uint32_t method_count = 0;
     const MethodDescriptor* const* methods = method_descriptors(&method_count);
     for (uint32_t m = 0; m < method_count; ++m) f(methods[m]->name, methods[m]->settings, methods[m]->setting_count);
-    uint32_t temporal_count = 0;
-    const obscura_setting_info* temporal = temporal_setting_infos(&temporal_count);
-    f("temporal", temporal, temporal_count);
+    uint32_t shared_count = 0;
+    const obscura_setting_info* shared = shared_setting_infos(&shared_count);
+    f("obscura_settings", shared, shared_count);
 }
 
-// The method's row of that name, or the shared (temporal) row.
+// The method's row of that name, or the shared row.
 const obscura_setting_info* find_info(obscura_method method, const char* name) {
     uint32_t count = 0;
     const obscura_setting_info* infos = setting_infos(method, &count);
     for (uint32_t i = 0; i < count; ++i) {
         if (std::strcmp(infos[i].name, name) == 0) return &infos[i];
     }
-    infos = temporal_setting_infos(&count);
+    infos = shared_setting_infos(&count);
     for (uint32_t i = 0; i < count; ++i) {
         if (std::strcmp(infos[i].name, name) == 0) return &infos[i];
     }
@@ -84,7 +85,7 @@ double stored_value(const obscura_settings& settings, const obscura_setting_info
     return 0.0;
 }
 
-// `block` names the settings block in messages ("hbao", "temporal").
+// `block` names the settings block in messages ("hbao"; "obscura_settings" for the shared rows).
 Error check_value(const obscura_setting_info& info, const char* block, double value) {
     if (!std::isfinite(value)) {
         return Error::make(OBSCURA_STATUS_INVALID_SETTING, "%s.%s is %g; it must be finite", block, info.name, value);

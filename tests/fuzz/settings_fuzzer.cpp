@@ -238,8 +238,8 @@ void for_each_row(Visit&& visit) {
     }
     uint32_t shared_count = 0;
     const obscura_setting_info* shared = nullptr;
-    FUZZ_CHECK(obscura_get_temporal_setting_infos(&shared, &shared_count) == kOk && shared_count > 0,
-               "obscura_get_temporal_setting_infos failed");
+    FUZZ_CHECK(obscura_get_shared_setting_infos(&shared, &shared_count) == kOk && shared_count > 0,
+               "obscura_get_shared_setting_infos failed");
     for (uint32_t i = 0; i < shared_count; ++i) visit(int32_t(OBSCURA_METHOD_HBAO), shared[i]);
 }
 

@@ -352,6 +352,10 @@ TEST_F(SyncTimings, AtOnceAfterRenderWithExactlyTheMethodsPasses) {
     hbao_temporal.temporal.enabled = OBSCURA_TOGGLE_ON;
     obscura_settings gtao_temporal = method_defaults(OBSCURA_METHOD_GTAO);
     gtao_temporal.temporal.enabled = OBSCURA_TOGGLE_ON;
+    obscura_settings hbao_half = hbao;
+    hbao_half.resolution.scale = OBSCURA_RESOLUTION_HALF;
+    obscura_settings gtao_quarter_temporal = gtao_temporal;
+    gtao_quarter_temporal.resolution.scale = OBSCURA_RESOLUTION_QUARTER;
     const Case cases[] = {
         {"hbao, blur", hbao, {"depth_prepare", "hbao", "blur", "composite"}},
         {"hbao, no blur", hbao_no_blur, {"depth_prepare", "hbao", "composite"}},
@@ -374,6 +378,10 @@ TEST_F(SyncTimings, AtOnceAfterRenderWithExactlyTheMethodsPasses) {
          {"depth_prepare", "ffao_table", "ffao_scan", "ffao_prefix", "ffao_obscurance", "composite"}},
         {"hbao, temporal", hbao_temporal, {"depth_prepare", "hbao", "blur", "temporal", "composite"}},
         {"gtao, temporal", gtao_temporal, {"depth_prepare", "z_pyramid", "gtao", "gtao_denoise", "temporal", "composite"}},
+        {"hbao, half resolution", hbao_half, {"depth_prepare", "hbao", "blur", "upsample", "composite"}},
+        {"gtao, temporal, quarter resolution",
+         gtao_quarter_temporal,
+         {"depth_prepare", "z_pyramid", "gtao", "gtao_denoise", "temporal", "upsample", "composite"}},
     };
     Frame frame = box_frame(96, 64);
     uint64_t renders = 0;

@@ -1,5 +1,6 @@
 // Soak: 2,000 frames of random methods, settings (drawn from the SDK's own metadata), sizes (1x1, 3x7, 4097x9,
-// 9x4097 among ordinary ones), depth kinds, output targets, prepares, releases, context re-creations and temporal
+// 9x4097 among ordinary ones), reduced resolutions, depth kinds, output targets, prepares, releases, context
+// re-creations and temporal
 // frames (random history settings, matrices, camera cuts, views created and destroyed), the way
 // an engine's editor drives the SDK for hours. Every call must return OK or, for random settings outside what
 // the method accepts together, INVALID_SETTING; no GL error may be left; sampled outputs are finite and in
@@ -216,6 +217,11 @@ TEST_F(Soak, TwoThousandRandomFramesLeakNothing) {
                 settings.temporal.max_frames = std::uniform_int_distribution<int>(1, 64)(rng);
                 settings.temporal.clamp = float(0.25 * std::pow(256.0, unit(rng)));
                 settings.temporal.plane_tolerance = float(1e-4 * std::pow(1e4, unit(rng)));
+            }
+            // Reduced resolution now and then: half or quarter, a random upsample tolerance.
+            if (!anchor && unit(rng) < 0.3) {
+                settings.resolution.scale = unit(rng) < 0.5 ? OBSCURA_RESOLUTION_HALF : OBSCURA_RESOLUTION_QUARTER;
+                settings.resolution.upsample_tolerance = float(1e-4 * std::pow(1e4, unit(rng)));
             }
             if (!anchor && unit(rng) < 0.5) {
                 glm::dmat4 projection;

@@ -451,6 +451,33 @@ TEST_F(StatePreservation, EveryMethod) {
     expect_unchanged(before, "a render of every method");
 }
 
+// Reduced resolution adds the upsample: the host's depth on unit 0 again, the reduced depth, normals and AO (or bent
+// normals, with GTAO's bent output and temporal frames) as samplers, one or two image units; the composite reads the
+// reduced textures in the debug views.
+TEST_F(StatePreservation, ReducedResolution) {
+    HostTexture bent = make_texture(GL_RGBA16F, kWidth, kHeight);
+    set_sentinel_state();
+    Snapshot before = capture();
+    for (obscura_resolution scale : {OBSCURA_RESOLUTION_HALF, OBSCURA_RESOLUTION_QUARTER}) {
+        for (obscura_method method : {OBSCURA_METHOD_HBAO, OBSCURA_METHOD_SAO, OBSCURA_METHOD_LSAO,
+                                      OBSCURA_METHOD_FFAO, OBSCURA_METHOD_GTAO, OBSCURA_METHOD_REFERENCE}) {
+            obscura_settings settings;
+            ASSERT_EQ(obscura_default_settings(method, &settings), OBSCURA_OK);
+            settings.reference.rays = 4;
+            settings.resolution.scale = scale;
+            settings.temporal.enabled = method == OBSCURA_METHOD_GTAO ? OBSCURA_TOGGLE_ON : OBSCURA_TOGGLE_OFF;
+            for (obscura_debug_view view : {OBSCURA_DEBUG_NONE, OBSCURA_DEBUG_LINEAR_DEPTH, OBSCURA_DEBUG_AO_BEFORE_BLUR}) {
+                obscura_output output = texture_output();
+                output.debug_view = view;
+                output.bent_normal_texture = method == OBSCURA_METHOD_GTAO ? bent.get() : 0;
+                ASSERT_EQ(obscura_render(ctx(), &input_, &settings, &output), OBSCURA_OK)
+                    << obscura_method_name(method) << ": " << obscura_get_last_error(ctx());
+            }
+        }
+    }
+    expect_unchanged(before, "reduced-resolution renders");
+}
+
 // Temporal accumulation binds the history, the bent-normal history, the motion vectors (unit 0) and two image
 // units; every frame of a sequence (the first starts the history, the second reads it), with and without
 // matrices and motion vectors, in a view of its own.

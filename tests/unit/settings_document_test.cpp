@@ -39,7 +39,7 @@ std::vector<obscura_setting_info> infos_of(obscura_method method) {
     EXPECT_EQ(obscura_get_setting_infos(method, &infos, &count), OBSCURA_OK);
     std::vector<obscura_setting_info> rows(infos, infos + count);
     // Then the rows every method shares (temporal accumulation), which the document holds too.
-    EXPECT_EQ(obscura_get_temporal_setting_infos(&infos, &count), OBSCURA_OK);
+    EXPECT_EQ(obscura_get_shared_setting_infos(&infos, &count), OBSCURA_OK);
     rows.insert(rows.end(), infos, infos + count);
     return rows;
 }
@@ -120,7 +120,7 @@ const obscura_setting_info& info_of(obscura_method method, const char* name) {
     for (uint32_t i = 0; i < count; ++i) {
         if (std::strcmp(infos[i].name, name) == 0) return infos[i];
     }
-    EXPECT_EQ(obscura_get_temporal_setting_infos(&infos, &count), OBSCURA_OK);
+    EXPECT_EQ(obscura_get_shared_setting_infos(&infos, &count), OBSCURA_OK);
     for (uint32_t i = 0; i < count; ++i) {
         if (std::strcmp(infos[i].name, name) == 0) return infos[i];
     }
@@ -493,9 +493,9 @@ TEST(SettingsDocument, CRebuildsTheSettingsOfEveryMethod) {
                 ASSERT_EQ(line.compare(line.size() - 3, 3, " */"), 0) << line;
                 line.erase(comment);
             }
-            // A shared row (temporal accumulation) is settings.<block>.<field>, its key "<block>.<field>".
-            const std::string shared_prefix = "settings.temporal.";
-            const bool shared = line.compare(0, shared_prefix.size(), shared_prefix) == 0;
+            // A shared row (temporal accumulation, resolution) is settings.<block>.<field>, its key "<block>.<field>".
+            const bool shared = line.compare(0, 18, "settings.temporal.") == 0 ||
+                                line.compare(0, 20, "settings.resolution.") == 0;
             if (!shared) {
                 ASSERT_EQ(line.compare(0, prefix.size(), prefix), 0) << line;
             }
@@ -626,11 +626,12 @@ TEST(SettingsDocument, MetadataKeysAreTheCFieldNames) {
     } shared_fields[] = {
         OBSCURA_TEST_SHARED_FIELD(temporal, enabled), OBSCURA_TEST_SHARED_FIELD(temporal, max_frames),
         OBSCURA_TEST_SHARED_FIELD(temporal, clamp), OBSCURA_TEST_SHARED_FIELD(temporal, plane_tolerance),
+        OBSCURA_TEST_SHARED_FIELD(resolution, scale), OBSCURA_TEST_SHARED_FIELD(resolution, upsample_tolerance),
     };
 #undef OBSCURA_TEST_SHARED_FIELD
     const obscura_setting_info* shared = nullptr;
     uint32_t shared_count = 0;
-    ASSERT_EQ(obscura_get_temporal_setting_infos(&shared, &shared_count), OBSCURA_OK);
+    ASSERT_EQ(obscura_get_shared_setting_infos(&shared, &shared_count), OBSCURA_OK);
     ASSERT_EQ(shared_count, sizeof shared_fields / sizeof shared_fields[0]);
     for (uint32_t i = 0; i < shared_count; ++i) {
         EXPECT_STREQ(shared[i].name, shared_fields[i].name);

@@ -69,6 +69,9 @@
 #define OBSCURA_GTAO_GROUP_Y 8
 #define OBSCURA_GTAO_DENOISE_GROUP_X 8
 #define OBSCURA_GTAO_DENOISE_GROUP_Y 8
+// Reduced resolution's upsample: 8x8 groups over the output rectangle (host texels).
+#define OBSCURA_UPSAMPLE_GROUP_X 8
+#define OBSCURA_UPSAMPLE_GROUP_Y 8
 // Temporal accumulation: 8x8 groups over the output rectangle.
 #define OBSCURA_TEMPORAL_GROUP_X 8
 #define OBSCURA_TEMPORAL_GROUP_Y 8
@@ -159,6 +162,8 @@ OBSCURA_BLOCK_BEGIN(FrameConstants)
   OBSCURA_VEC4(debug_params);   // linear-depth debug scale (1 / (4 * radius in view units)), unused x3
   OBSCURA_VEC4(noise_offset);   // the frame index's offsets of the per-pixel noise in [0, 1) (R2 sequence; frame 0: 0),
                                 // unused x2
+  OBSCURA_IVEC4(resolution);    // reduced resolution: k, the host's texel of working texel t being t << k (0: full);
+                                // the composite's AO source is at the working size (1) or the host's (0); unused x2
 OBSCURA_BLOCK_END(FrameConstants)
 
 // ---- Uniform blocks of single passes (binding OBSCURA_UBO_PASS) --------------------------------
@@ -272,6 +277,13 @@ OBSCURA_PASS_BLOCK_BEGIN(TemporalConstants)
   OBSCURA_VEC4(motion);    // motion vector -> texels: scale x, scale y (1 for pixels, size / 2 for NDC), unused x2
   OBSCURA_IVEC4(config);   // history valid (0: start anew), reprojection (OBSCURA_TEMPORAL_REPROJECT_*), unused x2
 OBSCURA_PASS_BLOCK_END(TemporalConstants, temporal)
+#endif
+
+#if defined(__cplusplus) || defined(OBSCURA_UPSAMPLE_PASS)
+OBSCURA_PASS_BLOCK_BEGIN(UpsampleConstants)
+  OBSCURA_VEC4(params);    // 1 / upsample tolerance, 1 / 2^k (host texels -> reduced texels), 1 / reduced width, height
+  OBSCURA_IVEC4(config);   // the reduced grid's last texel x, y; k; unused
+OBSCURA_PASS_BLOCK_END(UpsampleConstants, upsample)
 #endif
 
 #if defined(__cplusplus) || defined(OBSCURA_BENT_NORMAL_WRITE_PASS)

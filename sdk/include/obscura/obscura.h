@@ -486,6 +486,30 @@ typedef struct obscura_temporal_settings {
                                of its distance is dropped, [1e-4, 1]. Default 0.02 */
 } obscura_temporal_settings;
 
+/* REDUCED RESOLUTION (0.5), for every method: the method (and the temporal pass) runs on a grid of 1/2 or 1/4 of the
+   depth texture's size on each axis (rounded up), whose texel i is the depth texture's texel (2^k i): the depth
+   preparation reads that texel alone (its exact position, so planes stay planes) and reconstructs the normals on
+   the reduced grid; the guard band, the radius in pixels and the noise patterns scale with it. An upsample then
+   writes every pixel of the output rectangle from the 2x2 reduced texels around it: bilinear weights times
+   exp(-(d / (upsample_tolerance * z))^2), d the pixel's distance from each texel's tangent plane and z its own
+   distance, so AO does not cross depth edges or creases; where all four are off the pixel's plane, the nearest
+   plane's texel alone. The raw debug views (ao-before-blur, tap-count) and the depth and normal views show the
+   reduced grid, each texel covering its 2^k x 2^k pixels. Timing label "upsample" (before "composite"). Memory:
+   the working textures at the reduced size, plus a full-size R16F result (RGBA16F with bent normals).
+   Every field: 0 selects the default given after it. */
+typedef enum obscura_resolution {
+    OBSCURA_RESOLUTION_DEFAULT = 0, /* full */
+    OBSCURA_RESOLUTION_FULL = 1,
+    OBSCURA_RESOLUTION_HALF = 2,
+    OBSCURA_RESOLUTION_QUARTER = 3
+} obscura_resolution;
+
+typedef struct obscura_resolution_settings {
+    obscura_resolution scale;  /* the size the method runs at. Default FULL */
+    float upsample_tolerance;  /* the upsample's scale of "off the pixel's plane": a fraction of the pixel's distance,
+                                  [1e-4, 1]. Default 0.02 */
+} obscura_resolution_settings;
+
 /* SETTINGS: what a user edits and what the SDK uses.
    The editable form is what obscura_default_settings() returns and what hosts, UIs and files keep: every field
    holds its default, except the derived fields (the metadata flags them OBSCURA_SETTING_FLAG_DERIVED), which
@@ -515,7 +539,8 @@ typedef struct obscura_settings {
     obscura_ffao_settings ffao;
     uint32_t flags;         /* OBSCURA_SETTINGS_FLAG_* (0.4). obscura_default_settings sets ZERO_IS_VALUE */
     obscura_gtao_settings gtao; /* 0.5 */
-    obscura_temporal_settings temporal; /* 0.5: every method's (their metadata tables list its rows) */
+    obscura_temporal_settings temporal; /* 0.5: every method's (the shared metadata rows, below) */
+    obscura_resolution_settings resolution; /* 0.5: every method's (the shared metadata rows, below) */
 } obscura_settings;
 
 /* Fills `out` with the editable form of `method`'s defaults (see SETTINGS above; struct_size set). Writes
@@ -591,12 +616,12 @@ OBSCURA_API obscura_status obscura_get_setting_infos_sized(obscura_method method
 #define obscura_get_setting_infos(method, out_infos, out_count) \
     obscura_get_setting_infos_sized((method), (out_infos), (out_count), (uint32_t)sizeof(obscura_setting_info))
 
-/* Sets *out_infos to the static table of the settings every method shares (0.5: obscura_temporal_settings, the rows
-   "temporal.enabled", "temporal.max_frames", ...: the block's name, a dot and the C field's name; offsets inside
-   obscura_settings), *out_count to its length. The get/set functions below find these names for every method.
-   Returns OK, NULL_ARGUMENT. */
-OBSCURA_API obscura_status obscura_get_temporal_setting_infos(const obscura_setting_info** out_infos,
-                                                              uint32_t* out_count);
+/* Sets *out_infos to the static table of the settings every method shares (0.5: obscura_temporal_settings and
+   obscura_resolution_settings, the rows "temporal.enabled", "temporal.max_frames", ..., "resolution.scale", ...: the
+   block's name, a dot and the C field's name; offsets inside obscura_settings), *out_count to its length. The
+   get/set functions below find these names for every method. Returns OK, NULL_ARGUMENT. */
+OBSCURA_API obscura_status obscura_get_shared_setting_infos(const obscura_setting_info** out_infos,
+                                                            uint32_t* out_count);
 
 /* Sets the setting `name` of settings->method to `value` (toggles: 0 off, 1 on; enums: their value). The value
    is range-checked. 0 in a derived field derives it; 0 in a field whose range includes 0 is stored as 0 (and
@@ -746,7 +771,7 @@ typedef struct obscura_timing {
                           "ffao_scan" ["ffao_prefix"] (geometry=mipmap: ["z_pyramid"] instead),
                           ["ffao_box_average"] "ffao_obscurance" ["ffao_gather" "blur"] (the last three with saao);
                           GTAO ["z_pyramid"] "gtao" ["gtao_denoise"]; then ["temporal"] (settings.temporal on),
-                          then "composite". Static strings */
+                          ["upsample"] (settings.resolution below full), then "composite". Static strings */
     double milliseconds;
 } obscura_timing;
 

@@ -11,27 +11,33 @@ Error DepthPreparePass::prepare(const PassEnv& env, const FrameInput& input) {
     return env.build("depth_prepare.comp", defines, &program);
 }
 
+HostDepthBinding::HostDepthBinding(const PassEnv& env, const FrameInput& input) : env_(env), input_(input) {
+    const GLenum target = input.depth_multisample ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
+    env.bind_texture(OBSCURA_UNIT_DEPTH, target, input.depth_texture);
+    if (input.host_depth_stencil_mode) {
+        env.gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_DEPTH));
+        env.gl.TexParameteri(target, GL_DEPTH_STENCIL_TEXTURE_MODE, GL_DEPTH_COMPONENT);
+    }
+}
+
+HostDepthBinding::~HostDepthBinding() {
+    if (!input_.host_depth_stencil_mode) return;
+    const GLenum target = input_.depth_multisample ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
+    env_.gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_DEPTH));
+    env_.gl.TexParameteri(target, GL_DEPTH_STENCIL_TEXTURE_MODE, input_.host_depth_stencil_mode);
+}
+
 void DepthPreparePass::run(const PassEnv& env, const FrameInput& input, const UniformRange& frame,
                            FrameResources& resources) {
     const gl::Table& gl = env.gl;
     gl.UseProgram(program_for(input).name());
-    env.bind_texture(OBSCURA_UNIT_DEPTH, input.depth_multisample ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D,
-                     input.depth_texture);
     env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, input.normal_texture);
     gl.BindImageTexture(OBSCURA_IMAGE_OUT0, resources.linear_depth.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     gl.BindImageTexture(OBSCURA_IMAGE_OUT1, resources.normals.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG16_SNORM);
     env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
-    // A depth-stencil texture the host samples as stencil is read as depth for this dispatch only: GL runs the
-    // dispatch with the state it was issued with, so the host's mode can be put back right after.
-    const GLenum depth_target = input.depth_multisample ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
-    if (input.host_depth_stencil_mode) {
-        gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_DEPTH));
-        gl.TexParameteri(depth_target, GL_DEPTH_STENCIL_TEXTURE_MODE, GL_DEPTH_COMPONENT);
-    }
-    env.dispatch(input.width, input.height, OBSCURA_DEPTH_PREPARE_GROUP_X, OBSCURA_DEPTH_PREPARE_GROUP_Y);
-    if (input.host_depth_stencil_mode) {
-        gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_DEPTH));
-        gl.TexParameteri(depth_target, GL_DEPTH_STENCIL_TEXTURE_MODE, input.host_depth_stencil_mode);
+    {
+        HostDepthBinding depth(env, input);
+        env.dispatch(input.width, input.height, OBSCURA_DEPTH_PREPARE_GROUP_X, OBSCURA_DEPTH_PREPARE_GROUP_Y);
     }
     gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }

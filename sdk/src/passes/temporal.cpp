@@ -73,9 +73,11 @@ TemporalConstants TemporalPass::constants(const obscura_temporal_settings& setti
     c.params[0] = float(settings.max_frames);
     c.params[1] = settings.clamp;
     c.params[2] = settings.plane_tolerance;
+    // Host texels per unit of the vectors, then this frame's texels per host texel (reduced resolution: 2^-k).
     const bool ndc = input.motion_units == OBSCURA_MOTION_NDC;
-    c.motion[0] = ndc ? 0.5f * float(input.width) : 1.0f;
-    c.motion[1] = ndc ? 0.5f * float(input.height) : 1.0f;
+    const float reduced = 1.0f / float(1 << input.resolution_shift);
+    c.motion[0] = (ndc ? 0.5f * float(input.host_width) : 1.0f) * reduced;
+    c.motion[1] = (ndc ? 0.5f * float(input.host_height) : 1.0f) * reduced;
     c.config[0] = continues ? 1 : 0;
     c.config[1] = input.motion_vector_texture != 0  ? OBSCURA_TEMPORAL_REPROJECT_MOTION
                   : input.identity_reprojection ? OBSCURA_TEMPORAL_REPROJECT_IDENTITY

@@ -1,14 +1,16 @@
-#include "temporal_settings.h"
+#include "shared_settings.h"
 
 #include "settings.h"
 
 namespace obscura {
 namespace {
 
-// Defaults: 8 frames (the 4x4 noise patterns of HBAO and GTAO then average 128 rotations per pixel, and a
+constexpr const char* const kResolutionNames[] = {"full", "half", "quarter"};
+
+// Temporal defaults: 8 frames (the 4x4 noise patterns of HBAO and GTAO then average 128 rotations per pixel, and a
 // disocclusion recovers within a few frames), a clamp of 2 deviations (wide enough that the per-frame noise of a
 // converged pixel stays inside it), a 2 % plane tolerance (the denoisers' own scale of "the same surface").
-const obscura_setting_info kTemporalSettings[] = {
+const obscura_setting_info kSharedSettings[] = {
     setting_row("temporal.enabled", OBSCURA_SETTING_TOGGLE, 0, 0, 1, "",
      "accumulate frames per view: reprojected history, disocclusion rejection, neighbourhood clamp",
      OBSCURA_SETTING_OFFSET(temporal, enabled)),
@@ -21,13 +23,23 @@ const obscura_setting_info kTemporalSettings[] = {
     setting_row("temporal.plane_tolerance", OBSCURA_SETTING_FLOAT, 0.02, 1e-4, 1.0, "",
      "a history texel farther from the pixel's tangent plane than this fraction of its distance is dropped",
      OBSCURA_SETTING_OFFSET(temporal, plane_tolerance)),
+    // Reduced resolution: the upsample tolerance is the temporal pass's plane tolerance, the SDK's one scale of
+    // "the same surface" (docs/algorithms.md, "Reduced resolution").
+    enum_row("resolution.scale", 1, 1,
+             "the size the method runs at: full, half or quarter of the depth texture on each axis; a depth- and "
+             "plane-aware upsample writes the full-size result",
+             OBSCURA_SETTING_OFFSET(resolution, scale), kResolutionNames),
+    setting_row("resolution.upsample_tolerance", OBSCURA_SETTING_FLOAT, 0.02, 1e-4, 1.0, "",
+     "the upsample weighs a reduced texel down by its tangent plane's distance from the pixel in units of this "
+     "fraction of the pixel's distance (the weight falls to 1/e at 1)",
+     OBSCURA_SETTING_OFFSET(resolution, upsample_tolerance)),
 };
 
 }  // namespace
 
-const obscura_setting_info* temporal_setting_infos(uint32_t* count) {
-    *count = uint32_t(sizeof kTemporalSettings / sizeof kTemporalSettings[0]);
-    return kTemporalSettings;
+const obscura_setting_info* shared_setting_infos(uint32_t* count) {
+    *count = uint32_t(sizeof kSharedSettings / sizeof kSharedSettings[0]);
+    return kSharedSettings;
 }
 
 }  // namespace obscura
