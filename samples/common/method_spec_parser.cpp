@@ -146,7 +146,7 @@ std::vector<obscura_setting_info> setting_infos(obscura_method method) {
         throw SettingsLibraryError(std::string("obscura_get_setting_infos failed: ") + obscura_status_string(status));
     }
     std::vector<obscura_setting_info> rows(infos, infos + count);
-    // The rows every method shares (temporal accumulation) follow the method's own.
+    // The rows every method shares (temporal accumulation, resolution) follow the method's own.
     const obscura_setting_info* shared = nullptr;
     uint32_t shared_count = 0;
     if (obscura_get_shared_setting_infos(&shared, &shared_count) != OBSCURA_OK) {

@@ -21,7 +21,8 @@ namespace {
 
 using samples::JsonValue;
 
-// The method's metadata rows, then the rows every method shares (temporal accumulation): samples::setting_infos.
+// The method's metadata rows, then the rows every method shares (temporal accumulation, resolution):
+// samples::setting_infos.
 struct SettingTable {
     std::vector<obscura_setting_info> rows;
 

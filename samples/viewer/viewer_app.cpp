@@ -70,7 +70,7 @@ std::vector<obscura_method> methods() {
     return out;
 }
 
-// The method's rows and the shared (temporal) ones.
+// The method's rows and the shared ones (temporal accumulation, resolution).
 std::vector<obscura_setting_info> infos_of(obscura_method method) {
     try {
         return samples::setting_infos(method);

@@ -8,6 +8,7 @@
 // interval whose samples are all sky writes (0, 0, 0, 0): the last component counts valid lines for the
 // sector averages (sec. 7), which then skip it.
 #define OBSCURA_FFAO_PASS 1
+#define OBSCURA_FFAO_CHUNK_PASS 1
 #include "common/shader_interface.h"
 #include "common/depth.glsl"
 #include "common/ffao.glsl"
@@ -29,11 +30,11 @@ vec4 merged(vec4 a, vec4 b) {
 void write_interval(int k, int n, int i, int l, vec4 peaks) {
     FfaoColumn column = ffao_column(k, n, i);
     int entry = l - column.first_line;
-    if (entry >= 0 && entry < column.lines) ffao_peaks[column.offset + entry] = peaks;
+    if (entry >= 0 && entry < column.lines) ffao_peaks[column.offset + entry - ffao_chunk.range.z] = peaks;
 }
 
 void main() {
-    int k = int(gl_GlobalInvocationID.z);
+    int k = ffao_chunk.range.x + int(gl_GlobalInvocationID.z);  // one dispatch per chunk of orientations
     int l = int(gl_GlobalInvocationID.x);
     if (l >= ffao.lines[k].y) return;
     uvec4 record = ffao_lines[ffao.lines[k].x + l];

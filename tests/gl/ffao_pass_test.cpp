@@ -73,6 +73,7 @@ protected:
         obscura::UniformRange frame = arena_.push(frame_);
         obscura::UniformRange pass = arena_.push(pass_.constants(ffao, input_));
         obscura::UniformRange table = arena_.push(obscura::FfaoPass::table_constants(ffao));
+        pass_.push_chunk_constants(arena_);
         arena_.upload(gl_, uniforms_.name());
         if (pass_.table_stale(ffao)) pass_.run_table(env(), ffao, table);
         pass_.run_scan(env(), frame, pass, resources_);
@@ -208,6 +209,70 @@ TEST_F(FfaoPasses, ScanAndPrefixSumsMatchACpuScan) {
     // A texel picked differently where a step lands exactly on a texel edge (fused multiply-adds) is all that
     // may differ.
     EXPECT_LE(double(mismatched), 1e-3 * double(gpu.size() / 4)) << mismatched << " of " << gpu.size() / 4;
+}
+
+// The scan and the prefix sums split into chunks of orientations (as FFAO's peaks at 4K are on Mesa, whose storage
+// blocks hold 128 MiB): the same peaks, bit for bit, and so the same AO, as in one block. Here at the fixture's size
+// with the block capped to a third of the peaks, and at 1920x1080 (+10 % guard band) with it capped to a quarter.
+TEST_F(FfaoPasses, ChunkedPeaksAreBitIdentical) {
+    upload_depth(false);
+    const obscura_ffao_settings settings = resolved(defaults());
+    run(settings, true);
+    ASSERT_EQ(pass_.chunk_count(), 1);
+    const std::vector<float> whole = obscura::FfaoPassInspection::read_peaks(pass_, gl_);
+    const std::vector<float> whole_ao = read_ao();
+    pass_.release();
+    obscura::FfaoPassInspection::limit_storage_block(&pass_, int64_t(whole.size()) * 4 / 3);
+    run(settings, true);
+    EXPECT_GE(pass_.chunk_count(), 3);
+    EXPECT_TRUE(obscura::FfaoPassInspection::read_peaks(pass_, gl_) == whole) << "the peaks differ";
+    EXPECT_TRUE(read_ao() == whole_ao) << "the AO differs";
+}
+
+TEST_F(FfaoPasses, ChunkedPeaksAreBitIdenticalAt1080p) {
+    constexpr int kW = 2112, kH = 1188;  // 1920x1080 and a 10 % guard band on each side
+    std::vector<float> depth(size_t(kW) * kH);
+    for (int y = 0; y < kH; ++y) {
+        for (int x = 0; x < kW; ++x) {
+            float d = 6.0f + 0.8f * std::sin(x * 0.005f) * std::sin(y * 0.007f);
+            if (x >= 600 && x < 1200 && y >= 300 && y < 700) d = 4.5f;
+            depth[size_t(y) * kW + x] = d;
+        }
+    }
+    obscura::FrameResources resources;
+    obscura_pass_test::upload_linear_depth(gl_, depth, kW, kH, &resources);
+    obscura::FrameInput input;
+    FrameConstants frame = obscura_pass_test::perspective_linear_depth_frame(kW, kH, input.projection.m);
+    input.width = kW;
+    input.height = kH;
+    const obscura_ffao_settings settings = resolved(defaults());
+    std::vector<float> peaks[2];
+    int chunks[2] = {};
+    for (int i = 0; i < 2; ++i) {
+        obscura::FfaoPass pass;
+        ASSERT_FALSE(pass.prepare(env(), settings));
+        if (i == 1) {
+            const int64_t whole_bytes = int64_t(peaks[0].size()) * 4;
+            obscura::FfaoPassInspection::limit_storage_block(&pass, whole_bytes / 4);
+        }
+        ASSERT_FALSE(pass.ensure_layout(env(), settings, kW, kH));
+        GLint alignment = 256;
+        gl_.GetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);
+        arena_.reset(alignment);
+        const obscura::UniformRange frame_range = arena_.push(frame);
+        const obscura::UniformRange pass_range = arena_.push(pass.constants(settings, input));
+        pass.push_chunk_constants(arena_);
+        arena_.upload(gl_, uniforms_.name());
+        pass.run_scan(env(), frame_range, pass_range, resources);
+        pass.run_prefix(env(), frame_range, pass_range);
+        gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
+        peaks[i] = obscura::FfaoPassInspection::read_peaks(pass, gl_);
+        chunks[i] = pass.chunk_count();
+    }
+    EXPECT_EQ(chunks[0], 1);
+    EXPECT_GE(chunks[1], 4);
+    ASSERT_EQ(peaks[0].size(), peaks[1].size());
+    EXPECT_TRUE(peaks[0] == peaks[1]) << "the peaks differ";
 }
 
 // A wall facing the camera: every peak of every line lies in the receiver's own tangent plane, so nothing

@@ -33,7 +33,8 @@
 // Uniform buffer binding points.
 #define OBSCURA_UBO_FRAME 0
 #define OBSCURA_UBO_PASS 1
-#define OBSCURA_UBO_COUNT 2
+#define OBSCURA_UBO_DISPATCH 2  // a pass that runs in several dispatches: what differs between them (FFAO's chunks)
+#define OBSCURA_UBO_COUNT 3
 
 // Shader storage buffer binding points.
 #define OBSCURA_SSBO_LSAO_VALUES 0  // the sweeps' results, eight halves per uvec4
@@ -44,6 +45,10 @@
 #define OBSCURA_SSBO_FFAO_COLUMNS 1 // per (orientation, level, interval): entry offset, first line, lines, block shift
 #define OBSCURA_SSBO_FFAO_LINES 2   // per scan line: origin xy (float bits), first step, steps
 #define OBSCURA_SSBO_COUNT 3
+// The scan and the prefix sums bind the peaks as chunks, ranges of whole orientations no larger than
+// GL_MAX_SHADER_STORAGE_BLOCK_SIZE (128 MiB on Mesa, less than FFAO's peaks at 4K), one dispatch each; the
+// obscurance pass reads the whole buffer (a buffer texture on CPU rasterisers, which GL bounds in texels).
+#define OBSCURA_FFAO_PEAK_CHUNKS 8
 
 // ---- Workgroup sizes (the dispatch math in C++ reads the same numbers) ------------------------
 #define OBSCURA_DEPTH_PREPARE_GROUP_X 8
@@ -315,6 +320,21 @@ OBSCURA_PASS_BLOCK_BEGIN(FfaoTableConstants)
   OBSCURA_IVEC4(config);   // falloff kind, unused x3
   OBSCURA_VEC4(table[4]);  // the 16 falloff-table values, 4 per vec4
 OBSCURA_PASS_BLOCK_END(FfaoTableConstants, ffao_table)
+#endif
+
+#if defined(__cplusplus) || defined(OBSCURA_FFAO_CHUNK_PASS)
+#ifdef __cplusplus
+struct FfaoChunkConstants {
+#else
+layout(std140, binding = OBSCURA_UBO_DISPATCH) uniform FfaoChunkConstants {
+#endif
+  OBSCURA_IVEC4(range);    // the chunk's first orientation, its orientation count, the buffer entry its binding
+                           // starts at (column offsets are global), unused
+#ifdef __cplusplus
+};
+#else
+} ffao_chunk;
+#endif
 #endif
 
 #if defined(__cplusplus) || defined(OBSCURA_FFAO_PASS)

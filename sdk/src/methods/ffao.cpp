@@ -129,6 +129,7 @@ public:
             pyramid_[d] = uniforms.push(ZPyramidPass::constants(d, levels_, ffao_mipmap_filter(ffao)));
         }
         pass_ = uniforms.push(ffao_.constants(ffao, frame.input, levels_));
+        if (!ffao_uses_mipmap(ffao)) ffao_.push_chunk_constants(uniforms);
         table_ = uniforms.push(FfaoPass::table_constants(ffao));
     }
 

@@ -86,20 +86,49 @@ Error FfaoPass::ensure_layout(const PassEnv& env, const obscura_ffao_settings& s
     const gl::Table& gl = env.gl;
     GLint64 max_block_bytes = 0;
     gl.GetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block_bytes);
+    GLint offset_alignment = 16;
+    gl.GetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &offset_alignment);
     // CPU rasterisers' obscurance pass also reads the peaks as a buffer texture, which GL bounds in texels.
     GLint max_texels = 0;
     gl.GetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
     const long long peak_bytes = static_cast<long long>(layout_.entries) * 16;
     const bool over_texels = env.cpu_renderer && layout_.entries > max_texels;
-    if (peak_bytes > max_block_bytes || layout_.entries > (int64_t(1) << 31) - 1 || over_texels) {
+    // The scan's and the prefix sums' storage blocks: runs of whole orientations, each binding starting on the
+    // offset alignment and no larger than the largest storage block. GPUs' obscurance pass reads the whole buffer as
+    // one block (their limit is gigabytes); CPU rasterisers' as a buffer texture.
+    if (storage_block_limit_ > 0) max_block_bytes = std::min<GLint64>(max_block_bytes, storage_block_limit_);
+    const int64_t max_entries = int64_t(max_block_bytes) / 16;
+    const int64_t align_entries = std::max<int64_t>(1, offset_alignment / 16);
+    chunk_count_ = 0;
+    bool fits = layout_.entries <= (int64_t(1) << 31) - 1 && !over_texels &&
+                (env.cpu_renderer || layout_.entries <= max_entries);
+    for (size_t k = 0; k < layout_.orientations.size() && fits; ++k) {
+        const int64_t begin = layout_.columns[size_t(layout_.column_base[k * kFfaoMaxLevels])].offset;
+        const int64_t end = k + 1 < layout_.orientations.size()
+                                ? layout_.columns[size_t(layout_.column_base[(k + 1) * kFfaoMaxLevels])].offset
+                                : layout_.entries;
+        if (chunk_count_ == 0 || end - chunks_[chunk_count_ - 1].first > max_entries) {
+            Chunk chunk;
+            chunk.first_orientation = int(k);
+            chunk.first = begin / align_entries * align_entries;
+            fits = chunk_count_ < OBSCURA_FFAO_PEAK_CHUNKS && end - chunk.first <= max_entries;
+            if (fits) chunks_[chunk_count_++] = chunk;
+        }
+        if (fits) {
+            chunks_[chunk_count_ - 1].orientations += 1;
+            chunks_[chunk_count_ - 1].end = end;
+        }
+    }
+    if (!fits) {
         const long long entries = layout_.entries;
         release();
         return Error::make(OBSCURA_STATUS_INVALID_SIZE,
-                           "FFAO at %dx%d needs %lld interval entries (%lld bytes), over %s (%lld): use fewer "
-                           "sectors or a larger base_interval",
+                           "FFAO at %dx%d needs %lld interval entries (%lld bytes), over %s (%lld%s): use fewer "
+                           "sectors, a larger base_interval or a reduced resolution",
                            width, height, entries, peak_bytes,
                            over_texels ? "GL_MAX_TEXTURE_BUFFER_SIZE texels" : "GL_MAX_SHADER_STORAGE_BLOCK_SIZE",
-                           over_texels ? static_cast<long long>(max_texels) : static_cast<long long>(max_block_bytes));
+                           over_texels ? static_cast<long long>(max_texels) : static_cast<long long>(max_block_bytes),
+                           over_texels || !env.cpu_renderer ? "" : " per storage block, in 8 blocks at most");
     }
     std::vector<GpuLine> lines(layout_.lines.size());
     for (size_t i = 0; i < lines.size(); ++i) {
@@ -140,6 +169,7 @@ void FfaoPass::release() {
     terms_ = gl::Texture2D();
     layout_ = FfaoLayout();
     key_ = LayoutKey();
+    chunk_count_ = 0;
 }
 
 void FfaoPass::release_table() {
@@ -219,30 +249,50 @@ void FfaoPass::run_scan(const PassEnv& env, const UniformRange& frame, const Uni
     const gl::Table& gl = env.gl;
     gl.UseProgram(scan_program_.name());
     env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_PEAKS, peaks_.name());
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_COLUMNS, columns_.name());
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_LINES, lines_.name());
     env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
     env.bind_uniforms(OBSCURA_UBO_PASS, pass);
-    int most_lines = 1;
-    for (const FfaoOrientation& o : layout_.orientations) most_lines = std::max(most_lines, o.line_count);
-    gl.DispatchCompute(GLuint((most_lines + OBSCURA_FFAO_SCAN_GROUP - 1) / OBSCURA_FFAO_SCAN_GROUP), 1,
-                       GLuint(layout_.orientations.size()));
+    for (int c = 0; c < chunk_count_; ++c) {
+        const Chunk& chunk = chunks_[c];
+        int most_lines = 1;
+        for (int k = chunk.first_orientation; k < chunk.first_orientation + chunk.orientations; ++k) {
+            most_lines = std::max(most_lines, layout_.orientations[size_t(k)].line_count);
+        }
+        bind_chunk(gl, c);
+        env.bind_uniforms(OBSCURA_UBO_DISPATCH, chunk_uniforms_[c]);
+        gl.DispatchCompute(GLuint((most_lines + OBSCURA_FFAO_SCAN_GROUP - 1) / OBSCURA_FFAO_SCAN_GROUP), 1,
+                           GLuint(chunk.orientations));
+    }
     gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
 void FfaoPass::run_prefix(const PassEnv& env, const UniformRange& frame, const UniformRange& pass) {
     const gl::Table& gl = env.gl;
     gl.UseProgram(prefix_program_.name());
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_PEAKS, peaks_.name());
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_COLUMNS, columns_.name());
     env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
     env.bind_uniforms(OBSCURA_UBO_PASS, pass);
-    int most_columns = 1;
-    for (int32_t count : layout_.column_count) most_columns = std::max(most_columns, int(count));
-    gl.DispatchCompute(GLuint((most_columns + OBSCURA_FFAO_PREFIX_GROUP - 1) / OBSCURA_FFAO_PREFIX_GROUP), 1,
-                       GLuint(layout_.orientations.size() * size_t(layout_.levels)));
+    for (int c = 0; c < chunk_count_; ++c) {
+        const Chunk& chunk = chunks_[c];
+        int most_columns = 1;
+        for (int k = chunk.first_orientation; k < chunk.first_orientation + chunk.orientations; ++k) {
+            for (int n = 0; n < layout_.levels; ++n) {
+                most_columns = std::max(most_columns, int(layout_.column_count[size_t(k) * kFfaoMaxLevels + size_t(n)]));
+            }
+        }
+        bind_chunk(gl, c);
+        env.bind_uniforms(OBSCURA_UBO_DISPATCH, chunk_uniforms_[c]);
+        gl.DispatchCompute(GLuint((most_columns + OBSCURA_FFAO_PREFIX_GROUP - 1) / OBSCURA_FFAO_PREFIX_GROUP), 1,
+                           GLuint(chunk.orientations * layout_.levels));
+    }
     gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+void FfaoPass::bind_chunk(const gl::Table& gl, int c) const {
+    const Chunk& chunk = chunks_[c];
+    gl.BindBufferRange(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_PEAKS, peaks_.name(), GLintptr(chunk.first * 16),
+                       GLsizeiptr(std::max<int64_t>(chunk.end - chunk.first, 1) * 16));
 }
 
 // The per-pixel passes' common end: their constants, one invocation per pixel of `region`, and a barrier
@@ -269,11 +319,12 @@ void FfaoPass::run_obscurance(const PassEnv& env, const obscura_ffao_settings& s
     gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_FFAO_TABLE));
     gl.BindTexture(GL_TEXTURE_3D, table_.name());
     gl.BindSampler(OBSCURA_UNIT_FFAO_TABLE, table_sampler_.name());
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_PEAKS, peaks_.name());
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_COLUMNS, columns_.name());
-    if (peaks_texture_) {  // CPU rasterisers
+    if (peaks_texture_) {  // CPU rasterisers: the whole buffer as buffer textures
         env.bind_texture(OBSCURA_UNIT_FFAO_PEAKS, GL_TEXTURE_BUFFER, peaks_texture_.name());
         env.bind_texture(OBSCURA_UNIT_FFAO_COLUMNS, GL_TEXTURE_BUFFER, columns_texture_.name());
+    } else {  // GPUs: the whole buffer as one storage block (ensure_layout checked its size)
+        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_PEAKS, peaks_.name());
     }
     if (saao) {
         env.bind_texture(OBSCURA_UNIT_SOURCE, GL_TEXTURE_2D, box_.name());

@@ -37,6 +37,19 @@ public:
     static FfaoTableConstants table_constants(const obscura_ffao_settings& settings);
     // `mipmap_levels`: the depth pyramid's levels for the mipmap method (1 otherwise).
     FfaoConstants constants(const obscura_ffao_settings& settings, const FrameInput& input, int mipmap_levels = 1) const;
+    // The scan's and the prefix sums' per-chunk constants, pushed with the frame's other blocks (a UniformWriter or
+    // a UniformArena) before run_scan and run_prefix.
+    template <class Writer>
+    void push_chunk_constants(Writer& writer) {
+        for (int c = 0; c < chunk_count_; ++c) {
+            FfaoChunkConstants block = {};
+            block.range[0] = chunks_[c].first_orientation;
+            block.range[1] = chunks_[c].orientations;
+            block.range[2] = int32_t(chunks_[c].first);
+            chunk_uniforms_[c] = writer.push(block);
+        }
+    }
+    int chunk_count() const { return chunk_count_; }
     void run_table(const PassEnv& env, const obscura_ffao_settings& settings, const UniformRange& pass);
     void run_scan(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const FrameResources& resources);
     void run_prefix(const PassEnv& env, const UniformRange& frame, const UniformRange& pass);
@@ -74,9 +87,20 @@ private:
                    buffers == o.buffers && saao == o.saao;
         }
     };
+    void bind_chunk(const gl::Table& gl, int chunk) const;  // its range of the peaks at OBSCURA_SSBO_FFAO_PEAKS
     LayoutKey key_;
     FfaoLayout layout_;
     gl::Buffer lines_, columns_, peaks_;
+    // The scan's and the prefix sums' chunks of the peaks buffer: runs of whole orientations whose entries
+    // [first, end) fit one storage block (the binding starts on the offset alignment), one dispatch each.
+    struct Chunk {
+        int first_orientation = 0, orientations = 0;
+        int64_t first = 0, end = 0;
+    };
+    Chunk chunks_[OBSCURA_FFAO_PEAK_CHUNKS];
+    int chunk_count_ = 0;
+    UniformRange chunk_uniforms_[OBSCURA_FFAO_PEAK_CHUNKS];
+    int64_t storage_block_limit_ = 0;  // tests: a smaller storage block than GL's (FfaoPassInspection)
 };
 
 }  // namespace obscura

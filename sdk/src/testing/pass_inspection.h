@@ -30,6 +30,9 @@ public:
     static std::vector<float> read_table(const FfaoPass& pass, const gl::Table& gl);
     // The peaks buffer (vec4s in layout order).
     static std::vector<float> read_peaks(const FfaoPass& pass, const gl::Table& gl);
+    // Caps the storage block the scan and the prefix sums bind (0: GL's limit), so that small sizes split the peaks
+    // into chunks as 4K does on Mesa; takes effect at the next ensure_layout of a new layout.
+    static void limit_storage_block(FfaoPass* pass, int64_t bytes) { pass->storage_block_limit_ = bytes; }
 };
 
 }  // namespace obscura
