@@ -1,5 +1,7 @@
 // Writes the result for the output rectangle into the host's target image: the AO (or a debug view)
-// overwriting the target or multiplying its colour. One variant per target format (OUTPUT_FORMAT).
+// overwriting the target or multiplying its colour. One variant per target format (OUTPUT_FORMAT), per blend
+// (OUTPUT_MULTIPLY) and for the debug views (OUTPUT_DEBUG_VIEWS): CPU rasterisers run every lane through both sides
+// of a branch, so the plain AO write would otherwise pay for every debug view's reads and multiply's load.
 #include "common/shader_interface.h"
 #include "common/depth.glsl"
 #include "common/normal_encoding.glsl"
@@ -23,6 +25,7 @@ void main() {
     int debug_view = target_params.w;
 
     vec4 value;
+#if OUTPUT_DEBUG_VIEWS
     if (debug_view == OBSCURA_DEBUG_VIEW_LINEAR_DEPTH) {
         float depth = texelFetch(u_linear_depth, working, 0).r;
         float v = obscura_is_sky(depth) ? 1.0 : clamp(depth * debug_params.x, 0.0, 1.0);
@@ -30,13 +33,15 @@ void main() {
     } else if (debug_view == OBSCURA_DEBUG_VIEW_NORMALS) {
         vec3 n = obscura_decode_normal(texelFetch(u_normals, working, 0).xy) * 0.5 + 0.5;
         value = OUTPUT_CHANNELS == 1 ? vec4(n.z) : vec4(n, 1.0);
-    } else {
+    } else
+#endif
+    {
         float v = texelFetch(u_ao, ao_source, 0).r;
         value = vec4(v, v, v, 1.0);
     }
-    if (target_params.z == OBSCURA_BLEND_MODE_MULTIPLY) {
-        vec4 previous = imageLoad(u_target, destination);
-        value = vec4(previous.rgb * value.r, previous.a);
-    }
+#if OUTPUT_MULTIPLY
+    vec4 previous = imageLoad(u_target, destination);
+    value = vec4(previous.rgb * value.r, previous.a);
+#endif
     imageStore(u_target, destination, value);
 }

@@ -253,10 +253,24 @@ Error check_bent_normal_target(const gl::Table& gl, const obscura_output& output
     return Error();
 }
 
+namespace {
+
+// The composite program a target needs: the format it writes (the staging texture's for a blit), the depth and
+// normal views (the raw views read the AO source like the plain output), the blend.
+CompositeVariant composite_variant(const OutputTarget& target, GLenum format) {
+    CompositeVariant variant;
+    variant.format = format;
+    variant.debug_views = target.debug_view == OBSCURA_DEBUG_LINEAR_DEPTH || target.debug_view == OBSCURA_DEBUG_NORMALS;
+    variant.multiply = target.blend == OBSCURA_BLEND_MULTIPLY;
+    return variant;
+}
+
+}  // namespace
+
 Error OutputWriter::prepare(const PassEnv& env, const OutputTarget& target, const obscura_rect& rect) {
     const gl::Table& gl = env.gl;
     const GLenum format = staging_format(target);
-    Error error = composite_.prepare(env, target.kind == TargetKind::Image ? target.format : format);
+    Error error = composite_.prepare(env, composite_variant(target, target.kind == TargetKind::Image ? target.format : format));
     if (!error && target.bent_texture) error = bent_.prepare(env, target.bent_format);
     if (error) return error;
     if (target.kind != TargetKind::Blit) {
@@ -295,7 +309,7 @@ void OutputWriter::write(const PassEnv& env, const UniformRange& frame, const Fr
     const obscura_rect& rect = input.output_rect;
     if (target.bent_texture && bent) bent_.run(env, frame, bent_pass, rect, *bent, target.bent_texture, target.bent_format);
     if (target.kind == TargetKind::Image) {
-        composite_.run(env, frame, rect, source, resources, target.texture, target.format);
+        composite_.run(env, frame, rect, source, resources, target.texture, composite_variant(target, target.format));
         return;
     }
     gl::BlitStateGuard blit_state(gl);
@@ -309,7 +323,8 @@ void OutputWriter::write(const PassEnv& env, const UniformRange& frame, const Fr
         gl.BlitFramebuffer(target.x, target.y, target.x + rect.width, target.y + rect.height, 0, 0, rect.width,
                            rect.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
     }
-    composite_.run(env, frame, rect, source, resources, staging_.name(), staging_.internal_format());
+    composite_.run(env, frame, rect, source, resources, staging_.name(),
+                   composite_variant(target, staging_.internal_format()));
     gl.MemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT);
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, staging_framebuffer_.name());
     gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, host);

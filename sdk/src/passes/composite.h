@@ -1,5 +1,5 @@
 // Composite: the output rectangle's AO (or a debug view) into the host's target, overwriting or
-// multiplying (sdk/glsl/composite.comp, one program per target format, built on first use).
+// multiplying (sdk/glsl/composite.comp, one program per target format, debug views and blend, built on first use).
 #ifndef OBSCURA_COMPOSITE_H
 #define OBSCURA_COMPOSITE_H
 
@@ -8,21 +8,31 @@
 
 namespace obscura {
 
+// A composite program: the target's format, whether a debug view can show, whether it multiplies.
+struct CompositeVariant {
+    GLenum format = 0;
+    bool debug_views = false;
+    bool multiply = false;
+    bool operator==(const CompositeVariant& o) const {
+        return format == o.format && debug_views == o.debug_views && multiply == o.multiply;
+    }
+};
+
 class CompositePass {
 public:
-    Error prepare(const PassEnv& env, GLenum format);
+    Error prepare(const PassEnv& env, const CompositeVariant& variant);
     // Writes `rect` of `source` (plus the debug sources) into `target_texture` at frame.target_params.xy.
     void run(const PassEnv& env, const UniformRange& frame, const obscura_rect& rect, const gl::Texture2D& source,
-             const FrameResources& resources, GLuint target_texture, GLenum format);
+             const FrameResources& resources, GLuint target_texture, const CompositeVariant& variant);
 
 private:
-    struct Variant {
-        GLenum format = 0;
+    struct Program {
+        CompositeVariant variant;
         gl::Object program;
     };
-    Variant* find(GLenum format);
-    static constexpr int kMaxVariants = 16;
-    Variant variants_[kMaxVariants];
+    Program* find(const CompositeVariant& variant);
+    static constexpr int kMaxVariants = 32;
+    Program programs_[kMaxVariants];
 };
 
 }  // namespace obscura
