@@ -1,7 +1,7 @@
 // Temporal accumulation, after every method's reconstruction: this frame's AO blended into the view's history.
 // Per pixel of the output rectangle:
 //   1. reproject: the pixel's surface point in the previous frame, from the two view-projections (through the
-//      depth) or the host's motion vectors; a static camera reads the same texel (OBSCURA_TEMPORAL_STATIC);
+//      depth) or the host's motion vectors; a static camera reads the same texel (compiled in: OBSCURA_TEMPORAL_REPROJECT);
 //   2. read the history bilinearly, each of the 4 texels only if it lies on the pixel's tangent plane as the
 //      previous frame saw it (its stored depth within plane_tolerance of the plane, relative to the distance):
 //      disocclusions and moving edges fall out; a reprojection within 1/256 texel of a centre reads that texel
@@ -105,7 +105,7 @@ void main() {
     // 1. Where the pixel's point was.
     vec3 position = obscura_view_position(p, depth);
     vec3 normal = obscura_decode_normal(texelFetch(u_normals, p, 0).xy);
-#if OBSCURA_TEMPORAL_STATIC
+#if OBSCURA_TEMPORAL_REPROJECT == OBSCURA_TEMPORAL_REPROJECT_IDENTITY
     // A static camera (the same view-projection: its own variant, since CPU rasterisers run every lane through
     // every branch) reads its own texel: no matrix work, one history texel, no cubic.
     vec3 previous_position = position, previous_normal = normal;
@@ -118,13 +118,13 @@ void main() {
     vec3 previous_position = previous_h.xyz / previous_h.w;
     vec3 previous_normal = normalize(rotation * normal);
     vec2 previous_pixel;
-    if (temporal.config.y == OBSCURA_TEMPORAL_REPROJECT_MOTION) {
-        // At reduced resolution the host's vector is read at the host's texel (p << k) and scaled to reduced texels.
-        previous_pixel = vec2(p) + 0.5 + texelFetch(u_motion, p << resolution.x, 0).xy * temporal.motion.xy;
-    } else {
-        vec4 clip = columns(temporal.previous_clip) * vec4(position, 1.0);
-        previous_pixel = (clip.xy / clip.w * 0.5 + 0.5) * vec2(depth_size.xy);
-    }
+#if OBSCURA_TEMPORAL_REPROJECT == OBSCURA_TEMPORAL_REPROJECT_MOTION
+    // At reduced resolution the host's vector is read at the host's texel (p << k) and scaled to reduced texels.
+    previous_pixel = vec2(p) + 0.5 + texelFetch(u_motion, p << resolution.x, 0).xy * temporal.motion.xy;
+#else
+    vec4 clip = columns(temporal.previous_clip) * vec4(position, 1.0);
+    previous_pixel = (clip.xy / clip.w * 0.5 + 0.5) * vec2(depth_size.xy);
+#endif
     const int kTaps = 4;
 #endif
 
@@ -174,7 +174,7 @@ void main() {
         // Between texels, with all four on the pixel's surface: the cubic read instead of the bilinear one (its
         // wider footprint can reach another surface at an edge; the clamp below bounds what that brings).
         // The cubic's 4x4 texels must lie in the output rectangle, the only part of the history that was written.
-#if !OBSCURA_TEMPORAL_STATIC
+#if OBSCURA_TEMPORAL_REPROJECT != OBSCURA_TEMPORAL_REPROJECT_IDENTITY
         bool cubic_inside = all(greaterThanEqual(base - 1, output_rect.xy)) &&
                             all(lessThanEqual(base + 2, output_rect.xy + output_rect.zw - 1));
         // Held within the four texels' range: the cubic's outer ring may lie on another surface (a silhouette one
@@ -191,7 +191,7 @@ void main() {
         result = mix(history, current, alpha);
 #if OBSCURA_TEMPORAL_BENT_NORMALS
         // The previous view's bent normal in this view: the inverse rotation.
-#if OBSCURA_TEMPORAL_STATIC
+#if OBSCURA_TEMPORAL_REPROJECT == OBSCURA_TEMPORAL_REPROJECT_IDENTITY
         vec3 previous_bent = history_bent;
 #else
         vec3 previous_bent = transpose(rotation) * history_bent;

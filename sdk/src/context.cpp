@@ -364,7 +364,7 @@ Error Context::record_frame(const FrameInput& host, const obscura_settings& sett
         error = view->history.prepare(pass_env, input, request.bent_normals,
                                       history_signature(settings, request.bent_normals), reproject,
                                       &history_continues);
-        if (!error) error = temporal_.prepare(pass_env, request.bent_normals, TemporalPass::static_camera(input));
+        if (!error) error = temporal_.prepare(pass_env, request.bent_normals, TemporalPass::reprojection(input));
         if (error) return error;
     } else if (!debug_view) {
         view->history.release();  // the context holds what its latest configuration needs

@@ -271,7 +271,8 @@ OBSCURA_PASS_BLOCK_END(GtaoDenoiseConstants, gtao_denoise)
 #endif
 
 #if defined(__cplusplus) || defined(OBSCURA_TEMPORAL_PASS)
-// Where the previous frame's position of a pixel comes from.
+// Where the previous frame's position of a pixel comes from (compiled in: OBSCURA_TEMPORAL_REPROJECT, one program
+// each, since CPU rasterisers run every lane through both sides of a branch).
 #define OBSCURA_TEMPORAL_REPROJECT_MATRICES 0 // the two view-projections (through the depth)
 #define OBSCURA_TEMPORAL_REPROJECT_MOTION 1   // the host's motion vectors
 #define OBSCURA_TEMPORAL_REPROJECT_IDENTITY 2 // a static camera: the same texel
@@ -280,7 +281,7 @@ OBSCURA_PASS_BLOCK_BEGIN(TemporalConstants)
   OBSCURA_VEC4(previous_clip[4]); // columns: this frame's view space -> the previous frame's clip space
   OBSCURA_VEC4(params);    // max frames, clamp (deviations), plane tolerance, unused
   OBSCURA_VEC4(motion);    // motion vector -> texels: scale x, scale y (1 for pixels, size / 2 for NDC), unused x2
-  OBSCURA_IVEC4(config);   // history valid (0: start anew), reprojection (OBSCURA_TEMPORAL_REPROJECT_*), unused x2
+  OBSCURA_IVEC4(config);   // history valid (0: start anew), unused x3
 OBSCURA_PASS_BLOCK_END(TemporalConstants, temporal)
 #endif
 

@@ -48,13 +48,13 @@ void TemporalHistory::release() {
     current_ = 0;
 }
 
-Error TemporalPass::prepare(const PassEnv& env, bool bent_normals, bool static_camera) {
+Error TemporalPass::prepare(const PassEnv& env, bool bent_normals, int reprojection) {
     if (!linear_sampler_) linear_sampler_ = gl::create_sampler_linear_clamp(env.gl);
-    gl::Object& program = programs_[bent_normals ? 1 : 0][static_camera ? 1 : 0];
+    gl::Object& program = programs_[bent_normals ? 1 : 0][reprojection];
     if (program) return Error();
     char defines[96];
-    std::snprintf(defines, sizeof defines, "OBSCURA_TEMPORAL_BENT_NORMALS %d\nOBSCURA_TEMPORAL_STATIC %d\n",
-                  bent_normals ? 1 : 0, static_camera ? 1 : 0);
+    std::snprintf(defines, sizeof defines, "OBSCURA_TEMPORAL_BENT_NORMALS %d\nOBSCURA_TEMPORAL_REPROJECT %d\n",
+                  bent_normals ? 1 : 0, reprojection);
     return env.build("temporal_accumulate.comp", defines, &program);
 }
 
@@ -79,9 +79,6 @@ TemporalConstants TemporalPass::constants(const obscura_temporal_settings& setti
     c.motion[0] = (ndc ? 0.5f * float(input.host_width) : 1.0f) * reduced;
     c.motion[1] = (ndc ? 0.5f * float(input.host_height) : 1.0f) * reduced;
     c.config[0] = continues ? 1 : 0;
-    c.config[1] = input.motion_vector_texture != 0  ? OBSCURA_TEMPORAL_REPROJECT_MOTION
-                  : input.identity_reprojection ? OBSCURA_TEMPORAL_REPROJECT_IDENTITY
-                                                : OBSCURA_TEMPORAL_REPROJECT_MATRICES;
     return c;
 }
 
@@ -90,7 +87,7 @@ void TemporalPass::run(const PassEnv& env, const UniformRange& frame, const Unif
                        const gl::Texture2D* bent_source, const TemporalHistory& history) {
     const gl::Table& gl = env.gl;
     const bool bent = bent_source != nullptr;
-    gl.UseProgram(programs_[bent ? 1 : 0][static_camera(input) ? 1 : 0].name());
+    gl.UseProgram(programs_[bent ? 1 : 0][reprojection(input)].name());
     env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
     env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
     env.bind_texture(OBSCURA_UNIT_SOURCE, GL_TEXTURE_2D, source.name());

@@ -39,11 +39,13 @@ private:
 
 class TemporalPass {
 public:
-    // A frame whose camera did not move (equal view-projections, no motion vectors): its own program variant.
-    static bool static_camera(const FrameInput& input) {
-        return input.identity_reprojection && input.motion_vector_texture == 0;
+    // Where a frame's previous positions come from (OBSCURA_TEMPORAL_REPROJECT_*), each its own program variant: the
+    // host's motion vectors, or the matrices, or (equal view-projections, no vectors) the same texel.
+    static int reprojection(const FrameInput& input) {
+        if (input.motion_vector_texture != 0) return OBSCURA_TEMPORAL_REPROJECT_MOTION;
+        return input.identity_reprojection ? OBSCURA_TEMPORAL_REPROJECT_IDENTITY : OBSCURA_TEMPORAL_REPROJECT_MATRICES;
     }
-    Error prepare(const PassEnv& env, bool bent_normals, bool static_camera);
+    Error prepare(const PassEnv& env, bool bent_normals, int reprojection);
     static TemporalConstants constants(const obscura_temporal_settings& settings, const FrameInput& input,
                                        bool continues);
     // Blends `source` (R16F visibility; `bent_source`, RGBA16F, with bent normals) over `region` into the history's
@@ -53,8 +55,8 @@ public:
              const gl::Texture2D* bent_source, const TemporalHistory& history);
 
 private:
-    // [bent normals][static camera]: a static camera's variant reads one history texel and does no matrix work.
-    gl::Object programs_[2][2];
+    // [bent normals][reprojection]: a static camera's variant reads one history texel and does no matrix work.
+    gl::Object programs_[2][3];
     gl::Object linear_sampler_;  // the history's cubic read filters bilinear groups
 };
 
