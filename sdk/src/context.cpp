@@ -175,8 +175,9 @@ Error Context::technique_for(obscura_method method, Technique** out) {
     return Error();
 }
 
-Error Context::ensure_resources(int width, int height, int depth_levels) {
+Error Context::ensure_resources(int width, int height, const TechniquePlan& plan) {
     const PassEnv pass_env = env();
+    const int depth_levels = plan.depth_levels;
     if (resources_.width != width || resources_.height != height || !resources_.linear_depth) {
         release_frame_resources();  // the views' histories stay: each follows its own view's size
         FrameResources r;
@@ -185,9 +186,7 @@ Error Context::ensure_resources(int width, int height, int depth_levels) {
         r.linear_depth = pass_env.create_texture(GL_R32F, width, height, depth_levels);
         r.normals = pass_env.create_texture(GL_RG16_SNORM, width, height);
         r.ao = pass_env.create_texture(GL_R16F, width, height);
-        r.blur_temp = pass_env.create_texture(GL_R16F, width, height);
-        r.ao_blurred = pass_env.create_texture(GL_R16F, width, height);
-        if (!r.linear_depth || !r.normals || !r.ao || !r.blur_temp || !r.ao_blurred) {
+        if (!r.linear_depth || !r.normals || !r.ao) {
             return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating the %dx%d working textures failed", width,
                                height);
         }
@@ -199,6 +198,17 @@ Error Context::ensure_resources(int width, int height, int depth_levels) {
             return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating the %dx%d z pyramid (%d levels) failed",
                                width, height, depth_levels);
         }
+    }
+    if (plan.blur_targets && !resources_.blur_temp) {
+        resources_.blur_temp = pass_env.create_texture(GL_R16F, width, height);
+        resources_.ao_blurred = pass_env.create_texture(GL_R16F, width, height);
+        if (!resources_.blur_temp || !resources_.ao_blurred) {
+            return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating the %dx%d reconstruction textures failed",
+                               width, height);
+        }
+    } else if (!plan.blur_targets) {
+        resources_.blur_temp = gl::Texture2D();  // the context holds what its latest configuration needs
+        resources_.ao_blurred = gl::Texture2D();
     }
     return Error();
 }
@@ -285,7 +295,7 @@ Error Context::prepare(int width, int height, const obscura_settings& settings) 
     const int shift = resolution_shift(resolved);
     const int working_width = reduced_extent(width, shift), working_height = reduced_extent(height, shift);
     const TechniquePlan plan = technique->plan(resolved, working_width, working_height, request);
-    error = ensure_resources(working_width, working_height, plan.depth_levels);
+    error = ensure_resources(working_width, working_height, plan);
     if (!error) error = technique->prepare(env(), resolved, request, resources_);
     if (!error && shift > 0) error = upsample_.allocate(env(), width, height, upsample_.bent() != nullptr);
     if (!error && shift == 0) upsample_.release();
@@ -346,7 +356,7 @@ Error Context::record_frame(const FrameInput& host, const obscura_settings& sett
                            find_method(settings.method)->name);
     }
     const bool raw_view = request.raw_view;
-    error = ensure_resources(input.width, input.height, plan.depth_levels);
+    error = ensure_resources(input.width, input.height, plan);
     if (!error) error = technique->prepare(pass_env, settings, request, resources_);
     if (!error) error = depth_prepare_.prepare(pass_env, input);
     if (!error) error = output_.prepare(pass_env, target, host.output_rect);

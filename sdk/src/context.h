@@ -64,8 +64,9 @@ private:
     // The technique of a resolved method, created on first use; every other technique's resources are freed
     // when the method changes (the context holds what its latest configuration needs and nothing else).
     Error technique_for(obscura_method method, Technique** out);
-    // The shared per-size textures, and the linear depth's MIP levels.
-    Error ensure_resources(int width, int height, int depth_levels);
+    // The shared per-size textures, the linear depth's MIP levels, and the reconstruction's targets when the
+    // technique's plan writes them (freed when it does not).
+    Error ensure_resources(int width, int height, const TechniquePlan& plan);
     // Every per-size resource: the frame's (shared textures, output staging, the techniques') and the views'.
     void release_resources();
     void release_frame_resources();

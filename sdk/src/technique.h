@@ -32,6 +32,9 @@ struct TechniquePlan {
     int depth_levels = 1;      // MIP levels the linear depth needs (a z pyramid over level 0); 1: none
     float radius = 1.0f;       // the method's radius in metres: the linear-depth debug view's scale
     bool bent_normals = false; // the technique writes bent normals (TechniqueOutput::bent) when requested
+    // Its reconstruction writes FrameResources::blur_temp and ao_blurred (from the settings alone: a debug view,
+    // which skips the reconstruction, does not free and reallocate them).
+    bool blur_targets = false;
 };
 
 // The regions of a frame's passes, in depth-texture texels (frame_planner.h computes them from the plan).

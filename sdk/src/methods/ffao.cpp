@@ -106,6 +106,7 @@ public:
         plan.apron = ffao_blurs(ffao, request.raw_view) ? 2 : 0;  // the 5x5 box
         if (ffao_uses_mipmap(ffao)) plan.depth_levels = ZPyramidPass::level_count(width, height, kFfaoMipmapLevels);
         plan.radius = ffao.radius;
+        plan.blur_targets = ffao_blurs(ffao, false);
         return plan;
     }
 

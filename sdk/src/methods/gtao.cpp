@@ -104,6 +104,7 @@ public:
         plan.depth_levels = ZPyramidPass::level_count(width, height, GtaoPass::wanted_levels(gtao));
         plan.radius = gtao.radius;
         plan.bent_normals = kGtaoMethodWritesBentNormals;
+        plan.blur_targets = gtao_denoises(gtao, false);
         return plan;
     }
 

@@ -67,6 +67,7 @@ public:
         TechniquePlan plan;
         plan.apron = hbao_blurs(settings.hbao, request.raw_view) ? settings.hbao.blur_radius : 0;
         plan.radius = settings.hbao.radius;
+        plan.blur_targets = hbao_blurs(settings.hbao, false);
         return plan;
     }
 

@@ -76,6 +76,7 @@ public:
         plan.ao_on_quads = true;  // the quad filter pairs pixels of 2x2 quads in absolute coordinates
         plan.depth_levels = ZPyramidPass::level_count(width, height, SaoPass::wanted_levels(sao));
         plan.radius = sao.radius;
+        plan.blur_targets = sao_blurs(sao, false);
         return plan;
     }
 

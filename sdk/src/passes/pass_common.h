@@ -20,7 +20,8 @@ struct FrameResources {
     gl::Texture2D linear_depth; // R32F positive view depth, OBSCURA_SKY_DEPTH for sky; levels above 0: a z pyramid
     gl::Texture2D normals;      // RG16_SNORM octahedral view-space normals
     gl::Texture2D ao;           // R16F visibility before the reconstruction
-    gl::Texture2D blur_temp;    // R16F after a separable reconstruction's horizontal pass
+    gl::Texture2D blur_temp;    // R16F after a separable reconstruction's horizontal pass (only when the technique's
+                                // plan says blur_targets: else empty, like ao_blurred)
     gl::Texture2D ao_blurred;   // R16F final visibility
     uint64_t bytes() const {
         return linear_depth.bytes() + normals.bytes() + ao.bytes() + blur_temp.bytes() + ao_blurred.bytes();
