@@ -60,26 +60,13 @@ void main() {
     vec4 ty = min(vec4(base.y) + kCornerY, vec4(upsample.config.y));
     bvec4 valid = lessThan(z, vec4(OBSCURA_SKY_THRESHOLD));
 
-    // Each texel's point at its host texel's centre, where the depth preparation read it (depth.glsl's
-    // obscura_view_position_at, four lanes at once); sky lanes get a finite stand-in and weight 0 below.
+    // Each texel's point at its host texel's centre, where the depth preparation read it; sky lanes get a finite
+    // stand-in and weight 0 below. Their unit normals.
     float host_texel = float(1 << k);
-    vec4 ndc_x = (tx * host_texel + 0.5) * depth_params.z * 2.0 - 1.0;
-    vec4 ndc_y = (ty * host_texel + 0.5) * depth_params.w * 2.0 - 1.0;
     vec4 view_z = -mix(vec4(1.0), z, valid);
-    vec4 clip_w = view_z * proj_depth.z + proj_depth.w;
-    vec4 x = (ndc_x * clip_w - proj_scale.z * view_z - proj_offset.x) / proj_scale.x;
-    vec4 y = (ndc_y * clip_w - proj_scale.w * view_z - proj_offset.y) / proj_scale.y;
-    // Their unit normals (normal_encoding.glsl's octahedral decode, four lanes at once).
-    vec4 nz = 1.0 - abs(ex) - abs(ey);
-    bvec4 folded = lessThan(nz, vec4(0.0));
-    vec4 sign_x = mix(vec4(-1.0), vec4(1.0), greaterThanEqual(ex, vec4(0.0)));
-    vec4 sign_y = mix(vec4(-1.0), vec4(1.0), greaterThanEqual(ey, vec4(0.0)));
-    vec4 nx = mix(ex, (1.0 - abs(ey)) * sign_x, folded);
-    vec4 ny = mix(ey, (1.0 - abs(ex)) * sign_y, folded);
-    vec4 inverse_length = inversesqrt(nx * nx + ny * ny + nz * nz);
-    nx *= inverse_length;
-    ny *= inverse_length;
-    nz *= inverse_length;
+    vec4 x, y, nx, ny, nz;
+    obscura_view_position_at4(tx * host_texel + 0.5, ty * host_texel + 0.5, -view_z, x, y);
+    obscura_decode_normal4(ex, ey, nx, ny, nz);
     vec4 plane_offset = x * nx + y * ny + view_z * nz;  // each texel's plane: dot(n, point) = offset
 #if OBSCURA_UPSAMPLE_BENT_NORMALS
     vec4 bent[4] = vec4[4](texelFetch(u_reduced_bent, ivec2(tx.x, ty.x), 0), texelFetch(u_reduced_bent, ivec2(tx.y, ty.y), 0),

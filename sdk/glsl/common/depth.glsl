@@ -52,6 +52,15 @@ vec3 obscura_view_position_at(vec2 pixel_position, float view_depth) {
     return vec3(xy, z);
 }
 
+// The same for four points at once (lanes of the vec4s: pixel positions x, y and distances): out x, y; z is -view_depth.
+void obscura_view_position_at4(vec4 pixel_x, vec4 pixel_y, vec4 view_depth, out vec4 x, out vec4 y) {
+    vec4 ndc_x = pixel_x * depth_params.z * 2.0 - 1.0, ndc_y = pixel_y * depth_params.w * 2.0 - 1.0;
+    vec4 z = -view_depth;
+    vec4 w = -view_depth * proj_depth.z + proj_depth.w;
+    x = (ndc_x * w - proj_scale.z * z - proj_offset.x) / proj_scale.x;
+    y = (ndc_y * w - proj_scale.w * z - proj_offset.y) / proj_scale.y;
+}
+
 // View-space position of the centre of texel `pixel` at distance `view_depth`.
 vec3 obscura_view_position(ivec2 pixel, float view_depth) {
     return obscura_view_position_at(vec2(pixel) + 0.5, view_depth);
