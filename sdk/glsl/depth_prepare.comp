@@ -21,17 +21,20 @@ float linear_depth_at(ivec2 p) { return obscura_host_linear_depth(p << resolutio
 
 bool inside(ivec2 p) { return all(lessThan(p, depth_size.xy)) && all(greaterThanEqual(p, ivec2(0))); }
 
-// Compiled in (DepthPreparePass::prepare). Reconstructing a normal reads the depths up to 2 texels away on
-// each axis: 9 texel fetches and linearisations per texel. GPUs share them through a tile in shared memory
-// (a texture unit takes one texel a clock); CPU rasterisers, which reach shared memory one invocation at a
-// time, fetch them.
+// Compiled in (DepthPreparePass::prepare): where the normals come from (OBSCURA_NORMAL_SOURCE, one of
+// OBSCURA_NORMALS_*), and how the depths a reconstruction reads are shared. Reconstructing a normal reads the depths
+// up to 2 texels away on each axis: 9 texel fetches and linearisations per texel. GPUs share them through a tile in
+// shared memory (a texture unit takes one texel a clock); on CPU rasterisers, which reach shared memory one
+// invocation at a time, an invocation reconstructs a 2x2 quad from the 20 texels of its cross-shaped footprint
+// (5 per texel), kept in registers.
 #ifndef OBSCURA_CPU_RASTERISER
 #error "OBSCURA_CPU_RASTERISER must be defined"
 #endif
-#if OBSCURA_CPU_RASTERISER
-void load_depth_tile(bool reconstruct) {}
-float depth_or_sky(ivec2 p) { return inside(p) ? linear_depth_at(p) : OBSCURA_SKY_DEPTH; }
-#else
+#ifndef OBSCURA_NORMAL_SOURCE
+#error "OBSCURA_NORMAL_SOURCE must be defined"
+#endif
+const bool kReconstruct = OBSCURA_NORMAL_SOURCE == OBSCURA_NORMALS_RECONSTRUCT;
+#if !OBSCURA_CPU_RASTERISER
 const int kMargin = 2;
 const ivec2 kGroup = ivec2(OBSCURA_DEPTH_PREPARE_GROUP_X, OBSCURA_DEPTH_PREPARE_GROUP_Y);
 const ivec2 kTile = kGroup + 2 * kMargin;
@@ -40,9 +43,9 @@ ivec2 g_tile_origin;
 
 // Linear depths of the group and its margin (sky outside the texture); only the group's own texels when
 // the host gives the normals.
-void load_depth_tile(bool reconstruct) {
+void load_depth_tile() {
     g_tile_origin = ivec2(gl_WorkGroupID.xy) * kGroup - kMargin;
-    if (reconstruct) {
+    if (kReconstruct) {
         for (int i = int(gl_LocalInvocationIndex); i < kTile.x * kTile.y; i += kGroup.x * kGroup.y) {
             ivec2 p = g_tile_origin + ivec2(i % kTile.x, i / kTile.x);
             s_depth[i] = inside(p) ? linear_depth_at(p) : OBSCURA_SKY_DEPTH;
@@ -68,57 +71,119 @@ const float kOneTexelError = 1.0e-3;
 
 // How far the surface on one side, continued linearly from its two texels (in 1/w, affine on planes),
 // misses the centre's depth; kOneTexelError and up when only one texel is there, a huge value for none.
-float continuation_error(float center, float near, float far) {
+// k_*: 1 / clip w of each depth (inverse_clip_w), computed once per texel read.
+float continuation_error(float center, float k_center, float near, float k_near, float far, float k_far) {
     if (obscura_is_sky(near)) return 3.0e38;
     if (obscura_is_sky(far)) return kOneTexelError * (1.0 + abs(near - center) / center);  // rank by the step
-    float k_center = 1.0 / obscura_clip_w(center);
-    float k_near = 1.0 / obscura_clip_w(near), k_far = 1.0 / obscura_clip_w(far);
     return abs(2.0 * k_near - k_far - k_center) / k_center;
 }
 
-// The one-sided difference along `axis` on the side whose surface continues through the centre: the
+float inverse_clip_w(float depth) { return 1.0 / obscura_clip_w(depth); }
+
+// The one-sided difference along one axis on the side whose surface continues through the centre: the
 // side that is planar with it (SAO paper eq. 4 takes the side with the smaller depth step, which picks
 // the wrong one next to a concave crease, where the other surface's first texel is closer in depth).
-// Zero if both neighbours are sky or outside the texture.
-vec3 one_sided_derivative(ivec2 p, vec3 center, float depth, ivec2 axis) {
-    ivec2 pa = p + axis, pb = p - axis;
-    float da = depth_or_sky(pa), db = depth_or_sky(pb);
-    bool a_valid = !obscura_is_sky(da), b_valid = !obscura_is_sky(db);
+// d: the depths at centre - 2, -1, 0, +1, +2 texels along the axis (index 2 the centre), k their inverse_clip_w;
+// pa, pb: the texels at +1 and -1. Zero if both neighbours are sky or outside the texture.
+vec3 one_sided_derivative(vec3 center, float d[5], float k[5], ivec2 pa, ivec2 pb) {
+    bool a_valid = !obscura_is_sky(d[3]), b_valid = !obscura_is_sky(d[1]);
     if (!a_valid && !b_valid) return vec3(0.0);
-    float error_a = continuation_error(depth, da, depth_or_sky(p + 2 * axis));
-    float error_b = continuation_error(depth, db, depth_or_sky(p - 2 * axis));
+    float error_a = continuation_error(d[2], k[2], d[3], k[3], d[4], k[4]);
+    float error_b = continuation_error(d[2], k[2], d[1], k[1], d[0], k[0]);
     bool use_a = a_valid && (!b_valid || error_a < error_b ||
-                             (error_a == error_b && abs(da - depth) <= abs(depth - db)));
-    if (use_a) return obscura_view_position(pa, da) - center;
-    return center - obscura_view_position(pb, db);
+                             (error_a == error_b && abs(d[3] - d[2]) <= abs(d[2] - d[1])));
+    if (use_a) return obscura_view_position(pa, d[3]) - center;
+    return center - obscura_view_position(pb, d[1]);
 }
 
+// The view-space normal of texel p (depth d[2] on both axes) from the depths along x and y: facing the eye, +z where
+// no neighbour gives a tangent.
+vec3 reconstruct_normal(ivec2 p, float dx[5], float kx[5], float dy[5], float ky[5]) {
+    if (obscura_is_sky(dx[2])) return vec3(0.0, 0.0, 1.0);
+    vec3 center = obscura_view_position(p, dx[2]);
+    vec3 tx = one_sided_derivative(center, dx, kx, p + ivec2(1, 0), p - ivec2(1, 0));
+    vec3 ty = one_sided_derivative(center, dy, ky, p + ivec2(0, 1), p - ivec2(0, 1));
+    vec3 c = cross(tx, ty);
+    if (!(dot(c, c) > 0.0)) return vec3(0.0, 0.0, 1.0);
+    // The cross product's sign depends on the projection's handedness (flipped x or y): a visible surface faces the
+    // eye.
+    vec3 n = normalize(c);
+    return dot(n, obscura_towards_eye(center)) < 0.0 ? -n : n;
+}
+
+// The normal the host gives at its texel for p, or +z where it is not a finite non-zero vector.
+vec3 host_normal(ivec2 p) {
+    vec3 host = texelFetch(u_host_normals, p << resolution.x, 0).xyz;
+    if (OBSCURA_NORMAL_SOURCE == OBSCURA_NORMALS_UNSIGNED) host = host * 2.0 - 1.0;
+    bool finite = obscura_is_finite(host.x) && obscura_is_finite(host.y) && obscura_is_finite(host.z);
+    return finite && dot(host, host) > 1e-12 ? normalize(host) : vec3(0.0, 0.0, 1.0);
+}
+
+void store(ivec2 p, float depth, vec3 normal) {
+    imageStore(u_linear_depth, p, vec4(depth));
+    imageStore(u_normals, p, vec4(obscura_encode_normal(normal), 0.0, 0.0));
+}
+
+#if OBSCURA_CPU_RASTERISER
+// The quad at 2 * invocation reads its cross-shaped footprint once: texel (x, y) relative to the quad's first texel,
+// x in {0, 1} with y in [-2, 3] and y in {0, 1} with x in [-2, 3]; depth D_x_y (m2 for -2, p3 for +3), K_x_y its
+// inverse_clip_w. Named values rather than arrays: compilers keep them in registers, where an array indexed in a
+// loop may go to memory.
+#define OBSCURA_READ(name, x, y) \
+    float D_##name = inside(origin + ivec2(x, y)) ? linear_depth_at(origin + ivec2(x, y)) : OBSCURA_SKY_DEPTH; \
+    float K_##name = inverse_clip_w(D_##name);
+// The normal of quad texel (qx, qy) from the five depths along each axis through it.
+#define OBSCURA_RECONSTRUCT(qx, qy, xm2, xm1, xc, xp1, xp2, ym2, ym1, yp1, yp2)                                        \
+    reconstruct_normal(origin + ivec2(qx, qy),                                                                       \
+                       float[5](D_##xm2, D_##xm1, D_##xc, D_##xp1, D_##xp2), float[5](K_##xm2, K_##xm1, K_##xc, K_##xp1, K_##xp2), \
+                       float[5](D_##ym2, D_##ym1, D_##xc, D_##yp1, D_##yp2), float[5](K_##ym2, K_##ym1, K_##xc, K_##yp1, K_##yp2))
 void main() {
-    load_depth_tile(depth_size.w == OBSCURA_NORMALS_RECONSTRUCT);  // every invocation, before any leaves
+    ivec2 origin = 2 * ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(origin, depth_size.xy))) return;
+    // The quad itself.
+    OBSCURA_READ(p0_p0, 0, 0) OBSCURA_READ(p1_p0, 1, 0) OBSCURA_READ(p0_p1, 0, 1) OBSCURA_READ(p1_p1, 1, 1)
+    vec3 n00, n10, n01, n11;
+#if OBSCURA_NORMAL_SOURCE == OBSCURA_NORMALS_RECONSTRUCT
+    // Its rows' and columns' two texels on each side.
+    OBSCURA_READ(m2_p0, -2, 0) OBSCURA_READ(m1_p0, -1, 0) OBSCURA_READ(p2_p0, 2, 0) OBSCURA_READ(p3_p0, 3, 0)
+    OBSCURA_READ(m2_p1, -2, 1) OBSCURA_READ(m1_p1, -1, 1) OBSCURA_READ(p2_p1, 2, 1) OBSCURA_READ(p3_p1, 3, 1)
+    OBSCURA_READ(p0_m2, 0, -2) OBSCURA_READ(p0_m1, 0, -1) OBSCURA_READ(p0_p2, 0, 2) OBSCURA_READ(p0_p3, 0, 3)
+    OBSCURA_READ(p1_m2, 1, -2) OBSCURA_READ(p1_m1, 1, -1) OBSCURA_READ(p1_p2, 1, 2) OBSCURA_READ(p1_p3, 1, 3)
+    n00 = OBSCURA_RECONSTRUCT(0, 0, m2_p0, m1_p0, p0_p0, p1_p0, p2_p0, p0_m2, p0_m1, p0_p1, p0_p2);
+    n10 = OBSCURA_RECONSTRUCT(1, 0, m1_p0, p0_p0, p1_p0, p2_p0, p3_p0, p1_m2, p1_m1, p1_p1, p1_p2);
+    n01 = OBSCURA_RECONSTRUCT(0, 1, m2_p1, m1_p1, p0_p1, p1_p1, p2_p1, p0_m1, p0_p0, p0_p2, p0_p3);
+    n11 = OBSCURA_RECONSTRUCT(1, 1, m1_p1, p0_p1, p1_p1, p2_p1, p3_p1, p1_m1, p1_p0, p1_p2, p1_p3);
+#else
+    n00 = host_normal(origin);
+    n10 = host_normal(origin + ivec2(1, 0));
+    n01 = host_normal(origin + ivec2(0, 1));
+    n11 = host_normal(origin + ivec2(1, 1));
+#endif
+    // Texels of the quad past the texture's last row or column are not written.
+    store(origin, D_p0_p0, n00);
+    bvec2 second = lessThan(origin + 1, depth_size.xy);
+    if (second.x) store(origin + ivec2(1, 0), D_p1_p0, n10);
+    if (second.y) store(origin + ivec2(0, 1), D_p0_p1, n01);
+    if (second.x && second.y) store(origin + ivec2(1, 1), D_p1_p1, n11);
+}
+#else
+void main() {
+    load_depth_tile();  // every invocation, before any leaves
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, depth_size.xy))) return;
-    float depth = depth_or_sky(p);
-    imageStore(u_linear_depth, p, vec4(depth));
-
-    vec3 n = vec3(0.0, 0.0, 1.0);
-    if (depth_size.w == OBSCURA_NORMALS_RECONSTRUCT) {
-        if (!obscura_is_sky(depth)) {
-            vec3 center = obscura_view_position(p, depth);
-            vec3 dx = one_sided_derivative(p, center, depth, ivec2(1, 0));
-            vec3 dy = one_sided_derivative(p, center, depth, ivec2(0, 1));
-            vec3 c = cross(dx, dy);
-            if (dot(c, c) > 0.0) {
-                // The cross product's sign depends on the projection's handedness (flipped x or y):
-                // a visible surface faces the eye.
-                n = normalize(c);
-                if (dot(n, obscura_towards_eye(center)) < 0.0) n = -n;
-            }
+    vec3 n;
+    if (kReconstruct) {
+        float dx[5], kx[5], dy[5], ky[5];
+        for (int i = 0; i < 5; ++i) {
+            dx[i] = depth_or_sky(p + ivec2(i - 2, 0));
+            kx[i] = inverse_clip_w(dx[i]);
+            dy[i] = depth_or_sky(p + ivec2(0, i - 2));
+            ky[i] = inverse_clip_w(dy[i]);
         }
+        n = reconstruct_normal(p, dx, kx, dy, ky);
     } else {
-        vec3 host = texelFetch(u_host_normals, p << resolution.x, 0).xyz;
-        if (depth_size.w == OBSCURA_NORMALS_UNSIGNED) host = host * 2.0 - 1.0;
-        bool finite = obscura_is_finite(host.x) && obscura_is_finite(host.y) && obscura_is_finite(host.z);
-        if (finite && dot(host, host) > 1e-12) n = normalize(host);
+        n = host_normal(p);
     }
-    imageStore(u_normals, p, vec4(obscura_encode_normal(n), 0.0, 0.0));
+    store(p, depth_or_sky(p), n);
 }
+#endif

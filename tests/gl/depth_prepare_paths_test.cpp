@@ -1,7 +1,7 @@
 // The depth preparation pass (sdk/src/passes/depth_prepare.*, sdk/glsl/depth_prepare.comp) run directly:
 // a GPU's program shares the depths a normal reconstruction reads through a tile in shared memory, a CPU
-// rasteriser's fetches them. Both must give the same linear depths and normals, at the texture's edges,
-// next to sky and with host normals too.
+// rasteriser's reads each 2x2 quad's footprint once per invocation. Both must give the same linear depths and
+// normals, at the texture's edges (odd sizes: partial quads), next to sky and with host normals of either kind too.
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -97,7 +97,7 @@ protected:
 };
 
 TEST_F(DepthPreparePaths, SharedMemoryTileMatchesTexelFetches) {
-    for (int mode : {OBSCURA_NORMALS_RECONSTRUCT, OBSCURA_NORMALS_SIGNED}) {
+    for (int mode : {OBSCURA_NORMALS_RECONSTRUCT, OBSCURA_NORMALS_SIGNED, OBSCURA_NORMALS_UNSIGNED}) {
         cpu_renderer_ = true;
         const Prepared cpu = prepare(mode);
         cpu_renderer_ = false;

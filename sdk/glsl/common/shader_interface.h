@@ -160,7 +160,8 @@ OBSCURA_BLOCK_BEGIN(FrameConstants)
   OBSCURA_VEC4(proj_depth);     // m10, m14, m11, m15
   OBSCURA_VEC4(proj_offset);    // m12, m13, clip-depth scale, clip-depth bias (z_ndc = d * s + b)
   OBSCURA_VEC4(depth_params);   // sky window depth, metres-to-view-units, 1/width, 1/height
-  OBSCURA_IVEC4(depth_size);    // width, height, depth source kind, normal source kind
+  OBSCURA_IVEC4(depth_size);    // width, height, depth source kind, normal source kind (both informational: the
+                                //   programs compile them in)
   OBSCURA_IVEC4(output_rect);   // x, y, width, height of the output rectangle in the depth texture
   OBSCURA_IVEC4(work_rect);     // x, y, width, height of the region a pass computes (rect + apron)
   OBSCURA_IVEC4(target_params); // target x, target y, blend mode, debug view

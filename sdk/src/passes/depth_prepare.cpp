@@ -5,9 +5,11 @@ namespace obscura {
 Error DepthPreparePass::prepare(const PassEnv& env, const FrameInput& input) {
     gl::Object& program = program_for(input);
     if (program) return Error();
-    char defines[128];
-    std::snprintf(defines, sizeof defines, "DEPTH_LINEAR %d\nDEPTH_MULTISAMPLE %d\nOBSCURA_CPU_RASTERISER %d\n",
-                  input.depth_linear ? 1 : 0, input.depth_multisample ? 1 : 0, env.cpu_renderer ? 1 : 0);
+    char defines[160];
+    std::snprintf(defines, sizeof defines,
+                  "DEPTH_LINEAR %d\nDEPTH_MULTISAMPLE %d\nOBSCURA_CPU_RASTERISER %d\nOBSCURA_NORMAL_SOURCE %d\n",
+                  input.depth_linear ? 1 : 0, input.depth_multisample ? 1 : 0, env.cpu_renderer ? 1 : 0,
+                  input.normal_mode);
     return env.build("depth_prepare.comp", defines, &program);
 }
 
@@ -37,7 +39,11 @@ void DepthPreparePass::run(const PassEnv& env, const FrameInput& input, const Un
     env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
     {
         HostDepthBinding depth(env, input);
-        env.dispatch(input.width, input.height, OBSCURA_DEPTH_PREPARE_GROUP_X, OBSCURA_DEPTH_PREPARE_GROUP_Y);
+        // CPU rasterisers: one invocation per 2x2 quad (depth_prepare.comp).
+        const int texels_per_invocation = env.cpu_renderer ? 2 : 1;
+        env.dispatch((input.width + texels_per_invocation - 1) / texels_per_invocation,
+                     (input.height + texels_per_invocation - 1) / texels_per_invocation, OBSCURA_DEPTH_PREPARE_GROUP_X,
+                     OBSCURA_DEPTH_PREPARE_GROUP_Y);
     }
     gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }

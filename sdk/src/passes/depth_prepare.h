@@ -30,15 +30,16 @@ inline int host_depth_variant(const FrameInput& input) {
 
 class DepthPreparePass {
 public:
-    // Compiles the variant for this input kind if it is not built yet.
+    // Compiles the variant for this input kind (host depth kind and normal source) if it is not built yet.
     Error prepare(const PassEnv& env, const FrameInput& input);
     void run(const PassEnv& env, const FrameInput& input, const UniformRange& frame, FrameResources& resources);
 
 private:
     gl::Object& program_for(const FrameInput& input) {
-        return programs_[host_depth_variant(input)];
+        return programs_[host_depth_variant(input)][input.normal_mode];
     }
-    gl::Object programs_[4];  // {hardware, linear} x {single-sample, multisample}
+    // {hardware, linear} x {single-sample, multisample}, by OBSCURA_NORMALS_* (reconstructed, signed, unsigned).
+    gl::Object programs_[4][3];
 };
 
 }  // namespace obscura
