@@ -14,6 +14,7 @@
 // The segments' shares are their azimuthal widths around the receiver's zenith (the w_k of eq. 2), so
 // perspective's uneven mapping of screen angles around off-centre pixels is accounted for.
 #define OBSCURA_FFAO_PASS 1
+#define OBSCURA_FFAO_CHUNK_PASS 1
 #include "common/shader_interface.h"
 #include "common/depth.glsl"
 #include "common/normal_encoding.glsl"
@@ -32,19 +33,34 @@ layout(binding = OBSCURA_UNIT_FFAO_TABLE) uniform sampler3D u_table;
 // SAAO: the box-average pass's receiver (depth, octahedral normal, accepted-neighbour mask) in, the near and far
 // sums out.
 layout(binding = OBSCURA_UNIT_SOURCE) uniform sampler2D u_box;
+#if OBSCURA_FFAO_CHUNKED
+layout(binding = OBSCURA_IMAGE_OUT0, rg32f) uniform image2D u_terms;
+#else
 layout(binding = OBSCURA_IMAGE_OUT0, rg32f) uniform writeonly image2D u_terms;
+#endif
 #else
 layout(binding = OBSCURA_IMAGE_OUT0, r16f) uniform writeonly image2D u_ao;
+#if OBSCURA_FFAO_CHUNKED
+layout(binding = OBSCURA_IMAGE_OUT1, r32f) uniform image2D u_running;  // the total so far
+#endif
 #endif
 #ifndef OBSCURA_FFAO_BUFFER_TEXTURES
 #error "OBSCURA_FFAO_BUFFER_TEXTURES must be defined"
 #endif
+// `index` is global (the column records'); the buffer holds the current chunk, from entry ffao_chunk.range.z.
 #if OBSCURA_FFAO_BUFFER_TEXTURES
 layout(binding = OBSCURA_UNIT_FFAO_PEAKS) uniform samplerBuffer u_ffao_peaks;
-vec4 ffao_peak(int index) { return texelFetch(u_ffao_peaks, index); }
+vec4 ffao_peak(int index) { return texelFetch(u_ffao_peaks, index - ffao_chunk.range.z); }
 #else
 layout(std430, binding = OBSCURA_SSBO_FFAO_PEAKS) readonly buffer FfaoPeaks { vec4 ffao_peaks[]; };
-vec4 ffao_peak(int index) { return ffao_peaks[index]; }
+vec4 ffao_peak(int index) { return ffao_peaks[index - ffao_chunk.range.z]; }
+#endif
+// Chunked (OBSCURA_FFAO_CHUNKED, compiled in): this dispatch covers the chunk's orientations only and carries the
+// running sums from chunk to chunk, through the SAAO terms themselves (rg32f) or, without SAAO, a r32f texture of
+// the running total; the last chunk writes the result. The sums continue in the same order as in one dispatch, so
+// the AO is the same to the bit.
+#ifndef OBSCURA_FFAO_CHUNKED
+#error "OBSCURA_FFAO_CHUNKED must be defined"
 #endif
 // The far field's source (compiled in): the scanned peaks (0) or the depth MIP pyramid (1, sec. 5).
 #ifndef OBSCURA_FFAO_MIPMAP
@@ -359,12 +375,25 @@ void evaluate_orientation(int k, ivec2 pixel, vec3 p, vec3 n, float depth, bool 
     }
 }
 
+// The orientations this dispatch covers: all of them, or the chunk's.
+#if OBSCURA_FFAO_CHUNKED
+int first_orientation() { return ffao_chunk.range.x; }
+int end_orientation() { return ffao_chunk.range.x + ffao_chunk.range.y; }
+bool first_chunk() { return (ffao_chunk.range.w & OBSCURA_FFAO_CHUNK_FIRST) != 0; }
+bool last_chunk() { return (ffao_chunk.range.w & OBSCURA_FFAO_CHUNK_LAST) != 0; }
+#else
+int first_orientation() { return 0; }
+int end_orientation() { return ffao.config.x / 2; }
+bool first_chunk() { return true; }
+bool last_chunk() { return true; }
+#endif
+
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy) + work_rect.xy;
     if (any(greaterThanEqual(gl_GlobalInvocationID.xy, uvec2(work_rect.zw)))) return;
     float depth = texelFetch(u_depth, pixel, 0).r;
     g_perspective = obscura_is_perspective();
-    int orientations = ffao.config.x / 2;
+    int k_begin = first_orientation(), k_end = end_orientation();
 #if OBSCURA_FFAO_SAAO
     // SAAO (sec. 10): the full near field at the pixel itself; the far field of every ninth orientation only
     // (the pixel's place in its 3x3 group), at the group-averaged receiver of the box-average pass. The
@@ -376,12 +405,20 @@ void main() {
     vec3 p = obscura_view_position(pixel, depth);
     vec3 n = obscura_decode_normal(texelFetch(u_normals, pixel, 0).xy);
     float near_sum = 0.0, far_sum = 0.0, unused = 0.0;
-    for (int k = 0; k < orientations; ++k) evaluate_orientation(k, pixel, p, n, depth, false, near_sum, unused);
+#if OBSCURA_FFAO_CHUNKED
+    if (!first_chunk()) {
+        vec2 running = imageLoad(u_terms, pixel).xy;
+        near_sum = running.x;
+        far_sum = running.y;
+    }
+#endif
+    for (int k = k_begin; k < k_end; ++k) evaluate_orientation(k, pixel, p, n, depth, false, near_sum, unused);
     vec4 box = texelFetch(u_box, pixel, 0);
     vec3 box_p = obscura_view_position(pixel, box.x);
     vec3 box_n = obscura_decode_normal(box.yz);
     int place = (pixel.x % 3) + 3 * (pixel.y % 3);
-    for (int k = place; k < orientations; k += 9) {
+    // The first k >= k_begin with k = place (mod 9).
+    for (int k = k_begin + (place - k_begin % 9 + 9) % 9; k < k_end; k += 9) {
         evaluate_orientation(k, pixel, box_p, box_n, box.x, true, unused, far_sum);
     }
     imageStore(u_terms, pixel, vec4(near_sum, far_sum, 0.0, 0.0));
@@ -394,9 +431,24 @@ void main() {
     }
     vec3 p = obscura_view_position(pixel, depth);
     vec3 n = obscura_decode_normal(texelFetch(u_normals, pixel, 0).xy);
-    float near_sum = 0.0, far_sum = 0.0;
-    for (int k = 0; k < orientations; ++k) evaluate_orientation(k, pixel, p, n, depth, true, near_sum, far_sum);
-    float obscurance = clamp((near_sum + far_sum) / OBSCURA_PI * ffao.shape.y, 0.0, 1.0);
+    // One running total, near and far field together, added orientation by orientation: a chunk resumes it where
+    // the previous one stopped.
+    float total = 0.0;
+#if OBSCURA_FFAO_CHUNKED
+    if (!first_chunk()) total = imageLoad(u_running, pixel).x;
+#endif
+    for (int k = k_begin; k < k_end; ++k) {
+        float near_sum = 0.0, far_sum = 0.0;
+        evaluate_orientation(k, pixel, p, n, depth, true, near_sum, far_sum);
+        total += near_sum + far_sum;
+    }
+#if OBSCURA_FFAO_CHUNKED
+    if (!last_chunk()) {
+        imageStore(u_running, pixel, vec4(total));
+        return;
+    }
+#endif
+    float obscurance = clamp(total / OBSCURA_PI * ffao.shape.y, 0.0, 1.0);
     imageStore(u_ao, pixel, vec4(pow(1.0 - obscurance, ffao.shape.z)));
 #endif
 }

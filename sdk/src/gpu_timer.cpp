@@ -95,11 +95,20 @@ uint32_t GpuTimer::latest(obscura_timing* out, uint32_t capacity, uint64_t* fram
     if (!sync_ && gl_) collect();
     *frame_index = latest_count_ > 0 ? latest_frame_ : 0;
     if (latest_count_ == 0) return 0;
-    uint32_t available = uint32_t(latest_count_) + 1;
+    PassId passes[kMaxPasses] = {};
+    double ms[kMaxPasses] = {};
+    int count = 0;
     double total = 0.0;
-    for (int i = 0; i < latest_count_; ++i) total += latest_ms_[i];
+    for (int i = 0; i < latest_count_; ++i) {
+        total += latest_ms_[i];
+        int j = 0;
+        while (j < count && passes[j] != latest_passes_[i]) ++j;
+        if (j == count) passes[count++] = latest_passes_[i];
+        ms[j] += latest_ms_[i];
+    }
+    const uint32_t available = uint32_t(count) + 1;
     if (out && capacity > 0) out[0] = {"total", total};
-    for (uint32_t i = 1; out && i < capacity && i < available; ++i) out[i] = {pass_label(latest_passes_[i - 1]), latest_ms_[i - 1]};
+    for (uint32_t i = 1; out && i < capacity && i < available; ++i) out[i] = {pass_label(passes[i - 1]), ms[i - 1]};
     return available;
 }
 

@@ -16,7 +16,7 @@ namespace obscura {
 class GpuTimer {
 public:
     static constexpr int kFramesInFlight = 4;
-    static constexpr int kMaxPasses = 12;
+    static constexpr int kMaxPasses = 32;  // marks per frame (FFAO in chunks marks each chunk's passes)
 
     void create(const gl::Table& gl, bool sync_timing);
     void destroy();
@@ -26,7 +26,8 @@ public:
     void mark(PassId pass);
     void end_frame();
 
-    // Latest complete frame: "total" first, then each pass. Returns the number available and sets
+    // Latest complete frame: "total" first, then each pass, once (a pass marked several times in a frame, as FFAO's
+    // chunks are, reports the sum, where its first mark was). Returns the number available and sets
     // *frame_index to that frame's 1-based index among the frames begun (0 when none completed yet).
     uint32_t latest(obscura_timing* out, uint32_t capacity, uint64_t* frame_index);
 

@@ -371,7 +371,7 @@ TEST_F(SyncTimings, AtOnceAfterRenderWithExactlyTheMethodsPasses) {
          {"depth_prepare", "ffao_scan", "ffao_prefix", "ffao_obscurance", "composite"}},
         {"ffao saao, same falloff",
          ffao_saao,
-         {"depth_prepare", "ffao_scan", "ffao_prefix", "ffao_box_average", "ffao_obscurance", "ffao_gather", "blur",
+         {"depth_prepare", "ffao_box_average", "ffao_scan", "ffao_prefix", "ffao_obscurance", "ffao_gather", "blur",
           "composite"}},
         {"ffao, another falloff shape: a new table",
          ffao_rho0,

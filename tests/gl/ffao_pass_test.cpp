@@ -63,7 +63,8 @@ protected:
         return s.ffao;
     }
 
-    // The table, the scan, the prefix sums and (optionally) the obscurance over the whole texture.
+    // The table, then chunk by chunk the scan, the prefix sums and (optionally) the obscurance over the whole
+    // texture; with SAAO the box average before and the gather after.
     void run(const obscura_ffao_settings& ffao, bool obscurance) {
         ASSERT_FALSE(pass_.prepare(env(), ffao));
         ASSERT_FALSE(pass_.ensure_layout(env(), ffao, kWidth, kHeight));
@@ -76,11 +77,15 @@ protected:
         pass_.push_chunk_constants(arena_);
         arena_.upload(gl_, uniforms_.name());
         if (pass_.table_stale(ffao)) pass_.run_table(env(), ffao, table);
-        pass_.run_scan(env(), frame, pass, resources_);
-        pass_.run_prefix(env(), frame, pass);
-        if (obscurance) {
-            pass_.run_obscurance(env(), ffao, frame, pass, obscura::Region{0, 0, kWidth, kHeight}, resources_);
+        const obscura::Region whole{0, 0, kWidth, kHeight};
+        const bool saao = obscurance && obscura::ffao_uses_saao(ffao);
+        if (saao) pass_.run_box_average(env(), frame, pass, whole, resources_);
+        for (int c = 0; c < pass_.chunk_count(); ++c) {
+            pass_.run_scan(env(), frame, pass, resources_, c);
+            if (!obscura::ffao_single_lines(ffao)) pass_.run_prefix(env(), frame, pass, c);
+            if (obscurance) pass_.run_obscurance(env(), ffao, frame, pass, whole, resources_, c);
         }
+        if (saao) pass_.run_gather(env(), frame, pass, whole, resources_);
         gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
     }
 
@@ -211,22 +216,52 @@ TEST_F(FfaoPasses, ScanAndPrefixSumsMatchACpuScan) {
     EXPECT_LE(double(mismatched), 1e-3 * double(gpu.size() / 4)) << mismatched << " of " << gpu.size() / 4;
 }
 
-// The scan and the prefix sums split into chunks of orientations (as FFAO's peaks at 4K are on Mesa, whose storage
-// blocks hold 128 MiB): the same peaks, bit for bit, and so the same AO, as in one block. Here at the fixture's size
-// with the block capped to a third of the peaks, and at 1920x1080 (+10 % guard band) with it capped to a quarter.
-TEST_F(FfaoPasses, ChunkedPeaksAreBitIdentical) {
+// Past one storage block (FFAO's peaks at 4K on Mesa, whose blocks hold 128 MiB) the scan, the prefix sums and the
+// obscurance run chunk by chunk, runs of whole orientations, through a buffer that holds one chunk, and the
+// obscurance carries its sums from chunk to chunk: the same peaks, chunk for chunk, and the same AO, bit for bit, as
+// in one block. Here at the fixture's size with the block capped to a third of the peaks (the prefix-sum averages,
+// single lines with a thickness, and SAAO), and the peaks at 1920x1080 (+10 % guard band) capped to a quarter.
+TEST_F(FfaoPasses, ChunkedAoIsBitIdentical) {
     upload_depth(false);
-    const obscura_ffao_settings settings = resolved(defaults());
-    run(settings, true);
-    ASSERT_EQ(pass_.chunk_count(), 1);
-    const std::vector<float> whole = obscura::FfaoPassInspection::read_peaks(pass_, gl_);
-    const std::vector<float> whole_ao = read_ao();
-    pass_.release();
-    obscura::FfaoPassInspection::limit_storage_block(&pass_, int64_t(whole.size()) * 4 / 3);
-    run(settings, true);
-    EXPECT_GE(pass_.chunk_count(), 3);
-    EXPECT_TRUE(obscura::FfaoPassInspection::read_peaks(pass_, gl_) == whole) << "the peaks differ";
-    EXPECT_TRUE(read_ao() == whole_ao) << "the AO differs";
+    struct Case {
+        const char* name;
+        float thickness;
+        int saao;
+    };
+    for (const Case& c : {Case{"sector averages", 0.0f, OBSCURA_TOGGLE_OFF}, Case{"single lines", 0.2f, OBSCURA_TOGGLE_OFF},
+                          Case{"SAAO", 0.0f, OBSCURA_TOGGLE_ON}, Case{"SAAO, GPU path", 0.0f, OBSCURA_TOGGLE_ON},
+                          Case{"sector averages, GPU path", 0.0f, OBSCURA_TOGGLE_OFF}}) {
+        cpu_renderer_ = std::string(c.name).find("GPU") == std::string::npos;  // storage blocks instead of buffer textures
+        obscura_ffao_settings ffao = defaults();
+        ffao.thickness = c.thickness;
+        ffao.saao = obscura_toggle(c.saao);
+        const obscura_ffao_settings settings = resolved(ffao);
+        pass_ = obscura::FfaoPass();
+        run(settings, true);
+        ASSERT_EQ(pass_.chunk_count(), 1) << c.name;
+        const std::vector<float> whole = obscura::FfaoPassInspection::read_peaks(pass_, gl_);
+        const std::vector<float> whole_ao = read_ao();
+        const uint64_t whole_bytes = pass_.bytes();
+        obscura::FfaoPassInspection::limit_storage_block(&pass_, int64_t(whole.size()) * 4 / 3);
+        run(settings, true);
+        EXPECT_GE(pass_.chunk_count(), 3) << c.name;
+        EXPECT_TRUE(read_ao() == whole_ao) << c.name << ": the AO differs";
+        // The buffer holds the last chunk: the same peaks as that part of the whole.
+        const int last = pass_.chunk_count() - 1;
+        const int64_t first = obscura::FfaoPassInspection::chunk_first(pass_, last);
+        const int64_t entries = obscura::FfaoPassInspection::chunk_entries(pass_, last);
+        const std::vector<float> buffer = obscura::FfaoPassInspection::read_peaks(pass_, gl_);
+        ASSERT_LE(size_t(first + entries) * 4, whole.size()) << c.name;
+        ASSERT_LE(size_t(entries) * 4, buffer.size()) << c.name;
+        EXPECT_TRUE(std::equal(buffer.begin(), buffer.begin() + entries * 4, whole.begin() + first * 4))
+            << c.name << ": the peaks differ";
+        // Less memory: one chunk's buffer instead of all the peaks (plus the running total without SAAO).
+        EXPECT_LT(buffer.size(), whole.size() / 2) << c.name;
+        EXPECT_NE(pass_.bytes(), whole_bytes) << c.name;
+        pass_.release();
+        obscura::FfaoPassInspection::limit_storage_block(&pass_, 0);
+    }
+    cpu_renderer_ = true;
 }
 
 TEST_F(FfaoPasses, ChunkedPeaksAreBitIdenticalAt1080p) {
@@ -246,15 +281,12 @@ TEST_F(FfaoPasses, ChunkedPeaksAreBitIdenticalAt1080p) {
     input.width = kW;
     input.height = kH;
     const obscura_ffao_settings settings = resolved(defaults());
-    std::vector<float> peaks[2];
-    int chunks[2] = {};
+    std::vector<float> whole;
+    int64_t compared = 0;
     for (int i = 0; i < 2; ++i) {
         obscura::FfaoPass pass;
         ASSERT_FALSE(pass.prepare(env(), settings));
-        if (i == 1) {
-            const int64_t whole_bytes = int64_t(peaks[0].size()) * 4;
-            obscura::FfaoPassInspection::limit_storage_block(&pass, whole_bytes / 4);
-        }
+        if (i == 1) obscura::FfaoPassInspection::limit_storage_block(&pass, int64_t(whole.size()) * 4 / 4);
         ASSERT_FALSE(pass.ensure_layout(env(), settings, kW, kH));
         GLint alignment = 256;
         gl_.GetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);
@@ -263,16 +295,29 @@ TEST_F(FfaoPasses, ChunkedPeaksAreBitIdenticalAt1080p) {
         const obscura::UniformRange pass_range = arena_.push(pass.constants(settings, input));
         pass.push_chunk_constants(arena_);
         arena_.upload(gl_, uniforms_.name());
-        pass.run_scan(env(), frame_range, pass_range, resources);
-        pass.run_prefix(env(), frame_range, pass_range);
-        gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
-        peaks[i] = obscura::FfaoPassInspection::read_peaks(pass, gl_);
-        chunks[i] = pass.chunk_count();
+        if (i == 0) {
+            ASSERT_EQ(pass.chunk_count(), 1);
+        } else {
+            ASSERT_GE(pass.chunk_count(), 4);
+        }
+        for (int c = 0; c < pass.chunk_count(); ++c) {
+            pass.run_scan(env(), frame_range, pass_range, resources, c);
+            pass.run_prefix(env(), frame_range, pass_range, c);
+            gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
+            const std::vector<float> peaks = obscura::FfaoPassInspection::read_peaks(pass, gl_);
+            if (i == 0) {
+                whole = peaks;
+                continue;
+            }
+            const int64_t first = obscura::FfaoPassInspection::chunk_first(pass, c);
+            const int64_t entries = obscura::FfaoPassInspection::chunk_entries(pass, c);
+            ASSERT_LE(size_t(first + entries) * 4, whole.size());
+            EXPECT_TRUE(std::equal(whole.begin() + first * 4, whole.begin() + (first + entries) * 4, peaks.begin()))
+                << "chunk " << c << ": the peaks differ";
+            compared += entries;
+        }
     }
-    EXPECT_EQ(chunks[0], 1);
-    EXPECT_GE(chunks[1], 4);
-    ASSERT_EQ(peaks[0].size(), peaks[1].size());
-    EXPECT_TRUE(peaks[0] == peaks[1]) << "the peaks differ";
+    EXPECT_EQ(size_t(compared) * 4, whole.size());  // the chunks cover every entry
 }
 
 // A wall facing the camera: every peak of every line lies in the receiver's own tangent plane, so nothing

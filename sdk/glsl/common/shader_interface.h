@@ -45,10 +45,15 @@
 #define OBSCURA_SSBO_FFAO_COLUMNS 1 // per (orientation, level, interval): entry offset, first line, lines, block shift
 #define OBSCURA_SSBO_FFAO_LINES 2   // per scan line: origin xy (float bits), first step, steps
 #define OBSCURA_SSBO_COUNT 3
-// The scan and the prefix sums bind the peaks as chunks, ranges of whole orientations no larger than
-// GL_MAX_SHADER_STORAGE_BLOCK_SIZE (128 MiB on Mesa, less than FFAO's peaks at 4K), one dispatch each; the
-// obscurance pass reads the whole buffer (a buffer texture on CPU rasterisers, which GL bounds in texels).
-#define OBSCURA_FFAO_PEAK_CHUNKS 8
+// FFAO's peaks come in chunks, runs of whole orientations. One chunk when all of them fit one storage block
+// (GL_MAX_SHADER_STORAGE_BLOCK_SIZE, 128 MiB on Mesa); past that, chunks of at most OBSCURA_FFAO_CHUNK_BYTES each:
+// the scan, the prefix sums and the obscurance then run chunk by chunk through a buffer that holds one, and the
+// obscurance carries its running sums from chunk to chunk in a texture (FfaoPass::ensure_layout).
+#define OBSCURA_FFAO_PEAK_CHUNKS 8 // at most (the chunk size doubles from OBSCURA_FFAO_CHUNK_BYTES until they do)
+#define OBSCURA_FFAO_CHUNK_BYTES (64 * 1024 * 1024)
+// FfaoChunkConstants.range.w: the first chunk (no running sums to read), the last (the sums are complete).
+#define OBSCURA_FFAO_CHUNK_FIRST 1
+#define OBSCURA_FFAO_CHUNK_LAST 2
 
 // ---- Workgroup sizes (the dispatch math in C++ reads the same numbers) ------------------------
 #define OBSCURA_DEPTH_PREPARE_GROUP_X 8
@@ -330,8 +335,8 @@ struct FfaoChunkConstants {
 #else
 layout(std140, binding = OBSCURA_UBO_DISPATCH) uniform FfaoChunkConstants {
 #endif
-  OBSCURA_IVEC4(range);    // the chunk's first orientation, its orientation count, the buffer entry its binding
-                           // starts at (column offsets are global), unused
+  OBSCURA_IVEC4(range);    // the chunk's first orientation, its orientation count, the entry its buffer starts at
+                           // (column offsets are global), OBSCURA_FFAO_CHUNK_* flags
 #ifdef __cplusplus
 };
 #else

@@ -768,8 +768,9 @@ typedef struct obscura_timing {
     const char* label; /* "total" first, then one entry per pass that ran, in order: "depth_prepare"; then
                           HBAO "hbao" ["blur"]; REFERENCE "reference"; SAO ["z_pyramid"] "sao" ["blur"]; LSAO
                           "line_sweep" "gather"; FFAO ["ffao_table" when the falloff's shape changed], then
-                          "ffao_scan" ["ffao_prefix"] (geometry=mipmap: ["z_pyramid"] instead),
-                          ["ffao_box_average"] "ffao_obscurance" ["ffao_gather" "blur"] (the last three with saao);
+                          ["ffao_box_average"] (saao) "ffao_scan" ["ffao_prefix"] (geometry=mipmap: ["z_pyramid"]
+                          instead), "ffao_obscurance" ["ffao_gather" "blur"] (saao); at sizes whose scan runs in
+                          chunks (4K) each of these three entries is the sum over the chunks;
                           GTAO ["z_pyramid"] "gtao" ["gtao_denoise"]; then ["temporal"] (settings.temporal on),
                           ["upsample"] (settings.resolution below full), then "composite". Static strings */
     double milliseconds;

@@ -130,7 +130,7 @@ public:
             pyramid_[d] = uniforms.push(ZPyramidPass::constants(d, levels_, ffao_mipmap_filter(ffao)));
         }
         pass_ = uniforms.push(ffao_.constants(ffao, frame.input, levels_));
-        if (!ffao_uses_mipmap(ffao)) ffao_.push_chunk_constants(uniforms);
+        ffao_.push_chunk_constants(uniforms);
         table_ = uniforms.push(FfaoPass::table_constants(ffao));
     }
 
@@ -149,21 +149,26 @@ public:
             pyramid_pass_.run(env, pyramid_, pyramid_dispatches_, r.linear_depth);
             if ((error = recorder.end(PassId::ZPyramid))) return error;
         }
-        if (!mipmap) {
-            ffao_.run_scan(env, frame.uniforms.whole, pass_, r);
-            if ((error = recorder.end(PassId::FfaoScan))) return error;
-        }
-        if (!mipmap && !ffao_single_lines(ffao)) {
-            ffao_.run_prefix(env, frame.uniforms.whole, pass_);
-            if ((error = recorder.end(PassId::FfaoPrefix))) return error;
-        }
         if (saao) {
             ffao_.run_box_average(env, saao_frame_, pass_, saao_region_, r);
             if ((error = recorder.end(PassId::FfaoBoxAverage))) return error;
         }
-        ffao_.run_obscurance(env, ffao, saao ? saao_frame_ : frame.uniforms.ao, pass_,
-                             saao ? saao_region_ : frame.regions.ao, r);
-        if ((error = recorder.end(PassId::FfaoObscurance))) return error;
+        // Chunk by chunk (one chunk unless the peaks outgrow a storage block): the scan and the prefix sums fill the
+        // peaks buffer with the chunk's orientations, the obscurance adds their share.
+        for (int c = 0; c < ffao_.chunk_count(); ++c) {
+            if (!mipmap) {
+                ffao_.run_scan(env, frame.uniforms.whole, pass_, r, c);
+                if ((error = recorder.end(PassId::FfaoScan))) return error;
+            }
+            if (!mipmap && !ffao_single_lines(ffao)) {
+                ffao_.run_prefix(env, frame.uniforms.whole, pass_, c);
+                if ((error = recorder.end(PassId::FfaoPrefix))) return error;
+            }
+            ffao_.run_obscurance(env, ffao, saao ? saao_frame_ : frame.uniforms.ao, pass_,
+                                 saao ? saao_region_ : frame.regions.ao, r, c);
+            if ((error = recorder.end(PassId::FfaoObscurance))) return error;
+            if (ffao_.chunked()) recorder.flush();
+        }
         if (saao) {
             ffao_.run_gather(env, frame.uniforms.ao, pass_, frame.regions.ao, r);
             if ((error = recorder.end(PassId::FfaoGather))) return error;

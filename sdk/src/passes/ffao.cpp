@@ -32,12 +32,14 @@ Error FfaoPass::prepare(const PassEnv& env, const obscura_ffao_settings& setting
         }
     }
     const int mipmap = ffao_uses_mipmap(settings) ? 1 : 0, saao = ffao_uses_saao(settings) ? 1 : 0;
-    if (!obscurance_programs_[mipmap][saao]) {
-        char defines[128];
+    for (int chunked = 0; chunked < 2; ++chunked) {  // which one runs depends on the size (ensure_layout)
+        if (obscurance_programs_[mipmap][saao][chunked] || (mipmap && chunked)) continue;
+        char defines[160];
         std::snprintf(defines, sizeof defines,
-                      "OBSCURA_FFAO_MIPMAP %d\nOBSCURA_FFAO_SAAO %d\nOBSCURA_FFAO_BUFFER_TEXTURES %d\n", mipmap, saao,
-                      env.cpu_renderer ? 1 : 0);
-        error = env.build("ffao_obscurance.comp", defines, &obscurance_programs_[mipmap][saao]);
+                      "OBSCURA_FFAO_MIPMAP %d\nOBSCURA_FFAO_SAAO %d\nOBSCURA_FFAO_BUFFER_TEXTURES %d\n"
+                      "OBSCURA_FFAO_CHUNKED %d\n",
+                      mipmap, saao, env.cpu_renderer ? 1 : 0, chunked);
+        error = env.build("ffao_obscurance.comp", defines, &obscurance_programs_[mipmap][saao][chunked]);
         if (error) return error;
     }
     if (saao && !box_program_) {
@@ -65,10 +67,11 @@ Error FfaoPass::prepare(const PassEnv& env, const obscura_ffao_settings& setting
 
 Error FfaoPass::ensure_layout(const PassEnv& env, const obscura_ffao_settings& settings, int width, int height) {
     const LayoutKey key{width, height, settings.sectors, settings.base_interval, !ffao_uses_mipmap(settings),
-                        ffao_uses_saao(settings)};
+                        ffao_uses_saao(settings), storage_block_limit_};
     if (layout_.width != 0 && key == key_) return Error();
     release();
     layout_ = make_ffao_layout(settings.sectors, settings.base_interval, width, height);
+    const int orientations = int(layout_.orientations.size());
     if (key.saao) {
         env.gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_SOURCE));  // a unit the StateGuard restores
         box_ = gl::Texture2D::create(env.gl, GL_RGBA32F, width, height);
@@ -79,56 +82,72 @@ Error FfaoPass::ensure_layout(const PassEnv& env, const obscura_ffao_settings& s
                                height);
         }
     }
-    if (!key.buffers) {
+    if (!key.buffers) {  // the mipmap baseline: one chunk of every orientation, no peaks
+        chunks_[0] = Chunk{0, orientations, 0, 0};
+        chunk_count_ = 1;
         key_ = key;
         return Error();
     }
     const gl::Table& gl = env.gl;
     GLint64 max_block_bytes = 0;
     gl.GetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block_bytes);
-    GLint offset_alignment = 16;
-    gl.GetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &offset_alignment);
-    // CPU rasterisers' obscurance pass also reads the peaks as a buffer texture, which GL bounds in texels.
+    if (storage_block_limit_ > 0) max_block_bytes = std::min<GLint64>(max_block_bytes, storage_block_limit_);
+    // CPU rasterisers' obscurance pass reads the peaks buffer as a buffer texture, which GL bounds in texels.
     GLint max_texels = 0;
     gl.GetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
-    const long long peak_bytes = static_cast<long long>(layout_.entries) * 16;
-    const bool over_texels = env.cpu_renderer && layout_.entries > max_texels;
-    // The scan's and the prefix sums' storage blocks: runs of whole orientations, each binding starting on the
-    // offset alignment and no larger than the largest storage block. GPUs' obscurance pass reads the whole buffer as
-    // one block (their limit is gigabytes); CPU rasterisers' as a buffer texture.
-    if (storage_block_limit_ > 0) max_block_bytes = std::min<GLint64>(max_block_bytes, storage_block_limit_);
-    const int64_t max_entries = int64_t(max_block_bytes) / 16;
-    const int64_t align_entries = std::max<int64_t>(1, offset_alignment / 16);
-    chunk_count_ = 0;
-    bool fits = layout_.entries <= (int64_t(1) << 31) - 1 && !over_texels &&
-                (env.cpu_renderer || layout_.entries <= max_entries);
-    for (size_t k = 0; k < layout_.orientations.size() && fits; ++k) {
-        const int64_t begin = layout_.columns[size_t(layout_.column_base[k * kFfaoMaxLevels])].offset;
-        const int64_t end = k + 1 < layout_.orientations.size()
-                                ? layout_.columns[size_t(layout_.column_base[(k + 1) * kFfaoMaxLevels])].offset
-                                : layout_.entries;
-        if (chunk_count_ == 0 || end - chunks_[chunk_count_ - 1].first > max_entries) {
-            Chunk chunk;
-            chunk.first_orientation = int(k);
-            chunk.first = begin / align_entries * align_entries;
-            fits = chunk_count_ < OBSCURA_FFAO_PEAK_CHUNKS && end - chunk.first <= max_entries;
-            if (fits) chunks_[chunk_count_++] = chunk;
-        }
-        if (fits) {
+    int64_t most_entries = int64_t(max_block_bytes) / 16;
+    if (env.cpu_renderer) most_entries = std::min<int64_t>(most_entries, max_texels);
+    most_entries = std::min<int64_t>(most_entries, (int64_t(1) << 31) - 1);  // int indices in the shaders
+    auto orientation_begin = [&](int k) {
+        return int64_t(layout_.columns[size_t(layout_.column_base[size_t(k) * kFfaoMaxLevels])].offset);
+    };
+    auto orientation_end = [&](int k) { return k + 1 < orientations ? orientation_begin(k + 1) : layout_.entries; };
+    // Runs of whole orientations of at most `limit` entries each, greedily; false if one orientation alone is over.
+    auto split = [&](int64_t limit) {
+        chunk_count_ = 0;
+        for (int k = 0; k < orientations; ++k) {
+            const int64_t begin = orientation_begin(k), end = orientation_end(k);
+            if (end - begin > limit) return false;
+            if (chunk_count_ == 0 || end - chunks_[chunk_count_ - 1].first > limit) {
+                if (chunk_count_ == OBSCURA_FFAO_PEAK_CHUNKS) return false;
+                chunks_[chunk_count_++] = Chunk{k, 0, begin, begin};
+            }
             chunks_[chunk_count_ - 1].orientations += 1;
             chunks_[chunk_count_ - 1].end = end;
         }
+        return true;
+    };
+    // All of them in one chunk when they fit one storage block (one obscurance dispatch, as fast as it gets);
+    // otherwise chunks of OBSCURA_FFAO_CHUNK_BYTES, for memory (FFAO at 4K: 8 chunks of 37 MiB instead of 296 MiB),
+    // doubled until they are at most OBSCURA_FFAO_PEAK_CHUNKS.
+    bool fits = layout_.entries <= most_entries && split(most_entries);
+    if (!fits) {
+        int64_t limit = std::min<int64_t>(most_entries, OBSCURA_FFAO_CHUNK_BYTES / 16);
+        while (!(fits = split(limit)) && limit < most_entries) limit = std::min(most_entries, 2 * limit);
     }
+    const long long peak_bytes = static_cast<long long>(layout_.entries) * 16;
     if (!fits) {
         const long long entries = layout_.entries;
         release();
         return Error::make(OBSCURA_STATUS_INVALID_SIZE,
-                           "FFAO at %dx%d needs %lld interval entries (%lld bytes), over %s (%lld%s): use fewer "
-                           "sectors, a larger base_interval or a reduced resolution",
-                           width, height, entries, peak_bytes,
-                           over_texels ? "GL_MAX_TEXTURE_BUFFER_SIZE texels" : "GL_MAX_SHADER_STORAGE_BLOCK_SIZE",
-                           over_texels ? static_cast<long long>(max_texels) : static_cast<long long>(max_block_bytes),
-                           over_texels || !env.cpu_renderer ? "" : " per storage block, in 8 blocks at most");
+                           "FFAO at %dx%d needs %lld interval entries (%lld bytes), more than %d chunks of whole "
+                           "orientations within %s (%lld): use fewer sectors, a larger base_interval or a reduced "
+                           "resolution",
+                           width, height, entries, peak_bytes, OBSCURA_FFAO_PEAK_CHUNKS,
+                           env.cpu_renderer ? "GL_MAX_SHADER_STORAGE_BLOCK_SIZE / 16 and GL_MAX_TEXTURE_BUFFER_SIZE entries"
+                                            : "GL_MAX_SHADER_STORAGE_BLOCK_SIZE / 16 entries",
+                           static_cast<long long>(most_entries));
+    }
+    int64_t buffer_entries = 1;
+    for (int c = 0; c < chunk_count_; ++c) buffer_entries = std::max(buffer_entries, chunks_[c].end - chunks_[c].first);
+    if (chunked() && !key.saao) {  // the running total, chunk to chunk (SAAO carries its sums in its terms)
+        env.gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_SOURCE));  // a unit the StateGuard restores
+        running_ = gl::Texture2D::create(env.gl, GL_R32F, width, height);
+        if (!running_) {
+            release();
+            return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating FFAO's %dx%d running sums failed", width,
+                               height);
+        }
     }
     std::vector<GpuLine> lines(layout_.lines.size());
     for (size_t i = 0; i < lines.size(); ++i) {
@@ -138,7 +157,7 @@ Error FfaoPass::ensure_layout(const PassEnv& env, const obscura_ffao_settings& s
     lines_ = gl::Buffer::create(gl, GL_SHADER_STORAGE_BUFFER, std::max<size_t>(lines.size(), 1) * sizeof(GpuLine));
     columns_ = gl::Buffer::create(gl, GL_SHADER_STORAGE_BUFFER,
                                   std::max<size_t>(layout_.columns.size(), 1) * sizeof(FfaoColumn));
-    peaks_ = gl::Buffer::create(gl, GL_SHADER_STORAGE_BUFFER, uint64_t(std::max<int64_t>(layout_.entries, 1)) * 16);
+    peaks_ = gl::Buffer::create(gl, GL_SHADER_STORAGE_BUFFER, uint64_t(buffer_entries) * 16);
     if (env.cpu_renderer && columns_.name() && peaks_.name()) {
         gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_FFAO_PEAKS));  // a unit the StateGuard restores
         peaks_texture_ = gl::create_buffer_texture(gl, GL_RGBA32F, peaks_.name());
@@ -148,7 +167,7 @@ Error FfaoPass::ensure_layout(const PassEnv& env, const obscura_ffao_settings& s
     if (!lines_.name() || !columns_.name() || !peaks_.name() || !textures_ok) {
         release();
         return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating FFAO's scan buffers (%lld bytes) failed",
-                           peak_bytes);
+                           static_cast<long long>(buffer_entries) * 16);
     }
     key_ = key;
     gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, lines_.name());
@@ -167,6 +186,7 @@ void FfaoPass::release() {
     peaks_ = gl::Buffer();
     box_ = gl::Texture2D();
     terms_ = gl::Texture2D();
+    running_ = gl::Texture2D();
     layout_ = FfaoLayout();
     key_ = LayoutKey();
     chunk_count_ = 0;
@@ -179,7 +199,7 @@ void FfaoPass::release_table() {
 }
 
 uint64_t FfaoPass::bytes() const {
-    return lines_.bytes() + columns_.bytes() + peaks_.bytes() + box_.bytes() + terms_.bytes() +
+    return lines_.bytes() + columns_.bytes() + peaks_.bytes() + box_.bytes() + terms_.bytes() + running_.bytes() +
            (table_ ? kTableBytes : 0);
 }
 
@@ -245,7 +265,7 @@ void FfaoPass::run_table(const PassEnv& env, const obscura_ffao_settings& settin
 }
 
 void FfaoPass::run_scan(const PassEnv& env, const UniformRange& frame, const UniformRange& pass,
-                        const FrameResources& resources) {
+                        const FrameResources& resources, int c) {
     const gl::Table& gl = env.gl;
     gl.UseProgram(scan_program_.name());
     env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
@@ -253,45 +273,41 @@ void FfaoPass::run_scan(const PassEnv& env, const UniformRange& frame, const Uni
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_LINES, lines_.name());
     env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
     env.bind_uniforms(OBSCURA_UBO_PASS, pass);
-    for (int c = 0; c < chunk_count_; ++c) {
-        const Chunk& chunk = chunks_[c];
-        int most_lines = 1;
-        for (int k = chunk.first_orientation; k < chunk.first_orientation + chunk.orientations; ++k) {
-            most_lines = std::max(most_lines, layout_.orientations[size_t(k)].line_count);
-        }
-        bind_chunk(gl, c);
-        env.bind_uniforms(OBSCURA_UBO_DISPATCH, chunk_uniforms_[c]);
-        gl.DispatchCompute(GLuint((most_lines + OBSCURA_FFAO_SCAN_GROUP - 1) / OBSCURA_FFAO_SCAN_GROUP), 1,
-                           GLuint(chunk.orientations));
+    const Chunk& chunk = chunks_[c];
+    int most_lines = 1;
+    for (int k = chunk.first_orientation; k < chunk.first_orientation + chunk.orientations; ++k) {
+        most_lines = std::max(most_lines, layout_.orientations[size_t(k)].line_count);
     }
+    bind_chunk(gl, c);
+    env.bind_uniforms(OBSCURA_UBO_DISPATCH, chunk_uniforms_[c]);
+    gl.DispatchCompute(GLuint((most_lines + OBSCURA_FFAO_SCAN_GROUP - 1) / OBSCURA_FFAO_SCAN_GROUP), 1,
+                       GLuint(chunk.orientations));
     gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
-void FfaoPass::run_prefix(const PassEnv& env, const UniformRange& frame, const UniformRange& pass) {
+void FfaoPass::run_prefix(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, int c) {
     const gl::Table& gl = env.gl;
     gl.UseProgram(prefix_program_.name());
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_COLUMNS, columns_.name());
     env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
     env.bind_uniforms(OBSCURA_UBO_PASS, pass);
-    for (int c = 0; c < chunk_count_; ++c) {
-        const Chunk& chunk = chunks_[c];
-        int most_columns = 1;
-        for (int k = chunk.first_orientation; k < chunk.first_orientation + chunk.orientations; ++k) {
-            for (int n = 0; n < layout_.levels; ++n) {
-                most_columns = std::max(most_columns, int(layout_.column_count[size_t(k) * kFfaoMaxLevels + size_t(n)]));
-            }
+    const Chunk& chunk = chunks_[c];
+    int most_columns = 1;
+    for (int k = chunk.first_orientation; k < chunk.first_orientation + chunk.orientations; ++k) {
+        for (int n = 0; n < layout_.levels; ++n) {
+            most_columns = std::max(most_columns, int(layout_.column_count[size_t(k) * kFfaoMaxLevels + size_t(n)]));
         }
-        bind_chunk(gl, c);
-        env.bind_uniforms(OBSCURA_UBO_DISPATCH, chunk_uniforms_[c]);
-        gl.DispatchCompute(GLuint((most_columns + OBSCURA_FFAO_PREFIX_GROUP - 1) / OBSCURA_FFAO_PREFIX_GROUP), 1,
-                           GLuint(chunk.orientations * layout_.levels));
     }
+    bind_chunk(gl, c);
+    env.bind_uniforms(OBSCURA_UBO_DISPATCH, chunk_uniforms_[c]);
+    gl.DispatchCompute(GLuint((most_columns + OBSCURA_FFAO_PREFIX_GROUP - 1) / OBSCURA_FFAO_PREFIX_GROUP), 1,
+                       GLuint(chunk.orientations * layout_.levels));
     gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
 void FfaoPass::bind_chunk(const gl::Table& gl, int c) const {
     const Chunk& chunk = chunks_[c];
-    gl.BindBufferRange(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_PEAKS, peaks_.name(), GLintptr(chunk.first * 16),
+    gl.BindBufferRange(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_PEAKS, peaks_.name(), 0,
                        GLsizeiptr(std::max<int64_t>(chunk.end - chunk.first, 1) * 16));
 }
 
@@ -306,10 +322,10 @@ void FfaoPass::dispatch_pixels(const PassEnv& env, const UniformRange& frame, co
 }
 
 void FfaoPass::run_obscurance(const PassEnv& env, const obscura_ffao_settings& settings, const UniformRange& frame,
-                              const UniformRange& pass, const Region& region, FrameResources& resources) {
+                              const UniformRange& pass, const Region& region, FrameResources& resources, int c) {
     const gl::Table& gl = env.gl;
     const bool mipmap = ffao_uses_mipmap(settings), saao = ffao_uses_saao(settings);
-    gl.UseProgram(obscurance_programs_[mipmap ? 1 : 0][saao ? 1 : 0].name());
+    gl.UseProgram(obscurance_programs_[mipmap ? 1 : 0][saao ? 1 : 0][chunked() ? 1 : 0].name());
     if (mipmap) {
         env.bind_texture_mipmapped(OBSCURA_UNIT_LINEAR_DEPTH, resources.linear_depth.name());
     } else {
@@ -320,19 +336,24 @@ void FfaoPass::run_obscurance(const PassEnv& env, const obscura_ffao_settings& s
     gl.BindTexture(GL_TEXTURE_3D, table_.name());
     gl.BindSampler(OBSCURA_UNIT_FFAO_TABLE, table_sampler_.name());
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_COLUMNS, columns_.name());
-    if (peaks_texture_) {  // CPU rasterisers: the whole buffer as buffer textures
+    if (peaks_texture_) {  // CPU rasterisers: the chunk's peaks and the column records as buffer textures
         env.bind_texture(OBSCURA_UNIT_FFAO_PEAKS, GL_TEXTURE_BUFFER, peaks_texture_.name());
         env.bind_texture(OBSCURA_UNIT_FFAO_COLUMNS, GL_TEXTURE_BUFFER, columns_texture_.name());
-    } else {  // GPUs: the whole buffer as one storage block (ensure_layout checked its size)
-        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_PEAKS, peaks_.name());
+    } else if (peaks_.name()) {  // GPUs: as one storage block (ensure_layout checked its size)
+        bind_chunk(gl, c);
     }
+    env.bind_uniforms(OBSCURA_UBO_DISPATCH, chunk_uniforms_[c]);
+    const GLenum access = chunked() ? GL_READ_WRITE : GL_WRITE_ONLY;  // chunks resume the running sums
     if (saao) {
         env.bind_texture(OBSCURA_UNIT_SOURCE, GL_TEXTURE_2D, box_.name());
-        gl.BindImageTexture(OBSCURA_IMAGE_OUT0, terms_.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+        gl.BindImageTexture(OBSCURA_IMAGE_OUT0, terms_.name(), 0, GL_FALSE, 0, access, GL_RG32F);
     } else {
         gl.BindImageTexture(OBSCURA_IMAGE_OUT0, resources.ao.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
+        if (chunked()) gl.BindImageTexture(OBSCURA_IMAGE_OUT1, running_.name(), 0, GL_FALSE, 0, access, GL_R32F);
     }
     dispatch_pixels(env, frame, pass, region);
+    // The next chunk's scan overwrites the peaks this pass read, and its obscurance reads the sums it wrote.
+    if (chunked()) gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
 void FfaoPass::run_box_average(const PassEnv& env, const UniformRange& frame, const UniformRange& pass,

@@ -37,8 +37,8 @@ public:
     static FfaoTableConstants table_constants(const obscura_ffao_settings& settings);
     // `mipmap_levels`: the depth pyramid's levels for the mipmap method (1 otherwise).
     FfaoConstants constants(const obscura_ffao_settings& settings, const FrameInput& input, int mipmap_levels = 1) const;
-    // The scan's and the prefix sums' per-chunk constants, pushed with the frame's other blocks (a UniformWriter or
-    // a UniformArena) before run_scan and run_prefix.
+    // The per-chunk constants of the scan, the prefix sums and the obscurance, pushed with the frame's other blocks
+    // (a UniformWriter or a UniformArena) before them.
     template <class Writer>
     void push_chunk_constants(Writer& writer) {
         for (int c = 0; c < chunk_count_; ++c) {
@@ -46,17 +46,24 @@ public:
             block.range[0] = chunks_[c].first_orientation;
             block.range[1] = chunks_[c].orientations;
             block.range[2] = int32_t(chunks_[c].first);
+            block.range[3] = (c == 0 ? OBSCURA_FFAO_CHUNK_FIRST : 0) | (c + 1 == chunk_count_ ? OBSCURA_FFAO_CHUNK_LAST : 0);
             chunk_uniforms_[c] = writer.push(block);
         }
     }
+    // Chunks of the peaks: one when they fit a storage block (and always for the mipmap baseline, which has none);
+    // more at sizes where they do not, and then the scan, the prefix sums and the obscurance run once per chunk, in
+    // order (chunk c's obscurance before chunk c + 1's scan: they share the buffer).
     int chunk_count() const { return chunk_count_; }
+    bool chunked() const { return chunk_count_ > 1; }
     void run_table(const PassEnv& env, const obscura_ffao_settings& settings, const UniformRange& pass);
-    void run_scan(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const FrameResources& resources);
-    void run_prefix(const PassEnv& env, const UniformRange& frame, const UniformRange& pass);
+    void run_scan(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const FrameResources& resources,
+                  int chunk);
+    void run_prefix(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, int chunk);
     // Without SAAO: visibility into resources.ao over `region`. With SAAO: the near and far sums over `region`
-    // (the gather's region grown by a pixel), after the box average over the same region.
+    // (the gather's region grown by a pixel), after the box average over the same region. Chunk `chunk`'s
+    // orientations (all of them when there is one chunk): the last chunk writes the result.
     void run_obscurance(const PassEnv& env, const obscura_ffao_settings& settings, const UniformRange& frame,
-                        const UniformRange& pass, const Region& region, FrameResources& resources);
+                        const UniformRange& pass, const Region& region, FrameResources& resources, int chunk);
     void run_box_average(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
                          const FrameResources& resources);
     // SAAO: visibility into resources.ao over `region`; then optionally the blur into resources.ao_blurred.
@@ -73,8 +80,9 @@ private:
     static void dispatch_pixels(const PassEnv& env, const UniformRange& frame, const UniformRange& pass,
                                 const Region& region);
     gl::Object table_program_, scan_program_, prefix_program_, box_program_, gather_program_, blur_program_;
-    gl::Object obscurance_programs_[2][2];  // [mipmap geometry][SAAO], built on first use
-    gl::Texture2D box_, terms_;             // SAAO: averaged receivers, (near, far) sums
+    gl::Object obscurance_programs_[2][2][2];  // [mipmap geometry][SAAO][chunked], built on first use
+    gl::Texture2D box_, terms_;                // SAAO: averaged receivers, (near, far) sums
+    gl::Texture2D running_;                    // chunked without SAAO: the obscurance's running total (r32f)
     gl::Object table_, table_sampler_;
     gl::Object peaks_texture_, columns_texture_;  // buffer textures over peaks_ and columns_ (CPU rasterisers only)
     bool table_valid_ = false;
@@ -82,17 +90,17 @@ private:
     struct LayoutKey {
         int width = 0, height = 0, sectors = 0, base_interval = 0;
         bool buffers = false, saao = false;
+        int64_t storage_block_limit = 0;
         bool operator==(const LayoutKey& o) const {
             return width == o.width && height == o.height && sectors == o.sectors && base_interval == o.base_interval &&
-                   buffers == o.buffers && saao == o.saao;
+                   buffers == o.buffers && saao == o.saao && storage_block_limit == o.storage_block_limit;
         }
     };
-    void bind_chunk(const gl::Table& gl, int chunk) const;  // its range of the peaks at OBSCURA_SSBO_FFAO_PEAKS
+    void bind_chunk(const gl::Table& gl, int chunk) const;  // the peaks buffer at OBSCURA_SSBO_FFAO_PEAKS, its size
     LayoutKey key_;
     FfaoLayout layout_;
     gl::Buffer lines_, columns_, peaks_;
-    // The scan's and the prefix sums' chunks of the peaks buffer: runs of whole orientations whose entries
-    // [first, end) fit one storage block (the binding starts on the offset alignment), one dispatch each.
+    // The chunks: runs of whole orientations whose entries [first, end) the peaks buffer holds one at a time.
     struct Chunk {
         int first_orientation = 0, orientations = 0;
         int64_t first = 0, end = 0;

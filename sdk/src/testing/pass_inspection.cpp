@@ -46,7 +46,7 @@ std::vector<float> FfaoPassInspection::read_table(const FfaoPass& pass, const gl
 }
 
 std::vector<float> FfaoPassInspection::read_peaks(const FfaoPass& pass, const gl::Table& gl) {
-    std::vector<float> values(size_t(pass.layout_.entries) * 4);
+    std::vector<float> values(size_t(pass.peaks_.bytes() / 4));
     gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, pass.peaks_.name());
     gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(values.size() * 4), values.data());
     return values;

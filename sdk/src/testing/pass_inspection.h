@@ -28,10 +28,14 @@ class FfaoPassInspection {
 public:
     // The estimator table's texels (A fastest, then B, then the shared C x D axis).
     static std::vector<float> read_table(const FfaoPass& pass, const gl::Table& gl);
-    // The peaks buffer (vec4s in layout order).
+    // The peaks buffer, vec4s in layout order: every entry with one chunk, else the chunk the scan last filled from
+    // its start (chunk_entries of them) and what is left of a larger one behind it.
     static std::vector<float> read_peaks(const FfaoPass& pass, const gl::Table& gl);
-    // Caps the storage block the scan and the prefix sums bind (0: GL's limit), so that small sizes split the peaks
-    // into chunks as 4K does on Mesa; takes effect at the next ensure_layout of a new layout.
+    // Chunk c's first entry in the layout and its entry count.
+    static int64_t chunk_first(const FfaoPass& pass, int c) { return pass.chunks_[c].first; }
+    static int64_t chunk_entries(const FfaoPass& pass, int c) { return pass.chunks_[c].end - pass.chunks_[c].first; }
+    // Caps the storage block the peaks may take (0: GL's limit), so that small sizes split them into chunks as 4K
+    // does on Mesa; the next ensure_layout lays them out anew.
     static void limit_storage_block(FfaoPass* pass, int64_t bytes) { pass->storage_block_limit_ = bytes; }
 };
 
