@@ -8,8 +8,11 @@ namespace {
 constexpr const char* const kResolutionNames[] = {"full", "half", "quarter"};
 
 // Temporal defaults: 8 frames (the 4x4 noise patterns of HBAO and GTAO then average 128 rotations per pixel, and a
-// disocclusion recovers within a few frames), a clamp of 2 deviations (wide enough that the per-frame noise of a
-// converged pixel stays inside it), a 2 % plane tolerance (the denoisers' own scale of "the same surface").
+// disocclusion recovers within a few frames), a clamp of 3 deviations (wide enough that the per-frame noise of a
+// converged pixel stays inside it: at 2 the clamp clipped the moving noise pattern, and HBAO's and GTAO's flicker
+// stayed at 0.35-0.37 of the unaccumulated image's; at 3 it is 0.33 on the atrium and the clutter room, with the
+// sliding box's trail still gone after 8 frames; docs/quality.md), a 2 % plane tolerance (the denoisers' own
+// scale of "the same surface").
 const obscura_setting_info kSharedSettings[] = {
     setting_row("temporal.enabled", OBSCURA_SETTING_TOGGLE, 0, 0, 1, "",
      "accumulate frames per view: reprojected history, disocclusion rejection, neighbourhood clamp",
@@ -17,7 +20,7 @@ const obscura_setting_info kSharedSettings[] = {
     setting_row("temporal.max_frames", OBSCURA_SETTING_INT, 8, 1, 64, "frames",
      "the most frames the history averages (exponential blend with weight 1 / min(age + 1, N))",
      OBSCURA_SETTING_OFFSET(temporal, max_frames)),
-    setting_row("temporal.clamp", OBSCURA_SETTING_FLOAT, 2.0, 0.25, 64.0, "sigma",
+    setting_row("temporal.clamp", OBSCURA_SETTING_FLOAT, 3.0, 0.25, 64.0, "sigma",
      "the history is held within this frame's 7-texel mean +- this many standard deviations (bounds ghosting)",
      OBSCURA_SETTING_OFFSET(temporal, clamp)),
     setting_row("temporal.plane_tolerance", OBSCURA_SETTING_FLOAT, 0.02, 1e-4, 1.0, "",

@@ -481,7 +481,7 @@ typedef struct obscura_temporal_settings {
     int32_t max_frames;     /* N: the history weighs at most N - 1 frames against the current one's 1, [1, 64].
                                Default 8 */
     float clamp;            /* neighbourhood clamp: the history is held within mean +- clamp * standard deviation of
-                               the current frame's 7-texel neighbourhood, [0.25, 64]. Default 2 */
+                               the current frame's 7-texel neighbourhood, [0.25, 64]. Default 3 */
     float plane_tolerance;  /* disocclusion: a history texel farther from the pixel's tangent plane than this fraction
                                of its distance is dropped, [1e-4, 1]. Default 0.02 */
 } obscura_temporal_settings;
