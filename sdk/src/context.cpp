@@ -349,6 +349,7 @@ Error Context::record_frame(const FrameInput& host, const obscura_settings& sett
     FrameRequest request;
     request.raw_view = is_raw_view(target.debug_view);
     request.bent_normals = target.bent_texture != 0;
+    request.frame_index = input.frame_index;
     const TechniquePlan plan = technique->plan(settings, input.width, input.height, request);
     if (request.bent_normals && !plan.bent_normals) {
         return Error::make(OBSCURA_STATUS_INVALID_SETTING,

@@ -23,6 +23,7 @@ struct FrameRequest {
     // false in obscura_prepare, which knows no output: a technique prepares for what the last render's output
     // needed, so a host that renders bent normals every frame allocates nothing on the frame after a prepare.
     bool output_known = true;
+    uint32_t frame_index = 0;   // obscura_input.frame_index: selects the layout phase of LSAO and FFAO (layout_phase.h)
 };
 
 // What a technique needs of a frame before anything is allocated or recorded.

@@ -3,7 +3,9 @@
 // closed forms.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "passes/ffao_estimator.h"
@@ -24,11 +26,17 @@ struct Case {
 
 class FfaoLayoutCases : public ::testing::TestWithParam<Case> {};
 
+// The layout phases a test walks (layout_phase.h): none, and line shifts of 3/8 and 7/8.
+const double kPhaseFractions[] = {0.0, 0.375, 0.875};
+
 // Every texel a line passes over is walked, and each orientation's lines reach every texel row or column
-// they cross.
+// they cross, in every layout phase.
 TEST_P(FfaoLayoutCases, LinesWalkEveryStepInsideTheTexture) {
     const Case c = GetParam();
-    const obscura::FfaoLayout layout = obscura::make_ffao_layout(c.sectors, c.base_interval, c.width, c.height);
+    for (double phase : kPhaseFractions) {
+    SCOPED_TRACE("phase " + std::to_string(phase));
+    const obscura::FfaoLayout layout =
+        obscura::make_ffao_layout(c.sectors, c.base_interval, c.width, c.height, phase);
     ASSERT_EQ(int(layout.orientations.size()), c.sectors / 2);
     for (const obscura::FfaoOrientation& o : layout.orientations) {
         int64_t inside_steps = 0;
@@ -46,13 +54,42 @@ TEST_P(FfaoLayoutCases, LinesWalkEveryStepInsideTheTexture) {
         // One step per texel of area, give or take the border: the lines are one texel apart.
         EXPECT_NEAR(double(inside_steps), double(c.width) * c.height, 2.0 * (c.width + c.height) + 4.0);
     }
+    }
+}
+
+// A phase moves the lines across by its fraction of a texel, with one line more before them; phase 0 is the layout
+// without one.
+TEST(FfaoLayout, PhasesShiftTheLines) {
+    const obscura::FfaoLayout plain = obscura::make_ffao_layout(16, 10, 97, 61);
+    const obscura::FfaoLayout zero = obscura::make_ffao_layout(16, 10, 97, 61, 0.0);
+    const obscura::FfaoLayout moved = obscura::make_ffao_layout(16, 10, 97, 61, 0.5);
+    ASSERT_EQ(plain.lines.size(), zero.lines.size());
+    EXPECT_EQ(plain.entries, zero.entries);
+    for (size_t i = 0; i < plain.lines.size(); ++i) {
+        EXPECT_EQ(plain.lines[i].origin[0], zero.lines[i].origin[0]);
+        EXPECT_EQ(plain.lines[i].origin[1], zero.lines[i].origin[1]);
+    }
+    for (size_t k = 0; k < plain.orientations.size(); ++k) {
+        const obscura::FfaoOrientation &a = plain.orientations[k], &b = moved.orientations[k];
+        EXPECT_EQ(a.dir[0], b.dir[0]);
+        EXPECT_EQ(a.dir[1], b.dir[1]);
+        // Line l sits at v = v_min + l + 0.5 across the orientation.
+        EXPECT_NEAR(b.v_min, a.v_min - 0.5, 1e-9) << k;
+        EXPECT_EQ(b.line_count, a.line_count + 1) << k;
+        const obscura::FfaoLine& line = moved.lines[size_t(b.first_line + 1)];
+        const double v = -b.dir[1] * line.origin[0] + b.dir[0] * line.origin[1];
+        EXPECT_NEAR(v, a.v_min + 1.0, 1e-3) << k;
+    }
 }
 
 // The scan writes column (k, n, i) for exactly the lines whose walk enters the interval; the layout's run
 // [first_line, first_line + lines) must be those lines, with the entries packed one after another.
 TEST_P(FfaoLayoutCases, EveryLineOfAColumnsRunWritesIt) {
     const Case c = GetParam();
-    const obscura::FfaoLayout layout = obscura::make_ffao_layout(c.sectors, c.base_interval, c.width, c.height);
+    for (double phase : kPhaseFractions) {
+    SCOPED_TRACE("phase " + std::to_string(phase));
+    const obscura::FfaoLayout layout =
+        obscura::make_ffao_layout(c.sectors, c.base_interval, c.width, c.height, phase);
     int64_t offset = 0;
     for (int k = 0; k < c.sectors / 2; ++k) {
         const obscura::FfaoOrientation& o = layout.orientations[size_t(k)];
@@ -78,6 +115,7 @@ TEST_P(FfaoLayoutCases, EveryLineOfAColumnsRunWritesIt) {
         EXPECT_GE(c.base_interval << (layout.levels - 1), o.steps / 2);
     }
     EXPECT_EQ(layout.entries, offset);
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(Sizes, FfaoLayoutCases,

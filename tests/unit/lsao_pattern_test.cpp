@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include "layout_phase.h"
 #include "passes/lsao_pattern.h"
 #include "passes/obscure_hull.h"
 
@@ -81,10 +82,14 @@ std::vector<LayoutCase> layout_cases() {
 // texture's edge are excluded: a line's first sample inside may lie up to D_S from the edge, and such
 // texels are guard band, not output (a guard band narrower than D_S gives the edge pixels a value up to
 // D_S away).
+// The same in every layout phase: free directions turned and every line shifted across by 3/8 or 7/8 of a spacing.
 TEST(LsaoLayout, EveryPixelHasANearbySampleInEveryDirection) {
     const int width = 97, height = 61;
-    for (const LayoutCase& c : layout_cases()) {
-        LsaoLayout layout = obscura::make_lsao_layout(c.directions, c.line_spacing, width, height, c.aligned);
+    for (const double phase : {0.0, 0.375, 0.875})
+    for (LayoutCase c : layout_cases()) {
+        SCOPED_TRACE("phase " + std::to_string(phase));
+        if (!c.aligned) c.directions = obscura::free_directions(int(c.directions.size()), c.directions[0].step_length, phase);
+        LsaoLayout layout = obscura::make_lsao_layout(c.directions, c.line_spacing, width, height, c.aligned, phase);
         for (const obscura::LsaoLine& line : layout.lines) {
             for (int j = line.first_step; j < line.first_step + line.steps; ++j) {
                 double q[2];
@@ -144,6 +149,47 @@ TEST(LsaoLayout, LinesOfADirectionDoNotShareSamples) {
             }
         }
     }
+}
+
+// A layout phase moves every line across by its fraction of D_L (one line more before the first) and turns free
+// directions by its fraction of the angle between them; phase 0 is the layout without one. Frames visit the eight
+// phases bit-reversed, so that two, four or eight consecutive frames spread evenly.
+TEST(LsaoLayout, PhasesShiftTheLinesAndTurnFreeDirections) {
+    const std::vector<LsaoDirection> aligned = obscura::aligned_directions(2);
+    const LsaoLayout plain = obscura::make_lsao_layout(aligned, 1.64, 97, 61, true);
+    const LsaoLayout zero = obscura::make_lsao_layout(aligned, 1.64, 97, 61, true, 0.0);
+    const LsaoLayout moved = obscura::make_lsao_layout(aligned, 1.64, 97, 61, true, 0.5);
+    ASSERT_EQ(plain.lines.size(), zero.lines.size());
+    for (size_t i = 0; i < plain.lines.size(); ++i) {
+        EXPECT_EQ(plain.lines[i].origin[0], zero.lines[i].origin[0]);
+        EXPECT_EQ(plain.lines[i].origin[1], zero.lines[i].origin[1]);
+    }
+    for (size_t k = 0; k < aligned.size(); ++k) {
+        EXPECT_NEAR(moved.direction_lines[k].line_origin_v, plain.direction_lines[k].line_origin_v - 0.5 * 1.64, 1e-12);
+        EXPECT_EQ(moved.direction_lines[k].line_count, plain.direction_lines[k].line_count + 1);
+    }
+    // The aligned lines still start on texel centres, on other lattice lines than phase 0's.
+    size_t differing = 0;
+    for (size_t k = 0; k < aligned.size(); ++k) {
+        const obscura::LsaoDirectionLines &a = plain.direction_lines[k], &b = moved.direction_lines[k];
+        for (int l = 0; l < a.line_count; ++l) {
+            const obscura::LsaoLine& line = moved.lines[size_t(b.first_line + l + 1)];
+            EXPECT_EQ(line.origin[0] - std::floor(line.origin[0]), 0.5f);
+            EXPECT_EQ(line.origin[1] - std::floor(line.origin[1]), 0.5f);
+            const obscura::LsaoLine& before = plain.lines[size_t(a.first_line + l)];
+            differing += line.origin[0] != before.origin[0] || line.origin[1] != before.origin[1];
+        }
+    }
+    EXPECT_GT(differing, plain.lines.size() / 4);
+    const std::vector<LsaoDirection> turned = obscura::free_directions(12, 2.0, 0.25);
+    for (int i = 0; i < 12; ++i) {
+        const double angle = 2.0 * 3.14159265358979323846 * (i + 0.25) / 12.0;
+        EXPECT_NEAR(turned[size_t(i)].dir[0], std::cos(angle), 1e-12);
+        EXPECT_NEAR(turned[size_t(i)].dir[1], std::sin(angle), 1e-12);
+        EXPECT_NEAR(turned[size_t(i)].weight, 1.0 / 12.0, 1e-12);
+    }
+    const int expected[] = {0, 4, 2, 6, 1, 5, 3, 7, 0};
+    for (uint32_t f = 0; f < 9; ++f) EXPECT_EQ(obscura::layout_phase(f), expected[f]) << f;
 }
 
 // ---- The obscure hull ---------------------------------------------------------------------------------

@@ -304,7 +304,10 @@ typedef struct obscura_sao_settings {
    texture in K directions; each is walked in steps of D_S texels, keeping the obscure hull (Algorithm 1) of
    the points behind, so each step finds its largest falloff-weighted occluder in amortised O(1): the cost
    does not depend on the radius. A gather pass takes, per pixel and direction, the nearest line sample that
-   is on the same surface and averages them weighted by azimuthal coverage (eq. 1). Every field: 0 selects the
+   is on the same surface and averages them weighted by azimuthal coverage (eq. 1). obscura_input.frame_index
+   moves the lines through 8 layout phases (frame index mod 8, bit-reversed): each shifts every line across by
+   phase/8 of D_L, and turns free directions by phase/8 of the angle between them (aligned ones are fixed by
+   their texel template); a phase's line records are built on its first frame. Every field: 0 selects the
    default given after it; `preset` fills K, D_S and D_L where those are 0. */
 typedef struct obscura_lsao_settings {
     float radius;         /* metres, [1e-3, 1e4]: falloff scale, the decay rate defaults to C*radius^2. Default 1 */
@@ -390,8 +393,9 @@ typedef struct obscura_reference_settings {
    slabs whose falloff-weighted, cosine-weighted visibility comes from a table L(a, b, c, d) integrated once
    per falloff shape (sec. 4, eq. 3). A direct search covers the pixel's first B0 to 2 B0 texels (sec. 9).
    Converges to the screen-space reference (REFERENCE) with the same falloff and thickness, not to the geometry:
-   with thickness 0 it assumes the same infinitely thick depth field. Every field: 0 selects the default given
-   after it. */
+   with thickness 0 it assumes the same infinitely thick depth field. obscura_input.frame_index moves the scan
+   lines through 8 layout phases as LSAO's: each shifts them across by phase/8 of a texel. Every field: 0 selects
+   the default given after it. */
 typedef struct obscura_ffao_settings {
     float radius;         /* metres, [1e-3, 1e4]: where RHO0 (default decay rate) and TABLE reach 0. Default 1 */
     int32_t falloff;      /* obscura_falloff, [1, 4]. Default 3 (EXPONENTIAL, the paper's) */
@@ -691,7 +695,8 @@ typedef struct obscura_input {
     uint32_t normal_texture;        /* optional view-space normals, same size as the depth; 0: reconstruct */
     /* 0.5, temporal accumulation (settings.temporal; without it these only move the noise): */
     obscura_view* view;             /* the history this frame reads and writes; NULL: the context's own view */
-    uint32_t frame_index;           /* advance by 1 each frame: every method moves its per-pixel noise with it */
+    uint32_t frame_index;           /* advance by 1 each frame: every method moves its per-pixel noise with it
+                                       (LSAO and FFAO their lines) */
     uint32_t flags;                 /* OBSCURA_INPUT_FLAG_* */
     float view_projection[16];      /* world -> clip of this frame, the depth's (projection_layout; jitter included);
                                        all zero: none, and the frame starts a new history */

@@ -110,11 +110,11 @@ public:
         return plan;
     }
 
-    Error prepare(const PassEnv& env, const obscura_settings& settings, const FrameRequest&,
+    Error prepare(const PassEnv& env, const obscura_settings& settings, const FrameRequest& request,
                   FrameResources& resources) override {
         Error error = ffao_.prepare(env, settings.ffao);
         if (!error && ffao_uses_mipmap(settings.ffao)) error = pyramid_pass_.prepare(env);
-        if (!error) error = ffao_.ensure_layout(env, settings.ffao, resources.width, resources.height);
+        if (!error) error = ffao_.ensure_layout(env, settings.ffao, resources.width, resources.height, request.frame_index);
         return error;
     }
 

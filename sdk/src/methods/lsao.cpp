@@ -108,10 +108,10 @@ public:
         return plan;
     }
 
-    Error prepare(const PassEnv& env, const obscura_settings& settings, const FrameRequest&,
+    Error prepare(const PassEnv& env, const obscura_settings& settings, const FrameRequest& request,
                   FrameResources& resources) override {
         Error error = pass_.prepare(env, settings.lsao);
-        if (!error) error = pass_.ensure_layout(env, settings.lsao, resources.width, resources.height);
+        if (!error) error = pass_.ensure_layout(env, settings.lsao, resources.width, resources.height, request.frame_index);
         return error;
     }
 

@@ -1,5 +1,7 @@
 #include "passes/ffao.h"
 
+#include "layout_phase.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -65,27 +67,46 @@ Error FfaoPass::prepare(const PassEnv& env, const obscura_ffao_settings& setting
     return Error();
 }
 
-Error FfaoPass::ensure_layout(const PassEnv& env, const obscura_ffao_settings& settings, int width, int height) {
+Error FfaoPass::ensure_layout(const PassEnv& env, const obscura_ffao_settings& settings, int width, int height,
+                              uint32_t frame_index) {
     const LayoutKey key{width, height, settings.sectors, settings.base_interval, !ffao_uses_mipmap(settings),
                         ffao_uses_saao(settings), storage_block_limit_};
-    if (layout_.width != 0 && key == key_) return Error();
-    release();
-    layout_ = make_ffao_layout(settings.sectors, settings.base_interval, width, height);
-    const int orientations = int(layout_.orientations.size());
-    if (key.saao) {
-        env.gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_SOURCE));  // a unit the StateGuard restores
-        box_ = gl::Texture2D::create(env.gl, GL_RGBA32F, width, height);
-        terms_ = gl::Texture2D::create(env.gl, GL_RG32F, width, height);
-        if (!box_ || !terms_) {
+    if (!(key == key_)) {
+        release();
+        if (key.saao) {
+            env.gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_SOURCE));  // a unit the StateGuard restores
+            box_ = gl::Texture2D::create(env.gl, GL_RGBA32F, width, height);
+            terms_ = gl::Texture2D::create(env.gl, GL_RG32F, width, height);
+            if (!box_ || !terms_) {
+                release();
+                return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating FFAO's %dx%d SAAO textures failed",
+                                   width, height);
+            }
+        }
+        key_ = key;
+    }
+    const int phase = layout_phase(frame_index);
+    if (grids_[phase].layout.width == 0) {
+        Error error = build_grid(env, settings, phase);
+        if (error) {
             release();
-            return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating FFAO's %dx%d SAAO textures failed", width,
-                               height);
+            return error;
         }
     }
-    if (!key.buffers) {  // the mipmap baseline: one chunk of every orientation, no peaks
-        chunks_[0] = Chunk{0, orientations, 0, 0};
-        chunk_count_ = 1;
-        key_ = key;
+    current_ = phase;
+    return Error();
+}
+
+Error FfaoPass::build_grid(const PassEnv& env, const obscura_ffao_settings& settings, int phase) {
+    const int width = key_.width, height = key_.height;
+    Grid& grid = grids_[phase];
+    grid.layout =
+        make_ffao_layout(settings.sectors, settings.base_interval, width, height, layout_phase_fraction(phase));
+    const FfaoLayout& layout = grid.layout;
+    const int orientations = int(layout.orientations.size());
+    if (!key_.buffers) {  // the mipmap baseline: one chunk of every orientation, no peaks
+        grid.chunks[0] = Chunk{0, orientations, 0, 0};
+        grid.chunk_count = 1;
         return Error();
     }
     const gl::Table& gl = env.gl;
@@ -99,97 +120,95 @@ Error FfaoPass::ensure_layout(const PassEnv& env, const obscura_ffao_settings& s
     if (env.cpu_renderer) most_entries = std::min<int64_t>(most_entries, max_texels);
     most_entries = std::min<int64_t>(most_entries, (int64_t(1) << 31) - 1);  // int indices in the shaders
     auto orientation_begin = [&](int k) {
-        return int64_t(layout_.columns[size_t(layout_.column_base[size_t(k) * kFfaoMaxLevels])].offset);
+        return int64_t(layout.columns[size_t(layout.column_base[size_t(k) * kFfaoMaxLevels])].offset);
     };
-    auto orientation_end = [&](int k) { return k + 1 < orientations ? orientation_begin(k + 1) : layout_.entries; };
+    auto orientation_end = [&](int k) { return k + 1 < orientations ? orientation_begin(k + 1) : layout.entries; };
     // Runs of whole orientations of at most `limit` entries each, greedily; false if one orientation alone is over.
     auto split = [&](int64_t limit) {
-        chunk_count_ = 0;
+        grid.chunk_count = 0;
         for (int k = 0; k < orientations; ++k) {
             const int64_t begin = orientation_begin(k), end = orientation_end(k);
             if (end - begin > limit) return false;
-            if (chunk_count_ == 0 || end - chunks_[chunk_count_ - 1].first > limit) {
-                if (chunk_count_ == OBSCURA_FFAO_PEAK_CHUNKS) return false;
-                chunks_[chunk_count_++] = Chunk{k, 0, begin, begin};
+            if (grid.chunk_count == 0 || end - grid.chunks[grid.chunk_count - 1].first > limit) {
+                if (grid.chunk_count == OBSCURA_FFAO_PEAK_CHUNKS) return false;
+                grid.chunks[grid.chunk_count++] = Chunk{k, 0, begin, begin};
             }
-            chunks_[chunk_count_ - 1].orientations += 1;
-            chunks_[chunk_count_ - 1].end = end;
+            grid.chunks[grid.chunk_count - 1].orientations += 1;
+            grid.chunks[grid.chunk_count - 1].end = end;
         }
         return true;
     };
     // All of them in one chunk when they fit one storage block (one obscurance dispatch, as fast as it gets);
     // otherwise chunks of OBSCURA_FFAO_CHUNK_BYTES, for memory (FFAO at 4K: 8 chunks of 37 MiB instead of 296 MiB),
     // doubled until they are at most OBSCURA_FFAO_PEAK_CHUNKS.
-    bool fits = layout_.entries <= most_entries && split(most_entries);
+    bool fits = layout.entries <= most_entries && split(most_entries);
     if (!fits) {
         int64_t limit = std::min<int64_t>(most_entries, OBSCURA_FFAO_CHUNK_BYTES / 16);
         while (!(fits = split(limit)) && limit < most_entries) limit = std::min(most_entries, 2 * limit);
     }
-    const long long peak_bytes = static_cast<long long>(layout_.entries) * 16;
+    const long long peak_bytes = static_cast<long long>(layout.entries) * 16;
     if (!fits) {
-        const long long entries = layout_.entries;
-        release();
         return Error::make(OBSCURA_STATUS_INVALID_SIZE,
                            "FFAO at %dx%d needs %lld interval entries (%lld bytes), more than %d chunks of whole "
                            "orientations within %s (%lld): use fewer sectors, a larger base_interval or a reduced "
                            "resolution",
-                           width, height, entries, peak_bytes, OBSCURA_FFAO_PEAK_CHUNKS,
+                           width, height, static_cast<long long>(layout.entries), peak_bytes, OBSCURA_FFAO_PEAK_CHUNKS,
                            env.cpu_renderer ? "GL_MAX_SHADER_STORAGE_BLOCK_SIZE / 16 and GL_MAX_TEXTURE_BUFFER_SIZE entries"
                                             : "GL_MAX_SHADER_STORAGE_BLOCK_SIZE / 16 entries",
                            static_cast<long long>(most_entries));
     }
     int64_t buffer_entries = 1;
-    for (int c = 0; c < chunk_count_; ++c) buffer_entries = std::max(buffer_entries, chunks_[c].end - chunks_[c].first);
-    if (chunked() && !key.saao) {  // the running total, chunk to chunk (SAAO carries its sums in its terms)
-        env.gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_SOURCE));  // a unit the StateGuard restores
+    for (int c = 0; c < grid.chunk_count; ++c) {
+        buffer_entries = std::max(buffer_entries, grid.chunks[c].end - grid.chunks[c].first);
+    }
+    if (grid.chunk_count > 1 && !key_.saao && !running_) {  // the running total, chunk to chunk (SAAO carries its
+        env.gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_SOURCE));  // sums in its terms); a restored unit
         running_ = gl::Texture2D::create(env.gl, GL_R32F, width, height);
         if (!running_) {
-            release();
             return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating FFAO's %dx%d running sums failed", width,
                                height);
         }
     }
-    std::vector<GpuLine> lines(layout_.lines.size());
+    std::vector<GpuLine> lines(layout.lines.size());
     for (size_t i = 0; i < lines.size(); ++i) {
-        const FfaoLine& l = layout_.lines[i];
+        const FfaoLine& l = layout.lines[i];
         lines[i] = GpuLine{{l.origin[0], l.origin[1]}, l.first_step, l.steps};
     }
-    lines_ = gl::Buffer::create(gl, GL_SHADER_STORAGE_BUFFER, std::max<size_t>(lines.size(), 1) * sizeof(GpuLine));
-    columns_ = gl::Buffer::create(gl, GL_SHADER_STORAGE_BUFFER,
-                                  std::max<size_t>(layout_.columns.size(), 1) * sizeof(FfaoColumn));
-    peaks_ = gl::Buffer::create(gl, GL_SHADER_STORAGE_BUFFER, uint64_t(buffer_entries) * 16);
-    if (env.cpu_renderer && columns_.name() && peaks_.name()) {
-        gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_FFAO_PEAKS));  // a unit the StateGuard restores
-        peaks_texture_ = gl::create_buffer_texture(gl, GL_RGBA32F, peaks_.name());
-        columns_texture_ = gl::create_buffer_texture(gl, GL_RGBA32UI, columns_.name());
+    grid.lines = gl::Buffer::create(gl, GL_SHADER_STORAGE_BUFFER, std::max<size_t>(lines.size(), 1) * sizeof(GpuLine));
+    grid.columns = gl::Buffer::create(gl, GL_SHADER_STORAGE_BUFFER,
+                                      std::max<size_t>(layout.columns.size(), 1) * sizeof(FfaoColumn));
+    // The phases share the peaks buffer: it grows to the largest chunk of any phase (they differ by a few lines).
+    if (peaks_.bytes() < uint64_t(buffer_entries) * 16) {
+        peaks_texture_ = gl::Object();
+        peaks_ = gl::Buffer::create(gl, GL_SHADER_STORAGE_BUFFER, uint64_t(buffer_entries) * 16);
     }
-    const bool textures_ok = !env.cpu_renderer || (peaks_texture_ && columns_texture_);
-    if (!lines_.name() || !columns_.name() || !peaks_.name() || !textures_ok) {
-        release();
+    if (env.cpu_renderer && grid.columns.name() && peaks_.name()) {
+        gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_FFAO_PEAKS));  // a unit the StateGuard restores
+        if (!peaks_texture_) peaks_texture_ = gl::create_buffer_texture(gl, GL_RGBA32F, peaks_.name());
+        grid.columns_texture = gl::create_buffer_texture(gl, GL_RGBA32UI, grid.columns.name());
+    }
+    const bool textures_ok = !env.cpu_renderer || (peaks_texture_ && grid.columns_texture);
+    if (!grid.lines.name() || !grid.columns.name() || !peaks_.name() || !textures_ok) {
         return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating FFAO's scan buffers (%lld bytes) failed",
                            static_cast<long long>(buffer_entries) * 16);
     }
-    key_ = key;
-    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, lines_.name());
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, grid.lines.name());
     gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(lines.size() * sizeof(GpuLine)), lines.data());
-    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, columns_.name());
-    gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(layout_.columns.size() * sizeof(FfaoColumn)),
-                     layout_.columns.data());
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, grid.columns.name());
+    gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(layout.columns.size() * sizeof(FfaoColumn)),
+                     layout.columns.data());
     return Error();
 }
 
 void FfaoPass::release() {
+    for (Grid& grid : grids_) grid = Grid();
+    current_ = 0;
     peaks_texture_ = gl::Object();
-    columns_texture_ = gl::Object();
-    lines_ = gl::Buffer();
-    columns_ = gl::Buffer();
     peaks_ = gl::Buffer();
     box_ = gl::Texture2D();
     terms_ = gl::Texture2D();
     running_ = gl::Texture2D();
-    layout_ = FfaoLayout();
     key_ = LayoutKey();
-    chunk_count_ = 0;
 }
 
 void FfaoPass::release_table() {
@@ -199,8 +218,9 @@ void FfaoPass::release_table() {
 }
 
 uint64_t FfaoPass::bytes() const {
-    return lines_.bytes() + columns_.bytes() + peaks_.bytes() + box_.bytes() + terms_.bytes() + running_.bytes() +
-           (table_ ? kTableBytes : 0);
+    uint64_t total = peaks_.bytes() + box_.bytes() + terms_.bytes() + running_.bytes() + (table_ ? kTableBytes : 0);
+    for (const Grid& grid : grids_) total += grid.lines.bytes() + grid.columns.bytes();
+    return total;
 }
 
 FfaoTableConstants FfaoPass::table_constants(const obscura_ffao_settings& settings) {
@@ -216,6 +236,7 @@ FfaoTableConstants FfaoPass::table_constants(const obscura_ffao_settings& settin
 
 FfaoConstants FfaoPass::constants(const obscura_ffao_settings& settings, const FrameInput& input,
                                   int mipmap_levels) const {
+    const Grid& grid = grids_[current_];
     FfaoConstants c = {};
     c.shape[0] = float(ffao_falloff_scale(settings) * input.meters_to_view_units);
     c.shape[1] = settings.intensity;
@@ -227,12 +248,12 @@ FfaoConstants FfaoPass::constants(const obscura_ffao_settings& settings, const F
     // View-space displacement per texel at depth 1 (its direction is what the passes use).
     c.view[0] = float(2.0 / (double(input.projection.m[0]) * input.width));
     c.view[1] = float(2.0 / (double(input.projection.m[5]) * input.height));
-    c.config[0] = layout_.sectors;
+    c.config[0] = grid.layout.sectors;
     c.config[1] = settings.segments;
-    c.config[2] = layout_.base_interval;
-    c.config[3] = layout_.levels;
-    for (size_t k = 0; k < layout_.orientations.size() && k < OBSCURA_FFAO_MAX_ORIENTATIONS; ++k) {
-        const FfaoOrientation& o = layout_.orientations[k];
+    c.config[2] = grid.layout.base_interval;
+    c.config[3] = grid.layout.levels;
+    for (size_t k = 0; k < grid.layout.orientations.size() && k < OBSCURA_FFAO_MAX_ORIENTATIONS; ++k) {
+        const FfaoOrientation& o = grid.layout.orientations[k];
         c.orientation[k][0] = float(o.dir[0]);
         c.orientation[k][1] = float(o.dir[1]);
         c.orientation[k][2] = float(o.u_min);
@@ -244,10 +265,10 @@ FfaoConstants FfaoPass::constants(const obscura_ffao_settings& settings, const F
         const double length = std::hypot(ax, ay);
         c.axes[k][0] = float(ax / length);
         c.axes[k][1] = float(ay / length);
-        for (int n = 0; n < layout_.levels; ++n) {
+        for (int n = 0; n < grid.layout.levels; ++n) {
             const size_t index = k * kFfaoMaxLevels + size_t(n);
-            c.column_base[index / 4][index % 4] = layout_.column_base[index];
-            c.column_count[index / 4][index % 4] = layout_.column_count[index];
+            c.column_base[index / 4][index % 4] = grid.layout.column_base[index];
+            c.column_count[index / 4][index % 4] = grid.layout.column_count[index];
         }
     }
     return c;
@@ -266,17 +287,18 @@ void FfaoPass::run_table(const PassEnv& env, const obscura_ffao_settings& settin
 
 void FfaoPass::run_scan(const PassEnv& env, const UniformRange& frame, const UniformRange& pass,
                         const FrameResources& resources, int c) {
+    const Grid& grid = grids_[current_];
     const gl::Table& gl = env.gl;
     gl.UseProgram(scan_program_.name());
     env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_COLUMNS, columns_.name());
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_LINES, lines_.name());
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_COLUMNS, grid.columns.name());
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_LINES, grid.lines.name());
     env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
     env.bind_uniforms(OBSCURA_UBO_PASS, pass);
-    const Chunk& chunk = chunks_[c];
+    const Chunk& chunk = grid.chunks[c];
     int most_lines = 1;
     for (int k = chunk.first_orientation; k < chunk.first_orientation + chunk.orientations; ++k) {
-        most_lines = std::max(most_lines, layout_.orientations[size_t(k)].line_count);
+        most_lines = std::max(most_lines, grid.layout.orientations[size_t(k)].line_count);
     }
     bind_chunk(gl, c);
     env.bind_uniforms(OBSCURA_UBO_DISPATCH, chunk_uniforms_[c]);
@@ -286,27 +308,29 @@ void FfaoPass::run_scan(const PassEnv& env, const UniformRange& frame, const Uni
 }
 
 void FfaoPass::run_prefix(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, int c) {
+    const Grid& grid = grids_[current_];
     const gl::Table& gl = env.gl;
     gl.UseProgram(prefix_program_.name());
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_COLUMNS, columns_.name());
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_COLUMNS, grid.columns.name());
     env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
     env.bind_uniforms(OBSCURA_UBO_PASS, pass);
-    const Chunk& chunk = chunks_[c];
+    const Chunk& chunk = grid.chunks[c];
     int most_columns = 1;
     for (int k = chunk.first_orientation; k < chunk.first_orientation + chunk.orientations; ++k) {
-        for (int n = 0; n < layout_.levels; ++n) {
-            most_columns = std::max(most_columns, int(layout_.column_count[size_t(k) * kFfaoMaxLevels + size_t(n)]));
+        for (int n = 0; n < grid.layout.levels; ++n) {
+            most_columns = std::max(most_columns, int(grid.layout.column_count[size_t(k) * kFfaoMaxLevels + size_t(n)]));
         }
     }
     bind_chunk(gl, c);
     env.bind_uniforms(OBSCURA_UBO_DISPATCH, chunk_uniforms_[c]);
     gl.DispatchCompute(GLuint((most_columns + OBSCURA_FFAO_PREFIX_GROUP - 1) / OBSCURA_FFAO_PREFIX_GROUP), 1,
-                       GLuint(chunk.orientations * layout_.levels));
+                       GLuint(chunk.orientations * grid.layout.levels));
     gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
 void FfaoPass::bind_chunk(const gl::Table& gl, int c) const {
-    const Chunk& chunk = chunks_[c];
+    const Grid& grid = grids_[current_];
+    const Chunk& chunk = grid.chunks[c];
     gl.BindBufferRange(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_PEAKS, peaks_.name(), 0,
                        GLsizeiptr(std::max<int64_t>(chunk.end - chunk.first, 1) * 16));
 }
@@ -323,6 +347,7 @@ void FfaoPass::dispatch_pixels(const PassEnv& env, const UniformRange& frame, co
 
 void FfaoPass::run_obscurance(const PassEnv& env, const obscura_ffao_settings& settings, const UniformRange& frame,
                               const UniformRange& pass, const Region& region, FrameResources& resources, int c) {
+    const Grid& grid = grids_[current_];
     const gl::Table& gl = env.gl;
     const bool mipmap = ffao_uses_mipmap(settings), saao = ffao_uses_saao(settings);
     gl.UseProgram(obscurance_programs_[mipmap ? 1 : 0][saao ? 1 : 0][chunked() ? 1 : 0].name());
@@ -335,10 +360,10 @@ void FfaoPass::run_obscurance(const PassEnv& env, const obscura_ffao_settings& s
     gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_FFAO_TABLE));
     gl.BindTexture(GL_TEXTURE_3D, table_.name());
     gl.BindSampler(OBSCURA_UNIT_FFAO_TABLE, table_sampler_.name());
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_COLUMNS, columns_.name());
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_FFAO_COLUMNS, grid.columns.name());
     if (peaks_texture_) {  // CPU rasterisers: the chunk's peaks and the column records as buffer textures
         env.bind_texture(OBSCURA_UNIT_FFAO_PEAKS, GL_TEXTURE_BUFFER, peaks_texture_.name());
-        env.bind_texture(OBSCURA_UNIT_FFAO_COLUMNS, GL_TEXTURE_BUFFER, columns_texture_.name());
+        env.bind_texture(OBSCURA_UNIT_FFAO_COLUMNS, GL_TEXTURE_BUFFER, grid.columns_texture.name());
     } else if (peaks_.name()) {  // GPUs: as one storage block (ensure_layout checked its size)
         bind_chunk(gl, c);
     }

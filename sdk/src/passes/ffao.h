@@ -5,6 +5,7 @@
 #define OBSCURA_FFAO_H
 
 #include "frame_input.h"
+#include "layout_phase.h"
 #include "passes/ffao_estimator.h"
 #include "passes/ffao_layout.h"
 #include "passes/pass_common.h"
@@ -29,9 +30,11 @@ class FfaoPass {
 public:
     // Builds the programs these settings run and the table's texture and sampler on first use.
     Error prepare(const PassEnv& env, const obscura_ffao_settings& settings);
-    // Rebuilds the layout and its buffers when the size, K or B0 changed (the mipmap method keeps only the
+    // Selects the layout of the frame's phase (layout_phase(frame_index)): drops every phase's layout and buffers
+    // when the size, K or B0 changed, and builds the phase's on its first use (the mipmap method keeps only the
     // orientations: it allocates no scan buffers).
-    Error ensure_layout(const PassEnv& env, const obscura_ffao_settings& settings, int width, int height);
+    Error ensure_layout(const PassEnv& env, const obscura_ffao_settings& settings, int width, int height,
+                        uint32_t frame_index = 0);
     // Whether the table must be (re)built for these settings' falloff shape.
     bool table_stale(const obscura_ffao_settings& settings) const { return !table_valid_ || !(shape_ == ffao_falloff_shape(settings)); }
     static FfaoTableConstants table_constants(const obscura_ffao_settings& settings);
@@ -41,20 +44,21 @@ public:
     // (a UniformWriter or a UniformArena) before them.
     template <class Writer>
     void push_chunk_constants(Writer& writer) {
-        for (int c = 0; c < chunk_count_; ++c) {
+        const Grid& grid = grids_[current_];
+        for (int c = 0; c < grid.chunk_count; ++c) {
             FfaoChunkConstants block = {};
-            block.range[0] = chunks_[c].first_orientation;
-            block.range[1] = chunks_[c].orientations;
-            block.range[2] = int32_t(chunks_[c].first);
-            block.range[3] = (c == 0 ? OBSCURA_FFAO_CHUNK_FIRST : 0) | (c + 1 == chunk_count_ ? OBSCURA_FFAO_CHUNK_LAST : 0);
+            block.range[0] = grid.chunks[c].first_orientation;
+            block.range[1] = grid.chunks[c].orientations;
+            block.range[2] = int32_t(grid.chunks[c].first);
+            block.range[3] = (c == 0 ? OBSCURA_FFAO_CHUNK_FIRST : 0) | (c + 1 == grid.chunk_count ? OBSCURA_FFAO_CHUNK_LAST : 0);
             chunk_uniforms_[c] = writer.push(block);
         }
     }
     // Chunks of the peaks: one when they fit a storage block (and always for the mipmap baseline, which has none);
     // more at sizes where they do not, and then the scan, the prefix sums and the obscurance run once per chunk, in
     // order (chunk c's obscurance before chunk c + 1's scan: they share the buffer).
-    int chunk_count() const { return chunk_count_; }
-    bool chunked() const { return chunk_count_ > 1; }
+    int chunk_count() const { return grids_[current_].chunk_count; }
+    bool chunked() const { return chunk_count() > 1; }
     void run_table(const PassEnv& env, const obscura_ffao_settings& settings, const UniformRange& pass);
     void run_scan(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const FrameResources& resources,
                   int chunk);
@@ -71,7 +75,8 @@ public:
                     FrameResources& resources);
     void run_saao_blur(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
                        FrameResources& resources);
-    const FfaoLayout& layout() const { return layout_; }
+    // The current phase's layout.
+    const FfaoLayout& layout() const { return grids_[current_].layout; }
     uint64_t bytes() const;
     void release();  // the per-size buffers (the table stays)
     void release_table();  // the estimator table too: rebuilt on the next frame that needs it
@@ -84,7 +89,7 @@ private:
     gl::Texture2D box_, terms_;                // SAAO: averaged receivers, (near, far) sums
     gl::Texture2D running_;                    // chunked without SAAO: the obscurance's running total (r32f)
     gl::Object table_, table_sampler_;
-    gl::Object peaks_texture_, columns_texture_;  // buffer textures over peaks_ and columns_ (CPU rasterisers only)
+    gl::Object peaks_texture_;  // a buffer texture over peaks_ (CPU rasterisers only)
     bool table_valid_ = false;
     FfaoFalloffShape shape_;
     struct LayoutKey {
@@ -98,15 +103,23 @@ private:
     };
     void bind_chunk(const gl::Table& gl, int chunk) const;  // the peaks buffer at OBSCURA_SSBO_FFAO_PEAKS, its size
     LayoutKey key_;
-    FfaoLayout layout_;
-    gl::Buffer lines_, columns_, peaks_;
     // The chunks: runs of whole orientations whose entries [first, end) the peaks buffer holds one at a time.
     struct Chunk {
         int first_orientation = 0, orientations = 0;
         int64_t first = 0, end = 0;
     };
-    Chunk chunks_[OBSCURA_FFAO_PEAK_CHUNKS];
-    int chunk_count_ = 0;
+    // One layout phase's scan grid: its layout, line and column records, and chunks.
+    struct Grid {
+        FfaoLayout layout;
+        gl::Buffer lines, columns;
+        gl::Object columns_texture;  // RGBA32UI over columns (CPU rasterisers only)
+        Chunk chunks[OBSCURA_FFAO_PEAK_CHUNKS];
+        int chunk_count = 0;
+    };
+    Error build_grid(const PassEnv& env, const obscura_ffao_settings& settings, int phase);
+    Grid grids_[kLayoutPhases];
+    int current_ = 0;
+    gl::Buffer peaks_;  // shared by the phases: the largest chunk of any phase built
     UniformRange chunk_uniforms_[OBSCURA_FFAO_PEAK_CHUNKS];
     int64_t storage_block_limit_ = 0;  // tests: a smaller storage block than GL's (FfaoPassInspection)
 };

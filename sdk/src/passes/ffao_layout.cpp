@@ -58,7 +58,7 @@ int ffao_block_shift(int level, int levels, int base_interval, int sectors) {
     return shift;
 }
 
-FfaoLayout make_ffao_layout(int sectors, int base_interval, int width, int height) {
+FfaoLayout make_ffao_layout(int sectors, int base_interval, int width, int height, double line_shift) {
     FfaoLayout layout;
     layout.width = width;
     layout.height = height;
@@ -89,11 +89,15 @@ FfaoLayout make_ffao_layout(int sectors, int base_interval, int width, int heigh
         o.v_min = v_min;
         o.steps = std::max(1, int(std::ceil(u_max - u_min - 1e-9)));
         o.line_count = std::max(1, int(std::ceil(v_max - v_min - 1e-9)));
+        if (line_shift > 0.0) {  // a shifted grid starts one line earlier, so that it still covers the first texels
+            o.v_min += line_shift - 1.0;
+            o.line_count += 1;
+        }
         o.first_line = int32_t(layout.lines.size());
         longest = std::max(longest, o.steps);
         for (int l = 0; l < o.line_count; ++l) {
             FfaoLine line = {};
-            const double u = u_min + 0.5, v = v_min + 0.5 + l;
+            const double u = u_min + 0.5, v = o.v_min + 0.5 + l;
             line.origin[0] = float(u * o.dir[0] + v * perp[0]);
             line.origin[1] = float(u * o.dir[1] + v * perp[1]);
             int first = 0, last = -1;

@@ -47,8 +47,10 @@ struct FfaoLayout {
     int64_t entries = 0;                // peaks-buffer length (vec4 each)
 };
 
-// The layout for `sectors` (even, >= 4) sectors and base interval B0 over a width x height texture.
-FfaoLayout make_ffao_layout(int sectors, int base_interval, int width, int height);
+// The layout for `sectors` (even, >= 4) sectors and base interval B0 over a width x height texture. A layout phase
+// (layout_phase.h) moves every line across by `line_shift` in [0, 1) of a texel (the orientations stay: turned
+// ones made the accumulated AO darker than the truth, docs/algorithms.md).
+FfaoLayout make_ffao_layout(int sectors, int base_interval, int width, int height, double line_shift = 0.0);
 
 // Widest run of lines a sector segment averages at level n (see ffao_obscurance.comp): the prefix sums restart
 // every power of two at least this wide; the top level never restarts.

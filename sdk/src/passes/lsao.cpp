@@ -20,9 +20,9 @@ static_assert(sizeof(GpuLine) == 16, "one RGBA32UI texel");
 
 }  // namespace
 
-std::vector<LsaoDirection> lsao_directions(const obscura_lsao_settings& settings) {
+std::vector<LsaoDirection> lsao_directions(const obscura_lsao_settings& settings, int phase) {
     if (settings.pattern == 1) return aligned_directions(settings.directions / 8);
-    return free_directions(settings.directions, settings.step_length);
+    return free_directions(settings.directions, settings.step_length, layout_phase_fraction(phase));
 }
 
 int lsao_segment_steps(const obscura_lsao_settings& settings, bool cpu_renderer) {
@@ -88,28 +88,46 @@ Error LsaoPass::prepare(const PassEnv& env, const obscura_lsao_settings& setting
     return program_for(env, "lsao_gather.comp", defines, &gather_variants_, &gather_program_);
 }
 
-Error LsaoPass::ensure_layout(const PassEnv& env, const obscura_lsao_settings& settings, int width, int height) {
-    // Every frame asks: compare what the layout depends on before building anything.
+Error LsaoPass::ensure_layout(const PassEnv& env, const obscura_lsao_settings& settings, int width, int height,
+                              uint32_t frame_index) {
+    // Every frame asks: compare what the layouts depend on before building anything.
     const LayoutKey key{width,      height, settings.pattern, settings.directions, settings.step_length,
                         settings.line_spacing, env.cpu_renderer};
-    if (lines_.name() != 0 && key == key_) return Error();
-    const std::vector<LsaoDirection> directions = lsao_directions(settings);
-    release();
-    layout_ = make_lsao_layout(directions, settings.line_spacing, width, height, settings.pattern == 1);
+    if (!(key == key_)) release();
     key_ = key;
+    const int phase = layout_phase(frame_index);
+    if (phases_[phase].lines.name() == 0) {
+        Error error = build_phase(env, settings, phase);
+        if (error) {
+            release();
+            return error;
+        }
+    }
+    current_ = phase;
+    return Error();
+}
+
+LsaoLayout lsao_layout(const obscura_lsao_settings& settings, int width, int height, int phase) {
+    return make_lsao_layout(lsao_directions(settings, phase), settings.line_spacing, width, height,
+                            settings.pattern == 1, layout_phase_fraction(phase));
+}
+
+Error LsaoPass::build_phase(const PassEnv& env, const obscura_lsao_settings& settings, int phase) {
+    const int width = key_.width, height = key_.height;
+    Phase& built = phases_[phase];
+    built.layout = lsao_layout(settings, width, height, phase);
     const gl::Table& gl = env.gl;
     // The sweep writes the values as one storage block, whose size GL bounds (at least 16 MiB in 4.3; 2 GiB
     // on NVIDIA's driver, 128 MiB on llvmpipe, where K = 16 at 1920x1080 + 10 % takes 24 MiB). CPU
     // rasterisers' gathers also read them as a buffer texture, which GL bounds in texels (at least 65536;
     // 2^27 on llvmpipe). GPUs read storage buffers and create no buffer textures.
-    const long long values = static_cast<long long>(layout_.values);
+    const long long values = static_cast<long long>(built.layout.values);
     GLint64 max_block_bytes = 0;
     gl.GetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block_bytes);
     GLint max_texels = 0;
     gl.GetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
     const bool over_block = values * 2 + 4 > max_block_bytes;
     if (over_block || (env.cpu_renderer && values + 2 > max_texels)) {
-        release();
         return Error::make(OBSCURA_STATUS_INVALID_SIZE,
                            "LSAO at %dx%d needs %lld sweep values, over %s (%lld): use fewer directions or larger "
                            "step_length / line_spacing",
@@ -117,12 +135,11 @@ Error LsaoPass::ensure_layout(const PassEnv& env, const obscura_lsao_settings& s
                            over_block ? "GL_MAX_SHADER_STORAGE_BLOCK_SIZE bytes" : "GL_MAX_TEXTURE_BUFFER_SIZE texels",
                            over_block ? static_cast<long long>(max_block_bytes) : static_cast<long long>(max_texels));
     }
-    std::vector<GpuLine> lines(layout_.lines.size());
+    std::vector<GpuLine> lines(built.layout.lines.size());
     for (size_t i = 0; i < lines.size(); ++i) {
-        const LsaoLine& l = layout_.lines[i];
+        const LsaoLine& l = built.layout.lines[i];
         // A line's origin is near the texture's centre: |first step| is at most half its diagonal in steps.
         if (l.first_step < -32768 || l.first_step > 32767 || l.steps > 65535) {
-            release();
             return Error::make(OBSCURA_STATUS_INVALID_SIZE,
                                "LSAO at %dx%d has lines of over 65535 steps: use a larger step_length", width, height);
         }
@@ -130,38 +147,47 @@ Error LsaoPass::ensure_layout(const PassEnv& env, const obscura_lsao_settings& s
         lines[i] = GpuLine{{l.origin[0], l.origin[1]}, packed, l.offset - l.first_step};
     }
     // Created and filled through the storage-buffer target, whose generic binding the StateGuard restores.
-    lines_ = gl::Buffer::create(gl, GL_SHADER_STORAGE_BUFFER, lines.size() * sizeof(GpuLine));
-    values_ = gl::Buffer::create(gl, GL_SHADER_STORAGE_BUFFER, uint64_t(layout_.values) * 2 + 4);
-    stats_ = gl::Buffer::create(gl, GL_SHADER_STORAGE_BUFFER, 16);
-    if (env.cpu_renderer && lines_.name() && values_.name()) {
+    built.lines = gl::Buffer::create(gl, GL_SHADER_STORAGE_BUFFER, lines.size() * sizeof(GpuLine));
+    // The phases share the values: the buffer grows to the largest phase's (their counts differ by a few lines).
+    const uint64_t value_bytes = uint64_t(built.layout.values) * 2 + 4;
+    if (values_.bytes() < value_bytes) {
+        values_texture_ = gl::Object();
+        values_ = gl::Buffer::create(gl, GL_SHADER_STORAGE_BUFFER, value_bytes);
+    }
+    if (!stats_.name()) stats_ = gl::Buffer::create(gl, GL_SHADER_STORAGE_BUFFER, 16);
+    if (env.cpu_renderer && built.lines.name() && values_.name()) {
         gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_LSAO_LINES));  // a unit the StateGuard restores
-        lines_texture_ = gl::create_buffer_texture(gl, GL_RGBA32UI, lines_.name());
-        values_texture_ = gl::create_buffer_texture(gl, GL_R16F, values_.name());
+        built.lines_texture = gl::create_buffer_texture(gl, GL_RGBA32UI, built.lines.name());
+        if (!values_texture_) values_texture_ = gl::create_buffer_texture(gl, GL_R16F, values_.name());
     }
-    const bool textures_ok = !env.cpu_renderer || (lines_texture_ && values_texture_);
-    if (!lines_.name() || !values_.name() || !textures_ok || !stats_.name()) {
-        release();
-        return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating LSAO's line buffers (%lld values) failed",
-                           static_cast<long long>(layout_.values));
+    const bool textures_ok = !env.cpu_renderer || (built.lines_texture && values_texture_);
+    if (!built.lines.name() || !values_.name() || !textures_ok || !stats_.name()) {
+        return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating LSAO's line buffers (%lld values) failed", values);
     }
-    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, lines_.name());
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, built.lines.name());
     gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(lines.size() * sizeof(GpuLine)), lines.data());
     return Error();
 }
 
+uint64_t LsaoPass::bytes() const {
+    uint64_t total = values_.bytes() + stats_.bytes();
+    for (const Phase& phase : phases_) total += phase.lines.bytes();
+    return total;
+}
+
 void LsaoPass::release() {
-    lines_texture_ = gl::Object();
+    for (Phase& phase : phases_) phase = Phase();
+    current_ = 0;
     values_texture_ = gl::Object();
-    lines_ = gl::Buffer();
     values_ = gl::Buffer();
     stats_ = gl::Buffer();
-    layout_ = LsaoLayout();
     key_ = LayoutKey();
 }
 
 LsaoConstants LsaoPass::constants(const obscura_lsao_settings& settings, const FrameInput& input,
                                   bool cpu_renderer) const {
     const float m2v = input.meters_to_view_units;
+    const LsaoLayout& layout = phases_[current_].layout;
     LsaoConstants c = {};
     c.falloff[0] = settings.decay_rate * m2v * m2v;
     c.falloff[1] = settings.falloff == OBSCURA_FALLOFF_RHO0 ? settings.falloff_c : 0.0f;
@@ -171,14 +197,14 @@ LsaoConstants LsaoPass::constants(const obscura_lsao_settings& settings, const F
     c.gather[1] = settings.normal_threshold;
     c.gather[2] = settings.intensity;
     c.gather[3] = settings.power;
-    c.config[0] = int32_t(layout_.directions.size());
+    c.config[0] = int32_t(layout.directions.size());
     c.config[3] = collect_stats_ ? OBSCURA_LSAO_FLAG_STATS : 0;
     c.sweep[0] = settings.warmup_stride;
     c.sweep[1] = lsao_segment_steps(settings, cpu_renderer);
     c.warmup[0] = float(lsao_warmup_distance(settings, m2v));
-    for (size_t k = 0; k < layout_.directions.size() && k < OBSCURA_LSAO_MAX_DIRECTIONS; ++k) {
-        const LsaoDirection& d = layout_.directions[k];
-        const LsaoDirectionLines& lines = layout_.direction_lines[k];
+    for (size_t k = 0; k < layout.directions.size() && k < OBSCURA_LSAO_MAX_DIRECTIONS; ++k) {
+        const LsaoDirection& d = layout.directions[k];
+        const LsaoDirectionLines& lines = layout.direction_lines[k];
         c.directions[k][0] = float(d.dir[0]);
         c.directions[k][1] = float(d.dir[1]);
         c.directions[k][2] = float(d.step[0]);
@@ -202,25 +228,26 @@ LsaoConstants LsaoPass::constants(const obscura_lsao_settings& settings, const F
 void LsaoPass::run_sweeps(const PassEnv& env, const obscura_lsao_settings& settings, const UniformRange& frame,
                           const UniformRange& pass, FrameResources& resources) {
     const gl::Table& gl = env.gl;
+    const Phase& phase = phases_[current_];
     const uint32_t zero[4] = {0, 0, 0, 0};
     gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, stats_.name());
     gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof zero, zero);
     gl.UseProgram(sweep_program_);
     env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
     env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
-    if (lines_texture_) env.bind_texture(OBSCURA_UNIT_LSAO_LINES, GL_TEXTURE_BUFFER, lines_texture_.name());
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_LSAO_LINES, lines_.name());
+    if (phase.lines_texture) env.bind_texture(OBSCURA_UNIT_LSAO_LINES, GL_TEXTURE_BUFFER, phase.lines_texture.name());
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_LSAO_LINES, phase.lines.name());
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_LSAO_VALUES, values_.name());
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_LSAO_STATS, stats_.name());
     env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
     env.bind_uniforms(OBSCURA_UBO_PASS, pass);
     const int segment_steps = lsao_segment_steps(settings, env.cpu_renderer);
-    const int segments = segment_steps > 0 ? (layout_.longest_line + segment_steps - 1) / segment_steps : 1;
+    const int segments = segment_steps > 0 ? (phase.layout.longest_line + segment_steps - 1) / segment_steps : 1;
     // Groups of OBSCURA_LSAO_SWEEP_GROUP lines of one direction (z), one segment each (y).
     int most_lines = 0;
-    for (const LsaoDirectionLines& d : layout_.direction_lines) most_lines = std::max(most_lines, d.line_count);
+    for (const LsaoDirectionLines& d : phase.layout.direction_lines) most_lines = std::max(most_lines, d.line_count);
     gl.DispatchCompute(GLuint((most_lines + OBSCURA_LSAO_SWEEP_GROUP - 1) / OBSCURA_LSAO_SWEEP_GROUP),
-                       GLuint(std::max(segments, 1)), GLuint(layout_.directions.size()));
+                       GLuint(std::max(segments, 1)), GLuint(phase.layout.directions.size()));
     // The gather reads the values as texels (CPU rasterisers) or from the buffer; read_values and the stats
     // read the buffers back.
     gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -229,14 +256,15 @@ void LsaoPass::run_sweeps(const PassEnv& env, const obscura_lsao_settings& setti
 void LsaoPass::run_gather(const PassEnv& env, const UniformRange& frame, const UniformRange& pass,
                           const Region& region, FrameResources& resources) {
     const gl::Table& gl = env.gl;
+    const Phase& phase = phases_[current_];
     gl.UseProgram(gather_program_);
     env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
     env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
-    if (lines_texture_) {  // CPU rasterisers
-        env.bind_texture(OBSCURA_UNIT_LSAO_LINES, GL_TEXTURE_BUFFER, lines_texture_.name());
+    if (phase.lines_texture) {  // CPU rasterisers
+        env.bind_texture(OBSCURA_UNIT_LSAO_LINES, GL_TEXTURE_BUFFER, phase.lines_texture.name());
         env.bind_texture(OBSCURA_UNIT_LSAO_VALUES, GL_TEXTURE_BUFFER, values_texture_.name());
     }
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_LSAO_LINES, lines_.name());
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_LSAO_LINES, phase.lines.name());
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_LSAO_VALUES, values_.name());
     gl.BindImageTexture(OBSCURA_IMAGE_OUT0, resources.ao.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
     env.bind_uniforms(OBSCURA_UBO_FRAME, frame);

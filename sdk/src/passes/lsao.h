@@ -5,6 +5,7 @@
 #define OBSCURA_LSAO_H
 
 #include "frame_input.h"
+#include "layout_phase.h"
 #include "passes/lsao_pattern.h"
 #include "passes/pass_common.h"
 
@@ -13,8 +14,14 @@
 
 namespace obscura {
 
-// The directions of resolved LSAO settings: the aligned 8n pattern for K = 8n, or K free directions.
-std::vector<LsaoDirection> lsao_directions(const obscura_lsao_settings& settings);
+// The directions of resolved LSAO settings in a layout phase (layout_phase.h): the aligned 8n pattern for K = 8n
+// (the same in every phase: its directions are fixed by the texel template), or K free directions turned by the
+// phase's fraction of the angle between them.
+std::vector<LsaoDirection> lsao_directions(const obscura_lsao_settings& settings, int phase = 0);
+
+// The layout of resolved LSAO settings over a width x height texture in a layout phase: lsao_directions, with
+// every line shifted across by the phase's fraction of D_L.
+LsaoLayout lsao_layout(const obscura_lsao_settings& settings, int width, int height, int phase);
 
 // Steps per sweep segment for resolved settings, 0 for whole lines: segment_steps, or for 0 (auto) whole
 // lines on a CPU renderer and kLsaoGpuSegmentSteps on a GPU.
@@ -37,8 +44,10 @@ class LsaoPass {
 public:
     // Selects the programs for the settings, building them if no kept variant matches.
     Error prepare(const PassEnv& env, const obscura_lsao_settings& settings);
-    // Rebuilds the layout and its buffers when the size, the pattern, K, D_S or D_L changed.
-    Error ensure_layout(const PassEnv& env, const obscura_lsao_settings& settings, int width, int height);
+    // Selects the layout of the frame's phase (layout_phase(frame_index)): drops every phase's layout when the
+    // size, the pattern, K, D_S or D_L changed, and builds the phase's on its first use.
+    Error ensure_layout(const PassEnv& env, const obscura_lsao_settings& settings, int width, int height,
+                        uint32_t frame_index = 0);
     // Resolved settings (metres) -> the shaders' constants (view units), for the current layout.
     LsaoConstants constants(const obscura_lsao_settings& settings, const FrameInput& input, bool cpu_renderer) const;
     // The sweeps over every line (segment), then the gather over `region` into resources.ao.
@@ -46,8 +55,9 @@ public:
                     const UniformRange& pass, FrameResources& resources);
     void run_gather(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
                     FrameResources& resources);
-    const LsaoLayout& layout() const { return layout_; }
-    uint64_t bytes() const { return lines_.bytes() + values_.bytes() + stats_.bytes(); }
+    // The current phase's layout.
+    const LsaoLayout& layout() const { return phases_[current_].layout; }
+    uint64_t bytes() const;
     void release();
 private:
     friend class LsaoPassInspection;  // the tests' readbacks (testing/pass_inspection.h)
@@ -75,13 +85,19 @@ private:
                    step_length == o.step_length && line_spacing == o.line_spacing && cpu_renderer == o.cpu_renderer;
         }
     };
-    LsaoLayout layout_;
+    // One layout phase: its lines and their records. CPU rasterisers read the line records and values through
+    // buffer textures, GPUs as storage buffers.
+    struct Phase {
+        LsaoLayout layout;
+        gl::Buffer lines;             // 16-byte line records
+        gl::Object lines_texture;     // RGBA32UI over lines (CPU rasterisers only)
+    };
+    Error build_phase(const PassEnv& env, const obscura_lsao_settings& settings, int phase);
+    Phase phases_[kLayoutPhases];
+    int current_ = 0;
     LayoutKey key_;
-    // CPU rasterisers read the line records and values through buffer textures, GPUs as storage buffers.
-    gl::Buffer lines_;            // 16-byte line records
-    gl::Buffer values_;           // the sweeps' halves, written as a storage buffer
+    gl::Buffer values_;           // the sweeps' halves, written as a storage buffer: the largest phase's
     gl::Buffer stats_;
-    gl::Object lines_texture_;    // RGBA32UI over lines_ (CPU rasterisers only)
     gl::Object values_texture_;   // R16F over values_ (CPU rasterisers only)
 };
 

@@ -71,10 +71,10 @@ std::vector<LsaoDirection> aligned_directions(int n) {
     return out;
 }
 
-std::vector<LsaoDirection> free_directions(int k, double step_length) {
+std::vector<LsaoDirection> free_directions(int k, double step_length, double rotation) {
     std::vector<LsaoDirection> out;
     for (int i = 0; i < k; ++i) {
-        const double angle = kTwoPi * i / k;
+        const double angle = kTwoPi * (i + rotation) / k;
         LsaoDirection d = {};
         d.dir[0] = std::cos(angle);
         d.dir[1] = std::sin(angle);
@@ -131,7 +131,7 @@ void lsao_sample_position(const LsaoLayout& layout, const LsaoLine& line, int j,
 }
 
 LsaoLayout make_lsao_layout(const std::vector<LsaoDirection>& directions, double line_spacing, int width, int height,
-                            bool aligned) {
+                            bool aligned, double line_shift) {
     LsaoLayout layout;
     layout.width = width;
     layout.height = height;
@@ -154,6 +154,10 @@ LsaoLayout make_lsao_layout(const std::vector<LsaoDirection>& directions, double
         summary.first_line = int32_t(layout.lines.size());
         summary.line_count = std::max(1, int(std::ceil((v_max - v_min) / line_spacing)));
         summary.line_origin_v = v_min + 0.5 * line_spacing;
+        if (line_shift > 0.0) {  // a shifted grid starts one line earlier, so the band below line 0 stays as narrow
+            summary.line_origin_v += (line_shift - 1.0) * line_spacing;
+            summary.line_count += 1;
+        }
         const double center_v = center[0] * perp[0] + center[1] * perp[1];
         for (int l = 0; l < summary.line_count; ++l) {
             const double v = summary.line_origin_v + l * line_spacing;

@@ -24,8 +24,9 @@ struct LsaoDirection {
 // Non-axis directions step to the outer ring's texel centres; axis ones use the average of those lengths.
 std::vector<LsaoDirection> aligned_directions(int n);
 
-// K evenly spaced directions (angle 2 pi k / K) with step length `step_length` and weight 1/K.
-std::vector<LsaoDirection> free_directions(int k, double step_length);
+// K evenly spaced directions (angle 2 pi (k + rotation) / K, rotation in [0, 1): a layout phase's turn) with step
+// length `step_length` and weight 1/K.
+std::vector<LsaoDirection> free_directions(int k, double step_length, double rotation = 0.0);
 
 // The average step length D_S of a pattern.
 double average_step_length(const std::vector<LsaoDirection>& directions);
@@ -59,9 +60,10 @@ struct LsaoLayout {
 };
 
 // Lines D_L apart across a width x height texture for every direction. `aligned`: line origins are chosen
-// so that samples fall on texel centres (the snapped pattern repeats along the line).
+// so that samples fall on texel centres (the snapped pattern repeats along the line). `line_shift` in [0, 1)
+// moves every line across by that fraction of D_L (a layout phase; 0: the first line half a spacing in).
 LsaoLayout make_lsao_layout(const std::vector<LsaoDirection>& directions, double line_spacing, int width, int height,
-                            bool aligned);
+                            bool aligned, double line_shift = 0.0);
 
 // The sample j of `line` as the texel it reads (aligned) or the point it interpolates at (free).
 void lsao_sample_position(const LsaoLayout& layout, const LsaoLine& line, int j, bool aligned, double out[2]);

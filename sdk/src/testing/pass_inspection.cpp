@@ -13,13 +13,13 @@ void LsaoPassInspection::read_stats(const LsaoPass& pass, const gl::Table& gl, u
 }
 
 void LsaoPassInspection::fill_values(const LsaoPass& pass, const gl::Table& gl, uint16_t half_bits) {
-    const std::vector<uint16_t> halves(size_t(pass.layout_.values), half_bits);
+    const std::vector<uint16_t> halves(size_t(pass.layout().values), half_bits);
     gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, pass.values_.name());
     gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(halves.size() * 2), halves.data());
 }
 
 std::vector<float> LsaoPassInspection::read_values(const LsaoPass& pass, const gl::Table& gl) {
-    std::vector<uint16_t> halves(size_t(pass.layout_.values));
+    std::vector<uint16_t> halves(size_t(pass.layout().values));
     gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, pass.values_.name());
     gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(halves.size() * 2), halves.data());
     std::vector<float> out(halves.size());

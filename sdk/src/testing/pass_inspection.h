@@ -32,8 +32,11 @@ public:
     // its start (chunk_entries of them) and what is left of a larger one behind it.
     static std::vector<float> read_peaks(const FfaoPass& pass, const gl::Table& gl);
     // Chunk c's first entry in the layout and its entry count.
-    static int64_t chunk_first(const FfaoPass& pass, int c) { return pass.chunks_[c].first; }
-    static int64_t chunk_entries(const FfaoPass& pass, int c) { return pass.chunks_[c].end - pass.chunks_[c].first; }
+    static int64_t chunk_first(const FfaoPass& pass, int c) { return pass.grids_[pass.current_].chunks[c].first; }
+    static int64_t chunk_entries(const FfaoPass& pass, int c) {
+        const FfaoPass::Chunk& chunk = pass.grids_[pass.current_].chunks[c];
+        return chunk.end - chunk.first;
+    }
     // Caps the storage block the peaks may take (0: GL's limit), so that small sizes split them into chunks as 4K
     // does on Mesa; the next ensure_layout lays them out anew.
     static void limit_storage_block(FfaoPass* pass, int64_t bytes) { pass->storage_block_limit_ = bytes; }
