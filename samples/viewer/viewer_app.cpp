@@ -115,11 +115,12 @@ const Preset kPresets[] = {
     {OBSCURA_METHOD_SAO, "temporal: s=3, 16 frames", "sao:samples=3:temporal.enabled=on:temporal.max_frames=16"},
     {OBSCURA_METHOD_GTAO, "temporal: 1 slice x 4 steps, 16 frames", "gtao:slices=1:steps=4:temporal.enabled=on:temporal.max_frames=16"},
     // Reduced resolution: half costs 0.25-0.34x of full on llvmpipe, within +0.01 of its error at 640x360 for these
-    // (docs/performance.md, docs/quality.md, "Reduced resolution").
+    // (docs/performance.md, docs/quality.md, "Reduced resolution"; LSAO's preset derives to k8 there).
     {OBSCURA_METHOD_HBAO, "half resolution", "hbao:resolution.scale=half"},
     {OBSCURA_METHOD_GTAO, "half resolution", "gtao:resolution.scale=half"},
     {OBSCURA_METHOD_SAO, "half resolution", "sao:resolution.scale=half"},
     {OBSCURA_METHOD_FFAO, "half resolution (a quarter of the memory)", "ffao:resolution.scale=half"},
+    {OBSCURA_METHOD_LSAO, "half resolution (k8)", "lsao:resolution.scale=half"},
 };
 
 // One method's panel state: its settings and the text boxes of save/load, copy-as-C and the falloff table's

@@ -23,12 +23,14 @@ constexpr obscura_setting_info setting_row(const char* name, obscura_setting_typ
                                 type == OBSCURA_SETTING_TOGGLE ? 2u : 0u,
                                 type == OBSCURA_SETTING_TOGGLE ? kToggleNames : nullptr};
 }
-// An ENUM row: `names` name the values min_value, min_value + 1, ... (N of them).
+// An ENUM row: `names` name the values min_value, min_value + 1, ... (N of them). A derived one (`flags`
+// OBSCURA_SETTING_FLAG_DERIVED) has default 0: the method's derive step picks its value.
 template <size_t N>
 constexpr obscura_setting_info enum_row(const char* name, double default_value, double min_value, const char* description,
-                                        size_t offset, const char* const (&names)[N], uint32_t count = N) {
+                                        size_t offset, const char* const (&names)[N], uint32_t count = N,
+                                        uint32_t flags = 0) {
     return obscura_setting_info{name,        OBSCURA_SETTING_ENUM, default_value, min_value, min_value + count - 1,
-                                "",          description,          offset,        0,         count,
+                                "",          description,          offset,        flags,     count,
                                 names};
 }
 // A FLOAT_ARRAY row of N floats in [min, max]. Arrays have no default: 0 everywhere.

@@ -153,7 +153,7 @@ obscura_cli_command_test(list_settings_method 0 "--list-settings|reference" EXPE
 obscura_cli_command_test(list_settings_enums_derived_arrays 0 "--list-settings|ffao"
   EXPECT_STDOUT "\n +falloff +enum +exponential +1 +4 +[{]rho0, inverse_quadratic, exponential, table[}] .*\n +decay_rate +float +derived +1e-10 +1e[+]08 +m\\^2 .*\n +geometry +enum +peaks +1 +2 +[{]peaks, mipmap[}] .*\n +falloff_table +float\\[16\\] +none +0 +1 +16 values, V0/V1/.../V15 or @FILE: ")
 obscura_cli_command_test(list_settings_lsao_preset 0 "--list-settings|lsao"
-  EXPECT_STDOUT "\n +preset +enum +k16 +1 +6 +[{]k8, k16, k24, k32, k8_figure1, k16_figure13[}].*\n +directions +int +derived +1 +64 ")
+  EXPECT_STDOUT "\n +preset +enum +derived +1 +6 +[{]k8, k16, k24, k32, k8_figure1, k16_figure13[}].*\n +directions +int +derived +1 +64 ")
 obscura_cli_command_test(help 0 "--help" EXPECT_STDOUT "obscura compare[^\n]*--methods")
 
 # ---- Bad arguments: exit 2 and one line on stderr, before any GL -----------------------------------------

@@ -144,6 +144,7 @@ TEST(SettingsDefaults, DefaultSettingsAreTheEditableForm) {
     EXPECT_EQ(d.hbao.decay_rate, 0.0f);
     EXPECT_EQ(d.reference.decay_rate, 0.0f);
     EXPECT_EQ(d.sao.turns, 0);
+    EXPECT_EQ(d.lsao.preset, 0);
     EXPECT_EQ(d.lsao.directions, 0);
     EXPECT_EQ(d.lsao.step_length, 0.0f);
     EXPECT_EQ(d.lsao.line_spacing, 0.0f);
@@ -152,7 +153,6 @@ TEST(SettingsDefaults, DefaultSettingsAreTheEditableForm) {
     EXPECT_EQ(d.hbao.radius, 1.0f);
     EXPECT_EQ(d.hbao.directions, 8);
     EXPECT_EQ(d.hbao.blur, OBSCURA_TOGGLE_ON);
-    EXPECT_EQ(d.lsao.preset, 2);
     EXPECT_EQ(d.lsao.tangent, -0.85f);
     EXPECT_EQ(d.ffao.falloff, OBSCURA_FALLOFF_EXPONENTIAL);
     // The same effective settings as a zero struct (the flag aside).
@@ -181,6 +181,28 @@ TEST(SettingsDefaults, EditingMovesWhatIsDerived) {
     // A value written into a derived field fixes it.
     s.lsao.directions = 8;
     EXPECT_EQ(resolved(s).lsao.directions, 8);
+}
+
+// LSAO's preset derives from the resolution: k16 at full size, k8 (the shortest step) at half and quarter size,
+// where every step spans 2 or 4 host texels; a preset that is set is kept at any resolution.
+TEST(SettingsDefaults, LsaoPresetDerivesFromTheResolution) {
+    obscura_settings s;
+    ASSERT_EQ(obscura_default_settings(OBSCURA_METHOD_LSAO, &s), OBSCURA_OK);
+    EXPECT_EQ(resolved(s).lsao.preset, 2);
+    EXPECT_EQ(resolved(s).lsao.directions, 16);
+    for (obscura_resolution scale : {OBSCURA_RESOLUTION_HALF, OBSCURA_RESOLUTION_QUARTER}) {
+        s.resolution.scale = scale;
+        const obscura_settings r = resolved(s);
+        EXPECT_EQ(r.lsao.preset, 1) << int(scale);
+        EXPECT_EQ(r.lsao.directions, 8) << int(scale);
+        EXPECT_NEAR(r.lsao.line_spacing, 1.41f, 1e-6f) << int(scale);
+    }
+    s.lsao.preset = 2;
+    EXPECT_EQ(resolved(s).lsao.preset, 2);
+    EXPECT_EQ(resolved(s).lsao.directions, 16);
+    obscura_settings zero = zero_settings();
+    zero.resolution.scale = OBSCURA_RESOLUTION_HALF;
+    EXPECT_EQ(resolved(zero).lsao.preset, 1);
 }
 
 // Zero is a value where the range includes it: in the editable form 0 means 0; in a zero struct it still

@@ -316,7 +316,9 @@ typedef struct obscura_lsao_settings {
     float decay_rate;     /* r in m^2, [1e-10, 1e8]. Derived: C*radius^2 */
     int32_t preset;       /* K, D_S, D_L of the paper: 1: 8, 1.41, 1.41; 2: 16, 2.43, 1.64; 3: 24, 3.56, 1.69;
                              4: 32, 4.69, 1.70 (Table 2); 5: 8, 2.83, 2.12 (Figure 1); 6: 16, 4.87, 2.46
-                             (Figure 13), [1, 6]. Default 2 */
+                             (Figure 13), [1, 6]. Derived: 2, and 1 at reduced resolution (resolution.scale: a
+                             reduced texel's step spans 2 or 4 host texels; the shortest one keeps the error
+                             within 0.01 of full resolution's at half size) */
     int32_t pattern;      /* 1: aligned 8n directions on texel centres (sec. 5.2); 2: free: any K, interpolated
                              depth, snapped at depth edges, [1, 2]. Default 1 */
     int32_t directions;   /* K, [1, 64]; aligned: a multiple of 8. Derived: the preset's */

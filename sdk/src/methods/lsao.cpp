@@ -24,10 +24,11 @@ const obscura_setting_info kLsaoSettings[] = {
      OBSCURA_SETTING_OFFSET(lsao, falloff_c)),
     setting_row("decay_rate", OBSCURA_SETTING_FLOAT, 0.0, 1e-10, 1e8, "m^2", "r of the falloff; derived: C*radius^2",
      OBSCURA_SETTING_OFFSET(lsao, decay_rate), OBSCURA_SETTING_FLAG_DERIVED),
-    enum_row("preset", 2, 1,
+    enum_row("preset", 0, 1,
              "K/D_S/D_L of the paper: k8 8/1.41/1.41, k16 16/2.43/1.64, k24 24/3.56/1.69, k32 32/4.69/1.70 (Table 2), "
-             "k8_figure1 8/2.83/2.12, k16_figure13 16/4.87/2.46",
-             OBSCURA_SETTING_OFFSET(lsao, preset), kLsaoPresetNames),
+             "k8_figure1 8/2.83/2.12, k16_figure13 16/4.87/2.46; derived: k16, and k8 at reduced resolution (a "
+             "reduced texel's step spans 2 or 4 of the host's: the shortest step keeps the error near full size's)",
+             OBSCURA_SETTING_OFFSET(lsao, preset), kLsaoPresetNames, 6, OBSCURA_SETTING_FLAG_DERIVED),
     enum_row("pattern", 1, 1, "aligned: 8n directions on texel centres; free: any K, interpolated depth",
              OBSCURA_SETTING_OFFSET(lsao, pattern), kLsaoPatternNames),
     setting_row("directions", OBSCURA_SETTING_INT, 0, 1, 64, "", "K; aligned patterns need a multiple of 8; derived: the preset's",
@@ -76,6 +77,10 @@ const LsaoPreset kLsaoPresets[] = {{8, 1.41, 1.41}, {16, 2.43, 1.64}, {24, 3.56,
 // pattern exists only for K = 8n.
 Error derive_lsao(const obscura_settings&, obscura_settings* resolved) {
     obscura_lsao_settings* lsao = &resolved->lsao;
+    // At reduced resolution a reduced texel spans 2 or 4 of the host's, and so does every step: the preset
+    // derives to k8 there, whose step of 1.41 texels is the shortest of the aligned patterns (k16's 2.43 walks
+    // 4.9 host texels at half size, and its sweeps miss the occluders in between; docs/quality.md).
+    if (lsao->preset == 0) lsao->preset = resolved->resolution.scale > OBSCURA_RESOLUTION_FULL ? 1 : 2;
     const LsaoPreset& preset = kLsaoPresets[lsao->preset - 1];
     if (lsao->directions == 0) lsao->directions = preset.directions;
     if (lsao->step_length == 0.0f) lsao->step_length = float(preset.step_length);
