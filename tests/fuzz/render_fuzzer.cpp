@@ -17,10 +17,12 @@
 // a valid large size, which would allocate gigabytes).
 // The context keeps its resources and compiled variants from one input to the next, like a host's does: a
 // crash input replays the operations of one input on a fresh process, which normally reproduces it.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <vector>
@@ -619,6 +621,15 @@ DecodedSettings decode_settings(Reader& in) {
         const uint32_t bits = in.u32();
         unsigned char* field = reinterpret_cast<unsigned char*>(settings) + offset;
         for (int b = 0; b < 4; ++b) field[b] ^= uint8_t(bits >> (8 * b));
+    }
+    // A poke may turn struct_size into a released size larger than the buffer: a host that says its struct is
+    // bigger than it is, which no library can detect (it reads the bytes the size promises). Such a poke is undone;
+    // unknown sizes, larger or not, stay (they are refused before any read).
+    const uint32_t poked_size = d.struct_size();
+    if (poked_size > size && std::find(std::begin(obscura_fuzz::kReleasedSettingsSizes),
+                                       std::end(obscura_fuzz::kReleasedSettingsSizes),
+                                       poked_size) != std::end(obscura_fuzz::kReleasedSettingsSizes)) {
+        std::memcpy(d.buffer.get(), &size, sizeof size);
     }
     if (raw_size) std::memcpy(d.buffer.get(), &raw, sizeof raw);
     // Keep the ray-traced reference cheap: at most 4 rays per pixel (values outside the range stay invalid). A 0.1
