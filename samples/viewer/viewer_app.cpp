@@ -114,6 +114,9 @@ const Preset kPresets[] = {
     {OBSCURA_METHOD_HBAO, "temporal: K=4, no blur, 16 frames", "hbao:directions=4:blur=off:temporal.enabled=on:temporal.max_frames=16"},
     {OBSCURA_METHOD_SAO, "temporal: s=3, 16 frames", "sao:samples=3:temporal.enabled=on:temporal.max_frames=16"},
     {OBSCURA_METHOD_GTAO, "temporal: 1 slice x 4 steps, 16 frames", "gtao:slices=1:steps=4:temporal.enabled=on:temporal.max_frames=16"},
+    // LSAO's free directions turn with the layout phase: 4 of them a frame cover 32 over 8 frames.
+    {OBSCURA_METHOD_LSAO, "temporal: 4 free directions, 16 frames",
+     "lsao:pattern=free:directions=4:step_length=2:line_spacing=1.64:temporal.enabled=on:temporal.max_frames=16"},
     // Reduced resolution: half costs 0.25-0.34x of full on llvmpipe, within +0.01 of its error at 640x360 for these
     // (docs/performance.md, docs/quality.md, "Reduced resolution"; LSAO's preset derives to k8 there).
     {OBSCURA_METHOD_HBAO, "half resolution", "hbao:resolution.scale=half"},
