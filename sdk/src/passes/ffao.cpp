@@ -1,7 +1,5 @@
 #include "passes/ffao.h"
 
-#include "layout_phase.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
