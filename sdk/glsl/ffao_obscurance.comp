@@ -435,7 +435,9 @@ void main() {
     // the previous one stopped.
     float total = 0.0;
 #if OBSCURA_FFAO_CHUNKED
-    if (!first_chunk()) total = imageLoad(u_running, pixel).x;
+    // The running total covers the dispatch's region only (FfaoPass::ensure_layout): indexed from its corner.
+    ivec2 running_texel = ivec2(gl_GlobalInvocationID.xy);
+    if (!first_chunk()) total = imageLoad(u_running, running_texel).x;
 #endif
     for (int k = k_begin; k < k_end; ++k) {
         float near_sum = 0.0, far_sum = 0.0;
@@ -444,7 +446,7 @@ void main() {
     }
 #if OBSCURA_FFAO_CHUNKED
     if (!last_chunk()) {
-        imageStore(u_running, pixel, vec4(total));
+        imageStore(u_running, running_texel, vec4(total));
         return;
     }
 #endif

@@ -357,6 +357,8 @@ Error Context::record_frame(const FrameInput& host, const obscura_settings& sett
                            find_method(settings.method)->name);
     }
     const bool raw_view = request.raw_view;
+    const FrameRegions regions = FramePlanner::regions(input, plan);
+    request.ao_region = regions.ao;
     error = ensure_resources(input.width, input.height, plan);
     if (!error) error = technique->prepare(pass_env, settings, request, resources_);
     if (!error) error = depth_prepare_.prepare(pass_env, input);
@@ -381,7 +383,6 @@ Error Context::record_frame(const FrameInput& host, const obscura_settings& sett
         view->history.release();  // the context holds what its latest configuration needs
     }
 
-    const FrameRegions regions = FramePlanner::regions(input, plan);
     const FrameUniforms uniforms = planner_.begin(input, OutputWriter::composite_target(target), regions, plan);
     const Frame frame{pass_env, input, settings, regions, uniforms, resources_, raw_view, request.bent_normals};
     technique->write_constants(frame, planner_);

@@ -24,6 +24,9 @@ struct FrameRequest {
     // needed, so a host that renders bent normals every frame allocates nothing on the frame after a prepare.
     bool output_known = true;
     uint32_t frame_index = 0;   // obscura_input.frame_index: selects the layout phase of LSAO and FFAO (layout_phase.h)
+    // Where the AO pass will compute (FrameRegions::ao), for resources sized to it rather than to the guard band.
+    // Set after plan(), which decides it; empty in obscura_prepare.
+    Region ao_region;
 };
 
 // What a technique needs of a frame before anything is allocated or recorded.

@@ -63,29 +63,34 @@ protected:
         return s.ffao;
     }
 
-    // The table, then chunk by chunk the scan, the prefix sums and (optionally) the obscurance over the whole
-    // texture; with SAAO the box average before and the gather after.
-    void run(const obscura_ffao_settings& ffao, bool obscurance) {
+    // The table, then chunk by chunk the scan, the prefix sums and (optionally) the obscurance over `region` (the
+    // whole texture unless given); with SAAO the box average before and the gather after.
+    void run(const obscura_ffao_settings& ffao, bool obscurance, obscura::Region region = {0, 0, kWidth, kHeight}) {
         ASSERT_FALSE(pass_.prepare(env(), ffao));
-        ASSERT_FALSE(pass_.ensure_layout(env(), ffao, kWidth, kHeight));
+        ASSERT_FALSE(pass_.ensure_layout(env(), ffao, kWidth, kHeight, 0, region));
         GLint alignment = 256;
         gl_.GetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);
         arena_.reset(alignment);
         obscura::UniformRange frame = arena_.push(frame_);
+        FrameConstants region_constants = frame_;
+        region_constants.work_rect[0] = region.x;
+        region_constants.work_rect[1] = region.y;
+        region_constants.work_rect[2] = region.width;
+        region_constants.work_rect[3] = region.height;
+        obscura::UniformRange region_frame = arena_.push(region_constants);
         obscura::UniformRange pass = arena_.push(pass_.constants(ffao, input_));
         obscura::UniformRange table = arena_.push(obscura::FfaoPass::table_constants(ffao));
         pass_.push_chunk_constants(arena_);
         arena_.upload(gl_, uniforms_.name());
         if (pass_.table_stale(ffao)) pass_.run_table(env(), ffao, table);
-        const obscura::Region whole{0, 0, kWidth, kHeight};
         const bool saao = obscurance && obscura::ffao_uses_saao(ffao);
-        if (saao) pass_.run_box_average(env(), frame, pass, whole, resources_);
+        if (saao) pass_.run_box_average(env(), region_frame, pass, region, resources_);
         for (int c = 0; c < pass_.chunk_count(); ++c) {
             pass_.run_scan(env(), frame, pass, resources_, c);
             if (!obscura::ffao_single_lines(ffao)) pass_.run_prefix(env(), frame, pass, c);
-            if (obscurance) pass_.run_obscurance(env(), ffao, frame, pass, whole, resources_, c);
+            if (obscurance) pass_.run_obscurance(env(), ffao, region_frame, pass, region, resources_, c);
         }
-        if (saao) pass_.run_gather(env(), frame, pass, whole, resources_);
+        if (saao) pass_.run_gather(env(), region_frame, pass, region, resources_);
         gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
     }
 
@@ -262,6 +267,40 @@ TEST_F(FfaoPasses, ChunkedAoIsBitIdentical) {
         obscura::FfaoPassInspection::limit_storage_block(&pass_, 0);
     }
     cpu_renderer_ = true;
+}
+
+// The running total covers the pixels the obscurance computes, not the guard band around them: chunked over an inner
+// region, the AO there is the one-block AO bit for bit, and the running total takes that region's bytes only.
+TEST_F(FfaoPasses, ChunkedRunningTotalCoversTheRegionOnly) {
+    upload_depth(false);
+    const obscura_ffao_settings settings = resolved(defaults());
+    run(settings, true);
+    ASSERT_EQ(pass_.chunk_count(), 1);
+    const std::vector<float> whole_ao = read_ao();
+    const int64_t peak_bytes = int64_t(obscura::FfaoPassInspection::read_peaks(pass_, gl_).size()) * 4;
+    obscura::FfaoPassInspection::limit_storage_block(&pass_, peak_bytes / 3);
+    const obscura::Region inner{14, 9, 117, 71};  // odd corners and sizes
+    run(settings, true, inner);
+    ASSERT_GE(pass_.chunk_count(), 3);
+    const uint64_t inner_bytes = pass_.bytes();
+    const std::vector<float> inner_ao = read_ao();
+    int64_t differing = 0;
+    for (int y = inner.y; y < inner.y + inner.height; ++y) {
+        for (int x = inner.x; x < inner.x + inner.width; ++x) {
+            differing += inner_ao[size_t(y) * kWidth + x] != whole_ao[size_t(y) * kWidth + x];
+        }
+    }
+    EXPECT_EQ(differing, 0) << "of " << inner.width * inner.height << " pixels";
+    run(settings, true);  // the whole texture again: the running total grows to it, and only it
+    EXPECT_EQ(pass_.bytes() - inner_bytes, uint64_t(kWidth * kHeight - inner.width * inner.height) * 4);
+    EXPECT_TRUE(read_ao() == whole_ao);
+    // No region (obscura_prepare, which knows no output yet) keeps the last one's size.
+    ASSERT_FALSE(pass_.ensure_layout(env(), settings, kWidth, kHeight, 0, obscura::Region()));
+    run(settings, true, inner);
+    const uint64_t again = pass_.bytes();
+    ASSERT_FALSE(pass_.ensure_layout(env(), settings, kWidth, kHeight, 0, obscura::Region()));
+    EXPECT_EQ(pass_.bytes(), again);
+    obscura::FfaoPassInspection::limit_storage_block(&pass_, 0);
 }
 
 TEST_F(FfaoPasses, ChunkedPeaksAreBitIdenticalAt1080p) {

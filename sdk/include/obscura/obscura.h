@@ -760,7 +760,8 @@ OBSCURA_API obscura_status obscura_render(obscura_context* context, const obscur
 /* Allocates the textures a render of this size and these settings needs, so the first frame does not.
    Shader variants that depend on the input and output (MSAA or linear depth, the target's format) are
    still compiled on the first render that needs them; outputs beyond the AO (GTAO's bent normals) are
-   allocated when the context's last render asked for them. Optional. Returns OK, NULL_ARGUMENT,
+   allocated when the context's last render asked for them, and textures sized to the output rectangle (FFAO's
+   running total at sizes it splits into chunks, 4K on Mesa) take the last render's, or the depth's size. Optional. Returns OK, NULL_ARGUMENT,
    INVALID_STRUCT_SIZE, INVALID_SETTING, INVALID_ENUM, METHOD_NOT_AVAILABLE, INVALID_SIZE,
    WRONG_GL_CONTEXT, HOST_GL_ERROR, OUT_OF_MEMORY, CONTEXT_LOST. */
 OBSCURA_API obscura_status obscura_prepare(obscura_context* context, int32_t depth_width, int32_t depth_height,

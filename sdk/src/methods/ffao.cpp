@@ -114,7 +114,11 @@ public:
                   FrameResources& resources) override {
         Error error = ffao_.prepare(env, settings.ffao);
         if (!error && ffao_uses_mipmap(settings.ffao)) error = pyramid_pass_.prepare(env);
-        if (!error) error = ffao_.ensure_layout(env, settings.ffao, resources.width, resources.height, request.frame_index);
+        // The obscurance covers the AO region (SAAO's a pixel more, but its running sums are its whole-size terms).
+        if (!error) {
+            error = ffao_.ensure_layout(env, settings.ffao, resources.width, resources.height, request.frame_index,
+                                        request.ao_region);
+        }
         return error;
     }
 

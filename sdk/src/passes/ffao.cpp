@@ -66,7 +66,7 @@ Error FfaoPass::prepare(const PassEnv& env, const obscura_ffao_settings& setting
 }
 
 Error FfaoPass::ensure_layout(const PassEnv& env, const obscura_ffao_settings& settings, int width, int height,
-                              uint32_t frame_index) {
+                              uint32_t frame_index, const Region& obscurance) {
     const LayoutKey key{width, height, settings.sectors, settings.base_interval, !ffao_uses_mipmap(settings),
                         ffao_uses_saao(settings), storage_block_limit_};
     if (!(key == key_)) {
@@ -92,6 +92,27 @@ Error FfaoPass::ensure_layout(const PassEnv& env, const obscura_ffao_settings& s
         }
     }
     current_ = phase;
+    // The running total, chunk to chunk (SAAO carries its sums in its terms): as large as the pixels the obscurance
+    // computes, not the guard band around them (FFAO at 4K: 31.6 MiB instead of 45.6).
+    if (!chunked() || key_.saao) {
+        running_ = gl::Texture2D();
+        return Error();
+    }
+    int running_width = obscurance.width, running_height = obscurance.height;
+    if (running_width <= 0 || running_height <= 0) {
+        running_width = running_ ? running_.width() : width;
+        running_height = running_ ? running_.height() : height;
+    }
+    if (!running_ || running_.width() != running_width || running_.height() != running_height) {
+        running_ = gl::Texture2D();
+        env.gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_SOURCE));  // a unit the StateGuard restores
+        running_ = gl::Texture2D::create(env.gl, GL_R32F, running_width, running_height);
+        if (!running_) {
+            release();
+            return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating FFAO's %dx%d running sums failed",
+                               running_width, running_height);
+        }
+    }
     return Error();
 }
 
@@ -158,14 +179,6 @@ Error FfaoPass::build_grid(const PassEnv& env, const obscura_ffao_settings& sett
     int64_t buffer_entries = 1;
     for (int c = 0; c < grid.chunk_count; ++c) {
         buffer_entries = std::max(buffer_entries, grid.chunks[c].end - grid.chunks[c].first);
-    }
-    if (grid.chunk_count > 1 && !key_.saao && !running_) {  // the running total, chunk to chunk (SAAO carries its
-        env.gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_SOURCE));  // sums in its terms); a restored unit
-        running_ = gl::Texture2D::create(env.gl, GL_R32F, width, height);
-        if (!running_) {
-            return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating FFAO's %dx%d running sums failed", width,
-                               height);
-        }
     }
     std::vector<GpuLine> lines(layout.lines.size());
     for (size_t i = 0; i < lines.size(); ++i) {

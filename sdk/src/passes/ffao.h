@@ -32,9 +32,11 @@ public:
     Error prepare(const PassEnv& env, const obscura_ffao_settings& settings);
     // Selects the layout of the frame's phase (layout_phase(frame_index)): drops every phase's layout and buffers
     // when the size, K or B0 changed, and builds the phase's on its first use (the mipmap method keeps only the
-    // orientations: it allocates no scan buffers).
+    // orientations: it allocates no scan buffers). Chunked without SAAO, it sizes the running total to
+    // `obscurance`, the region run_obscurance will cover (a frame's AO region, inside the guard band); an empty
+    // region (obscura_prepare: no output yet) keeps the last one's size, or takes the whole texture.
     Error ensure_layout(const PassEnv& env, const obscura_ffao_settings& settings, int width, int height,
-                        uint32_t frame_index = 0);
+                        uint32_t frame_index = 0, const Region& obscurance = Region());
     // Whether the table must be (re)built for these settings' falloff shape.
     bool table_stale(const obscura_ffao_settings& settings) const { return !table_valid_ || !(shape_ == ffao_falloff_shape(settings)); }
     static FfaoTableConstants table_constants(const obscura_ffao_settings& settings);
@@ -88,6 +90,7 @@ private:
     gl::Object obscurance_programs_[2][2][2];  // [mipmap geometry][SAAO][chunked], built on first use
     gl::Texture2D box_, terms_;                // SAAO: averaged receivers, (near, far) sums
     gl::Texture2D running_;                    // chunked without SAAO: the obscurance's running total (r32f)
+                                               // over its region, from the region's corner
     gl::Object table_, table_sampler_;
     gl::Object peaks_texture_;  // a buffer texture over peaks_ (CPU rasterisers only)
     bool table_valid_ = false;
