@@ -55,12 +55,19 @@ float signed_weight(float h, float sin_n, float cos_n) {
     return h < 0.0 ? -g : g;
 }
 
+// acos c - c sqrt(1 - c^2), twice the area of the unit circle's segment beyond c (pi at c = -1, 0 at c = 1), to 6e-6:
+// (1 - |c|)^1.5 times a cubic fitted to it (one square root, where acos and sin h took two), and pi minus that for
+// c < 0.
+float segment_area(float c) {
+    float a = abs(c), t = 1.0 - a;
+    float r = t * sqrt(t) * (((0.0112192 * a - 0.0518837) * a + 0.3558693) * a + 1.5708017);
+    return c < 0.0 ? OBSCURA_PI - r : r;
+}
+
 // G(h) for the angle whose cosine is `c` on side `side_sign` (+1: h = acos c, -1: h = -acos c): the weight
-// between 0 and h, without sin or cos (cos 2h = 2c^2 - 1, sin 2h = 2 c sin h).
+// between 0 and h. With cos 2h = 2c^2 - 1 and sin 2h = 2 c sin h, G = (cos n (1 - c^2) +- sin n (h - c sin h)) / 2.
 float side_weight(float c, float side_sign, float sin_n, float cos_n) {
-    float h = side_sign * fast_acos(c);
-    float sin_h = side_sign * sqrt(max(0.0, 1.0 - c * c));
-    return 0.25 * (cos_n + 2.0 * h * sin_n - (2.0 * c * c - 1.0) * cos_n - 2.0 * c * sin_h * sin_n);
+    return 0.5 * (cos_n * (1.0 - c * c) + side_sign * sin_n * segment_area(c));
 }
 
 // The weighted direction integral from 0 to the angle h (given by its sine and cosine) in slice coordinates (along

@@ -5,9 +5,9 @@
 // edges, and slanted surfaces keep their whole window. With bent normals (OBSCURA_GTAO_BENT_NORMALS) the values
 // are rgba16f (visibility, bent xyz) and the final pass (OBSCURA_GTAO_DENOISE_FINAL) writes the visibility (r16f)
 // and the same rgba16f with the bent normal renormalised.
-// Each invocation filters a run of OBSCURA_GTAO_DENOISE_RUN pixels along the pass's axis: the run's windows overlap,
-// so it reads RUN + 4 values and depths instead of 5 per pixel (the pass is bound by its reads: texel fetches on
-// CPU rasterisers, memory transactions on GPUs).
+// Each invocation filters a run of OBSCURA_GTAO_DENOISE_RUN pixels along the pass's axis (4 on GPUs, 16 on CPU
+// rasterisers: shader_interface.h): the run's windows overlap, so it reads RUN + 4 values and depths instead of 5 per
+// pixel (the pass is bound by its reads: texel fetches on CPU rasterisers, memory transactions on GPUs).
 #define OBSCURA_GTAO_DENOISE_PASS 1
 #include "common/shader_interface.h"
 #include "common/depth.glsl"
@@ -46,6 +46,9 @@ void store(ivec2 p, Value value, vec3 normal) {
 #endif
 }
 
+#ifndef OBSCURA_GTAO_DENOISE_RUN
+#error "OBSCURA_GTAO_DENOISE_RUN must be defined"
+#endif
 const int kRun = OBSCURA_GTAO_DENOISE_RUN;
 const int kTaps = kRun + 4;  // the run and 2 neighbours on each side
 

@@ -85,8 +85,12 @@
 // Temporal accumulation: 8x8 groups over the output rectangle.
 #define OBSCURA_TEMPORAL_GROUP_X 8
 #define OBSCURA_TEMPORAL_GROUP_Y 8
-// Pixels one denoise invocation filters along the pass's axis (the dispatch covers the region in runs of this).
-#define OBSCURA_GTAO_DENOISE_RUN 4
+// Pixels one GTAO denoise invocation filters along the pass's axis (the dispatch covers the region in runs of this,
+// compiled in as OBSCURA_GTAO_DENOISE_RUN): long runs on CPU rasterisers, which pay per invocation and per read (16:
+// the denoise at 0.8x of its time with 4 on llvmpipe; 32 gains nothing more), short ones on GPUs, which want the
+// invocations (1920x1080 + 10 %: 750,000 with 4).
+#define OBSCURA_GTAO_DENOISE_RUN_GPU 4
+#define OBSCURA_GTAO_DENOISE_RUN_CPU 16
 // LSAO: one invocation per line segment, 64 per group, each keeping its hull in shared memory (64 x hull
 // capacity x 8 bytes: 12 KiB at the default 24 points, 32 KiB, GL's guaranteed minimum, at the most);
 // the gather in 8x8 groups on CPU rasterisers and 16x16 on GPUs, whose groups share a tile of depths.

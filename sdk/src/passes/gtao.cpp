@@ -82,13 +82,18 @@ void GtaoPass::run(const PassEnv& env, const obscura_gtao_settings& settings, bo
     gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
+int GtaoDenoisePass::run_length(const PassEnv& env) {
+    return env.cpu_renderer ? OBSCURA_GTAO_DENOISE_RUN_CPU : OBSCURA_GTAO_DENOISE_RUN_GPU;
+}
+
 Error GtaoDenoisePass::prepare(const PassEnv& env, bool bent_normals) {
     for (int final = 0; final < 2; ++final) {
         gl::Object& program = programs_[bent_normals ? 1 : 0][final];
         if (program) continue;
-        char defines[96];
-        std::snprintf(defines, sizeof defines, "OBSCURA_GTAO_BENT_NORMALS %d\nOBSCURA_GTAO_DENOISE_FINAL %d\n",
-                      bent_normals ? 1 : 0, final);
+        char defines[128];
+        std::snprintf(defines, sizeof defines,
+                      "OBSCURA_GTAO_BENT_NORMALS %d\nOBSCURA_GTAO_DENOISE_FINAL %d\nOBSCURA_GTAO_DENOISE_RUN %d\n",
+                      bent_normals ? 1 : 0, final, run_length(env));
         Error error = env.build("gtao_denoise.comp", defines, &program);
         if (error) return error;
     }
@@ -119,8 +124,8 @@ void GtaoDenoisePass::run(const PassEnv& env, bool bent_normals, bool final, con
     }
     env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
     env.bind_uniforms(OBSCURA_UBO_PASS, pass);
-    // One invocation per run of OBSCURA_GTAO_DENOISE_RUN pixels along the axis.
-    const int run = OBSCURA_GTAO_DENOISE_RUN;
+    // One invocation per run of pixels along the axis.
+    const int run = run_length(env);
     const bool along_x = !final;
     env.dispatch(along_x ? (region.width + run - 1) / run : region.width,
                  along_x ? region.height : (region.height + run - 1) / run, OBSCURA_GTAO_DENOISE_GROUP_X,

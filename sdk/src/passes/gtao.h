@@ -54,6 +54,7 @@ public:
              const gl::Texture2D& destination, const gl::Texture2D* bent);
 
 private:
+    static int run_length(const PassEnv& env);  // pixels per invocation (OBSCURA_GTAO_DENOISE_RUN_CPU / _GPU)
     gl::Object programs_[2][2];  // [bent normals][final]
 };
 
