@@ -9,7 +9,19 @@
 #define OBSCURA_Z_PYRAMID_PASS 1
 #include "common/shader_interface.h"
 
+// Compiled in (ZPyramidPass::prepare). GPUs: 16x16 threads, four first-level texels each, every further level through
+// shared memory. CPU rasterisers, which reach shared memory one invocation at a time and pay for every barrier:
+// 8x8 invocations, each building a 4x4 block of the first level, its 2x2 of the second and its texel of the third in
+// registers (the block is aligned, so none needs another invocation's texels); shared memory only from the fourth
+// level on (64 texels a group). The same texels either way, bit for bit.
+#ifndef OBSCURA_CPU_RASTERISER
+#error "OBSCURA_CPU_RASTERISER must be defined"
+#endif
+#if OBSCURA_CPU_RASTERISER
+layout(local_size_x = OBSCURA_Z_PYRAMID_GROUP_CPU, local_size_y = OBSCURA_Z_PYRAMID_GROUP_CPU) in;
+#else
 layout(local_size_x = OBSCURA_Z_PYRAMID_GROUP, local_size_y = OBSCURA_Z_PYRAMID_GROUP) in;
+#endif
 
 layout(binding = OBSCURA_UNIT_LINEAR_DEPTH) uniform sampler2D u_depth;  // read at the source level
 layout(binding = OBSCURA_IMAGE_OUT0, r32f) writeonly uniform image2D u_level1;
@@ -84,13 +96,62 @@ float from_tile(ivec2 p, ivec2 global_p, int width) {
     return reduce4(s_tile[i], s_tile[i + 1], s_tile[i + width], s_tile[i + width + 1]);
 }
 
+// Levels `level` to the dispatch's last from the tile in shared memory, which holds level - 1 in rows of `width`:
+// each level halves the tile in place (read the previous level, sync, then overwrite).
+void halve_tile(int level, int width, ivec2 local, ivec2 tile_origin, int levels) {
+    for (; level <= levels; ++level) {
+        int next = width / 2;
+        bool in_level = all(lessThan(local, ivec2(next)));
+        ivec2 global_p = (tile_origin >> (level - 1)) + local;
+        float z = in_level ? from_tile(local, global_p, width) : 0.0;
+        barrier();
+        if (in_level) {
+            s_tile[local.y * next + local.x] = z;
+            store_level(level, global_p, z);
+        }
+        barrier();
+        width = next;
+    }
+}
+
 void main() {
     ivec2 local = ivec2(gl_LocalInvocationID.xy);
     ivec2 tile_origin = ivec2(gl_WorkGroupID.xy) * kTile;
     ivec2 source_size = textureSize(u_depth, z_pyramid.config.x);
     ivec2 first_size = max(source_size / 2, ivec2(1));
     int levels = z_pyramid.config.y;
-
+#if OBSCURA_CPU_RASTERISER
+    // The first level's 4x4 block at `block`, straight from the texture (texels past the level's edge are clamped
+    // copies, never stored, as below).
+    ivec2 block = tile_origin + 4 * local;
+    float first[16];
+    for (int j = 0; j < 16; ++j) {
+        ivec2 t = block + ivec2(j & 3, j >> 2);
+        first[j] = from_source(min(t, first_size - 1), source_size);
+        store_level(1, t, first[j]);
+    }
+    // The second level's 2x2 (at block / 2, even coordinates: the rotated grid's offsets follow j's parity alone).
+    float second[4];
+    bool rotated = z_pyramid.config.z == OBSCURA_MIP_FILTER_ROTATED_GRID;
+    for (int j = 0; j < 4; ++j) {
+        ivec2 q = ivec2(j & 1, j >> 1), c = 2 * q;
+        float reduced = reduce4(first[c.y * 4 + c.x], first[c.y * 4 + c.x + 1], first[c.y * 4 + c.x + 4],
+                                first[c.y * 4 + c.x + 5]);
+        ivec2 r = c + ivec2((q.y & 1) ^ 1, (q.x & 1) ^ 1);  // rotated_grid_child of an even-based parent
+        second[j] = rotated ? first[r.y * 4 + r.x] : reduced;
+        if (levels >= 2) store_level(2, (block >> 1) + q, second[j]);
+    }
+    // The third level's texel, whose coordinates' parity is the invocation's own.
+    ivec2 third_p = block >> 2;
+    float rotated_child = (third_p.x & 1) == 0 ? ((third_p.y & 1) == 0 ? second[3] : second[2])
+                                                : ((third_p.y & 1) == 0 ? second[1] : second[0]);
+    float third = rotated ? rotated_child : reduce4(second[0], second[1], second[2], second[3]);
+    if (levels >= 3) store_level(3, third_p, third);
+    if (levels < 4) return;  // uniform across the dispatch: no barrier is skipped by only some invocations
+    s_tile[local.y * (kTile / 4) + local.x] = third;
+    barrier();
+    halve_tile(4, kTile / 4, local, tile_origin, levels);
+#else
     // First level: 32x32 texels, four per thread, straight from the texture. Texels past the level's edge
     // are clamped copies (never stored; they keep the shared-memory levels finite).
     float first[4];
@@ -106,20 +167,6 @@ void main() {
         s_tile[t.y * kTile + t.x] = first[j];
     }
     barrier();
-
-    // Each further level halves the tile in place: read the previous level, sync, then overwrite.
-    int width = kTile;
-    for (int level = 2; level <= levels; ++level) {
-        int next = width / 2;
-        bool in_level = all(lessThan(local, ivec2(next)));
-        ivec2 global_p = (tile_origin >> (level - 1)) + local;
-        float z = in_level ? from_tile(local, global_p, width) : 0.0;
-        barrier();
-        if (in_level) {
-            s_tile[local.y * next + local.x] = z;
-            store_level(level, global_p, z);
-        }
-        barrier();
-        width = next;
-    }
+    halve_tile(2, kTile, local, tile_origin, levels);
+#endif
 }

@@ -28,8 +28,16 @@ float reduce_cpu(const std::vector<float>& level, int width, int x, int y, int f
 }
 
 class ZPyramid : public obscura_pass_test::PassTest, public ::testing::WithParamInterface<int> {
+public:
+    // Builds the pyramid of a width x height pattern with `filter` with the CPU rasteriser's program or the GPU's;
+    // checks every level against the CPU.
+    void check_path(bool cpu_program, int width, int height, int wanted_levels, int filter) {
+        cpu_renderer_ = cpu_program;
+        check(width, height, wanted_levels, filter);
+        cpu_renderer_ = true;
+    }
+
 protected:
-    // Builds the pyramid of a width x height pattern with `filter`; checks every level against the CPU.
     void check(int width, int height, int wanted_levels, int filter) {
         const int levels = obscura::ZPyramidPass::level_count(width, height, wanted_levels);
         ASSERT_GT(levels, 1);
@@ -46,7 +54,7 @@ protected:
         gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
         gl_.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, GL_RED, GL_FLOAT, level0.data());
 
-        obscura::ZPyramidPass pass;
+        obscura::ZPyramidPass pass;  // a new one: its program depends on cpu_renderer_
         ASSERT_FALSE(pass.prepare(env()));
         const int dispatches = obscura::ZPyramidPass::dispatch_count(levels);
         std::vector<obscura::UniformRange> ranges;
@@ -86,11 +94,25 @@ protected:
     }
 };
 
+// Both programs: CPU rasterisers' (three levels in registers per invocation, shared memory from the fourth) and
+// GPUs' (shared memory from the second).
+void check_both_paths(ZPyramid* test, int width, int height, int wanted_levels, int filter) {
+    for (bool cpu : {true, false}) {
+        SCOPED_TRACE(cpu ? "CPU rasteriser program" : "GPU program");
+        test->check_path(cpu, width, height, wanted_levels, filter);
+    }
+}
+
 // An odd size (odd levels drop their last row/column), levels within one dispatch.
-TEST_P(ZPyramid, OddSizeOneDispatch) { check(203, 117, 6, GetParam()); }
+TEST_P(ZPyramid, OddSizeOneDispatch) { check_both_paths(this, 203, 117, 6, GetParam()); }
 
 // Nine levels: two dispatches, the second starting from level 6.
-TEST_P(ZPyramid, NineLevelsTwoDispatches) { check(600, 520, 9, GetParam()); }
+TEST_P(ZPyramid, NineLevelsTwoDispatches) { check_both_paths(this, 600, 520, 9, GetParam()); }
+
+// One to three levels built: the CPU program stops inside its registers, before shared memory.
+TEST_P(ZPyramid, UpToThreeLevels) {
+    for (int wanted = 2; wanted <= 4; ++wanted) check_both_paths(this, 77, 45, wanted, GetParam());
+}
 
 std::string filter_name(const ::testing::TestParamInfo<int>& param_info) {
     static const char* const kNames[] = {"", "rotated_grid", "mean", "harmonic_mean", "min", "max"};

@@ -66,8 +66,10 @@
 #define OBSCURA_COMPOSITE_GROUP_Y 8
 #define OBSCURA_REFERENCE_GROUP_X 8
 #define OBSCURA_REFERENCE_GROUP_Y 8
-// z pyramid: 16x16 threads build a 32x32 tile of the first level written and every level below it.
+// z pyramid: a group builds a 32x32 tile of the first level written and every level below it (16x16 threads on
+// GPUs, 8x8 invocations on CPU rasterisers).
 #define OBSCURA_Z_PYRAMID_GROUP 16
+#define OBSCURA_Z_PYRAMID_GROUP_CPU 8  // CPU rasterisers: a 4x4 block of the tile's first level per invocation
 #define OBSCURA_Z_PYRAMID_TILE 32
 #define OBSCURA_Z_PYRAMID_LEVELS_PER_DISPATCH 6
 // SAO: 8x8 groups (whole 2x2 quads for the quad filter; the work region starts on even coordinates).

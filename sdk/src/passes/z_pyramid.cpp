@@ -4,7 +4,8 @@ namespace obscura {
 
 Error ZPyramidPass::prepare(const PassEnv& env) {
     if (program_) return Error();
-    return env.build("z_pyramid.comp", "", &program_);
+    return env.build("z_pyramid.comp", env.cpu_renderer ? "OBSCURA_CPU_RASTERISER 1\n" : "OBSCURA_CPU_RASTERISER 0\n",
+                     &program_);
 }
 
 int ZPyramidPass::level_count(int width, int height, int wanted) {
