@@ -25,8 +25,8 @@ bool inside(ivec2 p) { return all(lessThan(p, depth_size.xy)) && all(greaterThan
 // OBSCURA_NORMALS_*), and how the depths a reconstruction reads are shared. Reconstructing a normal reads the depths
 // up to 2 texels away on each axis: 9 texel fetches and linearisations per texel. GPUs share them through a tile in
 // shared memory (a texture unit takes one texel a clock); on CPU rasterisers, which reach shared memory one
-// invocation at a time, an invocation reconstructs a 2x2 quad from the 20 texels of its cross-shaped footprint
-// (5 per texel), kept in registers.
+// invocation at a time, an invocation reconstructs a 4x4 block from the 48 texels of its cross-shaped footprint
+// (3 per texel), kept in registers.
 #ifndef OBSCURA_CPU_RASTERISER
 #error "OBSCURA_CPU_RASTERISER must be defined"
 #endif
@@ -125,46 +125,59 @@ void store(ivec2 p, float depth, vec3 normal) {
 }
 
 #if OBSCURA_CPU_RASTERISER
-// The quad at 2 * invocation reads its cross-shaped footprint once: texel (x, y) relative to the quad's first texel,
-// x in {0, 1} with y in [-2, 3] and y in {0, 1} with x in [-2, 3]; depth D_x_y (m2 for -2, p3 for +3), K_x_y its
-// inverse_clip_w. Named values rather than arrays: compilers keep them in registers, where an array indexed in a
-// loop may go to memory.
-#define OBSCURA_READ(name, x, y) \
-    float D_##name = inside(origin + ivec2(x, y)) ? linear_depth_at(origin + ivec2(x, y)) : OBSCURA_SKY_DEPTH; \
-    float K_##name = inverse_clip_w(D_##name);
-// The normal of quad texel (qx, qy) from the five depths along each axis through it.
-#define OBSCURA_RECONSTRUCT(qx, qy, xm2, xm1, xc, xp1, xp2, ym2, ym1, yp1, yp2)                                        \
-    reconstruct_normal(origin + ivec2(qx, qy),                                                                       \
-                       float[5](D_##xm2, D_##xm1, D_##xc, D_##xp1, D_##xp2), float[5](K_##xm2, K_##xm1, K_##xc, K_##xp1, K_##xp2), \
-                       float[5](D_##ym2, D_##ym1, D_##xc, D_##yp1, D_##yp2), float[5](K_##ym2, K_##ym1, K_##xc, K_##yp1, K_##yp2))
+// The 4x4 block at 4 * invocation reads its cross-shaped footprint once: the block, and two texels beyond it on each
+// side of each of its rows and columns (48 texels, 3 per texel; a 2x2 quad read 5 per texel). The arrays are indexed
+// by constants once the loops unroll (their trip counts are constant), so compilers keep them in registers.
+const int kBlock = OBSCURA_DEPTH_PREPARE_CPU_BLOCK;
+
+float depth_or_sky(ivec2 p) { return inside(p) ? linear_depth_at(p) : OBSCURA_SKY_DEPTH; }
+
+// Offset -2, -1, 4 or 5 from the block's first row or column: the beyond-the-block texel `side` (0..3).
+int beyond(int side) { return side < 2 ? side - 2 : side + kBlock - 2; }
+
+// Texel a (-2 <= a < kBlock + 2) along line `line` of the block: from the block, or from the texels beyond it
+// (`outer`: four per line, at beyond(0..3)).
+float along_line(float block[kBlock * kBlock], float outer[4 * kBlock], int line, int a, bool rows) {
+    if (a >= 0 && a < kBlock) return rows ? block[line * kBlock + a] : block[a * kBlock + line];
+    return outer[line * 4 + (a < 0 ? a + 2 : a - kBlock + 2)];
+}
+
 void main() {
-    ivec2 origin = 2 * ivec2(gl_GlobalInvocationID.xy);
+    ivec2 origin = kBlock * ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(origin, depth_size.xy))) return;
-    // The quad itself.
-    OBSCURA_READ(p0_p0, 0, 0) OBSCURA_READ(p1_p0, 1, 0) OBSCURA_READ(p0_p1, 0, 1) OBSCURA_READ(p1_p1, 1, 1)
-    vec3 n00, n10, n01, n11;
+    float d[kBlock * kBlock], k[kBlock * kBlock];
+    for (int i = 0; i < kBlock * kBlock; ++i) {
+        d[i] = depth_or_sky(origin + ivec2(i % kBlock, i / kBlock));
+        k[i] = inverse_clip_w(d[i]);
+    }
 #if OBSCURA_NORMAL_SOURCE == OBSCURA_NORMALS_RECONSTRUCT
-    // Its rows' and columns' two texels on each side.
-    OBSCURA_READ(m2_p0, -2, 0) OBSCURA_READ(m1_p0, -1, 0) OBSCURA_READ(p2_p0, 2, 0) OBSCURA_READ(p3_p0, 3, 0)
-    OBSCURA_READ(m2_p1, -2, 1) OBSCURA_READ(m1_p1, -1, 1) OBSCURA_READ(p2_p1, 2, 1) OBSCURA_READ(p3_p1, 3, 1)
-    OBSCURA_READ(p0_m2, 0, -2) OBSCURA_READ(p0_m1, 0, -1) OBSCURA_READ(p0_p2, 0, 2) OBSCURA_READ(p0_p3, 0, 3)
-    OBSCURA_READ(p1_m2, 1, -2) OBSCURA_READ(p1_m1, 1, -1) OBSCURA_READ(p1_p2, 1, 2) OBSCURA_READ(p1_p3, 1, 3)
-    n00 = OBSCURA_RECONSTRUCT(0, 0, m2_p0, m1_p0, p0_p0, p1_p0, p2_p0, p0_m2, p0_m1, p0_p1, p0_p2);
-    n10 = OBSCURA_RECONSTRUCT(1, 0, m1_p0, p0_p0, p1_p0, p2_p0, p3_p0, p1_m2, p1_m1, p1_p1, p1_p2);
-    n01 = OBSCURA_RECONSTRUCT(0, 1, m2_p1, m1_p1, p0_p1, p1_p1, p2_p1, p0_m1, p0_p0, p0_p2, p0_p3);
-    n11 = OBSCURA_RECONSTRUCT(1, 1, m1_p1, p0_p1, p1_p1, p2_p1, p3_p1, p1_m1, p1_p0, p1_p2, p1_p3);
-#else
-    n00 = host_normal(origin);
-    n10 = host_normal(origin + ivec2(1, 0));
-    n01 = host_normal(origin + ivec2(0, 1));
-    n11 = host_normal(origin + ivec2(1, 1));
+    // Beyond the block: row r's texels at x = beyond(s), column c's at y = beyond(s).
+    float row_d[4 * kBlock], row_k[4 * kBlock], column_d[4 * kBlock], column_k[4 * kBlock];
+    for (int i = 0; i < 4 * kBlock; ++i) {
+        int line = i / 4, offset = beyond(i % 4);
+        row_d[i] = depth_or_sky(origin + ivec2(offset, line));
+        row_k[i] = inverse_clip_w(row_d[i]);
+        column_d[i] = depth_or_sky(origin + ivec2(line, offset));
+        column_k[i] = inverse_clip_w(column_d[i]);
+    }
 #endif
-    // Texels of the quad past the texture's last row or column are not written.
-    store(origin, D_p0_p0, n00);
-    bvec2 second = lessThan(origin + 1, depth_size.xy);
-    if (second.x) store(origin + ivec2(1, 0), D_p1_p0, n10);
-    if (second.y) store(origin + ivec2(0, 1), D_p0_p1, n01);
-    if (second.x && second.y) store(origin + ivec2(1, 1), D_p1_p1, n11);
+    for (int i = 0; i < kBlock * kBlock; ++i) {
+        ivec2 q = ivec2(i % kBlock, i / kBlock), p = origin + q;
+#if OBSCURA_NORMAL_SOURCE == OBSCURA_NORMALS_RECONSTRUCT
+        float dx[5], kx[5], dy[5], ky[5];
+        for (int j = 0; j < 5; ++j) {
+            dx[j] = along_line(d, row_d, q.y, q.x + j - 2, true);
+            kx[j] = along_line(k, row_k, q.y, q.x + j - 2, true);
+            dy[j] = along_line(d, column_d, q.x, q.y + j - 2, false);
+            ky[j] = along_line(k, column_k, q.x, q.y + j - 2, false);
+        }
+        vec3 n = reconstruct_normal(p, dx, kx, dy, ky);
+#else
+        vec3 n = host_normal(p);
+#endif
+        // Texels of the block past the texture's last row or column are not written.
+        if (all(lessThan(p, depth_size.xy))) store(p, d[i], n);
+    }
 }
 #else
 void main() {

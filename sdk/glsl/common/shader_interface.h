@@ -58,6 +58,7 @@
 // ---- Workgroup sizes (the dispatch math in C++ reads the same numbers) ------------------------
 #define OBSCURA_DEPTH_PREPARE_GROUP_X 8
 #define OBSCURA_DEPTH_PREPARE_GROUP_Y 8
+#define OBSCURA_DEPTH_PREPARE_CPU_BLOCK 4  // CPU rasterisers: texels per invocation on each axis (depth_prepare.comp)
 #define OBSCURA_HBAO_GROUP_X 8
 #define OBSCURA_HBAO_GROUP_Y 8
 #define OBSCURA_BLUR_GROUP_X 8

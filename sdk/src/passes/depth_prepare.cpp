@@ -39,8 +39,8 @@ void DepthPreparePass::run(const PassEnv& env, const FrameInput& input, const Un
     env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
     {
         HostDepthBinding depth(env, input);
-        // CPU rasterisers: one invocation per 2x2 quad (depth_prepare.comp).
-        const int texels_per_invocation = env.cpu_renderer ? 2 : 1;
+        // CPU rasterisers: one invocation per block of texels (depth_prepare.comp).
+        const int texels_per_invocation = env.cpu_renderer ? OBSCURA_DEPTH_PREPARE_CPU_BLOCK : 1;
         env.dispatch((input.width + texels_per_invocation - 1) / texels_per_invocation,
                      (input.height + texels_per_invocation - 1) / texels_per_invocation, OBSCURA_DEPTH_PREPARE_GROUP_X,
                      OBSCURA_DEPTH_PREPARE_GROUP_Y);
