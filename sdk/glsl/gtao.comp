@@ -168,9 +168,11 @@ void main() {
         float cos_n = n_view / projected_length, sin_n = n_along / projected_length;
         float n = sin_n < 0.0 ? -fast_acos(cos_n) : fast_acos(cos_n);
         // Off-slice correction (as in hbao.comp): a texel beside the slice is moved back into it along the
-        // receiver's tangent plane, exact for planes, so planes do not occlude themselves.
+        // receiver's tangent plane, exact for planes, so planes do not occlude themselves. The moved offset
+        // delta + (V slope - slice_normal) dot(delta, slice_normal) lies in the slice: its coordinates are
+        // dot(delta, along) and dot(delta, eye_axis), with eye_axis = V + slope slice_normal.
         float slope = dot(normal, slice_normal) / max(n_view, 0.1);
-        vec3 correction = towards_eye * slope - slice_normal;
+        vec3 eye_axis = towards_eye + slope * slice_normal;
         // Per side, the tangent plane's cos h: cos(n + pi/2) = -sin n (side +), cos(n - pi/2) = sin n (side -).
         vec2 low_cos = vec2(-sin_n, sin_n);
 #if OBSCURA_GTAO_MODE == OBSCURA_GTAO_MODE_BITMASK
@@ -216,15 +218,15 @@ void main() {
                 vec3 sample_position = obscura_view_position_at(
                     obscura_level_texel_origin(texel, m, OBSCURA_MIP_FILTER_HARMONIC_MEAN_OF_GEOMETRY), valid ? z : depth);
                 vec3 delta = sample_position - position;
-                delta += correction * dot(delta, slice_normal);
-                float distance_sq = max(dot(delta, delta), 1e-30);
+                float slice_x = dot(delta, along), slice_y = dot(delta, eye_axis);  // moved into the slice
+                float distance_sq = max(slice_x * slice_x + slice_y * slice_y, 1e-30);
                 float inverse_distance = inversesqrt(distance_sq);
                 // The falloff: full weight up to radius (1 - range), fading to 0 at the radius.
                 float w = clamp(distance_sq * inverse_distance * gtao.falloff.y + gtao.falloff.z, 0.0, 1.0);
                 weight[side] = valid ? w : 0.0;
-                cos_h[side] = dot(delta, towards_eye) * inverse_distance;
+                cos_h[side] = slice_y * inverse_distance;
 #if OBSCURA_GTAO_MODE == OBSCURA_GTAO_MODE_BITMASK
-                vec3 back = delta - obscura_towards_eye(sample_position) * gtao.thickness.x;
+                vec3 back = along * slice_x + towards_eye * slice_y - obscura_towards_eye(sample_position) * gtao.thickness.x;
                 back_cos[side] = dot(back, towards_eye) * inversesqrt(dot(back, back));
 #endif
             }
