@@ -190,7 +190,8 @@ void main() {
         vec2 unoccluded_weight = vec2(side_weight(low_cos.x, 1.0, sin_n, cos_n), side_weight(low_cos.y, -1.0, sin_n, cos_n));
         vec2 horizon_weight = unoccluded_weight;
         vec2 occluded = vec2(0.0);
-        vec2 occluded_bent = vec2(0.0);  // bent normals: the occluded arcs' direction integrals (along, towards eye)
+        // Bent normals: the occluded arcs' direction integrals (along, towards eye), side + in xy, side - in zw.
+        vec4 occluded_bent = vec4(0.0);
 #endif
         // Both sides in one step: the two samples share their distance and level (vec2 lanes: side +, side -).
         // No branch in the steps (CPU rasterisers run every lane through every branch): a sample outside the
@@ -251,14 +252,31 @@ void main() {
                 vec2 arc = signed_direction(sin_horizon[side], horizon_cos[side], sin_n, cos_n) -
                            signed_direction(sin_sample[side], sample_cos[side], sin_n, cos_n);
                 // Side -'s arcs run from the sample up to the horizon (negative angles): the signed integral flips.
-                occluded_bent += raises[side] ? weight[side] * (side == 0 ? arc : -arc) : vec2(0.0);
+                vec2 added = raises[side] ? weight[side] * (side == 0 ? arc : -arc) : vec2(0.0);
+                occluded_bent += side == 0 ? vec4(added, 0.0, 0.0) : vec4(0.0, 0.0, added);
             }
 #endif
+#if OBSCURA_GTAO_THICKNESS_BLEND
             // The thickness heuristic: a lower sample pulls the horizon down by the blend fraction (of the arc's
-            // weight), so a thin occluder stops hiding what lies beyond it.
-            vec2 blend = gtao.thickness.y * step(vec2(1e-30), weight);
-            horizon_weight = mix(mix(horizon_weight, sample_weight, blend), sample_weight, raises);
+            // weight), so a thin occluder stops hiding what lies beyond it. The occlusion is accumulated arc by arc,
+            // so the arc the horizon gives up is refunded: the occluded part of [horizon, tangent plane] shrinks
+            // with its span (its mean occlusion kept). Without the refund the heuristic could only add occlusion.
+            vec2 blend = gtao.thickness.y * step(vec2(1e-30), weight) * vec2(not(raises));
+            vec2 lowered_weight = mix(horizon_weight, sample_weight, blend);
+            vec2 span = unoccluded_weight - horizon_weight;
+            vec2 kept = mix(vec2(1.0), (unoccluded_weight - lowered_weight) / max(span, vec2(1e-20)),
+                            greaterThan(span, vec2(1e-12)));
+            occluded *= kept;
+#if OBSCURA_GTAO_BENT_NORMALS
+            occluded_bent *= kept.xxyy;
+#endif
+            horizon_weight = mix(lowered_weight, sample_weight, raises);
             horizon_cos = mix(mix(horizon_cos, sample_cos, blend), sample_cos, raises);
+#else
+            // Without it (thickness_blend = 0, the default: compiled out), the horizon only rises.
+            horizon_weight = mix(horizon_weight, sample_weight, raises);
+            horizon_cos = mix(horizon_cos, sample_cos, raises);
+#endif
 #endif
         }
 
@@ -287,7 +305,7 @@ void main() {
 #if OBSCURA_GTAO_BENT_NORMALS
         // The full arc's integral minus the occluded arcs' (added back below as the normal's share).
         slice_bent = signed_direction(cos_n, -sin_n, sin_n, cos_n) - signed_direction(-cos_n, sin_n, sin_n, cos_n) -
-                     occluded_bent;
+                     occluded_bent.xy - occluded_bent.zw;
 #endif
 #endif
         visible += projected_length * slice_visible;

@@ -15,18 +15,19 @@ GtaoPresetCounts gtao_preset_counts(int preset) {
 uint32_t GtaoPass::variant_key(const obscura_gtao_settings& settings, bool bent_normals) {
     // Resolved settings: slices in [1, 16], steps in [1, 32] (the metadata's ranges).
     return (settings.thickness_mode == OBSCURA_GTAO_MODE_BITMASK ? 1u : 0u) | (settings.step_power == 2.0f ? 2u : 0u) |
-           (bent_normals ? 4u : 0u) | uint32_t(settings.slices) << 3 | uint32_t(settings.steps) << 8;
+           (bent_normals ? 4u : 0u) | uint32_t(settings.slices) << 3 | uint32_t(settings.steps) << 8 |
+           (settings.thickness_blend != 0.0f ? 1u << 14 : 0u);
 }
 
 Error GtaoPass::prepare(const PassEnv& env, const obscura_gtao_settings& settings, bool bent_normals) {
     gl::Object& built = programs_[variant_key(settings, bent_normals)];
     if (built) return Error();
-    char defines[192];
+    char defines[224];
     std::snprintf(defines, sizeof defines,
                   "OBSCURA_GTAO_MODE %d\nOBSCURA_GTAO_STEP_POWER_2 %d\nOBSCURA_GTAO_BENT_NORMALS %d\n"
-                  "OBSCURA_GTAO_SLICES %d\nOBSCURA_GTAO_STEPS %d\n",
+                  "OBSCURA_GTAO_SLICES %d\nOBSCURA_GTAO_STEPS %d\nOBSCURA_GTAO_THICKNESS_BLEND %d\n",
                   settings.thickness_mode == OBSCURA_GTAO_MODE_BITMASK ? 2 : 1, settings.step_power == 2.0f ? 1 : 0,
-                  bent_normals ? 1 : 0, settings.slices, settings.steps);
+                  bent_normals ? 1 : 0, settings.slices, settings.steps, settings.thickness_blend != 0.0f ? 1 : 0);
     return env.build("gtao.comp", defines, &built);
 }
 

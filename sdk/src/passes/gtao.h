@@ -35,7 +35,7 @@ public:
              const gl::Texture2D& destination);
 
 private:
-    // By variant: thickness mode, step power 2, bent normals, slices, steps (variant_key).
+    // By variant: thickness mode, step power 2, bent normals, slices, steps, thickness blend on (variant_key).
     std::map<uint32_t, gl::Object> programs_;
     static uint32_t variant_key(const obscura_gtao_settings& settings, bool bent_normals);
 };
