@@ -34,26 +34,34 @@ layout(binding = OBSCURA_IMAGE_OUT1, rgba16f) writeonly uniform image2D u_bent_n
 
 mat4 columns(vec4 c[4]) { return mat4(c[0], c[1], c[2], c[3]); }
 
-// The history's visibility at `position` (texels) through a Catmull-Rom filter, in 5 bilinear reads (the 4x4
-// kernel's 3x3 of bilinear groups less its corners, renormalised; u_history's sampler filters linearly). A
-// bilinear read of a moving history blurs it a little every frame: at 8 frames about a texel, which smeared
-// contact shadows; the cubic keeps them.
-float catmull_rom_history(vec2 position) {
-    vec2 size = vec2(depth_size.xy);
-    vec2 centre = floor(position - 0.5) + 0.5;  // texel centre at or below the position
-    vec2 f = position - centre;
+// Gathers return the 2x2 block at floor(uv * size - 0.5) as (i0, j1), (i1, j1), (i1, j0), (i0, j0) in x, y, z, w:
+// the block's texel (o.x, o.y), o in {0, 1}^2.
+float block_texel(vec4 gathered, ivec2 o) {
+    return o.y == 0 ? (o.x == 0 ? gathered.w : gathered.z) : (o.x == 0 ? gathered.x : gathered.y);
+}
+
+// The history's visibility through a Catmull-Rom filter at fraction `f` past texel `base`: the 4x4 kernel less its
+// corners (renormalised), from the 2x2 block at base (`centre`, gathered already) and the four blocks beside it, one
+// gather each (instead of five bilinear reads of all four channels: the filter's taps are the same). A bilinear read
+// of a moving history blurs it a little every frame: at 8 frames about a texel, which smeared contact shadows; the
+// cubic keeps them.
+float catmull_rom_history(ivec2 base, vec2 f, vec4 centre) {
+    vec2 texel = 1.0 / vec2(depth_size.xy);
+    vec2 corner = vec2(base);  // the centre block's gather position is corner + 1
+    vec4 left = textureGather(u_history, (corner + vec2(0.0, 1.0)) * texel, 0);   // x in [base - 1, base]
+    vec4 right = textureGather(u_history, (corner + vec2(2.0, 1.0)) * texel, 0);  // x in [base + 1, base + 2]
+    vec4 below = textureGather(u_history, (corner + vec2(1.0, 0.0)) * texel, 0);  // y in [base - 1, base]
+    vec4 above = textureGather(u_history, (corner + vec2(1.0, 2.0)) * texel, 0);  // y in [base + 1, base + 2]
     vec2 w0 = f * (-0.5 + f * (1.0 - 0.5 * f));
     vec2 w1 = 1.0 + f * f * (-2.5 + 1.5 * f);
     vec2 w2 = f * (0.5 + f * (2.0 - 1.5 * f));
     vec2 w3 = f * f * (-0.5 + 0.5 * f);
-    vec2 w12 = w1 + w2;
-    vec2 at0 = (centre - 1.0) / size, at12 = (centre + w2 / w12) / size, at3 = (centre + 2.0) / size;
-    float sum = textureLod(u_history, vec2(at12.x, at0.y), 0.0).x * (w12.x * w0.y) +
-                textureLod(u_history, vec2(at0.x, at12.y), 0.0).x * (w0.x * w12.y) +
-                textureLod(u_history, at12, 0.0).x * (w12.x * w12.y) +
-                textureLod(u_history, vec2(at3.x, at12.y), 0.0).x * (w3.x * w12.y) +
-                textureLod(u_history, vec2(at12.x, at3.y), 0.0).x * (w12.x * w3.y);
-    float weight = w12.x * w0.y + w0.x * w12.y + w12.x * w12.y + w3.x * w12.y + w12.x * w3.y;
+    // Rows base and base + 1: all four columns; rows base - 1 and base + 2: the middle two.
+    float row0 = w0.x * left.w + w1.x * centre.w + w2.x * centre.z + w3.x * right.z;
+    float row1 = w0.x * left.x + w1.x * centre.x + w2.x * centre.y + w3.x * right.y;
+    float sum = w1.y * row0 + w2.y * row1 + w0.y * (w1.x * below.w + w2.x * below.z) +
+                w3.y * (w1.x * above.x + w2.x * above.y);
+    float weight = (w0.y + w3.y) * (w1.x + w2.x) + (w1.y + w2.y) * (w0.x + w1.x + w2.x + w3.x);
     return sum / weight;
 }
 
@@ -128,10 +136,20 @@ void main() {
     const int kTaps = 4;
 #endif
 
-    // 2. The history's texels that lie on the point's plane, bilinearly weighted.
+    // 2. The history's texels that lie on the point's plane, bilinearly weighted: the 2x2 block at base, gathered
+    // (visibility, age, depth).
     vec2 f = previous_pixel - 0.5;
     ivec2 base = ivec2(floor(f));
     vec2 t = f - vec2(base);
+    vec2 cubic_fraction = t;
+#if OBSCURA_TEMPORAL_REPROJECT == OBSCURA_TEMPORAL_REPROJECT_IDENTITY
+    vec4 own_texel = texelFetch(u_history, base, 0);  // the one tap: a fetch reads its three channels at once
+#else
+    vec2 block_at = (vec2(base) + 1.0) / vec2(depth_size.xy);
+    vec4 block_visibility = textureGather(u_history, block_at, 0);
+    vec4 block_age = textureGather(u_history, block_at, 1);
+    vec4 block_depth = textureGather(u_history, block_at, 2);
+#endif
     const float kSnap = 1.0 / 256.0;
     bvec2 snap_low = lessThan(t, vec2(kSnap)), snap_high = greaterThan(t, vec2(1.0 - kSnap));
     t = mix(t, vec2(0.0), snap_low);
@@ -150,7 +168,11 @@ void main() {
             ivec2 q = base + o;
             // Only the output rectangle was written (a change of it starts a new history).
             if (w <= 0.0 || any(lessThan(q, output_rect.xy)) || any(greaterThanEqual(q, output_rect.xy + output_rect.zw))) continue;
-            vec4 h = texelFetch(u_history, q, 0);
+#if OBSCURA_TEMPORAL_REPROJECT == OBSCURA_TEMPORAL_REPROJECT_IDENTITY
+            vec3 h = own_texel.xyz;
+#else
+            vec3 h = vec3(block_texel(block_visibility, o), block_texel(block_age, o), block_texel(block_depth, o));
+#endif
             if (!(h.y >= 1.0) || obscura_is_sky(h.z)) continue;  // no history there
             float plane_distance = abs(dot(obscura_view_position(q, h.z) - previous_position, previous_normal));
             if (!(plane_distance <= tolerance)) continue;  // another surface (disoccluded or moved), or not finite
@@ -180,7 +202,8 @@ void main() {
         // Held within the four texels' range: the cubic's outer ring may lie on another surface (a silhouette one
         // texel away), and its negative lobes overshoot at steps.
         if (valid_taps == 4 && cubic_inside) {
-            history = clamp(catmull_rom_history(previous_pixel), history_low, history_high) * weight_sum;
+            history = clamp(catmull_rom_history(base, cubic_fraction, block_visibility), history_low, history_high) *
+                      weight_sum;
         }
 #endif
         // The box holds the pixel's own value too: an image equal to its history is kept as it is.
