@@ -49,7 +49,6 @@ void TemporalHistory::release() {
 }
 
 Error TemporalPass::prepare(const PassEnv& env, bool bent_normals, int reprojection) {
-    if (!linear_sampler_) linear_sampler_ = gl::create_sampler_linear_clamp(env.gl);
     gl::Object& program = programs_[bent_normals ? 1 : 0][reprojection];
     if (program) return Error();
     char defines[96];
@@ -92,7 +91,6 @@ void TemporalPass::run(const PassEnv& env, const UniformRange& frame, const Unif
     env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
     env.bind_texture(OBSCURA_UNIT_SOURCE, GL_TEXTURE_2D, source.name());
     env.bind_texture(OBSCURA_UNIT_HISTORY, GL_TEXTURE_2D, history.previous().name());
-    gl.BindSampler(OBSCURA_UNIT_HISTORY, linear_sampler_.name());  // texelFetch ignores it; the cubic read filters
     // Without motion vectors the sampler still needs a complete texture: the history stands in (never read).
     env.bind_texture(OBSCURA_UNIT_MOTION, GL_TEXTURE_2D,
                      input.motion_vector_texture ? input.motion_vector_texture : history.previous().name());

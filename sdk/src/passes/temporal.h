@@ -57,7 +57,6 @@ public:
 private:
     // [bent normals][reprojection]: a static camera's variant reads one history texel and does no matrix work.
     gl::Object programs_[2][3];
-    gl::Object linear_sampler_;  // the history's cubic read filters bilinear groups
 };
 
 }  // namespace obscura
