@@ -14,11 +14,13 @@
 //     (eq. 10): G(h) = (cos n + 2 h sin n - cos(2h - n)) / 4 is the weight from 0 to |h| on either side.
 //   bitmask (OBSCURA_GTAO_MODE == 2): a sample occupies the sectors between the angles of its front and of the
 //     point `thickness` behind it, in `sectors` equal angles over the normal's half-circle [n - pi/2, n + pi/2];
-//     the unoccupied runs of sectors are integrated with the same weight (W(b) - W(a), W the signed G). A sample
-//     counts when its falloff weight exceeds a threshold drawn per slice.
-// Visibility is the sum of the slices' visible integrals (each times |projected normal|) over the sum of their
-// unoccluded integrals (cos n + n sin n): the paper's estimator normalised by its own value for an unoccluded
-// pixel, so a plane is exactly 1 at any slice count (the paper's per-slice sum is 1 only on average over slices).
+//     the unoccupied runs of sectors are integrated with the same weight (W(b) - W(a), W the signed G). A sector
+//     of a slab is occupied where the ray through it meets the slab at a falloff weight above a threshold drawn
+//     per slice (each ray weighed by its own hit distance).
+// Visibility is the sum of the slices' visible integrals (each times |projected normal| and the slice's angular
+// density around V) over the sum of their unoccluded integrals (cos n + n sin n): the paper's estimator normalised
+// by its own value for an unoccluded pixel, so a plane is exactly 1 at any slice count (the paper's per-slice sum
+// is 1 only on average over slices).
 // Bent normals (OBSCURA_GTAO_BENT_NORMALS): the cosine-weighted mean visible direction, integrated over the
 // same arcs or runs in closed form (signed_direction), as the normal plus the visible minus the unoccluded arcs'
 // integrals (exact on planes); the output is then rgba16f: visibility, bent normal xyz.
@@ -160,6 +162,13 @@ void main() {
         // would return NaN).
         if (!(across_length > 1e-6)) continue;
         vec3 along = across / across_length;
+        // The slices are spaced evenly on screen, but the estimator integrates over angles around V: off the
+        // screen's centre the screen's directions crowd around V's tilt (up to 1.5x apart at 60 degrees' field of
+        // view). Each slice is weighted by d(angle around V) / d(screen angle): |V.z| / |across|^2 for the
+        // projection of the image plane onto the plane normal to V, times the pixel aspect's own stretch.
+        vec2 view_dir = dir * view_per_pixel;
+        float slice_density = abs(towards_eye.z) / (across_length * across_length) *
+                              (view_per_pixel.x * view_per_pixel.y / dot(view_dir, view_dir));
         vec3 slice_normal = cross(along, towards_eye);
         // The normal projected into the slice: its length weighs the slice, its angle n from V.
         float n_along = dot(normal, along), n_view = dot(normal, towards_eye);
@@ -178,10 +187,13 @@ void main() {
 #if OBSCURA_GTAO_MODE == OBSCURA_GTAO_MODE_BITMASK
         uint occupied = 0u;
         float lowest = n - kHalfPi;  // the angle of sector 0's lower edge
-        // A sample occupies its sectors when its falloff weight exceeds one threshold drawn per slice: a sector is
-        // then occupied with the probability of its highest weight, its nearest occluder's, as a ray would be
-        // weighed by its hit distance (the denoise averages the draws).
+        // A sector is occupied when the ray through it meets a slab at a falloff weight above one threshold drawn
+        // per slice: with the probability of its nearest hit's weight, as the REFERENCE weighs a ray (the denoise
+        // averages the draws).
         float chance = fract(noise.y * 7.0 + float(s) * 0.6180339887);
+        // The distance at which the falloff weight equals the chance: a ray is blocked by a sample's slab when it
+        // hits the slab nearer than that.
+        float reach = (chance - gtao.falloff.z) / gtao.falloff.y;
 #else
         // Per side: the highest horizon so far (as cos h), G at it, and the weight of the occluded arc: each sample
         // that raises the horizon occludes the arc it adds with its falloff weight (the horizon-split estimator of
@@ -206,7 +218,8 @@ void main() {
             // One level down per doubling of the step's distance past 2^mip_offset pixels.
             int m = clamp(findMSB(int(t * gtao.rotation.z)), 0, deepest);
             ivec2 level_last = max(depth_size.xy >> m, ivec2(1)) - 1;
-            vec2 cos_h, weight, back_cos;
+            vec2 cos_h, weight, back_cos, lateral;
+            bvec2 usable;
             for (int side = 0; side < 2; ++side) {  // unrolled by the compilers: constant trip count
                 ivec2 unclamped = ivec2(floor(pixel_center + dir * (side == 0 ? t : -t)));
                 ivec2 q = clamp(unclamped, ivec2(0), depth_size.xy - 1);
@@ -225,6 +238,8 @@ void main() {
                 // The falloff: full weight up to radius (1 - range), fading to 0 at the radius.
                 float w = clamp(distance_sq * inverse_distance * gtao.falloff.y + gtao.falloff.z, 0.0, 1.0);
                 weight[side] = valid ? w : 0.0;
+                usable[side] = valid;
+                lateral[side] = abs(slice_x);
                 cos_h[side] = slice_y * inverse_distance;
 #if OBSCURA_GTAO_MODE == OBSCURA_GTAO_MODE_BITMASK
                 vec3 back = along * slice_x + towards_eye * slice_y - obscura_towards_eye(sample_position) * gtao.thickness.x;
@@ -234,11 +249,17 @@ void main() {
 #if OBSCURA_GTAO_MODE == OBSCURA_GTAO_MODE_BITMASK
             vec2 front_h = vec2(fast_acos(cos_h.x), -fast_acos(cos_h.y));
             vec2 back_h = vec2(fast_acos(back_cos.x), -fast_acos(back_cos.y));
-            vec2 lo = clamp((min(front_h, back_h) - lowest) / sector_angle, 0.0, float(sectors));
-            vec2 hi = clamp((max(front_h, back_h) - lowest) / sector_angle, 0.0, float(sectors));
+            // A ray at angle h between the slab's front and back meets it at its lateral distance: at the
+            // distance lateral / |sin h|, nearer than `reach` for |h| within acos(lateral / reach) of pi/2. Only
+            // those sectors are marked, so every ray is weighed by its own hit distance, as the REFERENCE weighs
+            // it (weighing the whole slab by its front's distance left the bitmask 0.01 too bright on the atrium).
+            vec2 spread = vec2(fast_acos(min(lateral.x / reach, 1.0)), fast_acos(min(lateral.y / reach, 1.0)));
+            vec2 centre = vec2(kHalfPi, -kHalfPi);
+            vec2 lo = clamp((max(min(front_h, back_h), centre - spread) - lowest) / sector_angle, 0.0, float(sectors));
+            vec2 hi = clamp((min(max(front_h, back_h), centre + spread) - lowest) / sector_angle, 0.0, float(sectors));
             uvec2 first = uvec2(lo + 0.5), last = uvec2(hi + 0.5);  // sectors [first, last)
             uvec2 marked = sectors_below(last) & ~sectors_below(first);
-            occupied |= (weight.x > chance ? marked.x : 0u) | (weight.y > chance ? marked.y : 0u);
+            occupied |= (usable.x ? marked.x : 0u) | (usable.y ? marked.y : 0u);
 #else
             vec2 sample_cos = max(mix(low_cos, cos_h, greaterThan(weight, vec2(0.0))), low_cos);
             vec2 sample_weight = vec2(side_weight(sample_cos.x, 1.0, sin_n, cos_n), side_weight(sample_cos.y, -1.0, sin_n, cos_n));
@@ -308,12 +329,13 @@ void main() {
                      occluded_bent.xy - occluded_bent.zw;
 #endif
 #endif
-        visible += projected_length * slice_visible;
-        unoccluded += projected_length * slice_unoccluded;
+        float slice_share = slice_density * projected_length;
+        visible += slice_share * slice_visible;
+        unoccluded += slice_share * slice_unoccluded;
 #if OBSCURA_GTAO_BENT_NORMALS
         // Minus the unoccluded slice's, the full arc [n - pi/2, n + pi/2] (sin, cos of n + pi/2: cos n, -sin n).
         slice_bent -= signed_direction(cos_n, -sin_n, sin_n, cos_n) - signed_direction(-cos_n, sin_n, sin_n, cos_n);
-        bent += projected_length * (along * slice_bent.x + towards_eye * slice_bent.y);
+        bent += slice_share * (along * slice_bent.x + towards_eye * slice_bent.y);
 #endif
     }
 

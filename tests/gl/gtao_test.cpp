@@ -110,8 +110,7 @@ class GtaoModes : public GLTest, public ::testing::WithParamInterface<int> {};
 // Floor bands at a distance from the crease against the exact value, with `tolerance` per band (the wall's own
 // texels are left out). Returns the largest difference.
 void expect_corner_near_exact(obscura_context* context, const obscura_settings& settings, double tolerance,
-                              const char* label) {
-    AoScene scene = corner_scene();
+                              const char* label, const AoScene& scene = corner_scene()) {
     std::vector<float> v = render_visibility(context, scene.input, settings);
     ASSERT_FALSE(v.empty());
     double previous = 0.0;
@@ -136,6 +135,25 @@ TEST_P(GtaoModes, CornerConvergesToTheExactObscurance) {
     settings.gtao.slices = 8;
     settings.gtao.steps = 24;
     expect_corner_near_exact(ctx(), settings, 0.04, mode_name(GetParam()));
+}
+
+// The same corner seen from a camera that looks up past it (100 degrees' field of view), so the corner lies far
+// below the view's axis: the slices, evenly spaced on screen, are not evenly spaced around the view direction there
+// (their density differs by up to 1.5x between the screen's axes), and each is weighted by its density so that the
+// estimator still converges. Measured, 8 x 24, horizon (bands at 0.1 / 0.3 / 0.5 m, exact 0.6908 / 0.8638 /
+// 0.9480): 0.6811 / 0.8674 / 0.9554; with every slice weighted alike 0.7309 / 0.8984 / 0.9678 (0.04 too bright).
+TEST_P(GtaoModes, OffAxisCornerConvergesToTheExactObscurance) {
+    obscura_settings settings = gtao_settings(GetParam());
+    settings.gtao.slices = 8;
+    settings.gtao.steps = 24;
+    Lens lens;
+    lens.fov_y_degrees = 100.0;
+    const AoScene scene = make_ao_scene(Projection::Perspective,
+                                        look_at(glm::dvec3(0.3, 1.3, 2.8), glm::dvec3(0.0, 1.8, 0.0)),
+                                        {plane(1, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0)),
+                                         plane(2, glm::dvec3(0.0), glm::dvec3(0.0, 0.0, 1.0))},
+                                        lens);
+    expect_corner_near_exact(ctx(), settings, 0.015, mode_name(GetParam()), scene);
 }
 
 // The High preset (3 x 3): fewer steps find lower horizons, so it is brighter than the exact value (measured: up to
@@ -256,16 +274,23 @@ std::vector<bool> beside_pole(const AoScene& scene) {
     });
 }
 
-// The wall beside the pole, seen head-on from 3 m: light
-// passes around and behind the pole, so the wall beside it darkens only slightly (the exact value). Horizon mode
-// takes the pole for an infinitely deep occluder and darkens the wall more; bitmask mode (0.3 m of thickness: the
-// pole is 6 cm deep, so this over-estimates it too, but it ends) comes closer.
+// The wall beside the pole, seen head-on from 3 m: light passes around and behind the pole, so the wall beside it
+// darkens only slightly (the exact value). Horizon mode takes the pole for an infinitely deep occluder and darkens
+// the wall far more; bitmask mode with a thickness of the pole's order (0.1 m; it is 6 cm deep) lets the rays behind
+// it through and comes within 0.01 of the exact value. Sampled densely (8 slices x 16 steps): a 6 cm pole is one or
+// two texels wide, which 3 steps per side mostly step over.
+// Measured (the default falloff, power 1): bitmask 0.9552, horizon 0.8372, exact 0.9522. Before each ray was weighed
+// by its own hit distance (the whole slab took its front's weight) the default 3x3 with 0.3 m came to 0.9542 by
+// two errors cancelling: 0.3 m of slab covers most of the 0.32 m gap, and the front's weight is too low.
 TEST_F(GLTest, GtaoThinPoleDarkensTheWallLessInBitmaskMode) {
     AoScene scene = pole_scene();
     std::vector<bool> mask = beside_pole(scene);
     double mean[3] = {0.0, 0.0, 0.0}, exact = 0.0;
     for (int mode : {kHorizon, kBitmask}) {
-        const obscura_settings settings = gtao_settings(mode);
+        obscura_settings settings = gtao_settings(mode);
+        settings.gtao.slices = 8;
+        settings.gtao.steps = 16;
+        settings.gtao.thickness = 0.1f;
         Stats s = stats(render_visibility(ctx(), scene.input, settings), mask);
         ASSERT_GT(s.count, 200);
         mean[mode] = s.mean;
@@ -281,10 +306,8 @@ TEST_F(GLTest, GtaoThinPoleDarkensTheWallLessInBitmaskMode) {
         std::printf("[ gtao %s ] wall beside the pole: %s\n", mode_name(mode), describe(s).c_str());
     }
     std::printf("[ gtao ] wall beside the pole, exact %.4f\n", exact);
-    // Measured with the default falloff: bitmask 0.9542, horizon 0.9424, exact 0.9522 (bitmask 0.9497 while a sector
-    // mask marked the top sector for every side + sample).
-    EXPECT_GT(mean[kBitmask], mean[kHorizon] + 0.01);
-    EXPECT_NEAR(mean[kBitmask], exact, 0.005);
+    EXPECT_GT(mean[kBitmask], mean[kHorizon] + 0.05);
+    EXPECT_NEAR(mean[kBitmask], exact, 0.01);
     EXPECT_LT(std::fabs(mean[kBitmask] - exact), std::fabs(mean[kHorizon] - exact));
 }
 
