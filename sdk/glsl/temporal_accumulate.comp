@@ -10,8 +10,9 @@
 //      ghosting where the AO changed under a surface that did not (a moving object's contact shadow);
 //   4. blend with weight 1 / age, age = min(history age + 1, max frames): a static pixel is the mean of its last
 //      frames, exponential once it reaches max_frames.
-// The history texel packs visibility, age (frames, 0: none) and the linear depth it was computed at (rgba16f);
-// with bent normals (OBSCURA_TEMPORAL_BENT_NORMALS) a second history holds visibility and the bent normal, rotated
+// The history texel (rg32f) holds the visibility and the linear depth it was computed at with the age (frames) in the
+// depth's 6 lowest mantissa bits: one gather reads both for the 2x2 block, and 32-bit floats need no conversion on
+// CPU rasterisers (a third cheaper there than rgba16f's three channels); with bent normals (OBSCURA_TEMPORAL_BENT_NORMALS) a second history holds visibility and the bent normal, rotated
 // from the previous view into this one.
 #define OBSCURA_TEMPORAL_PASS 1
 #include "common/shader_interface.h"
@@ -25,7 +26,7 @@ layout(binding = OBSCURA_UNIT_NORMALS) uniform sampler2D u_normals;
 layout(binding = OBSCURA_UNIT_SOURCE) uniform sampler2D u_source;
 layout(binding = OBSCURA_UNIT_HISTORY) uniform sampler2D u_history;
 layout(binding = OBSCURA_UNIT_MOTION) uniform sampler2D u_motion;
-layout(binding = OBSCURA_IMAGE_OUT0, rgba16f) writeonly uniform image2D u_next;
+layout(binding = OBSCURA_IMAGE_OUT0, rg32f) writeonly uniform image2D u_next;
 #if OBSCURA_TEMPORAL_BENT_NORMALS
 layout(binding = OBSCURA_UNIT_BENT_SOURCE) uniform sampler2D u_bent_source;
 layout(binding = OBSCURA_UNIT_BENT_HISTORY) uniform sampler2D u_bent_history;
@@ -34,6 +35,14 @@ layout(binding = OBSCURA_IMAGE_OUT1, rgba16f) writeonly uniform image2D u_bent_n
 
 mat4 columns(vec4 c[4]) { return mat4(c[0], c[1], c[2], c[3]); }
 
+// The history's second channel: the linear depth with its 6 lowest mantissa bits replaced by age - 1 (ages 1 to 64
+// frames; the depth keeps a relative precision of 8e-6). Sky keeps its depth as it is (and no age: it is sky).
+float pack_depth_age(float depth, float age) {
+    return uintBitsToFloat((floatBitsToUint(depth) & ~63u) | uint(age - 1.0));
+}
+vec4 unpacked_depth(vec4 stored) { return uintBitsToFloat(floatBitsToUint(stored) & ~uvec4(63u)); }
+vec4 unpacked_age(vec4 stored) { return vec4(floatBitsToUint(stored) & uvec4(63u)) + 1.0; }
+
 // Gathers return the 2x2 block at floor(uv * size - 0.5) as (i0, j1), (i1, j1), (i1, j0), (i0, j0) in x, y, z, w:
 // the block's texel (o.x, o.y), o in {0, 1}^2.
 float block_texel(vec4 gathered, ivec2 o) {
@@ -41,26 +50,20 @@ float block_texel(vec4 gathered, ivec2 o) {
 }
 
 // The history's visibility through a Catmull-Rom filter at fraction `f` past texel `base`: the 4x4 kernel less its
-// corners (renormalised), from the 2x2 block at base (`centre`, gathered already) and the four blocks beside it, one
-// gather each (instead of five bilinear reads of all four channels: the filter's taps are the same). A bilinear read
-// of a moving history blurs it a little every frame: at 8 frames about a texel, which smeared contact shadows; the
-// cubic keeps them.
-float catmull_rom_history(ivec2 base, vec2 f, vec4 centre) {
-    vec2 texel = 1.0 / vec2(depth_size.xy);
-    vec2 corner = vec2(base);  // the centre block's gather position is corner + 1
-    vec4 left = textureGather(u_history, (corner + vec2(0.0, 1.0)) * texel, 0);   // x in [base - 1, base]
-    vec4 right = textureGather(u_history, (corner + vec2(2.0, 1.0)) * texel, 0);  // x in [base + 1, base + 2]
-    vec4 below = textureGather(u_history, (corner + vec2(1.0, 0.0)) * texel, 0);  // y in [base - 1, base]
-    vec4 above = textureGather(u_history, (corner + vec2(1.0, 2.0)) * texel, 0);  // y in [base + 1, base + 2]
+// corners (renormalised), from the four 2x2 blocks of the 4x4 around base (quadrants[i]: the block whose lower-left
+// texel is base - 1 + 2 (i & 1, i >> 1)), gathered already for the bilinear read. A bilinear read of a moving history
+// blurs it a little every frame: at 8 frames about a texel, which smeared contact shadows; the cubic keeps them.
+float catmull_rom_history(vec2 f, vec4 quadrants[4]) {
     vec2 w0 = f * (-0.5 + f * (1.0 - 0.5 * f));
     vec2 w1 = 1.0 + f * f * (-2.5 + 1.5 * f);
     vec2 w2 = f * (0.5 + f * (2.0 - 1.5 * f));
     vec2 w3 = f * f * (-0.5 + 0.5 * f);
-    // Rows base and base + 1: all four columns; rows base - 1 and base + 2: the middle two.
-    float row0 = w0.x * left.w + w1.x * centre.w + w2.x * centre.z + w3.x * right.z;
-    float row1 = w0.x * left.x + w1.x * centre.x + w2.x * centre.y + w3.x * right.y;
-    float sum = w1.y * row0 + w2.y * row1 + w0.y * (w1.x * below.w + w2.x * below.z) +
-                w3.y * (w1.x * above.x + w2.x * above.y);
+    // Rows base and base + 1: all four columns; rows base - 1 and base + 2: the middle two. Gather order per block:
+    // x (0, 1), y (1, 1), z (1, 0), w (0, 0).
+    float row0 = w0.x * quadrants[0].x + w1.x * quadrants[0].y + w2.x * quadrants[1].x + w3.x * quadrants[1].y;
+    float row1 = w0.x * quadrants[2].w + w1.x * quadrants[2].z + w2.x * quadrants[3].w + w3.x * quadrants[3].z;
+    float sum = w1.y * row0 + w2.y * row1 + w0.y * (w1.x * quadrants[0].z + w2.x * quadrants[1].w) +
+                w3.y * (w1.x * quadrants[2].y + w2.x * quadrants[3].x);
     float weight = (w0.y + w3.y) * (w1.x + w2.x) + (w1.y + w2.y) * (w0.x + w1.x + w2.x + w3.x);
     return sum / weight;
 }
@@ -69,39 +72,41 @@ void main() {
     ivec2 p = work_rect.xy + ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(gl_GlobalInvocationID.xy, uvec2(work_rect.zw)))) return;
     float depth = texelFetch(u_linear_depth, p, 0).r;
-    float current = texelFetch(u_source, p, 0).r;
+    // 3. (first, since it reads this frame's value too) The neighbourhood's mean and deviation (this frame): two
+    // gathers, at p + 0.25 and p + 1.25 texels, whose 2x2 footprints [p-1, p]^2 and [p, p+1]^2 make the 3x3 window
+    // less its corners (+1, -1) and (-1, +1), the pixel itself in both. Gathers halve the texture reads of the 3x3's
+    // nine fetches, and the pixel's own value comes with them.
+    vec2 texel = 1.0 / vec2(depth_size.xy);
+    vec4 g00 = textureGather(u_source, (vec2(p) + 0.25) * texel, 0);
+    vec4 g11 = textureGather(u_source, (vec2(p) + 1.25) * texel, 0);
+    float current = g11.w;
 #if OBSCURA_TEMPORAL_BENT_NORMALS
     vec3 current_bent = texelFetch(u_bent_source, p, 0).gba;
 #endif
-    if (obscura_is_sky(depth)) {  // sky keeps no history
-        imageStore(u_next, p, vec4(current, 0.0, depth, 0.0));
+    // Sky keeps no history. GPUs store it and leave; CPU rasterisers, which run every lane through both sides, choose
+    // it at the one store at the end (a store is among the pass's dearest steps there: 1.3 ms of 24 at 720p).
+    bool sky = obscura_is_sky(depth);
+#if !OBSCURA_CPU_RASTERISER
+    if (sky) {
+        imageStore(u_next, p, vec4(current, depth, 0.0, 0.0));
 #if OBSCURA_TEMPORAL_BENT_NORMALS
         imageStore(u_bent_next, p, vec4(current, current_bent));
 #endif
         return;
     }
-
-    // 3. The neighbourhood's mean and deviation (this frame): two gathers, at p + 0.25 and p + 1.25 texels, whose
-    // 2x2 footprints [p-1, p]^2 and [p, p+1]^2 make the 3x3 window less its corners (+1, -1) and (-1, +1), centre
-    // once. Gathers halve the texture reads of the 3x3's nine fetches.
-    // Only the output rectangle holds this frame's AO: at its edges the window moves inwards to stay inside it.
-    ivec2 rect_last = output_rect.xy + output_rect.zw - 1;
-    ivec2 window = clamp(p, min(output_rect.xy + 1, rect_last), max(rect_last - 1, output_rect.xy));
-    vec2 texel = 1.0 / vec2(depth_size.xy);
-    vec4 g00 = textureGather(u_source, (vec2(window) + 0.25) * texel, 0);
-    vec4 g11 = textureGather(u_source, (vec2(window) + 1.25) * texel, 0);
-    // A rectangle under 3 texels on an axis leaves texels of the footprints outside it (never written: any value,
-    // NaN included): those count as the pixel's own value, chosen by selection so that nothing of theirs is left.
+#endif
+    // Only the output rectangle holds this frame's AO: the footprints' texels outside it (never written: any value,
+    // NaN included) count as the pixel's own value, chosen by selection so that nothing of theirs is left.
     ivec2 rect_end = output_rect.xy + output_rect.zw;
-    ivec2 before = window - 1, after = window + 1;
-    bvec4 inside00 = bvec4(all(greaterThanEqual(ivec2(before.x, window.y), output_rect.xy)),  // x: (-1, 0)
-                           true,                                                                 // y: (0, 0)
-                           all(greaterThanEqual(ivec2(window.x, before.y), output_rect.xy)),  // z: (0, -1)
-                           all(greaterThanEqual(before, output_rect.xy)));                      // w: (-1, -1)
-    bvec4 inside11 = bvec4(all(lessThan(ivec2(window.x, after.y), rect_end)),                   // x: (0, 1)
-                           all(lessThan(after, rect_end)),                                      // y: (1, 1)
-                           all(lessThan(ivec2(after.x, window.y), rect_end)),                   // z: (1, 0)
-                           true);                                                                // w: (0, 0)
+    ivec2 before = p - 1, after = p + 1;
+    bvec4 inside00 = bvec4(before.x >= output_rect.x,                                     // x: (-1, 0)
+                           true,                                                         // y: (0, 0)
+                           before.y >= output_rect.y,                                     // z: (0, -1)
+                           all(greaterThanEqual(before, output_rect.xy)));              // w: (-1, -1)
+    bvec4 inside11 = bvec4(after.y < rect_end.y,                                          // x: (0, 1)
+                           all(lessThan(after, rect_end)),                              // y: (1, 1)
+                           after.x < rect_end.x,                                          // z: (1, 0)
+                           true);                                                        // w: (0, 0)
     g00 = mix(vec4(current), g00, inside00);
     g11 = mix(vec4(current), g11, inside11);
     vec3 c = vec3(g11.z, g11.x, g11.y);  // (1, 0), (0, 1), (1, 1); g11.w is the centre, g00.y again
@@ -112,7 +117,8 @@ void main() {
 
     // 1. Where the pixel's point was.
     vec3 position = obscura_view_position(p, depth);
-    vec3 normal = obscura_decode_normal(texelFetch(u_normals, p, 0).xy);
+    // The plane test compares squares (below), so the normal needs no normalising.
+    vec3 normal = obscura_decode_normal_direction(texelFetch(u_normals, p, 0).xy);
 #if OBSCURA_TEMPORAL_REPROJECT == OBSCURA_TEMPORAL_REPROJECT_IDENTITY
     // A static camera (the same view-projection: its own variant, since CPU rasterisers run every lane through
     // every branch) reads its own texel: no matrix work, one history texel, no cubic.
@@ -123,15 +129,18 @@ void main() {
     mat4 reprojection = columns(temporal.reprojection);
     mat3 rotation = mat3(reprojection);  // rigid up to the projections' jitter
     vec4 previous_h = reprojection * vec4(position, 1.0);
-    vec3 previous_position = previous_h.xyz / previous_h.w;
-    vec3 previous_normal = normalize(rotation * normal);
+    vec3 previous_position = previous_h.xyz * (1.0 / previous_h.w);
+    vec3 previous_normal = rotation * normal;
     vec2 previous_pixel;
 #if OBSCURA_TEMPORAL_REPROJECT == OBSCURA_TEMPORAL_REPROJECT_MOTION
     // At reduced resolution the host's vector is read at the host's texel (p << k) and scaled to reduced texels.
     previous_pixel = vec2(p) + 0.5 + texelFetch(u_motion, p << resolution.x, 0).xy * temporal.motion.xy;
 #else
-    vec4 clip = columns(temporal.previous_clip) * vec4(position, 1.0);
-    previous_pixel = (clip.xy / clip.w * 0.5 + 0.5) * vec2(depth_size.xy);
+    // The previous frame's clip position, previous_clip * position = projection * previous_h: the projection's
+    // nonzero terms (m0, m5, m8, m9, m12, m13; w from m11, m15) instead of a 4x4 product.
+    vec2 clip_xy = proj_scale.xy * previous_h.xy + proj_scale.zw * previous_h.z + proj_offset.xy * previous_h.w;
+    float clip_w = proj_depth.z * previous_h.z + proj_depth.w * previous_h.w;
+    previous_pixel = (clip_xy * (0.5 / clip_w) + 0.5) * vec2(depth_size.xy);
 #endif
     const int kTaps = 4;
 #endif
@@ -143,12 +152,18 @@ void main() {
     vec2 t = f - vec2(base);
     vec2 cubic_fraction = t;
 #if OBSCURA_TEMPORAL_REPROJECT == OBSCURA_TEMPORAL_REPROJECT_IDENTITY
-    vec4 own_texel = texelFetch(u_history, base, 0);  // the one tap: a fetch reads its three channels at once
+    vec2 own_packed = texelFetch(u_history, base, 0).xy;  // the one tap: a fetch reads both channels at once
+    vec3 own_texel = vec3(own_packed.x, unpacked_age(own_packed.yyyy).x, unpacked_depth(own_packed.yyyy).x);
 #else
-    vec2 block_at = (vec2(base) + 1.0) / vec2(depth_size.xy);
-    vec4 block_visibility = textureGather(u_history, block_at, 0);
-    vec4 block_age = textureGather(u_history, block_at, 1);
-    vec4 block_depth = textureGather(u_history, block_at, 2);
+    vec2 block_at = (vec2(base) + 1.0) * texel;
+    // The visibility of the 4x4 around base in four gathers: the bilinear block in their middle, the cubic's ring.
+    vec4 quadrants[4];
+    for (int i = 0; i < 4; ++i) {
+        quadrants[i] = textureGather(u_history, (vec2(base) + vec2(2 * (i & 1), 2 * (i >> 1))) * texel, 0);
+    }
+    vec4 block_visibility = vec4(quadrants[2].z, quadrants[3].w, quadrants[1].x, quadrants[0].y);
+    vec4 block_packed = textureGather(u_history, block_at, 1);
+    vec4 block_age = unpacked_age(block_packed), block_depth = unpacked_depth(block_packed);
 #endif
     const float kSnap = 1.0 / 256.0;
     bvec2 snap_low = lessThan(t, vec2(kSnap)), snap_high = greaterThan(t, vec2(1.0 - kSnap));
@@ -159,40 +174,67 @@ void main() {
 #if OBSCURA_TEMPORAL_BENT_NORMALS
     vec3 history_bent = vec3(0.0);
 #endif
-    float tolerance = temporal.params.z * length(previous_position);
+    // A texel is on the plane when |(X - P) . n| <= tolerance |P| |n|, compared squared: no square roots.
+    float limit_sq = temporal.params.z * temporal.params.z * dot(previous_position, previous_position) *
+                     dot(previous_normal, previous_normal);
     int valid_taps = 0;
-    if (temporal.config.x != 0) {
-        for (int i = 0; i < kTaps; ++i) {
-            ivec2 o = ivec2(i & 1, i >> 1);
-            float w = (o.x == 1 ? t.x : 1.0 - t.x) * (o.y == 1 ? t.y : 1.0 - t.y);
-            ivec2 q = base + o;
-            // Only the output rectangle was written (a change of it starts a new history).
-            if (w <= 0.0 || any(lessThan(q, output_rect.xy)) || any(greaterThanEqual(q, output_rect.xy + output_rect.zw))) continue;
 #if OBSCURA_TEMPORAL_REPROJECT == OBSCURA_TEMPORAL_REPROJECT_IDENTITY
-            vec3 h = own_texel.xyz;
-#else
-            vec3 h = vec3(block_texel(block_visibility, o), block_texel(block_age, o), block_texel(block_depth, o));
-#endif
-            if (!(h.y >= 1.0) || obscura_is_sky(h.z)) continue;  // no history there
-            float plane_distance = abs(dot(obscura_view_position(q, h.z) - previous_position, previous_normal));
-            if (!(plane_distance <= tolerance)) continue;  // another surface (disoccluded or moved), or not finite
-            history += w * h.x;
-            age += w * h.y;
-            weight_sum += w;
-            ++valid_taps;
-            history_low = min(history_low, h.x);
-            history_high = max(history_high, h.x);
+    // The one tap: the pixel's own texel (always inside the output rectangle).
+    if (temporal.config.x != 0 && own_texel.y >= 1.0 && !obscura_is_sky(own_texel.z)) {
+        float plane_distance = dot(obscura_view_position(p, own_texel.z) - previous_position, previous_normal);
+        if (plane_distance * plane_distance <= limit_sq) {  // another surface (moved), or not finite, otherwise
+            history = own_texel.x;
+            age = own_texel.y;
+            weight_sum = 1.0;
+            valid_taps = 1;
+            history_low = history_high = own_texel.x;
 #if OBSCURA_TEMPORAL_BENT_NORMALS
-            history_bent += w * texelFetch(u_bent_history, q, 0).gba;
+            history_bent = texelFetch(u_bent_history, p, 0).gba;
 #endif
         }
     }
+#else
+    // The four taps as the lanes of vec4s, in the gathers' order: texels (0, 1), (1, 1), (1, 0), (0, 0) of the block.
+    const vec4 kTapX = vec4(0.0, 1.0, 1.0, 0.0), kTapY = vec4(1.0, 1.0, 0.0, 0.0);
+    vec4 tap_weight = mix(vec4(1.0 - t.x), vec4(t.x), kTapX) * mix(vec4(1.0 - t.y), vec4(t.y), kTapY);
+    // Only the output rectangle was written (a change of it starts a new history).
+    bvec2 low_inside = greaterThanEqual(base, output_rect.xy), high_inside = lessThan(base + 1, rect_end);
+    bvec4 inside = bvec4(low_inside.x && high_inside.y, high_inside.x && high_inside.y, high_inside.x && low_inside.y,
+                         low_inside.x && low_inside.y);
+    // On the point's plane as the previous frame saw it: each texel's stored point within the tolerance of it.
+    vec4 tap_x, tap_y;
+    obscura_view_position_at4(vec4(base.x) + 0.5 + kTapX, vec4(base.y) + 0.5 + kTapY, block_depth, tap_x, tap_y);
+    vec3 d = previous_normal;
+    vec4 plane_distance = ((tap_x - previous_position.x) * d.x + (tap_y - previous_position.y) * d.y +
+                              (-block_depth - previous_position.z) * d.z);
+    bvec4 has_history = bvec4(vec4(greaterThanEqual(block_age, vec4(1.0))) * vec4(lessThan(block_depth, vec4(OBSCURA_SKY_THRESHOLD))) *
+                              vec4(lessThanEqual(plane_distance * plane_distance, vec4(limit_sq))) * vec4(inside) *
+                              vec4(greaterThan(tap_weight, vec4(0.0))));
+    if (temporal.config.x == 0) has_history = bvec4(false);
+    // Selected, not multiplied: a texel outside the rectangle may hold anything, NaN included.
+    vec4 used = mix(vec4(0.0), tap_weight, has_history);
+    weight_sum = dot(used, vec4(1.0));
+    history = dot(used, mix(vec4(0.0), block_visibility, has_history));
+    age = dot(used, mix(vec4(0.0), block_age, has_history));
+    valid_taps = int(dot(vec4(has_history), vec4(1.0)));
+    vec4 low = mix(vec4(1.0), block_visibility, has_history), high = mix(vec4(0.0), block_visibility, has_history);
+    history_low = min(min(low.x, low.y), min(low.z, low.w));
+    history_high = max(max(high.x, high.y), max(high.z, high.w));
+#if OBSCURA_TEMPORAL_BENT_NORMALS
+    for (int i = 0; i < 4; ++i) {
+        ivec2 q = base + ivec2(kTapX[i], kTapY[i]);
+        if (has_history[i]) history_bent += used[i] * texelFetch(u_bent_history, q, 0).gba;
+    }
+#endif
+#endif
     float result = current, new_age = 1.0;
 #if OBSCURA_TEMPORAL_BENT_NORMALS
     vec3 result_bent = current_bent;
 #endif
     // Less than a texel's worth of support (a quarter of the bilinear weight): start anew.
     if (weight_sum >= 0.25) {
+        float inverse_weight = 1.0 / weight_sum;
+        history *= inverse_weight;
         // Between texels, with all four on the pixel's surface: the cubic read instead of the bilinear one (its
         // wider footprint can reach another surface at an edge; the clamp below bounds what that brings).
         // The cubic's 4x4 texels must lie in the output rectangle, the only part of the history that was written.
@@ -202,14 +244,13 @@ void main() {
         // Held within the four texels' range: the cubic's outer ring may lie on another surface (a silhouette one
         // texel away), and its negative lobes overshoot at steps.
         if (valid_taps == 4 && cubic_inside) {
-            history = clamp(catmull_rom_history(base, cubic_fraction, block_visibility), history_low, history_high) *
-                      weight_sum;
+            history = clamp(catmull_rom_history(cubic_fraction, quadrants), history_low, history_high);
         }
 #endif
         // The box holds the pixel's own value too: an image equal to its history is kept as it is.
         float spread = temporal.params.y * deviation;
-        history = clamp(history / weight_sum, min(mean - spread, current), max(mean + spread, current));
-        new_age = min(floor(age / weight_sum + 0.5) + 1.0, temporal.params.x);
+        history = clamp(history, min(mean - spread, current), max(mean + spread, current));
+        new_age = min(floor(age * inverse_weight + 0.5) + 1.0, temporal.params.x);
         float alpha = 1.0 / new_age;
         result = mix(history, current, alpha);
 #if OBSCURA_TEMPORAL_BENT_NORMALS
@@ -223,8 +264,8 @@ void main() {
         if (previous_length > 0.0) result_bent = normalize(mix(previous_bent / previous_length, current_bent, alpha));
 #endif
     }
-    imageStore(u_next, p, vec4(result, new_age, depth, 0.0));
+    imageStore(u_next, p, sky ? vec4(current, depth, 0.0, 0.0) : vec4(result, pack_depth_age(depth, new_age), 0.0, 0.0));
 #if OBSCURA_TEMPORAL_BENT_NORMALS
-    imageStore(u_bent_next, p, vec4(result, result_bent));
+    imageStore(u_bent_next, p, sky ? vec4(current, current_bent) : vec4(result, result_bent));
 #endif
 }

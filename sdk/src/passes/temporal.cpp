@@ -10,8 +10,8 @@ Error TemporalHistory::prepare(const PassEnv& env, const FrameInput& input, bool
     const bool resized = ao_[0].width() != width || ao_[0].height() != height;
     if (resized || !ao_[0]) {
         release();
-        ao_[0] = env.create_texture(GL_RGBA16F, width, height);
-        ao_[1] = env.create_texture(GL_RGBA16F, width, height);
+        ao_[0] = env.create_texture(GL_RG32F, width, height);
+        ao_[1] = env.create_texture(GL_RG32F, width, height);
         if (!ao_[0] || !ao_[1]) {
             release();
             return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating the %dx%d temporal history failed", width, height);
@@ -51,9 +51,10 @@ void TemporalHistory::release() {
 Error TemporalPass::prepare(const PassEnv& env, bool bent_normals, int reprojection) {
     gl::Object& program = programs_[bent_normals ? 1 : 0][reprojection];
     if (program) return Error();
-    char defines[96];
-    std::snprintf(defines, sizeof defines, "OBSCURA_TEMPORAL_BENT_NORMALS %d\nOBSCURA_TEMPORAL_REPROJECT %d\n",
-                  bent_normals ? 1 : 0, reprojection);
+    char defines[128];
+    std::snprintf(defines, sizeof defines,
+                  "OBSCURA_TEMPORAL_BENT_NORMALS %d\nOBSCURA_TEMPORAL_REPROJECT %d\nOBSCURA_CPU_RASTERISER %d\n",
+                  bent_normals ? 1 : 0, reprojection, env.cpu_renderer ? 1 : 0);
     return env.build("temporal_accumulate.comp", defines, &program);
 }
 
@@ -94,7 +95,7 @@ void TemporalPass::run(const PassEnv& env, const UniformRange& frame, const Unif
     // Without motion vectors the sampler still needs a complete texture: the history stands in (never read).
     env.bind_texture(OBSCURA_UNIT_MOTION, GL_TEXTURE_2D,
                      input.motion_vector_texture ? input.motion_vector_texture : history.previous().name());
-    gl.BindImageTexture(OBSCURA_IMAGE_OUT0, history.next().name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    gl.BindImageTexture(OBSCURA_IMAGE_OUT0, history.next().name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
     if (bent) {
         env.bind_texture(OBSCURA_UNIT_BENT_SOURCE, GL_TEXTURE_2D, bent_source->name());
         env.bind_texture(OBSCURA_UNIT_BENT_HISTORY, GL_TEXTURE_2D, history.previous_bent().name());
