@@ -23,11 +23,11 @@ const obscura_setting_info kSharedSettings[] = {
     setting_row("temporal.clamp", OBSCURA_SETTING_FLOAT, 3.0, 0.25, 64.0, "sigma",
      "the history is held within this frame's 7-texel mean +- this many standard deviations (bounds ghosting)",
      OBSCURA_SETTING_OFFSET(temporal, clamp)),
-    setting_row("temporal.plane_tolerance", OBSCURA_SETTING_FLOAT, 0.02, 1e-4, 1.0, "",
+    setting_row("temporal.plane_tolerance", OBSCURA_SETTING_FLOAT, 0.01, 1e-4, 1.0, "",
      "a history texel farther from the pixel's tangent plane than this fraction of its distance is dropped",
      OBSCURA_SETTING_OFFSET(temporal, plane_tolerance)),
-    // Reduced resolution: the upsample tolerance is the temporal pass's plane tolerance, the SDK's one scale of
-    // "the same surface" (docs/algorithms.md, "Reduced resolution").
+    // Reduced resolution: the upsample's tolerance is a soft weight (1/e at one tolerance) where the temporal pass's
+    // plane tolerance is a hard test, so their defaults differ (0.02 and 0.01; docs/algorithms.md).
     enum_row("resolution.scale", 1, 1,
              "the size the method runs at: full, half or quarter of the depth texture on each axis; a depth- and "
              "plane-aware upsample writes the full-size result",

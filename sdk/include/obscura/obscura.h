@@ -489,7 +489,7 @@ typedef struct obscura_temporal_settings {
     float clamp;            /* neighbourhood clamp: the history is held within mean +- clamp * standard deviation of
                                the current frame's 7-texel neighbourhood, [0.25, 64]. Default 3 */
     float plane_tolerance;  /* disocclusion: a history texel farther from the pixel's tangent plane than this fraction
-                               of its distance is dropped, [1e-4, 1]. Default 0.02 */
+                               of its distance is dropped, [1e-4, 1]. Default 0.01 (0.02 before 0.5) */
 } obscura_temporal_settings;
 
 /* REDUCED RESOLUTION (0.5), for every method: the method (and the temporal pass) runs on a grid of 1/2 or 1/4 of the
