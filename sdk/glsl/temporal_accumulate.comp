@@ -10,10 +10,10 @@
 //      ghosting where the AO changed under a surface that did not (a moving object's contact shadow);
 //   4. blend with weight 1 / age, age = min(history age + 1, max frames): a static pixel is the mean of its last
 //      frames, exponential once it reaches max_frames.
-// The history texel (rg32f) holds the visibility and the linear depth it was computed at with the age (frames) in the
-// depth's 6 lowest mantissa bits: one gather reads both for the 2x2 block, and 32-bit floats need no conversion on
-// CPU rasterisers (a third cheaper there than rgba16f's three channels); with bent normals (OBSCURA_TEMPORAL_BENT_NORMALS) a second history holds visibility and the bent normal, rotated
-// from the previous view into this one.
+// The history texel (rg32f) holds the visibility and the linear depth it was computed at, with the age (frames) in
+// the depth's 6 lowest mantissa bits: one gather reads age and depth for the 2x2 block, and 32-bit floats need no
+// conversion on CPU rasterisers. With bent normals (OBSCURA_TEMPORAL_BENT_NORMALS) a second history (rgba16f) holds
+// visibility and the bent normal, rotated from the previous view into this one.
 #define OBSCURA_TEMPORAL_PASS 1
 #include "common/shader_interface.h"
 #include "common/depth.glsl"
@@ -43,11 +43,8 @@ float pack_depth_age(float depth, float age) {
 vec4 unpacked_depth(vec4 stored) { return uintBitsToFloat(floatBitsToUint(stored) & ~uvec4(63u)); }
 vec4 unpacked_age(vec4 stored) { return vec4(floatBitsToUint(stored) & uvec4(63u)) + 1.0; }
 
-// Gathers return the 2x2 block at floor(uv * size - 0.5) as (i0, j1), (i1, j1), (i1, j0), (i0, j0) in x, y, z, w:
-// the block's texel (o.x, o.y), o in {0, 1}^2.
-float block_texel(vec4 gathered, ivec2 o) {
-    return o.y == 0 ? (o.x == 0 ? gathered.w : gathered.z) : (o.x == 0 ? gathered.x : gathered.y);
-}
+// Lane-wise a && b (GLSL has no && on bvecs).
+bvec4 both(bvec4 a, bvec4 b) { return bvec4(uvec4(a) & uvec4(b)); }
 
 // The history's visibility through a Catmull-Rom filter at fraction `f` past texel `base`: the 4x4 kernel less its
 // corners (renormalised), from the four 2x2 blocks of the 4x4 around base (quadrants[i]: the block whose lower-left
@@ -124,7 +121,6 @@ void main() {
     // every branch) reads its own texel: no matrix work, one history texel, no cubic.
     vec3 previous_position = position, previous_normal = normal;
     vec2 previous_pixel = vec2(p) + 0.5;
-    const int kTaps = 1;
 #else
     mat4 reprojection = columns(temporal.reprojection);
     mat3 rotation = mat3(reprojection);  // rigid up to the projections' jitter
@@ -136,13 +132,13 @@ void main() {
     // At reduced resolution the host's vector is read at the host's texel (p << k) and scaled to reduced texels.
     previous_pixel = vec2(p) + 0.5 + texelFetch(u_motion, p << resolution.x, 0).xy * temporal.motion.xy;
 #else
-    // The previous frame's clip position, previous_clip * position = projection * previous_h: the projection's
-    // nonzero terms (m0, m5, m8, m9, m12, m13; w from m11, m15) instead of a 4x4 product.
+    // The previous frame's clip position: the projection (assumed unchanged between the frames, jitter aside)
+    // applied to the point in the previous view, through its nonzero terms (m0, m5, m8, m9, m12, m13; w from m11,
+    // m15) rather than a 4x4 product.
     vec2 clip_xy = proj_scale.xy * previous_h.xy + proj_scale.zw * previous_h.z + proj_offset.xy * previous_h.w;
     float clip_w = proj_depth.z * previous_h.z + proj_depth.w * previous_h.w;
     previous_pixel = (clip_xy * (0.5 / clip_w) + 0.5) * vec2(depth_size.xy);
 #endif
-    const int kTaps = 4;
 #endif
 
     // 2. The history's texels that lie on the point's plane, bilinearly weighted: the 2x2 block at base, gathered
@@ -180,7 +176,7 @@ void main() {
     int valid_taps = 0;
 #if OBSCURA_TEMPORAL_REPROJECT == OBSCURA_TEMPORAL_REPROJECT_IDENTITY
     // The one tap: the pixel's own texel (always inside the output rectangle).
-    if (temporal.config.x != 0 && own_texel.y >= 1.0 && !obscura_is_sky(own_texel.z)) {
+    if (temporal.config.x != 0 && !obscura_is_sky(own_texel.z)) {  // not sky: a history (age >= 1)
         float plane_distance = dot(obscura_view_position(p, own_texel.z) - previous_position, previous_normal);
         if (plane_distance * plane_distance <= limit_sq) {  // another surface (moved), or not finite, otherwise
             history = own_texel.x;
@@ -207,9 +203,12 @@ void main() {
     vec3 d = previous_normal;
     vec4 plane_distance = ((tap_x - previous_position.x) * d.x + (tap_y - previous_position.y) * d.y +
                               (-block_depth - previous_position.z) * d.z);
-    bvec4 has_history = bvec4(vec4(greaterThanEqual(block_age, vec4(1.0))) * vec4(lessThan(block_depth, vec4(OBSCURA_SKY_THRESHOLD))) *
-                              vec4(lessThanEqual(plane_distance * plane_distance, vec4(limit_sq))) * vec4(inside) *
-                              vec4(greaterThan(tap_weight, vec4(0.0))));
+    // Gathers return the 2x2 block at floor(uv * size - 0.5) as (0, 1), (1, 1), (1, 0), (0, 0) in x, y, z, w. A texel
+    // counts when it has a history (not sky: the age is then >= 1), lies on the plane, inside the rectangle, and has
+    // bilinear weight; NaN fails every comparison.
+    bvec4 has_history = both(both(lessThan(block_depth, vec4(OBSCURA_SKY_THRESHOLD)), inside),
+                             both(lessThanEqual(plane_distance * plane_distance, vec4(limit_sq)),
+                                  greaterThan(tap_weight, vec4(0.0))));
     if (temporal.config.x == 0) has_history = bvec4(false);
     // Selected, not multiplied: a texel outside the rectangle may hold anything, NaN included.
     vec4 used = mix(vec4(0.0), tap_weight, has_history);

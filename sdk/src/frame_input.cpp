@@ -125,9 +125,7 @@ Error check_temporal_fields(const obscura_input& input, int32_t layout, FrameInp
     frame->has_matrices = true;
     frame->identity_reprojection = std::memcmp(input.view_projection, input.previous_view_projection,
                                                sizeof input.view_projection) == 0;
-    const glm::dmat4 previous_clip = previous * glm::inverse(view_projection) * projection;
-    const glm::dmat4 reprojection = glm::inverse(projection) * previous_clip;
-    store_matrix(frame->identity_reprojection ? projection : previous_clip, frame->previous_clip);
+    const glm::dmat4 reprojection = glm::inverse(projection) * previous * glm::inverse(view_projection) * projection;
     store_matrix(frame->identity_reprojection ? glm::dmat4(1.0) : reprojection, frame->reprojection);
     return Error();
 }

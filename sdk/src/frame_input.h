@@ -30,12 +30,11 @@ struct FrameInput {
     uint32_t frame_index = 0;
     bool reset_history = false;
     // The matrices were given: `reprojection` maps this frame's view space (the SDK's: ProjectionInfo) to the
-    // previous frame's (homogeneous; the projection assumed unchanged), `previous_clip` to the previous clip space;
-    // both column-major. `identity`: the two view-projections are equal (a static camera), the maps exactly 1.
+    // previous frame's (homogeneous; the projection assumed unchanged), column-major; the previous clip position is
+    // the projection applied to that. `identity`: the two view-projections are equal (a static camera), the map 1.
     bool has_matrices = false;
     bool identity_reprojection = false;
     float reprojection[16] = {};
-    float previous_clip[16] = {};
     GLuint motion_vector_texture = 0;
     int motion_units = OBSCURA_MOTION_PIXELS;
     // Reduced resolution (reduced_resolution.h): this frame's texel t is the host's texel t << resolution_shift in a

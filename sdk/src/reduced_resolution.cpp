@@ -42,12 +42,10 @@ FrameInput reduced_frame_input(const FrameInput& host, int shift) {
     frame.output_rect.y = y0;
     frame.output_rect.width = (x1 < frame.width ? x1 : frame.width - 1) - x0 + 1;
     frame.output_rect.height = (y1 < frame.height ? y1 : frame.height - 1) - y0 + 1;
+    // The temporal pass takes the previous clip position as this projection applied to the reprojected point, so the
+    // remapped projection serves both frames (the reprojection maps view spaces and needs no remapping).
     remap_clip_row(frame.projection.m, 0, host.width, frame.width, shift);
     remap_clip_row(frame.projection.m, 1, host.height, frame.height, shift);
-    if (host.has_matrices) {
-        remap_clip_row(frame.previous_clip, 0, host.width, frame.width, shift);
-        remap_clip_row(frame.previous_clip, 1, host.height, frame.height, shift);
-    }
     return frame;
 }
 

@@ -291,7 +291,6 @@ OBSCURA_PASS_BLOCK_END(GtaoDenoiseConstants, gtao_denoise)
 #define OBSCURA_TEMPORAL_REPROJECT_IDENTITY 2 // a static camera: the same texel
 OBSCURA_PASS_BLOCK_BEGIN(TemporalConstants)
   OBSCURA_VEC4(reprojection[4]);  // columns: this frame's view space -> the previous frame's (homogeneous)
-  OBSCURA_VEC4(previous_clip[4]); // columns: this frame's view space -> the previous frame's clip space
   OBSCURA_VEC4(params);    // max frames, clamp (deviations), plane tolerance, unused
   OBSCURA_VEC4(motion);    // motion vector -> texels: scale x, scale y (1 for pixels, size / 2 for NDC), unused x2
   OBSCURA_IVEC4(config);   // history valid (0: start anew), unused x3

@@ -64,7 +64,6 @@ TemporalConstants TemporalPass::constants(const obscura_temporal_settings& setti
     for (int column = 0; column < 4; ++column) {
         for (int row = 0; row < 4; ++row) {
             c.reprojection[column][row] = input.reprojection[column * 4 + row];
-            c.previous_clip[column][row] = input.previous_clip[column * 4 + row];
         }
     }
     if (!input.has_matrices) {  // motion vectors alone: the point is taken as static in view space
