@@ -229,9 +229,11 @@ INSTANTIATE_TEST_SUITE_P(Modes, GtaoModes, ::testing::Values(kHorizon, kBitmask)
 
 constexpr double kPoleHalf = 0.03, kPoleFront = 0.38, kPoleBack = 0.32;
 
-// The exact visibility of the wall point (x, y, 0) (normal +z) with the pole as the only occluder: cosine-weighted
-// directions, the slab test against the pole's box, hits weighed with the falloff the settings are compared with.
-double exact_wall_visibility(const obscura_settings& settings, double x, double y) {
+// The exact visibility of the wall point (x, y, 0) (normal +z) with the pole (spanning z in [back, front]) as the
+// only occluder: cosine-weighted directions, the slab test against the pole's box, hits weighed with the falloff
+// the settings are compared with.
+double exact_wall_visibility(const obscura_settings& settings, double x, double y, double back = kPoleBack,
+                             double front = kPoleFront) {
     constexpr int kN = 128;
     std::vector<float> distances;
     for (int i = 0; i < kN; ++i) {
@@ -239,7 +241,7 @@ double exact_wall_visibility(const obscura_settings& settings, double x, double 
             const double u1 = (i + 0.5) / kN, u2 = (j + 0.5) / kN;
             const double r = std::sqrt(u1), phi = 2.0 * 3.14159265358979323846 * u2;
             const glm::dvec3 d(r * std::cos(phi), r * std::sin(phi), std::sqrt(1.0 - u1));
-            const glm::dvec3 o(x, y, 0.0), lo(-kPoleHalf, -10.0, kPoleBack), hi(kPoleHalf, 10.0, kPoleFront);
+            const glm::dvec3 o(x, y, 0.0), lo(-kPoleHalf, -10.0, back), hi(kPoleHalf, 10.0, front);
             double t0 = 0.0, t1 = 1e30;
             for (int a = 0; a < 3; ++a) {
                 if (std::fabs(d[a]) < 1e-12) {
@@ -260,11 +262,12 @@ double exact_wall_visibility(const obscura_settings& settings, double x, double 
     return 1.0 - sum / double(rho.size());
 }
 
-// A wall (z = 0, facing +z) and a pole 6 cm square standing 0.32-0.38 m in front of it, seen head-on from 3 m.
-AoScene pole_scene() {
+// A wall (z = 0, facing +z) and a pole 6 cm square standing 0.32-0.38 m in front of it (or over [back, front]),
+// seen head-on from 3 m.
+AoScene pole_scene(double back = kPoleBack, double front = kPoleFront) {
     return make_ao_scene(Projection::Perspective, look_at(glm::dvec3(0.0, 0.0, 3.0), glm::dvec3(0.0)),
                          {plane(1, glm::dvec3(0.0), glm::dvec3(0.0, 0.0, 1.0)),
-                          box(2, glm::dvec3(-kPoleHalf, -10.0, kPoleBack), glm::dvec3(kPoleHalf, 10.0, kPoleFront))});
+                          box(2, glm::dvec3(-kPoleHalf, -10.0, back), glm::dvec3(kPoleHalf, 10.0, front))});
 }
 
 // The wall's texels beside the pole (5 to 30 cm from its axis, within 40 cm of the view's centre line).
@@ -309,6 +312,43 @@ TEST_F(GLTest, GtaoThinPoleDarkensTheWallLessInBitmaskMode) {
     EXPECT_GT(mean[kBitmask], mean[kHorizon] + 0.05);
     EXPECT_NEAR(mean[kBitmask], exact, 0.01);
     EXPECT_LT(std::fabs(mean[kBitmask] - exact), std::fabs(mean[kHorizon] - exact));
+}
+
+// A post 6 cm wide reaching from 5 cm to 1.5 m in front of the wall: the camera sees only its front, beyond the 1 m
+// radius from the wall, but rays from the wall beside it meet its sides within a few decimetres. Bitmask mode with a
+// slab as deep as the post weighs each ray by where it meets the slab (lateral distance / sin h), as the screen-space
+// REFERENCE with the same slab does; weighing the slab by its front's distance (before 2026-12-04) let nothing
+// occlude. Both are a little darker than the exact value: the depth buffer's slab follows the camera's rays and
+// widens towards the wall (the post's front edge, 3 cm off its axis at 1.5 m, extrudes to 3.9 cm at the wall).
+// Measured (8 x 16, thickness 1.45 m, power 1): bitmask 0.7021, REFERENCE (128 rays) 0.7306, exact 0.7551;
+// before the per-ray weights 0.99999. (What keeps the bitmask 0.029 below the REFERENCE is not pinned down yet:
+// candidates are the 32 sectors' rounding and the slab's hit distance taken along the slice, not the camera's ray.)
+TEST_F(GLTest, GtaoBitmaskWeighsEachRayByWhereItMeetsTheSlab) {
+    constexpr double kBack = 0.05, kFront = 1.5;
+    AoScene scene = pole_scene(kBack, kFront);
+    const std::vector<bool> mask = beside_pole(scene);
+    obscura_settings settings = gtao_settings(kBitmask);
+    settings.gtao.slices = 8;
+    settings.gtao.steps = 16;
+    settings.gtao.thickness = float(kFront - kBack);
+    Stats s = stats(render_visibility(ctx(), scene.input, settings), mask);
+    ASSERT_GT(s.count, 200);
+    obscura_settings reference;
+    ASSERT_EQ(obscura_reference_settings_for(&settings, &reference), OBSCURA_OK);
+    ASSERT_FLOAT_EQ(reference.reference.thickness, settings.gtao.thickness);
+    reference.reference.rays = 128;
+    Stats r = stats(render_visibility(ctx(), scene.input, reference), mask);
+    double sum = 0.0;
+    int n = 0;
+    for (double x = 0.09; x < 0.3; x += 0.03) {
+        for (double y = 0.0; y < 0.4; y += 0.1, ++n) sum += exact_wall_visibility(settings, x, y, kBack, kFront);
+    }
+    const double exact = sum / n;
+    std::printf("[ gtao bitmask ] wall beside the deep post: %s; REFERENCE %s; exact %.4f\n", describe(s).c_str(),
+                describe(r).c_str(), exact);
+    EXPECT_LT(s.mean, 0.85);  // the post occludes the wall beside it
+    EXPECT_NEAR(s.mean, r.mean, 0.04);
+    EXPECT_NEAR(s.mean, exact, 0.06);
 }
 
 // The paper's thickness heuristic (horizon mode, thickness_blend > 0: compiled in only then): a sample below the

@@ -22,7 +22,7 @@ void obscura_decode_normal4(vec4 ex, vec4 ey, out vec4 nx, out vec4 ny, out vec4
     nz *= inverse_length;
 }
 
-// The normal's direction, not normalised (its length lies in [1/sqrt(3), 1]): for tests that compare ratios.
+// The normal's direction, not normalised (its length lies in [1/sqrt(3), 1]): for comparisons that scale with it.
 vec3 obscura_decode_normal_direction(vec2 e) {
     vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
     if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);

@@ -432,9 +432,9 @@ typedef struct obscura_ffao_settings {
    adds to it counts as occluded with the sample's falloff weight (HBAO's horizon split, cosine-weighted), and the
    arcs are integrated in closed form against the normal projected into the slice (the paper's eq. 10).
    thickness_mode 2 (bitmask, Therrien et al. 2023): every sample occupies the sectors of the slice between its
-   front and `thickness` metres behind it, in a mask of `sectors` bits (when its falloff weight exceeds a
-   threshold drawn per slice), and the free sectors are integrated with the same cosine weight, so light passes
-   behind thin objects. A separable edge-aware 5x5 denoise averages the 4x4 pattern. Visibility is the ratio of
+   front and `thickness` metres behind it, in a mask of `sectors` bits (a sector where the ray through it meets
+   the slab at a falloff weight above a threshold drawn per slice), and the free sectors are integrated with the
+   same cosine weight, so light passes behind thin objects. A separable edge-aware 5x5 denoise averages the 4x4 pattern. Visibility is the ratio of
    the visible to the unoccluded slice integrals, so planes are exactly 1 at any slice count. The falloff it is
    compared with (obscura_reference_settings_for): 1 up to radius * (1 - falloff_range), linear to 0 at the
    radius, and the bitmask's thickness.
