@@ -11,6 +11,8 @@
 #   bench: every method at 1920x1080 + 10 % guard band per side (2304x1296 texels), and the LSAO scaling runs.
 #   lsao:  the LSAO sweep variants (segments, warm-up strides and tolerances, hull sizes) at 1920x1080.
 #   lsao-error: the AO error each sweep variant costs against whole lines and the exact sweep, per scene.
+#   table: every method and preset at 720p / 1080p / 4K, each at half and quarter resolution, the temporal
+#          pass still and moving; table_summary.txt has one line per configuration.
 #   ffao:  FFAO at 1920x1080: the default 16x2, SAAO 18x2 (the issue's H100 target, <= 0.6 ms), the mipmap
 #          baseline, B0 = 5 / 10 / 20 (Table 3), the radius, the sizes of Table 1, per kernel (Tables 2, 4).
 # The clock is the SDK's GL timer queries (bench reports "clock": "gpu-timer" in its JSON).
@@ -93,6 +95,31 @@ for what in "$@"; do
         done
       done 2>&1 | tee "$out/lsao_error.txt"
       tar czf "$out/lsao_images.tgz" -C "$out" img && rm -rf "$out/img"
+      ;;
+    table)
+      # docs/performance.md's method table: every method and preset at 720p, 1080p and 4K (+ 10 % guard band
+      # per side), then each method at full, half and quarter resolution at 1080p, then the temporal pass
+      # still and moving (--motion 1: reprojection through the matrices every frame).
+      hbao_k16='hbao:directions=16:steps=48:estimator=horizon_split:intensity=1:power=1:blur_radius=4:blur_sharpness=16'
+      methods="hbao,$hbao_k16,sao,lsao:preset=k8,lsao,lsao:preset=k32,ffao,ffao:saao=on,gtao:preset=low,gtao:preset=medium,gtao,gtao:preset=ultra,gtao:thickness_mode=bitmask,gtao:thickness_mode=bitmask:preset=ultra"
+      reduced=""
+      for m in hbao sao lsao ffao:saao=on gtao gtao:thickness_mode=bitmask; do
+        for r in half quarter; do
+          reduced+="$m:resolution.scale=$r,"
+        done
+      done
+      {
+        bench --scene atrium --sizes 1280x720,1920x1080,3840x2160 --methods "$methods" --json "$out/table.json"
+        bench --scene atrium --sizes 1920x1080 --methods "${reduced%,}" --json "$out/reduced.json"
+        bench --scene atrium --sizes 1920x1080 --methods hbao:temporal.enabled=on,gtao:temporal.enabled=on \
+              --json "$out/temporal_still.json"
+        bench --scene atrium --sizes 1920x1080 --motion 1 \
+              --methods hbao:temporal.enabled=on,gtao:temporal.enabled=on,sao:temporal.enabled=on \
+              --json "$out/temporal_moving.json"
+      } > "$out/table.txt" 2>&1 || status=1
+      # One line per configuration: method @ size, the total and every pass (median ms).
+      awk '/ @ /{if(line)print line; line=$1" "$3} /^  [a-z_]+ +[0-9.]+ +[0-9.]+$/{line=line" "$1"="$2}
+           /refused|error/{print} END{if(line)print line}' "$out/table.txt" | tee "$out/table_summary.txt"
       ;;
     *) echo "unknown step: $what" >&2; status=2 ;;
   esac
