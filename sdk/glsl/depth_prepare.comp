@@ -69,46 +69,62 @@ float depth_or_sky(ivec2 p) {
 // not: next to a hole of sky, a floor texel keeps the floor's normal instead of taking the box's beyond it.
 const float kOneTexelError = 1.0e-3;
 
-// How far the surface on one side, continued linearly from its two texels (in 1/w, affine on planes),
+// A side whose continuation misses the centre by more than this (relative) shows another surface: beside a
+// feature narrower than two texels (a pole, a baluster, a railing seen from afar) both sides do, and no difference
+// along that axis lies on the feature. Measured on the built-in scenes (docs/quality.md, "Normals of features
+// narrower than two texels"): 0.1 keeps the atrium's gains of 0.05 and more of the clutter room's.
+const float kOtherSurfaceError = 0.1;
+
+// How far the surface on one side, continued linearly from its two texels (in affine_depth, affine on planes),
 // misses the centre's depth; kOneTexelError and up when only one texel is there, a huge value for none.
-// k_*: 1 / clip w of each depth (inverse_clip_w), computed once per texel read.
+// k_*: affine_depth of each depth, computed once per texel read.
 float continuation_error(float center, float k_center, float near, float k_near, float far, float k_far) {
     if (obscura_is_sky(near)) return 3.0e38;
     if (obscura_is_sky(far)) return kOneTexelError * (1.0 + abs(near - center) / center);  // rank by the step
     return abs(2.0 * k_near - k_far - k_center) / k_center;
 }
 
-float inverse_clip_w(float depth) { return 1.0 / obscura_clip_w(depth); }
+// The function of depth that is affine in screen space on planes: 1 / clip w under perspective, the depth itself
+// under an orthographic projection (whose w is 1: 1 / w would call every side planar).
+float affine_depth(float depth) { return obscura_is_perspective() ? 1.0 / obscura_clip_w(depth) : depth; }
 
 // The one-sided difference along one axis on the side whose surface continues through the centre: the
 // side that is planar with it (SAO paper eq. 4 takes the side with the smaller depth step, which picks
 // the wrong one next to a concave crease, where the other surface's first texel is closer in depth).
-// d: the depths at centre - 2, -1, 0, +1, +2 texels along the axis (index 2 the centre), k their inverse_clip_w;
-// pa, pb: the texels at +1 and -1. Zero if both neighbours are sky or outside the texture.
+// d: the depths at centre - 2, -1, 0, +1, +2 texels along the axis (index 2 the centre), k their affine_depth;
+// pa, pb: the texels at +1 and -1. Zero if both neighbours are sky or outside the texture, or if neither side
+// continues the centre's surface (kOtherSurfaceError).
 vec3 one_sided_derivative(vec3 center, float d[5], float k[5], ivec2 pa, ivec2 pb) {
     bool a_valid = !obscura_is_sky(d[3]), b_valid = !obscura_is_sky(d[1]);
     if (!a_valid && !b_valid) return vec3(0.0);
     float error_a = continuation_error(d[2], k[2], d[3], k[3], d[4], k[4]);
     float error_b = continuation_error(d[2], k[2], d[1], k[1], d[0], k[0]);
+    // Both sides another surface, and both farther (a feature in front) or both nearer (a gap): no tangent. A surface
+    // that only curves fast at this size, a distant ridge of terrain, is nearer on one side and farther on the other.
+    if (min(error_a, error_b) > kOtherSurfaceError && (d[3] - d[2]) * (d[1] - d[2]) > 0.0) return vec3(0.0);
     bool use_a = a_valid && (!b_valid || error_a < error_b ||
                              (error_a == error_b && abs(d[3] - d[2]) <= abs(d[2] - d[1])));
     if (use_a) return obscura_view_position(pa, d[3]) - center;
     return center - obscura_view_position(pb, d[1]);
 }
 
-// The view-space normal of texel p (depth d[2] on both axes) from the depths along x and y: facing the eye, +z where
-// no neighbour gives a tangent.
+// The view-space normal of texel p (depth d[2] on both axes) from the depths along x and y, facing the eye. An axis
+// that gives no tangent (sky on both sides, or a feature narrower than two texels) leaves the normal free about the
+// other axis' tangent t: it is taken as close to the eye direction e as t allows, e |t|^2 - t (t.e), the guess that
+// is right for a pole or baluster seen from the side. That is the cross product with the missing tangent replaced
+// by t x e (x missing) or e x t (y missing), so no branch is taken; with neither axis, the eye direction.
 vec3 reconstruct_normal(ivec2 p, float dx[5], float kx[5], float dy[5], float ky[5]) {
     if (obscura_is_sky(dx[2])) return vec3(0.0, 0.0, 1.0);
     vec3 center = obscura_view_position(p, dx[2]);
+    vec3 eye = obscura_towards_eye(center);
     vec3 tx = one_sided_derivative(center, dx, kx, p + ivec2(1, 0), p - ivec2(1, 0));
     vec3 ty = one_sided_derivative(center, dy, ky, p + ivec2(0, 1), p - ivec2(0, 1));
-    vec3 c = cross(tx, ty);
-    if (!(dot(c, c) > 0.0)) return vec3(0.0, 0.0, 1.0);
+    vec3 c = cross(dot(tx, tx) > 0.0 ? tx : cross(ty, eye), dot(ty, ty) > 0.0 ? ty : cross(eye, tx));
+    if (!(dot(c, c) > 0.0)) return eye;
     // The cross product's sign depends on the projection's handedness (flipped x or y): a visible surface faces the
     // eye.
     vec3 n = normalize(c);
-    return dot(n, obscura_towards_eye(center)) < 0.0 ? -n : n;
+    return dot(n, eye) < 0.0 ? -n : n;
 }
 
 // The normal the host gives at its texel for p, or +z where it is not a finite non-zero vector.
@@ -148,7 +164,7 @@ void main() {
     float d[kBlock * kBlock], k[kBlock * kBlock];
     for (int i = 0; i < kBlock * kBlock; ++i) {
         d[i] = depth_or_sky(origin + ivec2(i % kBlock, i / kBlock));
-        k[i] = inverse_clip_w(d[i]);
+        k[i] = affine_depth(d[i]);
     }
 #if OBSCURA_NORMAL_SOURCE == OBSCURA_NORMALS_RECONSTRUCT
     // Beyond the block: row r's texels at x = beyond(s), column c's at y = beyond(s).
@@ -156,9 +172,9 @@ void main() {
     for (int i = 0; i < 4 * kBlock; ++i) {
         int line = i / 4, offset = beyond(i % 4);
         row_d[i] = depth_or_sky(origin + ivec2(offset, line));
-        row_k[i] = inverse_clip_w(row_d[i]);
+        row_k[i] = affine_depth(row_d[i]);
         column_d[i] = depth_or_sky(origin + ivec2(line, offset));
-        column_k[i] = inverse_clip_w(column_d[i]);
+        column_k[i] = affine_depth(column_d[i]);
     }
 #endif
     for (int i = 0; i < kBlock * kBlock; ++i) {
@@ -189,9 +205,9 @@ void main() {
         float dx[5], kx[5], dy[5], ky[5];
         for (int i = 0; i < 5; ++i) {
             dx[i] = depth_or_sky(p + ivec2(i - 2, 0));
-            kx[i] = inverse_clip_w(dx[i]);
+            kx[i] = affine_depth(dx[i]);
             dy[i] = depth_or_sky(p + ivec2(0, i - 2));
-            ky[i] = inverse_clip_w(dy[i]);
+            ky[i] = affine_depth(dy[i]);
         }
         n = reconstruct_normal(p, dx, kx, dy, ky);
     } else {

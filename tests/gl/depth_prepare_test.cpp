@@ -205,6 +205,41 @@ TEST_P(DepthPrepareProjection, ReconstructedNormalsMatchAnalytic) {
                                << check.worst_plane << " deg";
 }
 
+TEST_P(DepthPrepareProjection, OneTexelPoleFacesTheEye) {
+    // A pole one texel wide, 2 m in front of a wall: neither x-neighbour continues its surface. Taking the
+    // tangent to the wall (the side with the smaller continuation error) would turn the pole's normal nearly
+    // 90 degrees, toward the wall. With no side continuing, the x axis gives no tangent: the normal faces the eye
+    // as far as the y tangent (along the pole) allows, the best guess for a feature narrower than two texels.
+    Camera camera(GetParam(), kWidth, kHeight, Lens(), glm::dmat4(1.0));
+    // The texel column right of the image's centre line: its centre, half a texel right of x = 0, is the pole's
+    // only one (the next centre lies past the pole's 0.045 m at 4 m from the eye, also orthographically).
+    std::vector<Primitive> primitives = {plane(kPlaneId, glm::dvec3(0.0, 0.0, -6.0), glm::dvec3(0.0, 0.0, 1.0)),
+                                         box(kSphereId, glm::dvec3(0.0, -1.0, -4.1), glm::dvec3(0.045, 1.0, -4.0))};
+    DepthScene scene{camera, trace(camera, primitives), {}};
+    scene.depth = depth_values(camera, scene.hits);
+    InputTexture in = upload(scene, GL_DEPTH_COMPONENT32F);
+    std::vector<float> got = render_to_new_texture(ctx(), in.input, make_settings(5.0f), GL_RGBA32F, 4,
+                                                   OBSCURA_DEBUG_NORMALS);
+    ASSERT_FALSE(got.empty());
+    int pole_texels = 0;
+    double worst = 0.0;
+    for (int y = 2; y < kHeight - 2; ++y) {
+        for (int x = 1; x < kWidth - 1; ++x) {
+            size_t i = size_t(y) * kWidth + x;
+            if (scene.hits[i].id != kSphereId) continue;
+            // One texel wide: both x-neighbours are the wall.
+            ASSERT_EQ(scene.hits[i - 1].id, kPlaneId);
+            ASSERT_EQ(scene.hits[i + 1].id, kPlaneId);
+            glm::dvec3 g(got[4 * i] * 2.0 - 1.0, got[4 * i + 1] * 2.0 - 1.0, got[4 * i + 2] * 2.0 - 1.0);
+            worst = std::max(worst, angle_degrees(g, scene.hits[i].view_normal));
+            ++pole_texels;
+        }
+    }
+    EXPECT_GT(pole_texels, 20);
+    // The eye direction is within 0.4 degree of the face's normal (+z) at the pole, half a texel off the axis.
+    EXPECT_LT(worst, 1.0) << "the pole's normal must face the eye, not turn toward the wall";
+}
+
 INSTANTIATE_TEST_SUITE_P(Variants, DepthPrepareProjection,
                          ::testing::Values(Projection::Perspective, Projection::ReversedZ, Projection::Infinite,
                                            Projection::ReversedInfinite, Projection::Orthographic,
