@@ -26,7 +26,7 @@ obscura_settings gtao_settings(int thickness_mode, float radius = 1.0f) {
     obscura_default_settings(OBSCURA_METHOD_GTAO, &settings);
     settings.gtao.radius = radius;
     settings.gtao.thickness_mode = thickness_mode;
-    settings.gtao.power = 1.0f;  // the estimator itself (the default 1.5 compensates for the High preset's steps)
+    settings.gtao.power = 1.0f;  // the estimator itself (the default 1.75 compensates for the High preset's steps)
     return settings;
 }
 
@@ -157,7 +157,7 @@ TEST_P(GtaoModes, OffAxisCornerConvergesToTheExactObscurance) {
 }
 
 // The High preset (3 x 3): fewer steps find lower horizons, so it is brighter than the exact value (measured: up to
-// +0.06 (horizon) and +0.07 (bitmask) at 0.3 m from the crease at power 1; the default power 1.5 is what brings it
+// +0.06 (horizon) and +0.07 (bitmask) at 0.3 m from the crease at power 1; the default power 1.75 is what brings it
 // back, docs/quality.md).
 TEST_P(GtaoModes, CornerHighPresetDarkensTowardsTheExactObscurance) {
     expect_corner_near_exact(ctx(), gtao_settings(GetParam()), 0.09, mode_name(GetParam()));

@@ -459,7 +459,7 @@ typedef struct obscura_gtao_settings {
     float mip_offset;     /* log2 of the step's distance in pixels at which it reads one level down, [0, 8].
                              Default 3.3 */
     float intensity;      /* obscurance multiplier, [1e-3, 16]. Default 1 */
-    float power;          /* visibility exponent, [1e-3, 16]. Default 1.5: makes up for the horizons 3 steps miss */
+    float power;          /* visibility exponent, [1e-3, 16]. Default 1.75: makes up for the horizons 3 steps miss */
     float albedo;         /* the paper's multi-bounce fit for this surface albedo, [0, 0.95]; 0: none. Default 0 */
     float max_radius_pixels; /* cap of the radius on screen, [1, 4096]. Default 256 */
     obscura_toggle denoise; /* edge-aware 5x5 denoise over the 4x4 noise pattern. Default on */
