@@ -29,7 +29,10 @@ export LD_LIBRARY_PATH="$build/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 export OBSCURA_GL_BACKEND=egl-device
 mkdir -p "$out"
 nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm --format=csv | tee "$out/gpu.txt" || true
-bench() { "$build/bin/obscura" bench --frames 200 --warmup 20 "$@"; }
+# BENCH_FRAMES, TABLE_SIZES and TABLE_SIZE shrink the runs for a dry run on llvmpipe (defaults: the GPU's).
+bench() { "$build/bin/obscura" bench --frames "${BENCH_FRAMES:-200}" --warmup "${BENCH_WARMUP:-20}" "$@"; }
+table_sizes="${TABLE_SIZES:-1280x720,1920x1080,3840x2160}"
+table_size="${TABLE_SIZE:-1920x1080}"
 status=0
 for what in "$@"; do
   case "$what" in
@@ -109,17 +112,21 @@ for what in "$@"; do
         done
       done
       {
-        bench --scene atrium --sizes 1280x720,1920x1080,3840x2160 --methods "$methods" --json "$out/table.json"
-        bench --scene atrium --sizes 1920x1080 --methods "${reduced%,}" --json "$out/reduced.json"
-        bench --scene atrium --sizes 1920x1080 --methods hbao:temporal.enabled=on,gtao:temporal.enabled=on \
+        echo "== every method and preset"
+        bench --scene atrium --sizes "$table_sizes" --methods "$methods" --json "$out/table.json"
+        echo "== reduced resolution"
+        bench --scene atrium --sizes "$table_size" --methods "${reduced%,}" --json "$out/reduced.json"
+        echo "== temporal, still camera"
+        bench --scene atrium --sizes "$table_size" --methods hbao:temporal.enabled=on,gtao:temporal.enabled=on \
               --json "$out/temporal_still.json"
-        bench --scene atrium --sizes 1920x1080 --motion 1 \
+        echo "== temporal, moving camera (--motion 1)"
+        bench --scene atrium --sizes "$table_size" --motion 1 \
               --methods hbao:temporal.enabled=on,gtao:temporal.enabled=on,sao:temporal.enabled=on \
               --json "$out/temporal_moving.json"
       } > "$out/table.txt" 2>&1 || status=1
       # One line per configuration: method @ size, the total and every pass (median ms).
       awk '/ @ /{if(line)print line; line=$1" "$3} /^  [a-z_]+ +[0-9.]+ +[0-9.]+$/{line=line" "$1"="$2}
-           /refused|error/{print} END{if(line)print line}' "$out/table.txt" | tee "$out/table_summary.txt"
+           /^== /{if(line)print line; line=""; print} /refused|error/{print} END{if(line)print line}' "$out/table.txt" | tee "$out/table_summary.txt"
       ;;
     *) echo "unknown step: $what" >&2; status=2 ;;
   esac
