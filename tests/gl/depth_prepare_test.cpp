@@ -213,8 +213,9 @@ TEST_P(DepthPrepareProjection, OneTexelPoleFacesTheEye) {
     Camera camera(GetParam(), kWidth, kHeight, Lens(), glm::dmat4(1.0));
     // The texel column right of the image's centre line: its centre, half a texel right of x = 0, is the pole's
     // only one (the next centre lies past the pole's 0.045 m at 4 m from the eye, also orthographically).
-    std::vector<Primitive> primitives = {plane(kPlaneId, glm::dvec3(0.0, 0.0, -6.0), glm::dvec3(0.0, 0.0, 1.0)),
-                                         box(kSphereId, glm::dvec3(0.0, -1.0, -4.1), glm::dvec3(0.045, 1.0, -4.0))};
+    constexpr int kWallId = 1, kPoleId = 2;
+    std::vector<Primitive> primitives = {plane(kWallId, glm::dvec3(0.0, 0.0, -6.0), glm::dvec3(0.0, 0.0, 1.0)),
+                                         box(kPoleId, glm::dvec3(0.0, -1.0, -4.1), glm::dvec3(0.045, 1.0, -4.0))};
     DepthScene scene{camera, trace(camera, primitives), {}};
     scene.depth = depth_values(camera, scene.hits);
     InputTexture in = upload(scene, GL_DEPTH_COMPONENT32F);
@@ -226,10 +227,10 @@ TEST_P(DepthPrepareProjection, OneTexelPoleFacesTheEye) {
     for (int y = 2; y < kHeight - 2; ++y) {
         for (int x = 1; x < kWidth - 1; ++x) {
             size_t i = size_t(y) * kWidth + x;
-            if (scene.hits[i].id != kSphereId) continue;
+            if (scene.hits[i].id != kPoleId) continue;
             // One texel wide: both x-neighbours are the wall.
-            ASSERT_EQ(scene.hits[i - 1].id, kPlaneId);
-            ASSERT_EQ(scene.hits[i + 1].id, kPlaneId);
+            ASSERT_EQ(scene.hits[i - 1].id, kWallId);
+            ASSERT_EQ(scene.hits[i + 1].id, kWallId);
             glm::dvec3 g(got[4 * i] * 2.0 - 1.0, got[4 * i + 1] * 2.0 - 1.0, got[4 * i + 2] * 2.0 - 1.0);
             worst = std::max(worst, angle_degrees(g, scene.hits[i].view_normal));
             ++pole_texels;
@@ -238,6 +239,45 @@ TEST_P(DepthPrepareProjection, OneTexelPoleFacesTheEye) {
     EXPECT_GT(pole_texels, 20);
     // The eye direction is within 0.4 degree of the face's normal (+z) at the pole, half a texel off the axis.
     EXPECT_LT(worst, 1.0) << "the pole's normal must face the eye, not turn toward the wall";
+}
+
+TEST_P(DepthPrepareProjection, ConcaveCreaseKeepsEachSidesNormal) {
+    // A valley across the view: plane A above the crease line (y > 0) recedes gently, plane B below it steeply, so
+    // beside the crease the other plane's first texel is the smaller depth step. Each texel must still take its
+    // difference on its own plane's side, the one that continues it. Under an orthographic projection that needs the
+    // continuation measured in depth itself: 1 / w is 1 there, so every side looked planar and the smaller step won.
+    Camera camera(GetParam(), kWidth, kHeight, Lens(), glm::dmat4(1.0));
+    const glm::dvec3 normal_a = glm::normalize(glm::dvec3(0.0, -0.75, 1.0));  // z = -5 + 0.75 y
+    const glm::dvec3 normal_b = glm::normalize(glm::dvec3(0.0, 1.2, 1.0));    // z = -5 - 1.2 y
+    constexpr int kPlaneA = 1, kPlaneB = 2;
+    std::vector<Primitive> primitives = {plane(kPlaneA, glm::dvec3(0.0, 0.0, -5.0), normal_a),
+                                         plane(kPlaneB, glm::dvec3(0.0, 0.0, -5.0), normal_b)};
+    DepthScene scene{camera, trace(camera, primitives), {}};
+    scene.depth = depth_values(camera, scene.hits);
+    InputTexture in = upload(scene, GL_DEPTH_COMPONENT32F);
+    std::vector<float> got = render_to_new_texture(ctx(), in.input, make_settings(5.0f), GL_RGBA32F, 4,
+                                                   OBSCURA_DEBUG_NORMALS);
+    ASSERT_FALSE(got.empty());
+    int crease_texels = 0;
+    double worst = 0.0;
+    std::string where;
+    for (int y = 2; y < kHeight - 2; ++y) {
+        for (int x = 2; x < kWidth - 2; ++x) {
+            size_t i = size_t(y) * kWidth + x;
+            const Hit& hit = scene.hits[i];
+            if (!hit.hit) continue;
+            // Every texel of both planes, the two rows beside the crease included (counted).
+            if (scene.hits[i - kWidth].id != hit.id || scene.hits[i + kWidth].id != hit.id) ++crease_texels;
+            glm::dvec3 g(got[4 * i] * 2.0 - 1.0, got[4 * i + 1] * 2.0 - 1.0, got[4 * i + 2] * 2.0 - 1.0);
+            double error = angle_degrees(g, hit.view_normal);
+            if (error > worst) {
+                worst = error;
+                where = "texel (" + std::to_string(x) + ", " + std::to_string(y) + ")";
+            }
+        }
+    }
+    EXPECT_GT(crease_texels, 100);
+    EXPECT_LT(worst, 0.5) << "worst at " << where << ": a texel beside the crease took the other plane's normal";
 }
 
 INSTANTIATE_TEST_SUITE_P(Variants, DepthPrepareProjection,
