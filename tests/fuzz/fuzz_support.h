@@ -126,6 +126,13 @@ inline bool is_released_settings_size(uint32_t size) {
     return false;
 }
 
+// obscura_input and obscura_output as 0.4 declared them, which obscura_render still takes (the fields added since read
+// 0): the input ended at normal_texture, before the temporal fields; the output before bent_normal_texture.
+constexpr uint32_t kInputSize04 = uint32_t(offsetof(obscura_input, normal_texture) + sizeof(uint32_t));
+constexpr uint32_t kOutputSize04 = uint32_t(offsetof(obscura_output, bent_normal_texture));
+inline bool is_released_input_size(uint32_t size) { return size == sizeof(obscura_input) || size == kInputSize04; }
+inline bool is_released_output_size(uint32_t size) { return size == sizeof(obscura_output) || size == kOutputSize04; }
+
 // obscura_setting_info as the 0.3 header declared it: the first eight fields of today's.
 struct SettingInfo03 {
     const char* name;

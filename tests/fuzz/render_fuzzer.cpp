@@ -35,6 +35,8 @@
 using obscura::samples::HeadlessGL;
 using obscura_fuzz::Reader;
 using obscura_fuzz::SettingsBuffer;
+using obscura_fuzz::is_released_input_size;
+using obscura_fuzz::is_released_output_size;
 using obscura_fuzz::is_released_settings_size;
 using obscura_fuzz::load_raw;
 using obscura_fuzz::status_code;
@@ -902,8 +904,9 @@ struct StageOne {
 };
 StageOne stage_one(const DecodedInput& input, const DecodedOutput& output, const DecodedSettings& settings) {
     StageOne s;
-    s.sizes_valid = input.input.struct_size == sizeof(obscura_input) &&
-                    output.output.struct_size == sizeof(obscura_output) &&
+    // The decoders never set the fields past the 0.4 layouts, so those sizes render as today's do.
+    s.sizes_valid = is_released_input_size(input.input.struct_size) &&
+                    is_released_output_size(output.output.struct_size) &&
                     is_released_settings_size(settings.struct_size());
     s.resolve_status = resolve_status_of(settings);
     s.passes = s.sizes_valid && s.resolve_status == kOk && input.fields_valid && output.fields_valid;
