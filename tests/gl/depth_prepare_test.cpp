@@ -50,6 +50,19 @@ DepthScene make_scene(Projection projection, const Lens& lens = Lens(), double s
     return DepthScene{camera, hits, depth};
 }
 
+// The scene `primitives` seen by a camera of `projection` with view space = world space.
+DepthScene make_primitive_scene(Projection projection, const std::vector<Primitive>& primitives) {
+    Camera camera(projection, kWidth, kHeight, Lens(), glm::dmat4(1.0));
+    std::vector<Hit> hits = trace(camera, primitives);
+    std::vector<float> depth = depth_values(camera, hits);
+    return DepthScene{camera, hits, depth};
+}
+
+// Texel i's view-space normal from the NORMALS debug view's RGBA (normal * 0.5 + 0.5).
+glm::dvec3 decoded_normal(const std::vector<float>& rgba, size_t i) {
+    return glm::dvec3(rgba[4 * i] * 2.0 - 1.0, rgba[4 * i + 1] * 2.0 - 1.0, rgba[4 * i + 2] * 2.0 - 1.0);
+}
+
 // The view-depth change one quantisation step of the stored depth makes at this pixel.
 double quantisation_error(const Camera& camera, double view_z, double step) {
     if (camera.projection() == Projection::LinearView) return std::fabs(view_z) * 6e-8;  // float R32F
@@ -74,6 +87,13 @@ InputTexture upload(const DepthScene& scene, GLenum format) {
     result.input = make_input(result.texture.get(), kWidth, kHeight, scene.camera.matrix(), scene.camera.clip_depth());
     if (scene.camera.projection() == Projection::LinearView) result.input.depth_kind = OBSCURA_DEPTH_LINEAR_VIEW;
     return result;
+}
+
+// The SDK's normals (NORMALS debug view, RGBA) of the scene uploaded as D32F (R32F for the linear-depth variant);
+// empty if the render failed.
+std::vector<float> reconstructed_normals(obscura_context* context, const DepthScene& scene) {
+    InputTexture in = upload(scene, GL_DEPTH_COMPONENT32F);
+    return render_to_new_texture(context, in.input, make_settings(5.0f), GL_RGBA32F, 4, OBSCURA_DEBUG_NORMALS);
 }
 
 struct DepthCheck {
@@ -135,7 +155,7 @@ NormalCheck check_normals(const DepthScene& scene, const std::vector<float>& rgb
             size_t i = size_t(y) * kWidth + x;
             if (!interior[i]) continue;
             const Hit& hit = scene.hits[i];
-            glm::dvec3 got(rgba[4 * i] * 2.0 - 1.0, rgba[4 * i + 1] * 2.0 - 1.0, rgba[4 * i + 2] * 2.0 - 1.0);
+            glm::dvec3 got = decoded_normal(rgba, i);
             double error = angle_degrees(got, hit.view_normal);
             double tolerance = plane_tolerance_degrees;
             if (hit.id == kSphereId) {
@@ -194,9 +214,7 @@ TEST_P(DepthPrepareProjection, LinearDepthMatchesAnalytic) {
 
 TEST_P(DepthPrepareProjection, ReconstructedNormalsMatchAnalytic) {
     DepthScene scene = make_scene(GetParam());
-    InputTexture in = upload(scene, GL_DEPTH_COMPONENT32F);
-    std::vector<float> got = render_to_new_texture(ctx(), in.input, make_settings(5.0f), GL_RGBA32F, 4,
-                                                   OBSCURA_DEBUG_NORMALS);
+    std::vector<float> got = reconstructed_normals(ctx(), scene);
     ASSERT_FALSE(got.empty());
     NormalCheck check = check_normals(scene, got, 0.5);
     EXPECT_GT(check.checked_plane, 1000);
@@ -210,17 +228,13 @@ TEST_P(DepthPrepareProjection, OneTexelPoleFacesTheEye) {
     // tangent to the wall (the side with the smaller continuation error) would turn the pole's normal nearly
     // 90 degrees, toward the wall. With no side continuing, the x axis gives no tangent: the normal faces the eye
     // as far as the y tangent (along the pole) allows, the best guess for a feature narrower than two texels.
-    Camera camera(GetParam(), kWidth, kHeight, Lens(), glm::dmat4(1.0));
     // The texel column right of the image's centre line: its centre, half a texel right of x = 0, is the pole's
     // only one (the next centre lies past the pole's 0.045 m at 4 m from the eye, also orthographically).
     constexpr int kWallId = 1, kPoleId = 2;
-    std::vector<Primitive> primitives = {plane(kWallId, glm::dvec3(0.0, 0.0, -6.0), glm::dvec3(0.0, 0.0, 1.0)),
-                                         box(kPoleId, glm::dvec3(0.0, -1.0, -4.1), glm::dvec3(0.045, 1.0, -4.0))};
-    DepthScene scene{camera, trace(camera, primitives), {}};
-    scene.depth = depth_values(camera, scene.hits);
-    InputTexture in = upload(scene, GL_DEPTH_COMPONENT32F);
-    std::vector<float> got = render_to_new_texture(ctx(), in.input, make_settings(5.0f), GL_RGBA32F, 4,
-                                                   OBSCURA_DEBUG_NORMALS);
+    const DepthScene scene = make_primitive_scene(
+        GetParam(), {plane(kWallId, glm::dvec3(0.0, 0.0, -6.0), glm::dvec3(0.0, 0.0, 1.0)),
+                     box(kPoleId, glm::dvec3(0.0, -1.0, -4.1), glm::dvec3(0.045, 1.0, -4.0))});
+    std::vector<float> got = reconstructed_normals(ctx(), scene);
     ASSERT_FALSE(got.empty());
     int pole_texels = 0;
     double worst = 0.0;
@@ -231,7 +245,7 @@ TEST_P(DepthPrepareProjection, OneTexelPoleFacesTheEye) {
             // One texel wide: both x-neighbours are the wall.
             ASSERT_EQ(scene.hits[i - 1].id, kWallId);
             ASSERT_EQ(scene.hits[i + 1].id, kWallId);
-            glm::dvec3 g(got[4 * i] * 2.0 - 1.0, got[4 * i + 1] * 2.0 - 1.0, got[4 * i + 2] * 2.0 - 1.0);
+            glm::dvec3 g = decoded_normal(got, i);
             worst = std::max(worst, angle_degrees(g, scene.hits[i].view_normal));
             ++pole_texels;
         }
@@ -246,17 +260,11 @@ TEST_P(DepthPrepareProjection, ConcaveCreaseKeepsEachSidesNormal) {
     // beside the crease the other plane's first texel is the smaller depth step. Each texel must still take its
     // difference on its own plane's side, the one that continues it. Under an orthographic projection that needs the
     // continuation measured in depth itself: 1 / w is 1 there, so every side looked planar and the smaller step won.
-    Camera camera(GetParam(), kWidth, kHeight, Lens(), glm::dmat4(1.0));
     const glm::dvec3 normal_a = glm::normalize(glm::dvec3(0.0, -0.75, 1.0));  // z = -5 + 0.75 y
     const glm::dvec3 normal_b = glm::normalize(glm::dvec3(0.0, 1.2, 1.0));    // z = -5 - 1.2 y
-    constexpr int kPlaneA = 1, kPlaneB = 2;
-    std::vector<Primitive> primitives = {plane(kPlaneA, glm::dvec3(0.0, 0.0, -5.0), normal_a),
-                                         plane(kPlaneB, glm::dvec3(0.0, 0.0, -5.0), normal_b)};
-    DepthScene scene{camera, trace(camera, primitives), {}};
-    scene.depth = depth_values(camera, scene.hits);
-    InputTexture in = upload(scene, GL_DEPTH_COMPONENT32F);
-    std::vector<float> got = render_to_new_texture(ctx(), in.input, make_settings(5.0f), GL_RGBA32F, 4,
-                                                   OBSCURA_DEBUG_NORMALS);
+    const DepthScene scene = make_primitive_scene(GetParam(), {plane(1, glm::dvec3(0.0, 0.0, -5.0), normal_a),
+                                                               plane(2, glm::dvec3(0.0, 0.0, -5.0), normal_b)});
+    std::vector<float> got = reconstructed_normals(ctx(), scene);
     ASSERT_FALSE(got.empty());
     int crease_texels = 0;
     double worst = 0.0;
@@ -268,7 +276,7 @@ TEST_P(DepthPrepareProjection, ConcaveCreaseKeepsEachSidesNormal) {
             if (!hit.hit) continue;
             // Every texel of both planes, the two rows beside the crease included (counted).
             if (scene.hits[i - kWidth].id != hit.id || scene.hits[i + kWidth].id != hit.id) ++crease_texels;
-            glm::dvec3 g(got[4 * i] * 2.0 - 1.0, got[4 * i + 1] * 2.0 - 1.0, got[4 * i + 2] * 2.0 - 1.0);
+            glm::dvec3 g = decoded_normal(got, i);
             double error = angle_degrees(g, hit.view_normal);
             if (error > worst) {
                 worst = error;
@@ -542,7 +550,7 @@ TEST_F(DepthPrepare, HostNormalsSignedAreUsed) {
     double worst = 0.0;
     for (size_t i = 0; i < got.size() / 4; ++i) {
         if (!scene.hits[i].hit) continue;
-        glm::dvec3 g(got[4 * i] * 2.0 - 1.0, got[4 * i + 1] * 2.0 - 1.0, got[4 * i + 2] * 2.0 - 1.0);
+        glm::dvec3 g = decoded_normal(got, i);
         worst = std::max(worst, angle_degrees(g, n));
     }
     EXPECT_LT(worst, 0.1) << "host normals (normalised) must pass through; 0.1 degree covers RGBA16F + encoding";
@@ -562,7 +570,7 @@ TEST_F(DepthPrepare, HostNormalsUnsignedAreDecoded) {
     double worst = 0.0;
     for (size_t i = 0; i < got.size() / 4; ++i) {
         if (!scene.hits[i].hit) continue;
-        glm::dvec3 g(got[4 * i] * 2.0 - 1.0, got[4 * i + 1] * 2.0 - 1.0, got[4 * i + 2] * 2.0 - 1.0);
+        glm::dvec3 g = decoded_normal(got, i);
         worst = std::max(worst, angle_degrees(g, n));
     }
     // 8-bit unorm quantises each component to 1/255 of [-1, 1]: about 0.5 degree at worst.
