@@ -148,6 +148,13 @@ void main() {
     int sectors = gtao.config.z;
     uint all_sectors = sectors == 32 ? 0xffffffffu : (1u << uint(sectors)) - 1u;
     float sector_angle = OBSCURA_PI / float(sectors);
+    // A slab lies along the eye ray of its sample. Every point of a slice sees the eye inside the slice, at
+    // (0, eye_distance) from the receiver in the slice's (along, V) coordinates under perspective; an orthographic
+    // eye ray is -V everywhere (eye_rays = 0).
+    bool perspective = obscura_is_perspective();
+    float eye_distance = perspective ? length(position) : 0.0;
+    float eye_rays = perspective ? gtao.thickness.x : 0.0;
+    vec2 orthographic_back = vec2(0.0, perspective ? 0.0 : gtao.thickness.x);
 #endif
 
     int taps_read = 0;
@@ -242,8 +249,12 @@ void main() {
                 lateral[side] = abs(slice_x);
                 cos_h[side] = slice_y * inverse_distance;
 #if OBSCURA_GTAO_MODE == OBSCURA_GTAO_MODE_BITMASK
-                vec3 back = along * slice_x + towards_eye * slice_y - obscura_towards_eye(sample_position) * gtao.thickness.x;
-                back_cos[side] = dot(back, towards_eye) * inversesqrt(dot(back, back));
+                // The point `thickness` behind the sample (as moved into the slice), away from the eye: in slice
+                // coordinates, without the 3D eye ray's normalisation.
+                vec2 from_eye = vec2(slice_x, slice_y - eye_distance);
+                vec2 back = vec2(slice_x, slice_y) - orthographic_back +
+                            from_eye * (eye_rays * inversesqrt(max(dot(from_eye, from_eye), 1e-30)));
+                back_cos[side] = back.y * inversesqrt(max(dot(back, back), 1e-30));
 #endif
             }
 #if OBSCURA_GTAO_MODE == OBSCURA_GTAO_MODE_BITMASK
