@@ -50,49 +50,58 @@ void main() {
     vec3 zenith = obscura_towards_eye(position);
     float bias = hbao.shaping.x;
 
+    // With K even, direction k + K/2 is direction k turned by pi: the two share their slice, so they are marched
+    // together as the two sides of one line (lane x: k, lane y: its opposite), one setup and one loop for both.
+    // With K odd every direction is a line of its own, and the second lane is off.
+    bool paired = (directions & 1) == 0;
+    int lines = paired ? directions / 2 : directions;
+    vec2 side_on = vec2(1.0, paired ? 1.0 : 0.0);
     float obscurance = 0.0;
-    for (int k = 0; k < directions; ++k) {
+    for (int k = 0; k < lines; ++k) {
         float angle = (float(k) + noise.x) * (2.0 * OBSCURA_PI / float(directions));
         vec2 dir = vec2(cos(angle), sin(angle));
-        // The slice's horizontal axis: the screen direction in view space, made orthogonal to the zenith.
         vec3 line = vec3(normalize(dir * view_per_pixel), 0.0);
         vec3 horizontal = normalize(line - zenith * dot(line, zenith));
-        // Tangent of the receiver along +horizontal inside the slice: sin(t) from the normal's in-slice part.
         float n_h = dot(normal, horizontal), n_z = dot(normal, zenith);
         float n_len_sq = n_h * n_h + n_z * n_z;
         float sin_t = n_len_sq > 0.0 ? -n_h * inversesqrt(n_len_sq) : 0.0;
-        // Off-slice correction: a step c along the slice normal moves the tangent plane by c * slope
-        // along the zenith. The slope is limited where the receiver is seen edge-on.
         vec3 slice_normal = cross(horizontal, zenith);
         float slope = dot(normal, slice_normal) / max(n_z, 0.1);
+        // The opposite side's horizontal axis and slice normal are these negated: its tangent is -sin_t, and the
+        // off-slice correction (zenith slope - slice_normal) (h . slice_normal) comes out the same.
+        vec3 correction = zenith * slope - slice_normal;
+        vec2 tangent = vec2(sin_t, -sin_t);
 
-        float horizon = sin_t + bias;  // running max of sin(h) (horizon-split estimator)
-        float direction_obscurance = 0.0;
+        vec2 horizon = tangent + bias;  // running max of sin(h) per side (horizon-split estimator)
+        vec2 line_obscurance = vec2(0.0);
+        // No branch in the steps (CPU rasterisers run every lane through every branch): a step outside the texture
+        // (every later one is too), on the pixel itself or on sky counts for nothing.
         for (int j = 0; j < steps; ++j) {
             float t = (float(j) + noise.y) * step_px + 1.0;
-            ivec2 s = ivec2(floor(pixel_center + dir * t));
-            if (any(lessThan(s, ivec2(0))) || any(greaterThanEqual(s, depth_size.xy))) break;
-            if (s == p) continue;
-            float sample_depth = texelFetch(u_linear_depth, s, 0).r;
-            ++taps_read;
-            if (obscura_is_sky(sample_depth)) continue;
-            vec3 h = obscura_view_position(s, sample_depth) - position;
-            float off_slice = dot(h, slice_normal);
-            h += (zenith * slope - slice_normal) * off_slice;
-            float distance_sq = dot(h, h);
-            if (distance_sq <= 0.0) continue;
-            float sin_h = dot(h, zenith) * inversesqrt(distance_sq);
-            float rho = obscura_rho0(hbao.falloff.x, hbao.falloff.y, distance_sq);  // d^2 in view units^2
+            vec2 sin_h, rho;
+            bvec2 valid;
+            for (int side = 0; side < 2; ++side) {  // unrolled by the compilers: constant trip count
+                ivec2 s = ivec2(floor(pixel_center + dir * (side == 0 ? t : -t)));
+                bool inside = all(greaterThanEqual(s, ivec2(0))) && all(lessThan(s, depth_size.xy)) && s != p &&
+                              side_on[side] > 0.0;
+                float sample_depth = texelFetch(u_linear_depth, clamp(s, ivec2(0), depth_size.xy - 1), 0).r;
+                taps_read += inside ? 1 : 0;
+                vec3 h = obscura_view_position(s, sample_depth) - position;
+                h += correction * dot(h, slice_normal);
+                float distance_sq = dot(h, h);
+                valid[side] = inside && !obscura_is_sky(sample_depth) && distance_sq > 0.0;
+                sin_h[side] = dot(h, zenith) * inversesqrt(max(distance_sq, 1e-30));
+                rho[side] = obscura_rho0(hbao.falloff.x, hbao.falloff.y, distance_sq);  // d^2 in view units^2
+            }
             if (OBSCURA_HBAO_ESTIMATOR == 1) {  // compiled in
-                if (sin_h > horizon) {
-                    direction_obscurance += rho * (sin_h - horizon);
-                    horizon = sin_h;
-                }
+                bvec2 raises = bvec2(valid.x && sin_h.x > horizon.x, valid.y && sin_h.y > horizon.y);
+                line_obscurance += mix(vec2(0.0), rho * (sin_h - horizon), raises);
+                horizon = mix(horizon, sin_h, raises);
             } else {
-                direction_obscurance = max(direction_obscurance, rho * (sin_h - sin_t - bias));
+                line_obscurance = mix(line_obscurance, max(line_obscurance, rho * (sin_h - tangent - bias)), valid);
             }
         }
-        obscurance += direction_obscurance;
+        obscurance += line_obscurance.x + line_obscurance.y;
     }
     obscurance *= hbao.shaping.y / float(directions);
     float visibility = pow(clamp(1.0 - obscurance, 0.0, 1.0), hbao.shaping.z);
