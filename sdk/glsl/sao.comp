@@ -50,18 +50,20 @@ float sample_visibility(ivec2 p, float depth, out int taps_read) {
         vec2 u = vec2(tap.x * rot.x - tap.y * rot.y, tap.x * rot.y + tap.y * rot.x);
         float h = radius_px * tap.z;
         ivec2 q = ivec2(floor(center + h * u));
-        if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, depth_size.xy))) continue;
+        // No branch (CPU rasterisers run every lane through every branch): a tap outside the texture, on sky or
+        // outside the ball of radius r (where the estimator's points lie) counts for nothing, chosen by selection
+        // (its term may be NaN).
+        bool inside = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, depth_size.xy));
         // Eq. 9-10: one level down per doubling of the tap's screen radius past q'.
         int m = clamp(findMSB(int(h)) - log_q, 0, deepest);
         ivec2 level_size = max(depth_size.xy >> m, ivec2(1));
-        ivec2 t = min(q >> m, level_size - 1);
+        ivec2 t = clamp(q >> m, ivec2(0), level_size - 1);
         float z = texelFetch(u_z, t, m).r;
-        ++taps_read;
-        if (obscura_is_sky(z)) continue;
+        taps_read += inside ? 1 : 0;
         vec3 v = obscura_view_position_at(obscura_level_texel_origin(t, m, sao.options.x), z) - c;
         float vv = dot(v, v);
-        if (vv >= sao.ball.y) continue;  // the estimator's points lie in the ball of radius r
-        sum += max(0.0, dot(v, n) + bias) / (vv + sao.ball.w);
+        float term = max(0.0, dot(v, n) + bias) / (vv + sao.ball.w);
+        sum += inside && !obscura_is_sky(z) && vv < sao.ball.y ? term : 0.0;
     }
     return pow(max(0.0, 1.0 - sao.ball.z * sum), sao.shaping.y);
 }

@@ -33,16 +33,18 @@ void main() {
     // The centre plus the weighted mean of the differences: a uniform neighbourhood keeps its value exactly
     // (sum / weight_sum may land a rounding step below it, which the conversion to r16f truncates).
     float delta_sum = 0.0, weight_sum = 1.0;
+    // No branch on the taps (CPU rasterisers run every lane through every branch): a tap outside the texture or on
+    // sky counts for nothing, chosen by selection.
     for (int i = -sao_blur.config.x; i <= sao_blur.config.x; ++i) {
-        if (i == 0) continue;
+        if (i == 0) continue;  // the same for every invocation
         ivec2 q = p + step * i;
-        if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, depth_size.xy))) continue;
-        vec4 tap = texelFetch(u_source, q, 0);
-        if (tap.w == 0.0) continue;
+        bool inside = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, depth_size.xy));
+        vec4 tap = texelFetch(u_source, clamp(q, ivec2(0), depth_size.xy - 1), 0);
         float w = exp(-float(i * i) * sao_blur.params.y) *
                   max(0.0, 1.0 - sao_blur.params.x * abs(unpack_key(tap) - key));
-        delta_sum += w * (tap.x - center.x);
-        weight_sum += w;
+        bool counts = inside && tap.w != 0.0;
+        delta_sum += counts ? w * (tap.x - center.x) : 0.0;
+        weight_sum += counts ? w : 0.0;
     }
     imageStore(u_destination, p, vec4(center.x + delta_sum / weight_sum, center.yzw));
 }
