@@ -29,7 +29,7 @@ export LD_LIBRARY_PATH="$build/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 export OBSCURA_GL_BACKEND=egl-device
 mkdir -p "$out"
 nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm --format=csv | tee "$out/gpu.txt" || true
-# BENCH_FRAMES, TABLE_SIZES and TABLE_SIZE shrink the runs for a dry run on llvmpipe (defaults: the GPU's).
+# BENCH_FRAMES, BENCH_WARMUP, TABLE_SIZES and TABLE_SIZE shrink the runs for a dry run on llvmpipe (defaults: the GPU's).
 bench() { "$build/bin/obscura" bench --frames "${BENCH_FRAMES:-200}" --warmup "${BENCH_WARMUP:-20}" "$@"; }
 table_sizes="${TABLE_SIZES:-1280x720,1920x1080,3840x2160}"
 table_size="${TABLE_SIZE:-1920x1080}"

@@ -55,7 +55,6 @@ void main() {
     // With K odd every direction is a line of its own, and the second lane is off.
     bool paired = (directions & 1) == 0;
     int lines = paired ? directions / 2 : directions;
-    vec2 side_on = vec2(1.0, paired ? 1.0 : 0.0);
     float obscurance = 0.0;
     for (int k = 0; k < lines; ++k) {
         float angle = (float(k) + noise.x) * (2.0 * OBSCURA_PI / float(directions));
@@ -83,7 +82,7 @@ void main() {
             for (int side = 0; side < 2; ++side) {  // unrolled by the compilers: constant trip count
                 ivec2 s = ivec2(floor(pixel_center + dir * (side == 0 ? t : -t)));
                 bool inside = all(greaterThanEqual(s, ivec2(0))) && all(lessThan(s, depth_size.xy)) && s != p &&
-                              side_on[side] > 0.0;
+                              (side == 0 || paired);
                 float sample_depth = texelFetch(u_linear_depth, clamp(s, ivec2(0), depth_size.xy - 1), 0).r;
                 taps_read += inside ? 1 : 0;
                 vec3 h = obscura_view_position(s, sample_depth) - position;
