@@ -190,6 +190,7 @@ void main() {
         // dot(delta, along) and dot(delta, eye_axis), with eye_axis = V + slope slice_normal.
         float slope = dot(normal, slice_normal) / max(n_view, 0.1);
         vec3 eye_axis = towards_eye + slope * slice_normal;
+        vec4 along_form = obscura_axis_form(along, position), eye_form = obscura_axis_form(eye_axis, position);
         // Per side, the tangent plane's cos h: cos(n + pi/2) = -sin n (side +), cos(n - pi/2) = sin n (side -).
         vec2 low_cos = vec2(-sin_n, sin_n);
 #if OBSCURA_GTAO_MODE == OBSCURA_GTAO_MODE_BITMASK
@@ -237,10 +238,11 @@ void main() {
                 bool valid = inside && !obscura_is_sky(z);
                 taps_read += inside ? 1 : 0;
                 // The pyramid holds harmonic means, exact at the block's centre on planes.
-                vec3 sample_position = obscura_view_position_at(
-                    obscura_level_texel_origin(texel, m, OBSCURA_MIP_FILTER_HARMONIC_MEAN_OF_GEOMETRY), valid ? z : depth);
-                vec3 delta = sample_position - position;
-                float slice_x = dot(delta, along), slice_y = dot(delta, eye_axis);  // moved into the slice
+                vec2 origin = obscura_level_texel_origin(texel, m, OBSCURA_MIP_FILTER_HARMONIC_MEAN_OF_GEOMETRY);
+                float sample_depth = valid ? z : depth, sample_w = obscura_clip_w(sample_depth);
+                // The sample relative to the pixel, moved into the slice.
+                float slice_x = obscura_along_axis(along_form, origin, sample_depth, sample_w);
+                float slice_y = obscura_along_axis(eye_form, origin, sample_depth, sample_w);
                 float distance_sq = max(slice_x * slice_x + slice_y * slice_y, 1e-30);
                 float inverse_distance = inversesqrt(distance_sq);
                 // The falloff: full weight up to radius (1 - range), fading to 0 at the radius.

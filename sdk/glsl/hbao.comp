@@ -66,9 +66,13 @@ void main() {
         float sin_t = n_len_sq > 0.0 ? -n_h * inversesqrt(n_len_sq) : 0.0;
         vec3 slice_normal = cross(horizontal, zenith);
         float slope = dot(normal, slice_normal) / max(n_z, 0.1);
-        // The opposite side's horizontal axis and slice normal are these negated: its tangent is -sin_t, and the
-        // off-slice correction (zenith slope - slice_normal) (h . slice_normal) comes out the same.
-        vec3 correction = zenith * slope - slice_normal;
+        // A sample's offset h from the pixel is moved into the slice along the tangent plane, h + (zenith slope -
+        // slice_normal) (h . slice_normal), exact for planes: its coordinates there are h . horizontal and
+        // h . (zenith + slope slice_normal), taken straight from the sample's pixel and depth (axis forms). The
+        // opposite side's horizontal axis and slice normal are these negated: its tangent is -sin_t, its distance
+        // and sin h come out of the same two coordinates.
+        vec4 horizontal_form = obscura_axis_form(horizontal, position);
+        vec4 zenith_form = obscura_axis_form(zenith + slope * slice_normal, position);
         vec2 tangent = vec2(sin_t, -sin_t);
 
         vec2 horizon = tangent + bias;  // running max of sin(h) per side (horizon-split estimator)
@@ -85,11 +89,13 @@ void main() {
                               (side == 0 || paired);
                 float sample_depth = texelFetch(u_linear_depth, clamp(s, ivec2(0), depth_size.xy - 1), 0).r;
                 taps_read += inside ? 1 : 0;
-                vec3 h = obscura_view_position(s, sample_depth) - position;
-                h += correction * dot(h, slice_normal);
-                float distance_sq = dot(h, h);
+                vec2 origin = vec2(s) + 0.5;
+                float sample_w = obscura_clip_w(sample_depth);
+                float h_x = obscura_along_axis(horizontal_form, origin, sample_depth, sample_w);
+                float h_z = obscura_along_axis(zenith_form, origin, sample_depth, sample_w);
+                float distance_sq = h_x * h_x + h_z * h_z;
                 valid[side] = inside && !obscura_is_sky(sample_depth) && distance_sq > 0.0;
-                sin_h[side] = dot(h, zenith) * inversesqrt(max(distance_sq, 1e-30));
+                sin_h[side] = h_z * inversesqrt(max(distance_sq, 1e-30));
                 rho[side] = obscura_rho0(hbao.falloff.x, hbao.falloff.y, distance_sq);  // d^2 in view units^2
             }
             if (OBSCURA_HBAO_ESTIMATOR == 1) {  // compiled in

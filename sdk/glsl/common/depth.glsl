@@ -63,6 +63,24 @@ void obscura_view_position_at4(vec4 pixel_x, vec4 pixel_y, vec4 view_depth, out 
     y = (ndc_y * w - proj_scale.w * z - proj_offset.y) * (1.0 / proj_scale.y);
 }
 
+// A view-space axis as an affine form of a point's pixel position o and distance d: the point's coordinate along
+// `axis` relative to `origin`, dot(obscura_view_position_at(o, d) - origin, axis), is
+// obscura_clip_w(d) dot(o, f.xy) + d f.z + f.w (the projection is affine in o times clip w, and in d). Passes that
+// project many taps onto a few axes (HBAO's and GTAO's slices) build the forms once per axis: a tap then costs
+// two multiply-adds per axis and its clip w, where its view position and a 3D dot product per axis took about
+// twice the arithmetic.
+vec4 obscura_axis_form(vec3 axis, vec3 origin) {
+    vec2 per_pixel = 2.0 * depth_params.zw / proj_scale.xy;                 // xy = clip_w o per_pixel + ...
+    vec2 per_depth = (proj_depth.z + proj_scale.zw) / proj_scale.xy;        // ... + d per_depth + ...
+    vec2 constant = -(proj_depth.w + proj_offset.xy) / proj_scale.xy;       // ... + constant; z = -d
+    return vec4(per_pixel * axis.xy, dot(per_depth, axis.xy) - axis.z, dot(constant, axis.xy) - dot(origin, axis));
+}
+
+// The coordinate of the point at pixel position o and distance d (clip w: obscura_clip_w(d)) along an axis form.
+float obscura_along_axis(vec4 form, vec2 pixel_position, float view_depth, float clip_w) {
+    return clip_w * dot(pixel_position, form.xy) + (view_depth * form.z + form.w);
+}
+
 // View-space position of the centre of texel `pixel` at distance `view_depth`.
 vec3 obscura_view_position(ivec2 pixel, float view_depth) {
     return obscura_view_position_at(vec2(pixel) + 0.5, view_depth);
