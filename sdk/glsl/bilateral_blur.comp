@@ -1,6 +1,10 @@
 // Separable depth-aware (bilateral) blur of the AO: Gaussian weights in the image, multiplied by a
 // weight that falls off with the relative depth difference so occlusion does not bleed across edges.
 // Run twice (x then y); the C++ side sets the axis and the region.
+// Each invocation filters a run of OBSCURA_BLUR_RUN pixels along the pass's axis (1 on GPUs, 16 on CPU rasterisers:
+// shader_interface.h): the run's windows overlap, so it reads RUN + 2 radius values and depths instead of
+// 2 radius + 1 per pixel. The radius is compiled in (OBSCURA_BLUR_RADIUS): the window is an array with constant
+// indices once the loops unroll.
 #define OBSCURA_BLUR_PASS 1
 #include "common/shader_interface.h"
 #include "common/depth.glsl"
@@ -11,33 +15,55 @@ layout(binding = OBSCURA_UNIT_LINEAR_DEPTH) uniform sampler2D u_linear_depth;
 layout(binding = OBSCURA_UNIT_SOURCE) uniform sampler2D u_source;
 layout(binding = OBSCURA_IMAGE_OUT0, r16f) writeonly uniform image2D u_destination;
 
+#if !defined(OBSCURA_BLUR_RADIUS) || !defined(OBSCURA_BLUR_RUN)
+#error "OBSCURA_BLUR_RADIUS and OBSCURA_BLUR_RUN must be defined"
+#endif
+const int kRadius = OBSCURA_BLUR_RADIUS;
+const int kRun = OBSCURA_BLUR_RUN;
+const int kTaps = kRun + 2 * kRadius;  // the run and `radius` neighbours on each side
 
 void main() {
-    ivec2 p = work_rect.xy + ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(gl_GlobalInvocationID.xy, uvec2(work_rect.zw)))) return;
-    float center_ao = texelFetch(u_source, p, 0).r;
-    float depth = texelFetch(u_linear_depth, p, 0).r;
-    if (obscura_is_sky(depth)) {
-        imageStore(u_destination, p, vec4(center_ao));
-        return;
-    }
     ivec2 axis = blur.config.yz;
-    float sharpness = blur.params.x / depth;
-    // The weighted mean is taken as the centre plus the weighted mean of the differences, so a uniform
-    // neighbourhood returns its value exactly: sum / weight_sum lands a rounding step below it, which a
-    // truncating conversion to r16f keeps (NVIDIA: unoccluded 1.0 came out 0.99902 after x and y).
-    float delta_sum = 0.0, weight_sum = 1.0;
-    for (int i = -blur.config.x; i <= blur.config.x; ++i) {
-        if (i == 0) continue;
-        ivec2 q = p + axis * i;
-        if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, depth_size.xy))) continue;
-        float q_depth = texelFetch(u_linear_depth, q, 0).r;
-        if (obscura_is_sky(q_depth)) continue;
-        float dz = (q_depth - depth) * sharpness;
-        float w = exp(-float(i * i) * blur.params.y - dz * dz);
-        w = w >= 0.0 ? w : 0.0;  // a depth near 0 makes the sharpness infinite and 0 * inf a NaN
-        delta_sum += w * (texelFetch(u_source, q, 0).r - center_ao);
-        weight_sum += w;
+    // The invocation's run starts at `first` and covers first + axis * i, i < kRun, clipped to the work rectangle.
+    ivec2 offset = ivec2(gl_GlobalInvocationID.xy) * (ivec2(1) + (kRun - 1) * axis);
+    if (any(greaterThanEqual(offset, work_rect.zw))) return;
+    ivec2 first = work_rect.xy + offset;
+    ivec2 remaining = work_rect.zw - offset;
+    int run_length = min(kRun, axis.x != 0 ? remaining.x : remaining.y);
+
+    // The window, read once for the whole run; a tap outside the texture or on sky has no weight (`valid`), and its
+    // value is chosen away rather than multiplied by 0 (sky outside the AO region was never written: any value).
+    float value[kTaps], depth[kTaps];
+    bool valid[kTaps];
+    for (int k = 0; k < kTaps; ++k) {
+        ivec2 q = first + axis * (k - kRadius);
+        bool inside = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, depth_size.xy));
+        ivec2 clamped = clamp(q, ivec2(0), depth_size.xy - 1);
+        depth[k] = texelFetch(u_linear_depth, clamped, 0).r;
+        value[k] = texelFetch(u_source, clamped, 0).r;
+        valid[k] = inside && !obscura_is_sky(depth[k]);
     }
-    imageStore(u_destination, p, vec4(center_ao + delta_sum / weight_sum));
+
+    for (int i = 0; i < kRun; ++i) {
+        if (i >= run_length) break;
+        ivec2 p = first + axis * i;
+        float center_ao = value[i + kRadius], center_depth = depth[i + kRadius];
+        float sharpness = blur.params.x / center_depth;
+        // The weighted mean is taken as the centre plus the weighted mean of the differences, so a uniform
+        // neighbourhood returns its value exactly: sum / weight_sum lands a rounding step below it, which a
+        // truncating conversion to r16f keeps (NVIDIA: unoccluded 1.0 came out 0.99902 after x and y).
+        float delta_sum = 0.0, weight_sum = 1.0;
+        for (int j = -kRadius; j <= kRadius; ++j) {
+            if (j == 0) continue;
+            int k = i + kRadius + j;
+            float dz = (depth[k] - center_depth) * sharpness;
+            float w = exp(-float(j * j) * blur.params.y - dz * dz);
+            // A depth near 0 makes the sharpness infinite and 0 * inf a NaN: w >= 0 fails for it.
+            bool counts = valid[k] && w >= 0.0;
+            delta_sum += counts ? w * (value[k] - center_ao) : 0.0;
+            weight_sum += counts ? w : 0.0;
+        }
+        // Sky is passed through.
+        imageStore(u_destination, p, vec4(obscura_is_sky(center_depth) ? center_ao : center_ao + delta_sum / weight_sum));
+    }
 }

@@ -71,9 +71,10 @@ public:
         return plan;
     }
 
-    Error prepare(const PassEnv& env, const obscura_settings&, const FrameRequest&, FrameResources&) override {
+    Error prepare(const PassEnv& env, const obscura_settings& settings, const FrameRequest& request,
+                  FrameResources&) override {
         Error error = hbao_.prepare(env);
-        if (!error) error = blur_.prepare(env);
+        if (!error && hbao_blurs(settings.hbao, request.raw_view)) error = blur_.prepare(env, settings.hbao.blur_radius);
         return error;
     }
 
@@ -91,9 +92,11 @@ public:
         out->raw = out->result = &r.ao;
         Error error = recorder.end(PassId::Hbao);
         if (error || !hbao_blurs(frame.settings.hbao, frame.raw_view)) return error;
-        blur_.run(frame.env, frame.uniforms.blur_x, blur_x_, frame.regions.blur_x, r.linear_depth, r.ao, r.blur_temp);
-        blur_.run(frame.env, frame.uniforms.output, blur_y_, frame.regions.output, r.linear_depth, r.blur_temp,
-                  r.ao_blurred);
+        const int radius = frame.settings.hbao.blur_radius;
+        blur_.run(frame.env, radius, true, frame.uniforms.blur_x, blur_x_, frame.regions.blur_x, r.linear_depth, r.ao,
+                  r.blur_temp);
+        blur_.run(frame.env, radius, false, frame.uniforms.output, blur_y_, frame.regions.output, r.linear_depth,
+                  r.blur_temp, r.ao_blurred);
         out->result = &r.ao_blurred;
         return recorder.end(PassId::Blur);
     }

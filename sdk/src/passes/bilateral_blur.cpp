@@ -1,6 +1,23 @@
 #include "passes/bilateral_blur.h"
 
+#include <cstdio>
+
 namespace obscura {
+
+int BilateralBlurPass::run_length(const PassEnv& env) {
+    return env.cpu_renderer ? OBSCURA_BLUR_RUN_CPU : OBSCURA_BLUR_RUN_GPU;
+}
+
+Error BilateralBlurPass::prepare(const PassEnv& env, int radius) {
+    if (radius < 1 || radius > kMaxRadius) {
+        return Error::make(OBSCURA_STATUS_INVALID_SETTING, "blur radius %d is outside [1, %d]", radius, kMaxRadius);
+    }
+    gl::Object& program = programs_[radius];
+    if (program) return Error();
+    char defines[96];
+    std::snprintf(defines, sizeof defines, "OBSCURA_BLUR_RADIUS %d\nOBSCURA_BLUR_RUN %d\n", radius, run_length(env));
+    return env.build("bilateral_blur.comp", defines, &program);
+}
 
 BlurConstants BilateralBlurPass::constants(int radius, float sharpness, int axis_x, int axis_y) {
     BlurConstants c = {};
@@ -14,17 +31,21 @@ BlurConstants BilateralBlurPass::constants(int radius, float sharpness, int axis
     return c;
 }
 
-void BilateralBlurPass::run(const PassEnv& env, const UniformRange& frame, const UniformRange& pass,
-                            const Region& region, const gl::Texture2D& linear_depth, const gl::Texture2D& source,
-                            const gl::Texture2D& destination) {
+void BilateralBlurPass::run(const PassEnv& env, int radius, bool along_x, const UniformRange& frame,
+                            const UniformRange& pass, const Region& region, const gl::Texture2D& linear_depth,
+                            const gl::Texture2D& source, const gl::Texture2D& destination) {
     const gl::Table& gl = env.gl;
-    gl.UseProgram(program_.name());
+    gl.UseProgram(programs_[radius].name());
     env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, linear_depth.name());
     env.bind_texture(OBSCURA_UNIT_SOURCE, GL_TEXTURE_2D, source.name());
     gl.BindImageTexture(OBSCURA_IMAGE_OUT0, destination.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
     env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
     env.bind_uniforms(OBSCURA_UBO_PASS, pass);
-    env.dispatch(region.width, region.height, OBSCURA_BLUR_GROUP_X, OBSCURA_BLUR_GROUP_Y);
+    // One invocation per run of pixels along the axis.
+    const int run = run_length(env);
+    const int width = along_x ? (region.width + run - 1) / run : region.width;
+    const int height = along_x ? region.height : (region.height + run - 1) / run;
+    env.dispatch(width, height, OBSCURA_BLUR_GROUP_X, OBSCURA_BLUR_GROUP_Y);
     gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 

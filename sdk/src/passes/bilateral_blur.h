@@ -2,24 +2,28 @@
 #ifndef OBSCURA_BILATERAL_BLUR_H
 #define OBSCURA_BILATERAL_BLUR_H
 
+#include <array>
+
 #include "passes/pass_common.h"
 
 namespace obscura {
 
 class BilateralBlurPass {
 public:
-    // Builds the program on first use.
-    Error prepare(const PassEnv& env) {
-        if (program_) return Error();
-        return env.build("bilateral_blur.comp", "", &program_);
-    }
+    static constexpr int kMaxRadius = 16;  // the blur_radius setting's range (hbao.cpp)
+    // Builds the program for `radius` (1 ... kMaxRadius, compiled in) on first use.
+    Error prepare(const PassEnv& env, int radius);
     static BlurConstants constants(int radius, float sharpness, int axis_x, int axis_y);
-    // Blurs `source` into `destination` over `region` along the axis in `pass`.
-    void run(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
-             const gl::Texture2D& linear_depth, const gl::Texture2D& source, const gl::Texture2D& destination);
+    // Blurs `source` into `destination` over `region` along x or y with the constants `pass` (constants(radius, ...,
+    // the same axis)).
+    void run(const PassEnv& env, int radius, bool along_x, const UniformRange& frame, const UniformRange& pass,
+             const Region& region, const gl::Texture2D& linear_depth, const gl::Texture2D& source,
+             const gl::Texture2D& destination);
 
 private:
-    gl::Object program_;
+    // Pixels an invocation filters along the axis (bilateral_blur.comp).
+    static int run_length(const PassEnv& env);
+    std::array<gl::Object, kMaxRadius + 1> programs_;  // by radius
 };
 
 }  // namespace obscura
