@@ -3,6 +3,10 @@
 // times max(0, 1 - sharpness * |key difference|) on the 16-bit z key packed beside the AO, so one RGBA8
 // fetch gives both. Sky texels (alpha 0) are neither read nor changed. FINAL_OUTPUT 0: RGBA8 with the key
 // kept (the horizontal pass); 1: plain visibility into R16F (the vertical pass, read by the composite).
+// Each invocation filters a run of OBSCURA_SAO_BLUR_RUN pixels `stride` apart along the pass's axis (1 on GPUs, 16 on
+// CPU rasterisers: shader_interface.h), whose taps are then every `stride`-th texel of one window: it reads RUN + 2R
+// texels instead of 2R + 1 per pixel. R is compiled in (OBSCURA_SAO_BLUR_RADIUS): the window is an array with
+// constant indices once the loops unroll; the stride is not (a run's taps are window entries whatever it is).
 #define OBSCURA_SAO_BLUR_PASS 1
 #include "common/shader_interface.h"
 
@@ -15,36 +19,64 @@ layout(binding = OBSCURA_IMAGE_OUT0, r16f) writeonly uniform image2D u_destinati
 layout(binding = OBSCURA_IMAGE_OUT0, rgba8) writeonly uniform image2D u_destination;
 #endif
 
+#if !defined(OBSCURA_SAO_BLUR_RADIUS) || !defined(OBSCURA_SAO_BLUR_RUN)
+#error "OBSCURA_SAO_BLUR_RADIUS and OBSCURA_SAO_BLUR_RUN must be defined"
+#endif
+const int kRadius = OBSCURA_SAO_BLUR_RADIUS;
+const int kRun = OBSCURA_SAO_BLUR_RUN;
+const int kTaps = kRun + 2 * kRadius;  // the run and R taps on each side
+
 float unpack_key(vec4 texel) {
     vec2 bytes = round(texel.yz * 255.0);
     return (bytes.x * 256.0 + bytes.y) * (1.0 / 65535.0);
 }
 
 void main() {
-    ivec2 p = work_rect.xy + ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(gl_GlobalInvocationID.xy, uvec2(work_rect.zw)))) return;
-    vec4 center = texelFetch(u_source, p, 0);
-    if (center.w == 0.0) {
-        imageStore(u_destination, p, center);
-        return;
-    }
-    float key = unpack_key(center);
-    ivec2 step = sao_blur.config.zw * sao_blur.config.y;
-    // The centre plus the weighted mean of the differences: a uniform neighbourhood keeps its value exactly
-    // (sum / weight_sum may land a rounding step below it, which the conversion to r16f truncates).
-    float delta_sum = 0.0, weight_sum = 1.0;
-    // No branch on the taps (CPU rasterisers run every lane through every branch): a tap outside the texture or on
-    // sky counts for nothing, chosen by selection.
-    for (int i = -sao_blur.config.x; i <= sao_blur.config.x; ++i) {
-        if (i == 0) continue;  // the same for every invocation
-        ivec2 q = p + step * i;
+    ivec2 axis = sao_blur.config.zw;
+    int stride = sao_blur.config.y;
+    bool along_x = axis.x != 0;
+    // Invocation n along the axis takes residue n % stride of the block of kRun * stride pixels n / stride.
+    int n = int(along_x ? gl_GlobalInvocationID.x : gl_GlobalInvocationID.y);
+    int across = int(along_x ? gl_GlobalInvocationID.y : gl_GlobalInvocationID.x);
+    int along = (n / stride) * kRun * stride + n % stride;
+    int extent = along_x ? work_rect.z : work_rect.w;
+    if (along >= extent || across >= (along_x ? work_rect.w : work_rect.z)) return;
+    ivec2 first = work_rect.xy + (along_x ? ivec2(along, across) : ivec2(across, along));
+    ivec2 step = axis * stride;
+    int run_length = min(kRun, (extent - along + stride - 1) / stride);
+
+    // The window, read once for the run: taps, their keys, and whether they count (inside the texture, not sky).
+    vec4 tap[kTaps];
+    float tap_key[kTaps];
+    bool counts[kTaps];
+    for (int k = 0; k < kTaps; ++k) {
+        ivec2 q = first + step * (k - kRadius);
         bool inside = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, depth_size.xy));
-        vec4 tap = texelFetch(u_source, clamp(q, ivec2(0), depth_size.xy - 1), 0);
-        float w = exp(-float(i * i) * sao_blur.params.y) *
-                  max(0.0, 1.0 - sao_blur.params.x * abs(unpack_key(tap) - key));
-        bool counts = inside && tap.w != 0.0;
-        delta_sum += counts ? w * (tap.x - center.x) : 0.0;
-        weight_sum += counts ? w : 0.0;
+        tap[k] = texelFetch(u_source, clamp(q, ivec2(0), depth_size.xy - 1), 0);
+        tap_key[k] = unpack_key(tap[k]);
+        counts[k] = inside && tap[k].w != 0.0;
     }
-    imageStore(u_destination, p, vec4(center.x + delta_sum / weight_sum, center.yzw));
+    float spatial[2 * kRadius + 1];  // the Gaussian's weight of each tap
+    for (int j = -kRadius; j <= kRadius; ++j) spatial[j + kRadius] = exp(-float(j * j) * sao_blur.params.y);
+
+    for (int i = 0; i < kRun; ++i) {
+        if (i >= run_length) break;
+        ivec2 p = first + step * i;
+        vec4 center = tap[i + kRadius];
+        float key = tap_key[i + kRadius];
+        // The centre plus the weighted mean of the differences: a uniform neighbourhood keeps its value exactly
+        // (sum / weight_sum may land a rounding step below it, which the conversion to r16f truncates).
+        float delta_sum = 0.0, weight_sum = 1.0;
+        // No branch on the taps (CPU rasterisers run every lane through every branch): a tap outside the texture or
+        // on sky counts for nothing, chosen by selection.
+        for (int j = -kRadius; j <= kRadius; ++j) {
+            if (j == 0) continue;
+            int k = i + kRadius + j;
+            float w = spatial[j + kRadius] * max(0.0, 1.0 - sao_blur.params.x * abs(tap_key[k] - key));
+            delta_sum += counts[k] ? w * (tap[k].x - center.x) : 0.0;
+            weight_sum += counts[k] ? w : 0.0;
+        }
+        // Sky (alpha 0) is neither read nor changed.
+        imageStore(u_destination, p, center.w == 0.0 ? center : vec4(center.x + delta_sum / weight_sum, center.yzw));
+    }
 }

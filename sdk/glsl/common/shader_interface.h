@@ -98,6 +98,9 @@
 // CPU rasterisers, one on GPUs (where the pass was measured that way).
 #define OBSCURA_BLUR_RUN_GPU 1
 #define OBSCURA_BLUR_RUN_CPU 16
+// Pixels one SAO blur invocation filters (compiled in as OBSCURA_SAO_BLUR_RUN), likewise.
+#define OBSCURA_SAO_BLUR_RUN_GPU 1
+#define OBSCURA_SAO_BLUR_RUN_CPU 16
 // LSAO: one invocation per line segment, 64 per group, each keeping its hull in shared memory (64 x hull
 // capacity x 8 bytes: 12 KiB at the default 24 points, 32 KiB, GL's guaranteed minimum, at the most);
 // the gather in 8x8 groups on CPU rasterisers and 16x16 on GPUs, whose groups share a tile of depths.

@@ -80,11 +80,11 @@ public:
         return plan;
     }
 
-    Error prepare(const PassEnv& env, const obscura_settings&, const FrameRequest&,
+    Error prepare(const PassEnv& env, const obscura_settings& settings, const FrameRequest& request,
                   FrameResources& resources) override {
         Error error = pyramid_pass_.prepare(env);
         if (!error) error = sao_.prepare(env);
-        if (!error) error = blur_.prepare(env);
+        if (!error && sao_blurs(settings.sao, request.raw_view)) error = blur_.prepare(env, settings.sao.blur_radius);
         if (error || (packed_ao_.width() == resources.width && packed_ao_.height() == resources.height)) return error;
         packed_ao_ = env.create_texture(GL_RGBA8, resources.width, resources.height);
         packed_temp_ = env.create_texture(GL_RGBA8, resources.width, resources.height);
@@ -119,8 +119,9 @@ public:
         out->raw = out->result = &packed_ao_;
         error = recorder.end(PassId::Sao);
         if (error || !sao_blurs(frame.settings.sao, frame.raw_view)) return error;
-        blur_.run(frame.env, frame.uniforms.blur_x, blur_x_, frame.regions.blur_x, packed_ao_, packed_temp_, false);
-        blur_.run(frame.env, frame.uniforms.output, blur_y_, frame.regions.output, packed_temp_,
+        const obscura_sao_settings& sao = frame.settings.sao;
+        blur_.run(frame.env, sao, frame.uniforms.blur_x, blur_x_, frame.regions.blur_x, packed_ao_, packed_temp_, false);
+        blur_.run(frame.env, sao, frame.uniforms.output, blur_y_, frame.regions.output, packed_temp_,
                   frame.resources.ao_blurred, true);
         out->result = &frame.resources.ao_blurred;
         return recorder.end(PassId::Blur);

@@ -1,6 +1,7 @@
 #include "passes/sao.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "math_constants.h"
 
@@ -99,11 +100,24 @@ void SaoPass::run(const PassEnv& env, const UniformRange& frame, const UniformRa
     gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
-Error SaoBlurPass::prepare(const PassEnv& env) {
-    Error error;
-    if (!packed_program_) error = env.build("sao_blur.comp", "FINAL_OUTPUT 0\n", &packed_program_);
-    if (!error && !final_program_) error = env.build("sao_blur.comp", "FINAL_OUTPUT 1\n", &final_program_);
-    return error;
+int SaoBlurPass::run_length(const PassEnv& env) {
+    return env.cpu_renderer ? OBSCURA_SAO_BLUR_RUN_CPU : OBSCURA_SAO_BLUR_RUN_GPU;
+}
+
+Error SaoBlurPass::prepare(const PassEnv& env, int radius) {
+    if (radius < 1 || radius > kMaxRadius) {
+        return Error::make(OBSCURA_STATUS_INVALID_SETTING, "SAO blur radius %d is outside [1, %d]", radius, kMaxRadius);
+    }
+    for (int final = 0; final < 2; ++final) {
+        gl::Object& program = programs_[radius][final];
+        if (program) continue;
+        char defines[128];
+        std::snprintf(defines, sizeof defines, "FINAL_OUTPUT %d\nOBSCURA_SAO_BLUR_RADIUS %d\nOBSCURA_SAO_BLUR_RUN %d\n",
+                      final, radius, run_length(env));
+        Error error = env.build("sao_blur.comp", defines, &program);
+        if (error) return error;
+    }
+    return Error();
 }
 
 SaoBlurConstants SaoBlurPass::constants(const obscura_sao_settings& settings, int axis_x, int axis_y) {
@@ -119,16 +133,23 @@ SaoBlurConstants SaoBlurPass::constants(const obscura_sao_settings& settings, in
     return c;
 }
 
-void SaoBlurPass::run(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
-                      const gl::Texture2D& source, const gl::Texture2D& destination, bool final) {
+void SaoBlurPass::run(const PassEnv& env, const obscura_sao_settings& settings, const UniformRange& frame,
+                      const UniformRange& pass, const Region& region, const gl::Texture2D& source,
+                      const gl::Texture2D& destination, bool final) {
     const gl::Table& gl = env.gl;
-    gl.UseProgram(final ? final_program_.name() : packed_program_.name());
+    gl.UseProgram(programs_[settings.blur_radius][final ? 1 : 0].name());
     env.bind_texture(OBSCURA_UNIT_SOURCE, GL_TEXTURE_2D, source.name());
     gl.BindImageTexture(OBSCURA_IMAGE_OUT0, destination.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
                         final ? GL_R16F : GL_RGBA8);
     env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
     env.bind_uniforms(OBSCURA_UBO_PASS, pass);
-    env.dispatch(region.width, region.height, OBSCURA_BLUR_GROUP_X, OBSCURA_BLUR_GROUP_Y);
+    // Along the axis, one invocation per residue (mod the stride) of each block of run x stride pixels.
+    const int run = run_length(env), stride = settings.blur_stride;
+    const bool along_x = !final;
+    const int extent = along_x ? region.width : region.height;
+    const int invocations = (extent + run * stride - 1) / (run * stride) * stride;
+    env.dispatch(along_x ? invocations : region.width, along_x ? region.height : invocations, OBSCURA_BLUR_GROUP_X,
+                 OBSCURA_BLUR_GROUP_Y);
     gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 

@@ -44,14 +44,19 @@ private:
 // the vertical one (`final`) writes plain visibility to an R16F texture.
 class SaoBlurPass {
 public:
-    Error prepare(const PassEnv& env);
+    static constexpr int kMaxRadius = 8;  // the blur_radius setting's range (sao.cpp)
+    // Builds both programs for `radius` (1 ... kMaxRadius, compiled in) on first use.
+    Error prepare(const PassEnv& env, int radius);
     static SaoBlurConstants constants(const obscura_sao_settings& settings, int axis_x, int axis_y);
-    void run(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
-             const gl::Texture2D& source, const gl::Texture2D& destination, bool final);
+    // Blurs along x (the packed horizontal pass) or y (`final`) with the constants `pass` of `settings`.
+    void run(const PassEnv& env, const obscura_sao_settings& settings, const UniformRange& frame,
+             const UniformRange& pass, const Region& region, const gl::Texture2D& source,
+             const gl::Texture2D& destination, bool final);
 
 private:
-    gl::Object packed_program_;
-    gl::Object final_program_;
+    // Pixels an invocation filters along the axis (sao_blur.comp).
+    static int run_length(const PassEnv& env);
+    gl::Object programs_[kMaxRadius + 1][2];  // by radius, then final
 };
 
 }  // namespace obscura
