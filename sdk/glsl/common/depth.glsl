@@ -47,9 +47,9 @@ vec3 obscura_view_position_at(vec2 pixel_position, float view_depth) {
     vec2 ndc = pixel_position * depth_params.zw * 2.0 - 1.0;
     float z = -view_depth;
     float w = obscura_clip_w(view_depth);
-    // ndc.x = (m0 x + m8 z + m12) / w, likewise y. Times the reciprocal rather than divided: every tap of every
-    // method comes here, and CPU rasterisers divide at a fraction of their multiply rate (2-6 % of HBAO's, GTAO's and
-    // SAO's frames on llvmpipe).
+    // ndc.x = (m0 x + m8 z + m12) / w, likewise y. Times the reciprocal rather than divided: most methods' taps come
+    // here (HBAO's and GTAO's through axis forms, below), and CPU rasterisers divide at a fraction of their multiply
+    // rate (2-6 % of HBAO's, GTAO's and SAO's frames on llvmpipe).
     vec2 xy = (ndc * w - proj_scale.zw * z - proj_offset.xy) * (1.0 / proj_scale.xy);
     return vec3(xy, z);
 }
@@ -70,9 +70,10 @@ void obscura_view_position_at4(vec4 pixel_x, vec4 pixel_y, vec4 view_depth, out 
 // two multiply-adds per axis and its clip w, where its view position and a 3D dot product per axis took about
 // twice the arithmetic.
 vec4 obscura_axis_form(vec3 axis, vec3 origin) {
-    vec2 per_pixel = 2.0 * depth_params.zw / proj_scale.xy;                 // xy = clip_w o per_pixel + ...
-    vec2 per_depth = (proj_depth.z + proj_scale.zw) / proj_scale.xy;        // ... + d per_depth + ...
-    vec2 constant = -(proj_depth.w + proj_offset.xy) / proj_scale.xy;       // ... + constant; z = -d
+    vec2 inverse_scale = 1.0 / proj_scale.xy;
+    vec2 per_pixel = 2.0 * depth_params.zw * inverse_scale;                 // xy = clip_w o per_pixel + ...
+    vec2 per_depth = (proj_depth.z + proj_scale.zw) * inverse_scale;        // ... + d per_depth + ...
+    vec2 constant = -(proj_depth.w + proj_offset.xy) * inverse_scale;       // ... + constant; z = -d
     return vec4(per_pixel * axis.xy, dot(per_depth, axis.xy) - axis.z, dot(constant, axis.xy) - dot(origin, axis));
 }
 

@@ -41,7 +41,7 @@ const obscura_setting_info kSaoSettings[] = {
     setting_row("quad_filter", OBSCURA_SETTING_TOGGLE, 1, 0, 1, "", "2x2 bilateral step at the end of the AO pass",
      OBSCURA_SETTING_OFFSET(sao, quad_filter)),
     setting_row("blur", OBSCURA_SETTING_TOGGLE, 1, 0, 1, "", "separable bilateral blur", OBSCURA_SETTING_OFFSET(sao, blur)),
-    setting_row("blur_radius", OBSCURA_SETTING_INT, 3, 1, 8, "", "blur taps on each side (3: the paper's 7 taps)",
+    setting_row("blur_radius", OBSCURA_SETTING_INT, 3, 1, SaoBlurPass::kMaxRadius, "", "blur taps on each side (3: the paper's 7 taps)",
      OBSCURA_SETTING_OFFSET(sao, blur_radius)),
     setting_row("blur_stride", OBSCURA_SETTING_INT, 3, 1, 4, "px", "pixels between blur taps", OBSCURA_SETTING_OFFSET(sao, blur_stride)),
     setting_row("blur_sharpness", OBSCURA_SETTING_FLOAT, 2048.0, 1.0, 1e6, "",

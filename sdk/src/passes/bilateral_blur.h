@@ -10,7 +10,7 @@ namespace obscura {
 
 class BilateralBlurPass {
 public:
-    static constexpr int kMaxRadius = 16;  // the blur_radius setting's range (hbao.cpp)
+    static constexpr int kMaxRadius = 16;  // the top of HBAO's blur_radius setting (hbao.cpp)
     // Builds the program for `radius` (1 ... kMaxRadius, compiled in) on first use.
     Error prepare(const PassEnv& env, int radius);
     static BlurConstants constants(int radius, float sharpness, int axis_x, int axis_y);

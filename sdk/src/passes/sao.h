@@ -44,7 +44,7 @@ private:
 // the vertical one (`final`) writes plain visibility to an R16F texture.
 class SaoBlurPass {
 public:
-    static constexpr int kMaxRadius = 8;  // the blur_radius setting's range (sao.cpp)
+    static constexpr int kMaxRadius = 8;  // the top of SAO's blur_radius setting (sao.cpp)
     // Builds both programs for `radius` (1 ... kMaxRadius, compiled in) on first use.
     Error prepare(const PassEnv& env, int radius);
     static SaoBlurConstants constants(const obscura_sao_settings& settings, int axis_x, int axis_y);
