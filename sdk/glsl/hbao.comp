@@ -85,9 +85,9 @@ void main() {
             bvec2 valid;
             for (int side = 0; side < 2; ++side) {  // unrolled by the compilers: constant trip count
                 ivec2 s = ivec2(floor(pixel_center + dir * (side == 0 ? t : -t)));
-                bool inside = all(greaterThanEqual(s, ivec2(0))) && all(lessThan(s, depth_size.xy)) && s != p &&
-                              (side == 0 || paired);
-                float sample_depth = texelFetch(u_linear_depth, clamp(s, ivec2(0), depth_size.xy - 1), 0).r;
+                ivec2 clamped = clamp(s, ivec2(0), depth_size.xy - 1);
+                bool inside = s == clamped && s != p && (side == 0 || paired);  // the clamp moved nothing
+                float sample_depth = texelFetch(u_linear_depth, clamped, 0).r;
                 taps_read += inside ? 1 : 0;
                 vec2 origin = vec2(s) + 0.5;
                 float sample_w = obscura_clip_w(sample_depth);
