@@ -80,6 +80,21 @@ protected:
         return {frame_range, pass_range};
     }
 
+    // `render()` as a CPU rasteriser runs it (runs of pixels) and as a GPU does (one pixel per invocation).
+    template <typename Render>
+    std::pair<std::vector<float>, std::vector<float>> on_cpu_and_gpu(Render render) {
+        cpu_renderer_ = true;
+        std::vector<float> cpu = render();
+        cpu_renderer_ = false;
+        std::vector<float> gpu = render();
+        cpu_renderer_ = true;
+        return {cpu, gpu};
+    }
+
+    static std::string region_name(const obscura::Region& r) {
+        return ", region at (" + std::to_string(r.x) + ", " + std::to_string(r.y) + ")";
+    }
+
     static bool inside(const obscura::Region& r, int x, int y) {
         return x >= r.x && x < r.x + r.width && y >= r.y && y < r.y + r.height;
     }
@@ -138,14 +153,10 @@ TEST_F(BilateralBlur, CpuAndGpuRunLengthsGiveTheSameImage) {
     for (int radius : {1, 2, 5, obscura::BilateralBlurPass::kMaxRadius}) {
         for (bool along_x : {true, false}) {
             for (const obscura::Region& region : kRegions) {
-                const std::string name = "radius " + std::to_string(radius) + (along_x ? " along x" : " along y") +
-                                         ", region at (" + std::to_string(region.x) + ", " + std::to_string(region.y) + ")";
-                cpu_renderer_ = true;
-                const std::vector<float> cpu = blur(radius, along_x, region);
-                cpu_renderer_ = false;
-                const std::vector<float> gpu = blur(radius, along_x, region);
-                cpu_renderer_ = true;
-                expect_same_over(cpu, gpu, region, name);
+                const auto [cpu, gpu] = on_cpu_and_gpu([&] { return blur(radius, along_x, region); });
+                expect_same_over(cpu, gpu, region,
+                                 "radius " + std::to_string(radius) + (along_x ? " along x" : " along y") +
+                                     region_name(region));
             }
         }
     }
@@ -235,13 +246,9 @@ TEST_F(SaoBlur, CpuAndGpuRunLengthsGiveTheSameImage) {
     for (int radius : {1, 3, obscura::SaoBlurPass::kMaxRadius}) {
         for (int stride = 1; stride <= 4; ++stride) {
             for (const obscura::Region& output : kRegions) {
-                const std::string name = "radius " + std::to_string(radius) + ", stride " + std::to_string(stride) +
-                                         ", region at (" + std::to_string(output.x) + ", " + std::to_string(output.y) + ")";
-                cpu_renderer_ = true;
-                const std::vector<float> cpu = blur(radius, stride, output);
-                cpu_renderer_ = false;
-                const std::vector<float> gpu = blur(radius, stride, output);
-                cpu_renderer_ = true;
+                const std::string name =
+                    "radius " + std::to_string(radius) + ", stride " + std::to_string(stride) + region_name(output);
+                const auto [cpu, gpu] = on_cpu_and_gpu([&] { return blur(radius, stride, output); });
                 expect_same_over(cpu, gpu, output, name);
                 // The filter smoothed the noise: most pixels moved.
                 int changed = 0;
