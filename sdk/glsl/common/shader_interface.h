@@ -213,7 +213,7 @@ OBSCURA_PASS_BLOCK_END(HbaoConstants, hbao)
 #if defined(__cplusplus) || defined(OBSCURA_BLUR_PASS)
 OBSCURA_PASS_BLOCK_BEGIN(BlurConstants)
   OBSCURA_VEC4(params);    // sharpness, 1 / (2 sigma^2) of the spatial Gaussian, unused, unused
-  OBSCURA_IVEC4(config);   // radius in taps (also compiled in: OBSCURA_BLUR_RADIUS), axis x, axis y, unused
+  OBSCURA_IVEC4(config);   // unused (the radius is compiled in: OBSCURA_BLUR_RADIUS), axis x, axis y, unused
 OBSCURA_PASS_BLOCK_END(BlurConstants, blur)
 #endif
 
@@ -265,7 +265,7 @@ OBSCURA_PASS_BLOCK_END(SaoConstants, sao)
 #if defined(__cplusplus) || defined(OBSCURA_SAO_BLUR_PASS)
 OBSCURA_PASS_BLOCK_BEGIN(SaoBlurConstants)
   OBSCURA_VEC4(params);    // edge scale (sharpness, on the packed key), 1 / (2 sigma^2), unused, unused
-  OBSCURA_IVEC4(config);   // radius in taps (also compiled in: OBSCURA_SAO_BLUR_RADIUS), stride, axis x, axis y
+  OBSCURA_IVEC4(config);   // unused (the radius is compiled in: OBSCURA_SAO_BLUR_RADIUS), stride, axis x, axis y
 OBSCURA_PASS_BLOCK_END(SaoBlurConstants, sao_blur)
 #endif
 

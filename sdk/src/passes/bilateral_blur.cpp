@@ -25,7 +25,6 @@ BlurConstants BilateralBlurPass::constants(int radius, float sharpness, int axis
     float sigma = 0.5f * float(radius + 1);
     c.params[0] = sharpness;
     c.params[1] = 1.0f / (2.0f * sigma * sigma);
-    c.config[0] = radius;
     c.config[1] = axis_x;
     c.config[2] = axis_y;
     return c;

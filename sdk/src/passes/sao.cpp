@@ -126,7 +126,6 @@ SaoBlurConstants SaoBlurPass::constants(const obscura_sao_settings& settings, in
     const float sigma = 0.5f * float(settings.blur_radius + 1);
     c.params[0] = settings.blur_sharpness;
     c.params[1] = 1.0f / (2.0f * sigma * sigma);
-    c.config[0] = settings.blur_radius;
     c.config[1] = settings.blur_stride;
     c.config[2] = axis_x;
     c.config[3] = axis_y;
