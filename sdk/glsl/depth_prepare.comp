@@ -4,7 +4,10 @@
 // At reduced resolution (resolution.x = k > 0) texel p is the host's texel p << k, read alone: its depth at its
 // own position (the reduced frame's projection puts p's centre there), so planes stay exact planes; the normals
 // are reconstructed on the reduced grid (or read from the host's at that texel).
-// Variants: DEPTH_LINEAR (host gives linear view depth), DEPTH_MULTISAMPLE (sample 0 is used).
+// Variants: DEPTH_LINEAR (host gives linear view depth), DEPTH_MULTISAMPLE (sample 0 is used),
+// OBSCURA_DEPTH_PREPARE_NORMALS (1: linear depth and normals; 0: linear depth alone).
+// A dispatch covers work_rect (DepthPreparePass: the normals where the method reads them, the linear depth alone
+// in the guard band around them, which only occludes); reconstructions still read the depths beyond it.
 #include "common/shader_interface.h"
 #include "common/depth.glsl"
 #include "common/host_depth.glsl"
@@ -33,7 +36,12 @@ bool inside(ivec2 p) { return all(lessThan(p, depth_size.xy)) && all(greaterThan
 #ifndef OBSCURA_NORMAL_SOURCE
 #error "OBSCURA_NORMAL_SOURCE must be defined"
 #endif
+#ifndef OBSCURA_DEPTH_PREPARE_NORMALS
+#error "OBSCURA_DEPTH_PREPARE_NORMALS must be defined"
+#endif
 const bool kReconstruct = OBSCURA_NORMAL_SOURCE == OBSCURA_NORMALS_RECONSTRUCT;
+// The end of the dispatch's rectangle: texels from there on are another dispatch's.
+ivec2 rect_end() { return work_rect.xy + work_rect.zw; }
 #if !OBSCURA_CPU_RASTERISER
 const int kMargin = 2;
 const ivec2 kGroup = ivec2(OBSCURA_DEPTH_PREPARE_GROUP_X, OBSCURA_DEPTH_PREPARE_GROUP_Y);
@@ -44,14 +52,14 @@ ivec2 g_tile_origin;
 // Linear depths of the group and its margin (sky outside the texture); only the group's own texels when
 // the host gives the normals.
 void load_depth_tile() {
-    g_tile_origin = ivec2(gl_WorkGroupID.xy) * kGroup - kMargin;
+    g_tile_origin = work_rect.xy + ivec2(gl_WorkGroupID.xy) * kGroup - kMargin;
     if (kReconstruct) {
         for (int i = int(gl_LocalInvocationIndex); i < kTile.x * kTile.y; i += kGroup.x * kGroup.y) {
             ivec2 p = g_tile_origin + ivec2(i % kTile.x, i / kTile.x);
             s_depth[i] = inside(p) ? linear_depth_at(p) : OBSCURA_SKY_DEPTH;
         }
     } else {
-        ivec2 p = ivec2(gl_GlobalInvocationID.xy), t = p - g_tile_origin;
+        ivec2 p = work_rect.xy + ivec2(gl_GlobalInvocationID.xy), t = p - g_tile_origin;
         s_depth[t.y * kTile.x + t.x] = inside(p) ? linear_depth_at(p) : OBSCURA_SKY_DEPTH;
     }
     barrier();
@@ -159,8 +167,15 @@ float along_line(float block[kBlock * kBlock], float outer[4 * kBlock], int line
 }
 
 void main() {
-    ivec2 origin = kBlock * ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(origin, depth_size.xy))) return;
+    // The rectangles start on multiples of the block (DepthPreparePass), so blocks never straddle two of them.
+    ivec2 origin = work_rect.xy + kBlock * ivec2(gl_GlobalInvocationID.xy), end = rect_end();
+    if (any(greaterThanEqual(origin, end))) return;
+#if !OBSCURA_DEPTH_PREPARE_NORMALS
+    for (int i = 0; i < kBlock * kBlock; ++i) {
+        ivec2 p = origin + ivec2(i % kBlock, i / kBlock);
+        if (all(lessThan(p, end))) imageStore(u_linear_depth, p, vec4(linear_depth_at(p)));
+    }
+#else
     float d[kBlock * kBlock], k[kBlock * kBlock];
     for (int i = 0; i < kBlock * kBlock; ++i) {
         d[i] = depth_or_sky(origin + ivec2(i % kBlock, i / kBlock));
@@ -191,15 +206,19 @@ void main() {
 #else
         vec3 n = host_normal(p);
 #endif
-        // Texels of the block past the texture's last row or column are not written.
-        if (all(lessThan(p, depth_size.xy))) store(p, d[i], n);
+        // Texels of the block past the rectangle's end (the texture's last row or column) are not written.
+        if (all(lessThan(p, end))) store(p, d[i], n);
     }
+#endif
 }
 #else
 void main() {
+    ivec2 p = work_rect.xy + ivec2(gl_GlobalInvocationID.xy);
+#if !OBSCURA_DEPTH_PREPARE_NORMALS
+    if (all(lessThan(p, rect_end()))) imageStore(u_linear_depth, p, vec4(linear_depth_at(p)));
+#else
     load_depth_tile();  // every invocation, before any leaves
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(p, depth_size.xy))) return;
+    if (any(greaterThanEqual(p, rect_end()))) return;
     vec3 n;
     if (kReconstruct) {
         float dx[5], kx[5], dy[5], ky[5];
@@ -214,5 +233,6 @@ void main() {
         n = host_normal(p);
     }
     store(p, depth_or_sky(p), n);
+#endif
 }
 #endif

@@ -385,6 +385,14 @@ Error Context::record_frame(const FrameInput& host, const obscura_settings& sett
 
     const FrameUniforms uniforms = planner_.begin(input, OutputWriter::composite_target(target), regions, plan);
     const Frame frame{pass_env, input, settings, regions, uniforms, resources_, raw_view, request.bent_normals};
+    // Depth preparation's rectangles: the normals where the method reads them, the linear depth alone around them.
+    const DepthPrepareRects depth_rects =
+        depth_prepare_rects(regions.whole, regions.normals, DepthPreparePass::block(pass_env));
+    DepthPrepareUniforms depth_uniforms;
+    depth_uniforms.with_normals = planner_.frame_constants(depth_rects.with_normals);
+    for (int i = 0; i < depth_rects.depth_only_count; ++i) {
+        depth_uniforms.depth_only[i] = planner_.frame_constants(depth_rects.depth_only[i]);
+    }
     technique->write_constants(frame, planner_);
     const UniformRange bent_pass = request.bent_normals ? planner_.push(OutputWriter::bent_constants(target)) : UniformRange();
     const UniformRange temporal_pass =
@@ -399,7 +407,7 @@ Error Context::record_frame(const FrameInput& host, const obscura_settings& sett
 
     FramePassRecorder recorder(device_, timer_, (flags_ & OBSCURA_CONTEXT_FLAG_VALIDATE_PASSES) != 0);
     timer_.begin_frame();
-    depth_prepare_.run(pass_env, input, uniforms.whole, resources_);
+    depth_prepare_.run(pass_env, input, depth_rects, depth_uniforms, resources_);
     error = recorder.end(PassId::DepthPrepare);
     TechniqueOutput result;
     if (!error) error = technique->record(frame, recorder, &result);

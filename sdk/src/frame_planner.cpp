@@ -64,6 +64,9 @@ FrameRegions FramePlanner::regions(const FrameInput& input, const TechniquePlan&
     r.ao = r.output.expanded(plan.apron, plan.apron, input.width, input.height);
     if (plan.ao_on_quads) r.ao = aligned_to_quads(r.ao);
     r.blur_x = r.output.expanded(0, plan.apron, input.width, input.height);
+    r.normals = plan.normals_margin == TechniquePlan::kNormalsEverywhere
+                    ? r.whole
+                    : r.ao.expanded(plan.normals_margin, plan.normals_margin, input.width, input.height);
     return r;
 }
 

@@ -39,6 +39,10 @@ struct TechniquePlan {
     // Its reconstruction writes FrameResources::blur_temp and ao_blurred (from the settings alone: a debug view,
     // which skips the reconstruction, does not free and reallocate them).
     bool blur_targets = false;
+    // Texels beyond the AO region where its passes read the normals (depth preparation reconstructs them there
+    // only; the guard band around gets the linear depth alone); kNormalsEverywhere: the whole texture.
+    int normals_margin = 0;
+    static constexpr int kNormalsEverywhere = -1;
 };
 
 // The regions of a frame's passes, in depth-texture texels (frame_planner.h computes them from the plan).
@@ -47,6 +51,7 @@ struct FrameRegions {
     Region output;  // the output rectangle: the last reconstruction pass and the composite
     Region ao;      // where the AO pass computes: the output rectangle and the apron around it
     Region blur_x;  // a separable reconstruction's horizontal pass: the output rectangle grown vertically
+    Region normals; // where the normals are read: the AO region and the plan's normals_margin
 };
 
 // The frame's shared constants (FrameConstants, work_rect = the region) for those regions.

@@ -1,12 +1,16 @@
 // The depth preparation pass (sdk/src/passes/depth_prepare.*, sdk/glsl/depth_prepare.comp) run directly:
 // a GPU's program shares the depths a normal reconstruction reads through a tile in shared memory, a CPU
-// rasteriser's reads each 2x2 quad's footprint once per invocation. Both must give the same linear depths and
-// normals, at the texture's edges (odd sizes: partial quads), next to sky and with host normals of either kind too.
+// rasteriser's reads each 4x4 block's footprint once per invocation. Both must give the same linear depths and
+// normals, at the texture's edges (odd sizes: partial blocks), next to sky and with host normals of either kind too.
+// Normals asked for part of the texture only (the AO region) must be the same there, and the linear depth the same
+// everywhere.
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <string>
 #include <vector>
+
+#include <algorithm>
 
 #include "frame_input.h"
 #include "pass_test_support.h"
@@ -65,18 +69,42 @@ protected:
         std::vector<int16_t> normals;
     };
 
-    Prepared prepare(int normal_mode) {
+    // The frame constants of a dispatch over `rect`.
+    obscura::UniformRange push_frame(const obscura::Region& rect) {
+        FrameConstants frame = frame_;
+        frame.work_rect[0] = rect.x;
+        frame.work_rect[1] = rect.y;
+        frame.work_rect[2] = rect.width;
+        frame.work_rect[3] = rect.height;
+        return arena_.push(frame);
+    }
+
+    // Runs the pass with the normals asked for `normals` (the whole texture by default); the textures hold sentinels
+    // before it.
+    Prepared prepare(int normal_mode, obscura::Region normals = {0, 0, kWidth, kHeight}) {
         obscura::DepthPreparePass pass;  // a new one: the program depends on cpu_renderer_
         input_.normal_texture = normal_mode == OBSCURA_NORMALS_RECONSTRUCT ? 0 : host_normals_.name();
         input_.normal_mode = normal_mode;
         frame_.depth_size[3] = normal_mode;
         EXPECT_FALSE(pass.prepare(env(), input_));
+        const std::vector<float> depth_sentinel(size_t(kWidth) * kHeight, -7.0f);
+        const std::vector<int16_t> normal_sentinel(size_t(kWidth) * kHeight * 2, int16_t(4321));
+        gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 2);
+        gl_.BindTexture(GL_TEXTURE_2D, resources_.linear_depth.name());
+        gl_.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kWidth, kHeight, GL_RED, GL_FLOAT, depth_sentinel.data());
+        gl_.BindTexture(GL_TEXTURE_2D, resources_.normals.name());
+        gl_.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kWidth, kHeight, GL_RG, GL_SHORT, normal_sentinel.data());
+        gl_.BindTexture(GL_TEXTURE_2D, 0);
         GLint alignment = 256;
         gl_.GetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);
         arena_.reset(alignment);
-        const obscura::UniformRange frame = arena_.push(frame_);
+        const obscura::Region whole{0, 0, kWidth, kHeight};
+        rects_ = obscura::depth_prepare_rects(whole, normals, obscura::DepthPreparePass::block(env()));
+        obscura::DepthPrepareUniforms uniforms;
+        uniforms.with_normals = push_frame(rects_.with_normals);
+        for (int i = 0; i < rects_.depth_only_count; ++i) uniforms.depth_only[i] = push_frame(rects_.depth_only[i]);
         arena_.upload(gl_, uniforms_.name());
-        pass.run(env(), input_, frame, resources_);
+        pass.run(env(), input_, rects_, uniforms, resources_);
         gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
         Prepared out;
         out.depth.assign(size_t(kWidth) * kHeight, -1.0f);
@@ -91,6 +119,7 @@ protected:
     }
 
     gl::Texture2D host_depth_, host_normals_;
+    obscura::DepthPrepareRects rects_;  // of the last prepare()
     obscura::FrameInput input_;
     FrameConstants frame_ = {};
     obscura::FrameResources resources_;
@@ -114,6 +143,78 @@ TEST_F(DepthPreparePaths, SharedMemoryTileMatchesTexelFetches) {
         EXPECT_EQ(normals_different, 0) << name;
         EXPECT_GT(sky, 20) << name << ": the sky corner";
         EXPECT_GT(tilted, kWidth * kHeight / 4) << name << ": the wall is tilted and wavy, the host normals too";
+    }
+}
+
+// Normals for a rectangle inside the texture (an AO region with a guard band around it): the linear depth as with
+// normals everywhere, each texel written once; the normals the same inside the rectangle (their reconstruction reads
+// the depths beyond it), not written outside the block-aligned rectangle.
+TEST_F(DepthPreparePaths, NormalsOnlyInTheirRegion) {
+    const obscura::Region region{9, 6, 30, 21};  // not on the 4x4 blocks
+    for (bool cpu : {true, false}) {
+        cpu_renderer_ = cpu;
+        const Prepared everywhere = prepare(OBSCURA_NORMALS_RECONSTRUCT);
+        ASSERT_EQ(rects_.depth_only_count, 0);
+        const Prepared part = prepare(OBSCURA_NORMALS_RECONSTRUCT, region);
+        const obscura::Region& n = rects_.with_normals;
+        const std::string name = cpu ? "CPU blocks" : "GPU tiles";
+        EXPECT_EQ(rects_.depth_only_count, 4) << name;
+        EXPECT_TRUE(n.x <= region.x && n.y <= region.y && n.x + n.width >= region.x + region.width &&
+                    n.y + n.height >= region.y + region.height) << name;
+        int depth_different = 0, normals_different = 0, written_outside = 0, inside = 0;
+        for (int y = 0; y < kHeight; ++y) {
+            for (int x = 0; x < kWidth; ++x) {
+                const size_t i = size_t(y) * kWidth + x;
+                depth_different += std::memcmp(&everywhere.depth[i], &part.depth[i], sizeof(float)) != 0;
+                const bool in = x >= n.x && x < n.x + n.width && y >= n.y && y < n.y + n.height;
+                const bool same = everywhere.normals[2 * i] == part.normals[2 * i] &&
+                                  everywhere.normals[2 * i + 1] == part.normals[2 * i + 1];
+                const bool sentinel = part.normals[2 * i] == 4321 && part.normals[2 * i + 1] == 4321;
+                inside += in;
+                normals_different += in && !same;
+                written_outside += !in && !sentinel;
+            }
+        }
+        EXPECT_EQ(depth_different, 0) << name;
+        EXPECT_EQ(normals_different, 0) << name;
+        EXPECT_EQ(written_outside, 0) << name;
+        EXPECT_GE(inside, region.width * region.height) << name;
+        EXPECT_LT(inside, kWidth * kHeight / 2) << name;
+    }
+}
+
+// The rectangles tile the whole texture, each texel once, the normals' one holding the region asked for and starting
+// on the block grid.
+TEST(DepthPrepareRects, TileTheTextureOnce) {
+    const obscura::Region whole{0, 0, 37, 23};
+    const obscura::Region regions[] = {{0, 0, 37, 23}, {5, 3, 20, 11}, {0, 4, 9, 19}, {33, 0, 4, 23}, {36, 22, 1, 1},
+                                       {1, 1, 35, 21}};
+    for (int block : {1, 4}) {
+        for (const obscura::Region& region : regions) {
+            const obscura::DepthPrepareRects rects = obscura::depth_prepare_rects(whole, region, block);
+            std::vector<int> covered(size_t(whole.width) * whole.height, 0);
+            const auto cover = [&](const obscura::Region& r) {
+                for (int y = r.y; y < r.y + r.height; ++y) {
+                    for (int x = r.x; x < r.x + r.width; ++x) ++covered[size_t(y) * whole.width + x];
+                }
+            };
+            cover(rects.with_normals);
+            for (int i = 0; i < rects.depth_only_count; ++i) {
+                EXPECT_GT(rects.depth_only[i].width, 0);
+                EXPECT_GT(rects.depth_only[i].height, 0);
+                cover(rects.depth_only[i]);
+            }
+            EXPECT_EQ(std::count(covered.begin(), covered.end(), 1), long(covered.size()))
+                << "block " << block << ", region at " << region.x << "," << region.y;
+            const obscura::Region& n = rects.with_normals;
+            EXPECT_EQ(n.x % block, 0);
+            EXPECT_EQ(n.y % block, 0);
+            EXPECT_TRUE(n.x <= region.x && n.y <= region.y && n.x + n.width >= region.x + region.width &&
+                        n.y + n.height >= region.y + region.height);
+            if (block == 1) {
+                EXPECT_EQ(n.width * n.height, region.width * region.height);
+            }
+        }
     }
 }
 

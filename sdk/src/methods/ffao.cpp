@@ -107,6 +107,8 @@ public:
         if (ffao_uses_mipmap(ffao)) plan.depth_levels = ZPyramidPass::level_count(width, height, kFfaoMipmapLevels);
         plan.radius = ffao.radius;
         plan.blur_targets = ffao_blurs(ffao, false);
+        // SAAO's box average reads the 3x3 around a region one pixel wider than the AO's (write_constants).
+        plan.normals_margin = 2;
         return plan;
     }
 

@@ -110,6 +110,10 @@ public:
     TechniquePlan plan(const obscura_settings& settings, int, int, const FrameRequest&) const override {
         TechniquePlan plan;
         plan.radius = settings.lsao.radius;
+        // The whole texture: with the receiver's tangent (strategies receiver and fixed_hull) the sweeps read the
+        // normal of every point of their lines, the guard band's included, and the gather's nearest samples lie
+        // beyond a lattice step of the pixel where a line ends short of it (near the texture's corners).
+        plan.normals_margin = TechniquePlan::kNormalsEverywhere;
         return plan;
     }
 

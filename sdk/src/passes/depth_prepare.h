@@ -1,5 +1,6 @@
-// DepthPrepare: host depth (any projection, MSAA sample 0, or linear) -> linear view depth + view-space
-// normals for the whole depth texture. Shared by every method. Shader: sdk/glsl/depth_prepare.comp.
+// DepthPrepare: host depth (any projection, MSAA sample 0, or linear) -> linear view depth for the whole depth
+// texture, and view-space normals where the method reads them. Shared by every method. Shader:
+// sdk/glsl/depth_prepare.comp.
 #ifndef OBSCURA_DEPTH_PREPARE_H
 #define OBSCURA_DEPTH_PREPARE_H
 
@@ -28,11 +29,34 @@ inline int host_depth_variant(const FrameInput& input) {
     return (input.depth_linear ? 2 : 0) + (input.depth_multisample ? 1 : 0);
 }
 
+// The rectangles one frame's depth preparation covers: the linear depth and the normals over `with_normals`, the
+// linear depth alone over the others (the guard band around it, whose texels only occlude: a normal reconstruction
+// costs most of the pass on CPU rasterisers). Together they tile the whole texture, each texel once.
+struct DepthPrepareRects {
+    static constexpr int kMaxDepthOnly = 4;
+    Region with_normals;
+    Region depth_only[kMaxDepthOnly];  // the strips above and below it, then left and right of it
+    int depth_only_count = 0;
+};
+
+// `normals` (within `whole`) grown outwards to multiples of `block` texels (an invocation's block on CPU
+// rasterisers: no block then straddles two rectangles), clamped to `whole`, and the non-empty strips around it.
+DepthPrepareRects depth_prepare_rects(const Region& whole, const Region& normals, int block);
+
+// The frame constants of each rectangle (work_rect: the rectangle), in DepthPrepareRects' order.
+struct DepthPrepareUniforms {
+    UniformRange with_normals, depth_only[DepthPrepareRects::kMaxDepthOnly];
+};
+
 class DepthPreparePass {
 public:
-    // Compiles the variant for this input kind (host depth kind and normal source) if it is not built yet.
+    // Texels an invocation covers on each axis: a block on CPU rasterisers (depth_prepare.comp), else one.
+    static int block(const PassEnv& env) { return env.cpu_renderer ? OBSCURA_DEPTH_PREPARE_CPU_BLOCK : 1; }
+    // Compiles the variants for this input kind (host depth kind and normal source) if they are not built yet.
     Error prepare(const PassEnv& env, const FrameInput& input);
-    void run(const PassEnv& env, const FrameInput& input, const UniformRange& frame, FrameResources& resources);
+    // `rects`: depth_prepare_rects(whole, where the method reads normals, block(env)).
+    void run(const PassEnv& env, const FrameInput& input, const DepthPrepareRects& rects,
+             const DepthPrepareUniforms& uniforms, FrameResources& resources);
 
 private:
     gl::Object& program_for(const FrameInput& input) {
@@ -40,6 +64,7 @@ private:
     }
     // {hardware, linear} x {single-sample, multisample}, by OBSCURA_NORMALS_* (reconstructed, signed, unsigned).
     gl::Object programs_[4][3];
+    gl::Object depth_only_programs_[4];  // the linear depth alone, by the host depth's kind
 };
 
 }  // namespace obscura
