@@ -17,6 +17,12 @@
 #ifndef OBSCURA_CPU_RASTERISER
 #error "OBSCURA_CPU_RASTERISER must be defined"
 #endif
+// The filter (OBSCURA_MIP_FILTER_*), compiled in (ZPyramidPass::prepare): CPU rasterisers would run every filter's
+// arithmetic under a uniform branch.
+#ifndef OBSCURA_Z_PYRAMID_FILTER
+#error "OBSCURA_Z_PYRAMID_FILTER must be defined"
+#endif
+const int kFilter = OBSCURA_Z_PYRAMID_FILTER;
 #if OBSCURA_CPU_RASTERISER
 layout(local_size_x = OBSCURA_Z_PYRAMID_GROUP_CPU, local_size_y = OBSCURA_Z_PYRAMID_GROUP_CPU) in;
 #else
@@ -49,7 +55,7 @@ void store_level(int i, ivec2 p, float z) {
 
 // The 2x2 filters of Table 1 over the four children a (2x, 2y), b (2x+1, 2y), c (2x, 2y+1), d (2x+1, 2y+1).
 float reduce4(float a, float b, float c, float d) {
-    int filter_kind = z_pyramid.config.z;
+    const int filter_kind = kFilter;
     if (filter_kind == OBSCURA_MIP_FILTER_MEAN) return 0.25 * (a + b + c + d);
     if (filter_kind == OBSCURA_MIP_FILTER_MEAN_OF_GEOMETRY) {
         vec4 z = vec4(a, b, c, d);
@@ -78,7 +84,7 @@ float fetch_source(ivec2 c, ivec2 source_size) {
 }
 
 float from_source(ivec2 p, ivec2 source_size) {
-    if (z_pyramid.config.z == OBSCURA_MIP_FILTER_ROTATED_GRID) return fetch_source(rotated_grid_child(p), source_size);
+    if (kFilter == OBSCURA_MIP_FILTER_ROTATED_GRID) return fetch_source(rotated_grid_child(p), source_size);
     ivec2 c = 2 * p;
     return reduce4(fetch_source(c, source_size), fetch_source(c + ivec2(1, 0), source_size),
                    fetch_source(c + ivec2(0, 1), source_size), fetch_source(c + ivec2(1, 1), source_size));
@@ -88,7 +94,7 @@ float from_source(ivec2 p, ivec2 source_size) {
 // (row length `width`). The rotated grid's offsets follow the parity of the global coordinate `global_p`:
 // the 1x1 tiles of a dispatch's sixth level do not start on even coordinates.
 float from_tile(ivec2 p, ivec2 global_p, int width) {
-    if (z_pyramid.config.z == OBSCURA_MIP_FILTER_ROTATED_GRID) {
+    if (kFilter == OBSCURA_MIP_FILTER_ROTATED_GRID) {
         ivec2 c = 2 * p + ivec2((global_p.y & 1) ^ 1, (global_p.x & 1) ^ 1);
         return s_tile[c.y * width + c.x];
     }
@@ -132,7 +138,7 @@ void main() {
     }
     // The second level's 2x2 (at block / 2, even coordinates: the rotated grid's offsets follow j's parity alone).
     float second[4];
-    bool rotated = z_pyramid.config.z == OBSCURA_MIP_FILTER_ROTATED_GRID;
+    bool rotated = kFilter == OBSCURA_MIP_FILTER_ROTATED_GRID;
     for (int j = 0; j < 4; ++j) {
         ivec2 q = ivec2(j & 1, j >> 1), c = 2 * q;
         float reduced = reduce4(first[c.y * 4 + c.x], first[c.y * 4 + c.x + 1], first[c.y * 4 + c.x + 4],

@@ -55,12 +55,12 @@ protected:
         gl_.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, GL_RED, GL_FLOAT, level0.data());
 
         obscura::ZPyramidPass pass;  // a new one: its program depends on cpu_renderer_
-        ASSERT_FALSE(pass.prepare(env()));
+        ASSERT_FALSE(pass.prepare(env(), filter));
         const int dispatches = obscura::ZPyramidPass::dispatch_count(levels);
         std::vector<obscura::UniformRange> ranges;
-        for (int d = 0; d < dispatches; ++d) ranges.push_back(arena_.push(obscura::ZPyramidPass::constants(d, levels, filter)));
+        for (int d = 0; d < dispatches; ++d) ranges.push_back(arena_.push(obscura::ZPyramidPass::constants(d, levels)));
         arena_.upload(gl_, uniforms_.name());
-        pass.run(env(), ranges.data(), int(ranges.size()), depth);
+        pass.run(env(), filter, ranges.data(), int(ranges.size()), depth);
         gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
 
         std::vector<float> previous = level0;

@@ -232,7 +232,7 @@ OBSCURA_PASS_BLOCK_BEGIN(ReferenceConstants)
 OBSCURA_PASS_BLOCK_END(ReferenceConstants, reference)
 #endif
 
-// MIP filters of the z pyramid (ZPyramidConstants.config.z, SaoConstants.options.x): the values of
+// MIP filters of the z pyramid (OBSCURA_Z_PYRAMID_FILTER, SaoConstants.options.x): the values of
 // obscura_sao_settings.mip_filter.
 #define OBSCURA_MIP_FILTER_ROTATED_GRID 1
 #define OBSCURA_MIP_FILTER_MEAN 2
@@ -247,7 +247,8 @@ OBSCURA_PASS_BLOCK_END(ReferenceConstants, reference)
 
 #if defined(__cplusplus) || defined(OBSCURA_Z_PYRAMID_PASS)
 OBSCURA_PASS_BLOCK_BEGIN(ZPyramidConstants)
-  OBSCURA_IVEC4(config);   // source level, levels written (1..6, to image units OUT0..), filter, unused
+  OBSCURA_IVEC4(config);   // source level, levels written (1..6, to image units OUT0..), unused x2 (the filter is
+                           // compiled in: OBSCURA_Z_PYRAMID_FILTER)
 OBSCURA_PASS_BLOCK_END(ZPyramidConstants, z_pyramid)
 #endif
 

@@ -115,7 +115,7 @@ public:
     Error prepare(const PassEnv& env, const obscura_settings& settings, const FrameRequest& request,
                   FrameResources& resources) override {
         Error error = ffao_.prepare(env, settings.ffao);
-        if (!error && ffao_uses_mipmap(settings.ffao)) error = pyramid_pass_.prepare(env);
+        if (!error && ffao_uses_mipmap(settings.ffao)) error = pyramid_pass_.prepare(env, ffao_mipmap_filter(settings.ffao));
         // The obscurance covers the AO region (SAAO's a pixel more, but its running sums are its whole-size terms).
         if (!error) {
             error = ffao_.ensure_layout(env, settings.ffao, resources.width, resources.height, request.frame_index,
@@ -133,7 +133,7 @@ public:
         levels_ = ffao_uses_mipmap(ffao) ? frame.resources.linear_depth.levels() : 1;
         pyramid_dispatches_ = ZPyramidPass::dispatch_count(levels_);
         for (int d = 0; d < pyramid_dispatches_ && d < kMaxPyramidDispatches; ++d) {
-            pyramid_[d] = uniforms.push(ZPyramidPass::constants(d, levels_, ffao_mipmap_filter(ffao)));
+            pyramid_[d] = uniforms.push(ZPyramidPass::constants(d, levels_));
         }
         pass_ = uniforms.push(ffao_.constants(ffao, frame.input, levels_));
         ffao_.push_chunk_constants(uniforms);
@@ -152,7 +152,7 @@ public:
             if ((error = recorder.end(PassId::FfaoTable))) return error;
         }
         if (mipmap && levels_ > 1) {
-            pyramid_pass_.run(env, pyramid_, pyramid_dispatches_, r.linear_depth);
+            pyramid_pass_.run(env, ffao_mipmap_filter(ffao), pyramid_, pyramid_dispatches_, r.linear_depth);
             if ((error = recorder.end(PassId::ZPyramid))) return error;
         }
         if (saao) {

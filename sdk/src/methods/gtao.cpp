@@ -97,6 +97,10 @@ bool gtao_denoises(const obscura_gtao_settings& gtao, bool raw_view) {
 
 constexpr bool kGtaoMethodWritesBentNormals = true;
 
+// The pyramid's texels: harmonic means of the geometry below (sky left out), exact on planes at the block's centre,
+// where gtao.comp reconstructs a step's sample.
+constexpr int kGtaoPyramidFilter = OBSCURA_MIP_FILTER_HARMONIC_MEAN_OF_GEOMETRY;
+
 class GtaoTechnique final : public Technique {
 public:
     TechniquePlan plan(const obscura_settings& settings, int width, int height,
@@ -116,7 +120,7 @@ public:
         // obscura_prepare (output unknown) allocates the bent-normal textures when the last render asked for them.
         if (request.output_known) bent_requested_ = request.bent_normals;
         const bool bent = request.output_known ? request.bent_normals : bent_requested_;
-        Error error = pyramid_pass_.prepare(env);
+        Error error = pyramid_pass_.prepare(env, kGtaoPyramidFilter);
         if (!error) error = gtao_.prepare(env, settings.gtao, bent);
         if (!error) error = denoise_.prepare(env, bent);
         if (error) return error;
@@ -142,7 +146,7 @@ public:
         levels_ = frame.resources.linear_depth.levels();
         pyramid_dispatches_ = ZPyramidPass::dispatch_count(levels_);
         for (int d = 0; d < pyramid_dispatches_ && d < kMaxPyramidDispatches; ++d) {
-            pyramid_[d] = uniforms.push(ZPyramidPass::constants(d, levels_, OBSCURA_MIP_FILTER_HARMONIC_MEAN_OF_GEOMETRY));
+            pyramid_[d] = uniforms.push(ZPyramidPass::constants(d, levels_));
         }
         pass_ = uniforms.push(GtaoPass::constants(gtao, frame.input, levels_ - 1));
         denoise_x_ = uniforms.push(GtaoDenoisePass::constants(gtao, false));
@@ -154,7 +158,7 @@ public:
         const bool bent = frame.bent_normals;
         Error error;
         if (levels_ > 1) {
-            pyramid_pass_.run(frame.env, pyramid_, pyramid_dispatches_, r.linear_depth);
+            pyramid_pass_.run(frame.env, kGtaoPyramidFilter, pyramid_, pyramid_dispatches_, r.linear_depth);
             error = recorder.end(PassId::ZPyramid);
             if (error) return error;
         }

@@ -82,7 +82,7 @@ public:
 
     Error prepare(const PassEnv& env, const obscura_settings& settings, const FrameRequest& request,
                   FrameResources& resources) override {
-        Error error = pyramid_pass_.prepare(env);
+        Error error = pyramid_pass_.prepare(env, settings.sao.mip_filter);
         if (!error) error = sao_.prepare(env);
         if (!error && sao_blurs(settings.sao, request.raw_view)) error = blur_.prepare(env, settings.sao.blur_radius);
         if (error || (packed_ao_.width() == resources.width && packed_ao_.height() == resources.height)) return error;
@@ -101,7 +101,7 @@ public:
         levels_ = frame.resources.linear_depth.levels();
         pyramid_dispatches_ = ZPyramidPass::dispatch_count(levels_);
         for (int d = 0; d < pyramid_dispatches_ && d < kMaxPyramidDispatches; ++d) {
-            pyramid_[d] = uniforms.push(ZPyramidPass::constants(d, levels_, sao.mip_filter));
+            pyramid_[d] = uniforms.push(ZPyramidPass::constants(d, levels_));
         }
         pass_ = uniforms.push(SaoPass::constants(sao, frame.input, levels_ - 1));
         blur_x_ = uniforms.push(SaoBlurPass::constants(sao, 1, 0));
@@ -111,7 +111,8 @@ public:
     Error record(const Frame& frame, PassRecorder& recorder, TechniqueOutput* out) override {
         Error error;
         if (levels_ > 1) {
-            pyramid_pass_.run(frame.env, pyramid_, pyramid_dispatches_, frame.resources.linear_depth);
+            pyramid_pass_.run(frame.env, frame.settings.sao.mip_filter, pyramid_, pyramid_dispatches_,
+                              frame.resources.linear_depth);
             error = recorder.end(PassId::ZPyramid);
             if (error) return error;
         }

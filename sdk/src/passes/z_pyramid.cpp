@@ -1,11 +1,19 @@
 #include "passes/z_pyramid.h"
 
+#include <cstdio>
+
 namespace obscura {
 
-Error ZPyramidPass::prepare(const PassEnv& env) {
-    if (program_) return Error();
-    return env.build("z_pyramid.comp", env.cpu_renderer ? "OBSCURA_CPU_RASTERISER 1\n" : "OBSCURA_CPU_RASTERISER 0\n",
-                     &program_);
+Error ZPyramidPass::prepare(const PassEnv& env, int filter) {
+    if (filter < OBSCURA_MIP_FILTER_ROTATED_GRID || filter >= kFilters) {
+        return Error::make(OBSCURA_STATUS_INVALID_SETTING, "z pyramid filter %d is not an OBSCURA_MIP_FILTER_*", filter);
+    }
+    gl::Object& program = programs_[filter];
+    if (program) return Error();
+    char defines[96];
+    std::snprintf(defines, sizeof defines, "OBSCURA_CPU_RASTERISER %d\nOBSCURA_Z_PYRAMID_FILTER %d\n",
+                  env.cpu_renderer ? 1 : 0, filter);
+    return env.build("z_pyramid.comp", defines, &program);
 }
 
 int ZPyramidPass::level_count(int width, int height, int wanted) {
@@ -21,19 +29,19 @@ int ZPyramidPass::dispatch_count(int levels) {
     return (built + OBSCURA_Z_PYRAMID_LEVELS_PER_DISPATCH - 1) / OBSCURA_Z_PYRAMID_LEVELS_PER_DISPATCH;
 }
 
-ZPyramidConstants ZPyramidPass::constants(int dispatch, int levels, int filter) {
+ZPyramidConstants ZPyramidPass::constants(int dispatch, int levels) {
     ZPyramidConstants c = {};
     const int source = dispatch * OBSCURA_Z_PYRAMID_LEVELS_PER_DISPATCH;
     const int remaining = levels - 1 - source;
     c.config[0] = source;
     c.config[1] = remaining < OBSCURA_Z_PYRAMID_LEVELS_PER_DISPATCH ? remaining : OBSCURA_Z_PYRAMID_LEVELS_PER_DISPATCH;
-    c.config[2] = filter;
     return c;
 }
 
-void ZPyramidPass::run(const PassEnv& env, const UniformRange* passes, int pass_count, const gl::Texture2D& depth) {
+void ZPyramidPass::run(const PassEnv& env, int filter, const UniformRange* passes, int pass_count,
+                       const gl::Texture2D& depth) {
     const gl::Table& gl = env.gl;
-    gl.UseProgram(program_.name());
+    gl.UseProgram(programs_[filter].name());
     env.bind_texture_mipmapped(OBSCURA_UNIT_LINEAR_DEPTH, depth.name());
     const int last_level = depth.levels() - 1;
     for (int d = 0; d < pass_count; ++d) {
