@@ -19,6 +19,12 @@ layout(binding = OBSCURA_IMAGE_OUT0, rgba8) writeonly uniform image2D u_packed;
 
 const int kGroupSize = OBSCURA_SAO_GROUP_X * OBSCURA_SAO_GROUP_Y;
 shared float s_visibility[kGroupSize];
+// The z pyramid's filter, compiled in (SaoPass::prepare): CPU rasterisers, which run every lane through both sides
+// of a branch, then do not walk the rotated grid's texel origin for the other filters (the pass at 0.9x of its time
+// on llvmpipe; compiling the sample count in as well gained nothing more).
+#ifndef OBSCURA_SAO_MIP_FILTER
+#error "OBSCURA_SAO_MIP_FILTER must be defined"
+#endif
 shared float s_depth[kGroupSize];
 
 // Eq. 8: phi = 30 x' ^ y' + 10 x' y' (radians), reduced to [0, 2 pi) before the one sin/cos per pixel. The
@@ -60,7 +66,7 @@ float sample_visibility(ivec2 p, float depth, out int taps_read) {
         ivec2 t = clamp(q >> m, ivec2(0), level_size - 1);
         float z = texelFetch(u_z, t, m).r;
         taps_read += inside ? 1 : 0;
-        vec3 v = obscura_view_position_at(obscura_level_texel_origin(t, m, sao.options.x), z) - c;
+        vec3 v = obscura_view_position_at(obscura_level_texel_origin(t, m, OBSCURA_SAO_MIP_FILTER), z) - c;
         float vv = dot(v, v);
         float term = max(0.0, dot(v, n) + bias) / (vv + sao.ball.w);
         sum += inside && !obscura_is_sky(z) && vv < sao.ball.y ? term : 0.0;

@@ -232,7 +232,7 @@ OBSCURA_PASS_BLOCK_BEGIN(ReferenceConstants)
 OBSCURA_PASS_BLOCK_END(ReferenceConstants, reference)
 #endif
 
-// MIP filters of the z pyramid (OBSCURA_Z_PYRAMID_FILTER, SaoConstants.options.x): the values of
+// MIP filters of the z pyramid (OBSCURA_Z_PYRAMID_FILTER, OBSCURA_SAO_MIP_FILTER): the values of
 // obscura_sao_settings.mip_filter.
 #define OBSCURA_MIP_FILTER_ROTATED_GRID 1
 #define OBSCURA_MIP_FILTER_MEAN 2
@@ -258,7 +258,7 @@ OBSCURA_PASS_BLOCK_BEGIN(SaoConstants)
   OBSCURA_VEC4(shaping);   // beta, k, max screen radius (px), quad-filter edge scale (sharpness / depth range)
   OBSCURA_VEC4(packing);   // 1 / blur depth range (view units^-1), unused x3
   OBSCURA_IVEC4(config);   // s, log2 q', deepest MIP level (0: level 0 only), quad filter on
-  OBSCURA_IVEC4(options);  // MIP filter (OBSCURA_MIP_FILTER_*), unused x3
+  OBSCURA_IVEC4(options);  // unused x4 (the MIP filter is compiled in: OBSCURA_SAO_MIP_FILTER)
   OBSCURA_VEC4(taps[OBSCURA_SAO_MAX_SAMPLES]); // unrotated tap i: cos, sin of 2 pi tau alpha_i; alpha_i; unused
 OBSCURA_PASS_BLOCK_END(SaoConstants, sao)
 #endif

@@ -115,7 +115,9 @@ public:
     Error prepare(const PassEnv& env, const obscura_settings& settings, const FrameRequest& request,
                   FrameResources& resources) override {
         Error error = ffao_.prepare(env, settings.ffao);
-        if (!error && ffao_uses_mipmap(settings.ffao)) error = pyramid_pass_.prepare(env, ffao_mipmap_filter(settings.ffao));
+        if (!error && ffao_uses_mipmap(settings.ffao)) {
+            error = pyramid_pass_.prepare(env, ffao_mipmap_filter(settings.ffao));
+        }
         // The obscurance covers the AO region (SAAO's a pixel more, but its running sums are its whole-size terms).
         if (!error) {
             error = ffao_.ensure_layout(env, settings.ffao, resources.width, resources.height, request.frame_index,

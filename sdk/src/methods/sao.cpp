@@ -83,7 +83,7 @@ public:
     Error prepare(const PassEnv& env, const obscura_settings& settings, const FrameRequest& request,
                   FrameResources& resources) override {
         Error error = pyramid_pass_.prepare(env, settings.sao.mip_filter);
-        if (!error) error = sao_.prepare(env);
+        if (!error) error = sao_.prepare(env, settings.sao);
         if (!error && sao_blurs(settings.sao, request.raw_view)) error = blur_.prepare(env, settings.sao.blur_radius);
         if (error || (packed_ao_.width() == resources.width && packed_ao_.height() == resources.height)) return error;
         packed_ao_ = env.create_texture(GL_RGBA8, resources.width, resources.height);
@@ -116,7 +116,8 @@ public:
             error = recorder.end(PassId::ZPyramid);
             if (error) return error;
         }
-        sao_.run(frame.env, frame.uniforms.ao, pass_, frame.regions.ao, frame.resources, packed_ao_);
+        sao_.run(frame.env, frame.settings.sao, frame.uniforms.ao, pass_, frame.regions.ao, frame.resources,
+                 packed_ao_);
         out->raw = out->result = &packed_ao_;
         error = recorder.end(PassId::Sao);
         if (error || !sao_blurs(frame.settings.sao, frame.raw_view)) return error;

@@ -43,9 +43,16 @@ float spiral_rotation(int x, int y) {
     return float((turns - std::floor(turns)) * kTwoPi);
 }
 
-Error SaoPass::prepare(const PassEnv& env) {
-    if (program_) return Error();
-    return env.build("sao.comp", "", &program_);
+Error SaoPass::prepare(const PassEnv& env, const obscura_sao_settings& settings) {
+    const int filter = settings.mip_filter;
+    if (filter < OBSCURA_MIP_FILTER_ROTATED_GRID || filter > kMaxFilter) {
+        return Error::make(OBSCURA_STATUS_INVALID_SETTING, "SAO's mip_filter %d is not an OBSCURA_MIP_FILTER_*", filter);
+    }
+    gl::Object& built = programs_[filter];
+    if (built) return Error();
+    char defines[64];
+    std::snprintf(defines, sizeof defines, "OBSCURA_SAO_MIP_FILTER %d\n", filter);
+    return env.build("sao.comp", defines, &built);
 }
 
 int SaoPass::wanted_levels(const obscura_sao_settings& settings) {
@@ -74,10 +81,9 @@ SaoConstants SaoPass::constants(const obscura_sao_settings& settings, const Fram
     c.shaping[3] = settings.blur_sharpness / depth_range;
     c.packing[0] = 1.0f / depth_range;
     c.config[0] = settings.samples;
-    c.config[1] = settings.log_q;
+    c.config[1] = settings.log_q;  // (the MIP filter is compiled in: SaoPass::prepare)
     c.config[2] = deepest_level;
     c.config[3] = settings.quad_filter == OBSCURA_TOGGLE_ON ? 1 : 0;
-    c.options[0] = settings.mip_filter;
     for (int i = 0; i < settings.samples && i < OBSCURA_SAO_MAX_SAMPLES; ++i) {
         SpiralTap tap = spiral_tap(i, settings.samples, settings.turns);
         c.taps[i][0] = std::cos(tap.angle);
@@ -87,10 +93,11 @@ SaoConstants SaoPass::constants(const obscura_sao_settings& settings, const Fram
     return c;
 }
 
-void SaoPass::run(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
-                  const FrameResources& resources, const gl::Texture2D& packed_ao) {
+void SaoPass::run(const PassEnv& env, const obscura_sao_settings& settings, const UniformRange& frame,
+                  const UniformRange& pass, const Region& region, const FrameResources& resources,
+                  const gl::Texture2D& packed_ao) {
     const gl::Table& gl = env.gl;
-    gl.UseProgram(program_.name());
+    gl.UseProgram(programs_[settings.mip_filter].name());
     env.bind_texture_mipmapped(OBSCURA_UNIT_LINEAR_DEPTH, resources.linear_depth.name());
     env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
     gl.BindImageTexture(OBSCURA_IMAGE_OUT0, packed_ao.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);

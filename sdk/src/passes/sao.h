@@ -26,18 +26,21 @@ float spiral_rotation(int x, int y);
 
 class SaoPass {
 public:
-    Error prepare(const PassEnv& env);
+    // Builds the program of these settings' MIP filter (compiled in) on first use.
+    Error prepare(const PassEnv& env, const obscura_sao_settings& settings);
     // The deepest z-pyramid level the taps can ask for (eq. 9 at the largest screen radius), plus one.
     static int wanted_levels(const obscura_sao_settings& settings);
     // Resolved settings (metres) -> the shader's constants (view units). `deepest_level`: the last level of
     // the z pyramid (0 without the hierarchy).
     static SaoConstants constants(const obscura_sao_settings& settings, const FrameInput& input, int deepest_level);
     // Writes packed visibility into `packed_ao` (RGBA8) over `region` (which starts on even coordinates).
-    void run(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
-             const FrameResources& resources, const gl::Texture2D& packed_ao);
+    void run(const PassEnv& env, const obscura_sao_settings& settings, const UniformRange& frame,
+             const UniformRange& pass, const Region& region, const FrameResources& resources,
+             const gl::Texture2D& packed_ao);
 
 private:
-    gl::Object program_;
+    static constexpr int kMaxFilter = OBSCURA_MIP_FILTER_MAX;  // SAO's filters: rotated grid, mean ... max (Table 1)
+    gl::Object programs_[kMaxFilter + 1];  // by filter
 };
 
 // The separable bilateral blur (sdk/glsl/sao_blur.comp): the horizontal pass keeps the packed RGBA8 layout,
