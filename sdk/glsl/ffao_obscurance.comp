@@ -66,6 +66,12 @@ vec4 ffao_peak(int index) { return ffao_peaks[index - ffao_chunk.range.z]; }
 #ifndef OBSCURA_FFAO_MIPMAP
 #error "OBSCURA_FFAO_MIPMAP must be defined"
 #endif
+// A finite thickness (compiled in: CPU rasterisers run every lane through both sides of a branch, and the thickness
+// selects between column sums, line points and slab bottoms): the scan then keeps single lines (no prefix sums).
+#ifndef OBSCURA_FFAO_FINITE_THICKNESS
+#error "OBSCURA_FFAO_FINITE_THICKNESS must be defined"
+#endif
+const bool kFiniteThickness = OBSCURA_FFAO_FINITE_THICKNESS != 0;
 
 // ---- The receiver's plane for the current sector ----------------------------------------------------------
 vec2 g_p;        // the receiver in the plane
@@ -119,7 +125,7 @@ void raise_horizon(vec2 h, float cosine, inout float ao, inout vec2 horizon) {
     float beta = b / ffao.shape.x;
     float lowest = horizon.x;
     float thickness = ffao.shape.w;
-    if (thickness > 0.0) {
+    if (kFiniteThickness) {
         float depth = -h.y / g_zscale;
         vec2 bottom = g_perspective ? h * ((depth + thickness) / depth) : h - vec2(0.0, thickness);
         lowest = min(horizon.x, max(zenith_angle(bottom - g_p), a));
@@ -146,7 +152,7 @@ vec3 azimuth_vector(vec2 sd, vec3 z3) {
 // Sum over the lines [la, lb] of column's entries (prefix sums restarting every block): (m0, m1 back,
 // m1 forward, valid lines). Single lines (no prefix sums) read the entry of line la.
 vec4 column_sum(FfaoColumn column, int la, int lb) {
-    if (ffao.options.y != 0) {
+    if (kFiniteThickness) {  // single lines
         int e = la - column.first_line;
         return e >= 0 && e < column.lines ? ffao_peak(column.offset + e) : vec4(0.0);
     }
@@ -171,7 +177,7 @@ vec4 column_sum(FfaoColumn column, int la, int lb) {
 bool line_point(vec2 q, out vec3 position) {
     ivec2 hi = depth_size.xy - 1;
     ivec2 texel = clamp(ivec2(floor(q)), ivec2(0), hi);
-    if (ffao.shape.w <= 0.0) {
+    if (!kFiniteThickness) {
         // One gather fetches the quad, clamped at the edges like the sampler. It is addressed at the quad's
         // shared corner, half a texel from any rounding boundary, so it cannot pick a neighbouring quad. Its
         // components are the texels (0,1), (1,1), (1,0), (0,0); reordered to (0,0), (1,0), (0,1), (1,1).
@@ -265,7 +271,7 @@ void evaluate_orientation(int k, ivec2 pixel, vec3 p, vec3 n, float depth, bool 
     // Jitter (sec. 11.1): every sector's lines move by the same fraction of the segment's width at each
     // distance, per pixel.
     float jitter = ffao.options.x != 0 ? obscura_pixel_noise(pixel).x - 0.5 : 0.0;
-    bool single_lines = ffao.options.y != 0;
+    const bool single_lines = kFiniteThickness;
     vec2 dir = ffao.orientation[k].xy;
     vec2 perp = vec2(-dir.y, dir.x);
     vec3 axis = vec3(ffao.axes[k].xy, 0.0);

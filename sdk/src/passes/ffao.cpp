@@ -32,14 +32,16 @@ Error FfaoPass::prepare(const PassEnv& env, const obscura_ffao_settings& setting
         }
     }
     const int mipmap = ffao_uses_mipmap(settings) ? 1 : 0, saao = ffao_uses_saao(settings) ? 1 : 0;
+    const int thick = ffao_single_lines(settings) ? 1 : 0;
     for (int chunked = 0; chunked < 2; ++chunked) {  // which one runs depends on the size (ensure_layout)
-        if (obscurance_programs_[mipmap][saao][chunked] || (mipmap && chunked)) continue;
-        char defines[160];
+        gl::Object& program = obscurance_programs_[mipmap][saao][chunked][thick];
+        if (program || (mipmap && chunked)) continue;
+        char defines[192];
         std::snprintf(defines, sizeof defines,
                       "OBSCURA_FFAO_MIPMAP %d\nOBSCURA_FFAO_SAAO %d\nOBSCURA_FFAO_BUFFER_TEXTURES %d\n"
-                      "OBSCURA_FFAO_CHUNKED %d\n",
-                      mipmap, saao, env.cpu_renderer ? 1 : 0, chunked);
-        error = env.build("ffao_obscurance.comp", defines, &obscurance_programs_[mipmap][saao][chunked]);
+                      "OBSCURA_FFAO_CHUNKED %d\nOBSCURA_FFAO_FINITE_THICKNESS %d\n",
+                      mipmap, saao, env.cpu_renderer ? 1 : 0, chunked, thick);
+        error = env.build("ffao_obscurance.comp", defines, &program);
         if (error) return error;
     }
     if (saao && !box_program_) {
@@ -254,7 +256,6 @@ FfaoConstants FfaoPass::constants(const obscura_ffao_settings& settings, const F
     c.shape[2] = settings.power;
     c.shape[3] = settings.thickness * input.meters_to_view_units;
     c.options[0] = settings.jitter == OBSCURA_TOGGLE_ON ? 1 : 0;
-    c.options[1] = ffao_single_lines(settings) ? 1 : 0;
     c.options[2] = mipmap_levels - 1;
     // View-space displacement per texel at depth 1 (its direction is what the passes use).
     c.view[0] = float(2.0 / (double(input.projection.m[0]) * input.width));
@@ -361,7 +362,8 @@ void FfaoPass::run_obscurance(const PassEnv& env, const obscura_ffao_settings& s
     const Grid& grid = grids_[current_];
     const gl::Table& gl = env.gl;
     const bool mipmap = ffao_uses_mipmap(settings), saao = ffao_uses_saao(settings);
-    gl.UseProgram(obscurance_programs_[mipmap ? 1 : 0][saao ? 1 : 0][chunked() ? 1 : 0].name());
+    const int thick = ffao_single_lines(settings) ? 1 : 0;
+    gl.UseProgram(obscurance_programs_[mipmap ? 1 : 0][saao ? 1 : 0][chunked() ? 1 : 0][thick].name());
     if (mipmap) {
         env.bind_texture_mipmapped(OBSCURA_UNIT_LINEAR_DEPTH, resources.linear_depth.name());
     } else {

@@ -87,7 +87,7 @@ private:
     static void dispatch_pixels(const PassEnv& env, const UniformRange& frame, const UniformRange& pass,
                                 const Region& region);
     gl::Object table_program_, scan_program_, prefix_program_, box_program_, gather_program_, blur_program_;
-    gl::Object obscurance_programs_[2][2][2];  // [mipmap geometry][SAAO][chunked], built on first use
+    gl::Object obscurance_programs_[2][2][2][2];  // [mipmap geometry][SAAO][chunked][finite thickness], on first use
     gl::Texture2D box_, terms_;                // SAAO: averaged receivers, (near, far) sums
     gl::Texture2D running_;                    // chunked without SAAO: the obscurance's running total (r32f)
                                                // over its region, from the region's corner
