@@ -177,6 +177,7 @@ vec4 column_sum(FfaoColumn column, int la, int lb) {
 bool line_point(vec2 q, out vec3 position) {
     ivec2 hi = depth_size.xy - 1;
     ivec2 texel = clamp(ivec2(floor(q)), ivec2(0), hi);
+    float depth;
     if (!kFiniteThickness) {
         // One gather fetches the quad, clamped at the edges like the sampler. It is addressed at the quad's
         // shared corner, half a texel from any rounding boundary, so it cannot pick a neighbouring quad. Its
@@ -192,8 +193,13 @@ bool line_point(vec2 q, out vec3 position) {
             position = obscura_view_position_at(q, perspective ? 1.0 / kk : kk);
             return true;
         }
+        // The texel under q is one of the quad's, at floor(q) - base (0 or 1 per axis; the gather clamps at the
+        // edges as `texel` is clamped): no second read.
+        bvec2 upper = greaterThanEqual(q - base, vec2(1.0));
+        depth = upper.y ? (upper.x ? d.w : d.z) : (upper.x ? d.y : d.x);
+    } else {
+        depth = texelFetch(u_depth, texel, 0).r;
     }
-    float depth = texelFetch(u_depth, texel, 0).r;
     if (obscura_is_sky(depth)) return false;
     position = obscura_view_position(texel, depth);
     return true;
