@@ -25,9 +25,11 @@ Error GtaoPass::prepare(const PassEnv& env, const obscura_gtao_settings& setting
     char defines[224];
     std::snprintf(defines, sizeof defines,
                   "OBSCURA_GTAO_MODE %d\nOBSCURA_GTAO_STEP_POWER_2 %d\nOBSCURA_GTAO_BENT_NORMALS %d\n"
-                  "OBSCURA_GTAO_SLICES %d\nOBSCURA_GTAO_STEPS %d\nOBSCURA_GTAO_THICKNESS_BLEND %d\n",
+                  "OBSCURA_GTAO_SLICES %d\nOBSCURA_GTAO_STEPS %d\nOBSCURA_GTAO_THICKNESS_BLEND %d\n"
+                  "OBSCURA_CPU_RASTERISER %d\n",
                   settings.thickness_mode == OBSCURA_GTAO_MODE_BITMASK ? 2 : 1, settings.step_power == 2.0f ? 1 : 0,
-                  bent_normals ? 1 : 0, settings.slices, settings.steps, settings.thickness_blend != 0.0f ? 1 : 0);
+                  bent_normals ? 1 : 0, settings.slices, settings.steps, settings.thickness_blend != 0.0f ? 1 : 0,
+                  env.cpu_renderer ? 1 : 0);
     return env.build("gtao.comp", defines, &built);
 }
 
