@@ -1,6 +1,6 @@
 // Depth preparation, shared by every method: linear view depth for the whole depth texture (every
-// texel can occlude) and view-space normals, from the host's normals or reconstructed from depth
-// (SAO paper eq. 4, with the one-sided difference of the side that continues the centre's surface).
+// texel can occlude) and view-space normals where the method reads them, from the host's normals or reconstructed
+// from depth (SAO paper eq. 4, with the one-sided difference of the side that continues the centre's surface).
 // At reduced resolution (resolution.x = k > 0) texel p is the host's texel p << k, read alone: its depth at its
 // own position (the reduced frame's projection puts p's centre there), so planes stay exact planes; the normals
 // are reconstructed on the reduced grid (or read from the host's at that texel).

@@ -23,7 +23,7 @@ struct FrameInput {
     GLuint normal_texture = 0;
     int normal_mode = 0;             // OBSCURA_NORMALS_* of shader_interface.h
     // Depth-stencil textures sample stencil when the host set GL_DEPTH_STENCIL_TEXTURE_MODE to it: the host's
-    // mode, which the depth preparation switches to depth for its dispatch and back (0: depth already).
+    // mode, which the depth preparation switches to depth for its dispatches and back (0: depth already).
     GLint host_depth_stencil_mode = 0;
     // Temporal accumulation (obscura_input 0.5 fields): the view, the frame's noise index, and the reprojection.
     obscura_view* view = nullptr;

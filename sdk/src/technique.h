@@ -47,7 +47,7 @@ struct TechniquePlan {
 
 // The regions of a frame's passes, in depth-texture texels (frame_planner.h computes them from the plan).
 struct FrameRegions {
-    Region whole;   // the whole depth texture: depth preparation, sweeps, scans
+    Region whole;   // the whole depth texture: depth preparation (split around `normals`), sweeps, scans
     Region output;  // the output rectangle: the last reconstruction pass and the composite
     Region ao;      // where the AO pass computes: the output rectangle and the apron around it
     Region blur_x;  // a separable reconstruction's horizontal pass: the output rectangle grown vertically

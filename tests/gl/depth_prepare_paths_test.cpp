@@ -95,6 +95,7 @@ protected:
         gl_.BindTexture(GL_TEXTURE_2D, resources_.normals.name());
         gl_.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kWidth, kHeight, GL_RG, GL_SHORT, normal_sentinel.data());
         gl_.BindTexture(GL_TEXTURE_2D, 0);
+        gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
         GLint alignment = 256;
         gl_.GetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);
         arena_.reset(alignment);
@@ -150,15 +151,25 @@ TEST_F(DepthPreparePaths, SharedMemoryTileMatchesTexelFetches) {
 // normals everywhere, each texel written once; the normals the same inside the rectangle (their reconstruction reads
 // the depths beyond it), not written outside the block-aligned rectangle.
 TEST_F(DepthPreparePaths, NormalsOnlyInTheirRegion) {
-    const obscura::Region region{9, 6, 30, 21};  // not on the 4x4 blocks
-    for (bool cpu : {true, false}) {
-        cpu_renderer_ = cpu;
-        const Prepared everywhere = prepare(OBSCURA_NORMALS_RECONSTRUCT);
+    struct Case {
+        obscura::Region region;
+        int strips;  // depth-only strips around it
+    };
+    // Not on the 4x4 blocks; inside, and reaching the texture's last column and row (odd sizes: partial blocks).
+    const Case cases[] = {{{9, 6, 30, 21}, 4}, {{22, 17, kWidth - 22, kHeight - 17}, 2}};
+    for (int run = 0; run < 8; ++run) {
+        const Case& c = cases[run & 1];
+        const int mode = (run & 2) ? OBSCURA_NORMALS_SIGNED : OBSCURA_NORMALS_RECONSTRUCT;
+        cpu_renderer_ = (run & 4) == 0;
+        const obscura::Region& region = c.region;
+        const Prepared everywhere = prepare(mode);
         ASSERT_EQ(rects_.depth_only_count, 0);
-        const Prepared part = prepare(OBSCURA_NORMALS_RECONSTRUCT, region);
+        const Prepared part = prepare(mode, region);
         const obscura::Region& n = rects_.with_normals;
-        const std::string name = cpu ? "CPU blocks" : "GPU tiles";
-        EXPECT_EQ(rects_.depth_only_count, 4) << name;
+        const std::string name = std::string(cpu_renderer_ ? "CPU blocks" : "GPU tiles") + ", normal mode " +
+                                 std::to_string(mode) + ", region at " + std::to_string(region.x) + "," +
+                                 std::to_string(region.y);
+        EXPECT_EQ(rects_.depth_only_count, c.strips) << name;
         EXPECT_TRUE(n.x <= region.x && n.y <= region.y && n.x + n.width >= region.x + region.width &&
                     n.y + n.height >= region.y + region.height) << name;
         int depth_different = 0, normals_different = 0, written_outside = 0, inside = 0;

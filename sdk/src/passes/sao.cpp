@@ -80,8 +80,9 @@ SaoConstants SaoPass::constants(const obscura_sao_settings& settings, const Fram
     const float depth_range = settings.blur_depth_range * m2v;
     c.shaping[3] = settings.blur_sharpness / depth_range;
     c.packing[0] = 1.0f / depth_range;
+    // (The MIP filter is compiled in: SaoPass::prepare.)
     c.config[0] = settings.samples;
-    c.config[1] = settings.log_q;  // (the MIP filter is compiled in: SaoPass::prepare)
+    c.config[1] = settings.log_q;
     c.config[2] = deepest_level;
     c.config[3] = settings.quad_filter == OBSCURA_TOGGLE_ON ? 1 : 0;
     for (int i = 0; i < settings.samples && i < OBSCURA_SAO_MAX_SAMPLES; ++i) {
