@@ -12,6 +12,7 @@ namespace {
 constexpr const char* const kLsaoPresetNames[] = {"k8", "k16", "k24", "k32", "k8_figure1", "k16_figure13"};
 constexpr const char* const kLsaoPatternNames[] = {"aligned", "free"};
 constexpr const char* const kLsaoTangentStrategyNames[] = {"receiver", "fixed_hull", "fixed"};
+constexpr int kLsaoFixedTangent = 3;  // tangent_strategy "fixed": no normal read by the sweeps
 
 // LSAO (Timonen 2013). Defaults are the paper's: falloff r/(r+d^2), the K = 16 configuration of Table 2,
 // aligned sampling patterns, fixed tangent sin(t) = -0.85 for hull and occlusion (strategy 3).
@@ -108,12 +109,15 @@ void lsao_reference_falloff(const obscura_settings& resolved, obscura_reference_
 class LsaoTechnique final : public Technique {
 public:
     TechniquePlan plan(const obscura_settings& settings, int, int, const FrameRequest&) const override {
+        const obscura_lsao_settings& lsao = settings.lsao;
         TechniquePlan plan;
-        plan.radius = settings.lsao.radius;
-        // The whole texture: with the receiver's tangent (strategies receiver and fixed_hull) the sweeps read the
-        // normal of every point of their lines, the guard band's included, and the gather's nearest samples lie
-        // beyond a lattice step of the pixel where a line ends short of it (near the texture's corners).
-        plan.normals_margin = TechniquePlan::kNormalsEverywhere;
+        plan.radius = lsao.radius;
+        // With the fixed tangent and no normal test (the defaults) only the gather's receiver reads its normal.
+        // Otherwise the whole texture: with the receiver's tangent (strategies receiver and fixed_hull) the sweeps
+        // read the normal of every point of their lines, the guard band's included, and the normal test reads the
+        // gather's nearest samples, which lie beyond a lattice step of the pixel where a line ends short of it.
+        const bool receiver_only = lsao.tangent_strategy == kLsaoFixedTangent && lsao.normal_test != OBSCURA_TOGGLE_ON;
+        plan.normals_margin = receiver_only ? 0 : TechniquePlan::kNormalsEverywhere;
         return plan;
     }
 
