@@ -84,24 +84,15 @@ FrameUniforms FramePlanner::begin(const FrameInput& input, const OutputTarget& t
 
 UniformRange FramePlanner::host_constants(const FrameInput& host, const OutputTarget& target,
                                           const TechniquePlan& plan, int shift, bool ao_reduced) {
-    FrameConstants c = base_constants(host, target, 1.0f / (4.0f * plan.radius * host.meters_to_view_units));
     const obscura_rect& rect = host.output_rect;
-    c.work_rect[0] = rect.x;
-    c.work_rect[1] = rect.y;
-    c.work_rect[2] = rect.width;
-    c.work_rect[3] = rect.height;
+    FrameConstants c =
+        with_work_rect(base_constants(host, target, 1.0f / (4.0f * plan.radius * host.meters_to_view_units)),
+                       Region{rect.x, rect.y, rect.width, rect.height});
     c.resolution[0] = shift;
     c.resolution[1] = ao_reduced ? 1 : 0;
     return arena_.push(c);
 }
 
-UniformRange FramePlanner::frame_constants(const Region& work) {
-    FrameConstants c = base_;
-    c.work_rect[0] = work.x;
-    c.work_rect[1] = work.y;
-    c.work_rect[2] = work.width;
-    c.work_rect[3] = work.height;
-    return arena_.push(c);
-}
+UniformRange FramePlanner::frame_constants(const Region& work) { return arena_.push(with_work_rect(base_, work)); }
 
 }  // namespace obscura

@@ -67,11 +67,7 @@ protected:
     template <typename Constants>
     std::pair<obscura::UniformRange, obscura::UniformRange> uniforms(const obscura::Region& region,
                                                                       const Constants& pass) {
-        FrameConstants frame = frame_;
-        frame.work_rect[0] = region.x;
-        frame.work_rect[1] = region.y;
-        frame.work_rect[2] = region.width;
-        frame.work_rect[3] = region.height;
+        const FrameConstants frame = obscura::with_work_rect(frame_, region);
         GLint alignment = 256;
         gl_.GetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);
         arena_.reset(alignment);

@@ -71,12 +71,7 @@ protected:
 
     // The frame constants of a dispatch over `rect`.
     obscura::UniformRange push_frame(const obscura::Region& rect) {
-        FrameConstants frame = frame_;
-        frame.work_rect[0] = rect.x;
-        frame.work_rect[1] = rect.y;
-        frame.work_rect[2] = rect.width;
-        frame.work_rect[3] = rect.height;
-        return arena_.push(frame);
+        return arena_.push(obscura::with_work_rect(frame_, rect));
     }
 
     // Runs the pass with the normals asked for `normals` (the whole texture by default); the textures hold sentinels

@@ -72,12 +72,7 @@ protected:
         gl_.GetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);
         arena_.reset(alignment);
         obscura::UniformRange frame = arena_.push(frame_);
-        FrameConstants region_constants = frame_;
-        region_constants.work_rect[0] = region.x;
-        region_constants.work_rect[1] = region.y;
-        region_constants.work_rect[2] = region.width;
-        region_constants.work_rect[3] = region.height;
-        obscura::UniformRange region_frame = arena_.push(region_constants);
+        obscura::UniformRange region_frame = arena_.push(obscura::with_work_rect(frame_, region));
         obscura::UniformRange pass = arena_.push(pass_.constants(ffao, input_));
         obscura::UniformRange table = arena_.push(obscura::FfaoPass::table_constants(ffao));
         pass_.push_chunk_constants(arena_);

@@ -70,14 +70,8 @@ protected:
         obscura::GtaoDenoisePass pass;  // a new one: its programs depend on cpu_renderer_
         EXPECT_FALSE(pass.prepare(env(), bent_normals));
         const obscura::Region along_x = output.expanded(0, 2, kWidth, kHeight);
-        FrameConstants x_frame = frame_, y_frame = frame_;
-        for (auto [constants, region] : {std::pair<FrameConstants*, obscura::Region>{&x_frame, along_x},
-                                         std::pair<FrameConstants*, obscura::Region>{&y_frame, output}}) {
-            constants->work_rect[0] = region.x;
-            constants->work_rect[1] = region.y;
-            constants->work_rect[2] = region.width;
-            constants->work_rect[3] = region.height;
-        }
+        const FrameConstants x_frame = obscura::with_work_rect(frame_, along_x);
+        const FrameConstants y_frame = obscura::with_work_rect(frame_, output);
         GLint alignment = 256;
         gl_.GetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);
         arena_.reset(alignment);

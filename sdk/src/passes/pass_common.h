@@ -117,6 +117,15 @@ struct Region {
     }
 };
 
+// `frame` with its work rectangle (the region the pass computes) set to `work`.
+inline FrameConstants with_work_rect(FrameConstants frame, const Region& work) {
+    frame.work_rect[0] = work.x;
+    frame.work_rect[1] = work.y;
+    frame.work_rect[2] = work.width;
+    frame.work_rect[3] = work.height;
+    return frame;
+}
+
 }  // namespace obscura
 
 #endif  // OBSCURA_PASS_COMMON_H
