@@ -232,8 +232,10 @@ void main() {
         // texture, on the pixel itself or on sky gets weight 0.
         for (int j = 0; j < steps; ++j) {
             float u = (float(j) + noise.y) / float(steps);
-#if OBSCURA_GTAO_STEP_POWER_2
-            float t = u * u * radius_px + 1.0;  // the default distribution, without pow's exp2 and log2
+#if OBSCURA_GTAO_STEP_DISTRIBUTION == 2
+            float t = u * u * radius_px + 1.0;  // XeGTAO's distribution, without pow's exp2 and log2
+#elif OBSCURA_GTAO_STEP_DISTRIBUTION == 1
+            float t = u * sqrt(u) * radius_px + 1.0;  // the default, u^1.5
 #else
             float t = pow(u, gtao.thickness.z) * radius_px + 1.0;
 #endif

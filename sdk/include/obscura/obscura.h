@@ -454,7 +454,7 @@ typedef struct obscura_gtao_settings {
     float falloff_range;  /* fraction of the radius over which an occluder's weight fades to 0 at the radius,
                              [0.01, 1]. Default 1: the weight is 1 - d / radius (tuned, docs/quality.md) */
     float step_power;     /* the steps sit at radius * ((j + jitter) / N)^step_power: denser near the pixel,
-                             [1, 4]. Default 2 */
+                             [1, 4]. Default 1.5 (XeGTAO's 2 measured further from the truth, docs/quality.md) */
     obscura_toggle mip;   /* steps read the z pyramid where they are far apart. Default on */
     float mip_offset;     /* log2 of the step's distance in pixels at which it reads one level down, [0, 8].
                              Default 3.3 */

@@ -12,11 +12,19 @@ GtaoPresetCounts gtao_preset_counts(int preset) {
     return kPresets[preset >= 1 && preset <= 4 ? preset - 1 : 2];
 }
 
+// The step distribution compiled in: u^2 and u^1.5 without pow's exp2 and log2 (CPU rasterisers evaluate pow as both),
+// any other exponent through pow.
+int GtaoPass::step_distribution(const obscura_gtao_settings& settings) {
+    if (settings.step_power == 2.0f) return 2;
+    if (settings.step_power == 1.5f) return 1;
+    return 0;
+}
+
 uint32_t GtaoPass::variant_key(const obscura_gtao_settings& settings, bool bent_normals) {
     // Resolved settings: slices in [1, 16], steps in [1, 32] (the metadata's ranges).
-    return (settings.thickness_mode == OBSCURA_GTAO_MODE_BITMASK ? 1u : 0u) | (settings.step_power == 2.0f ? 2u : 0u) |
-           (bent_normals ? 4u : 0u) | uint32_t(settings.slices) << 3 | uint32_t(settings.steps) << 8 |
-           (settings.thickness_blend != 0.0f ? 1u << 14 : 0u);
+    return (settings.thickness_mode == OBSCURA_GTAO_MODE_BITMASK ? 1u : 0u) | uint32_t(step_distribution(settings)) << 1 |
+           (bent_normals ? 8u : 0u) | uint32_t(settings.slices) << 4 | uint32_t(settings.steps) << 9 |
+           (settings.thickness_blend != 0.0f ? 1u << 15 : 0u);
 }
 
 Error GtaoPass::prepare(const PassEnv& env, const obscura_gtao_settings& settings, bool bent_normals) {
@@ -24,10 +32,10 @@ Error GtaoPass::prepare(const PassEnv& env, const obscura_gtao_settings& setting
     if (built) return Error();
     char defines[224];
     std::snprintf(defines, sizeof defines,
-                  "OBSCURA_GTAO_MODE %d\nOBSCURA_GTAO_STEP_POWER_2 %d\nOBSCURA_GTAO_BENT_NORMALS %d\n"
+                  "OBSCURA_GTAO_MODE %d\nOBSCURA_GTAO_STEP_DISTRIBUTION %d\nOBSCURA_GTAO_BENT_NORMALS %d\n"
                   "OBSCURA_GTAO_SLICES %d\nOBSCURA_GTAO_STEPS %d\nOBSCURA_GTAO_THICKNESS_BLEND %d\n"
                   "OBSCURA_CPU_RASTERISER %d\n",
-                  settings.thickness_mode == OBSCURA_GTAO_MODE_BITMASK ? 2 : 1, settings.step_power == 2.0f ? 1 : 0,
+                  settings.thickness_mode == OBSCURA_GTAO_MODE_BITMASK ? 2 : 1, step_distribution(settings),
                   bent_normals ? 1 : 0, settings.slices, settings.steps, settings.thickness_blend != 0.0f ? 1 : 0,
                   env.cpu_renderer ? 1 : 0);
     return env.build("gtao.comp", defines, &built);

@@ -19,7 +19,7 @@ GtaoPresetCounts gtao_preset_counts(int preset);
 
 class GtaoPass {
 public:
-    // Builds the program of these settings' variant (thickness mode, step power 2 or not, slices and steps) with
+    // Builds the program of these settings' variant (thickness mode, step distribution, slices and steps) with
     // bent normals or not on first use: variants are compiled in (CPU rasterisers run both sides of a branch on a
     // uniform; constant loop counts unroll).
     Error prepare(const PassEnv& env, const obscura_gtao_settings& settings, bool bent_normals);
@@ -35,8 +35,9 @@ public:
              const gl::Texture2D& destination);
 
 private:
-    // By variant: thickness mode, step power 2, bent normals, slices, steps, thickness blend on (variant_key).
+    // By variant: thickness mode, step distribution, bent normals, slices, steps, thickness blend on (variant_key).
     std::map<uint32_t, gl::Object> programs_;
+    static int step_distribution(const obscura_gtao_settings& settings);
     static uint32_t variant_key(const obscura_gtao_settings& settings, bool bent_normals);
 };
 
