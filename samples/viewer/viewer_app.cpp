@@ -93,12 +93,13 @@ const Preset kPresets[] = {
      "hbao:steps=12:estimator=horizon_split:intensity=1:power=1:blur_radius=4:blur_sharpness=16"},
     {OBSCURA_METHOD_HBAO, "K=16, N=48: the docs' quality baseline", "hbao:directions=16:steps=48:estimator=horizon_split:intensity=1:power=1:blur_radius=4:blur_sharpness=16"},
     {OBSCURA_METHOD_SAO, "paper: s=9, tau=7, q'=8 (defaults)", "sao"},
-    {OBSCURA_METHOD_LSAO, "paper Table 2, K=8", "lsao:preset=k8"},
-    {OBSCURA_METHOD_LSAO, "paper Table 2, K=16 (defaults)", "lsao:preset=k16"},
+    {OBSCURA_METHOD_LSAO, "paper Table 2, K=8, receiver's tangent (defaults)", "lsao"},
+    {OBSCURA_METHOD_LSAO, "paper Table 2, K=16", "lsao:preset=k16"},
     {OBSCURA_METHOD_LSAO, "paper Table 2, K=24", "lsao:preset=k24"},
     {OBSCURA_METHOD_LSAO, "paper Table 2, K=32", "lsao:preset=k32"},
     {OBSCURA_METHOD_LSAO, "paper Figure 1, K=8", "lsao:preset=k8_figure1"},
     {OBSCURA_METHOD_LSAO, "paper Figure 13, K=16", "lsao:preset=k16_figure13"},
+    {OBSCURA_METHOD_LSAO, "defaults before 0.5 (K=16, fixed tangent)", "lsao:preset=k16:tangent_strategy=fixed"},
     {OBSCURA_METHOD_FFAO, "paper: K=16x2, B0=10 (defaults)", "ffao"},
     {OBSCURA_METHOD_FFAO, "paper: K=8x2", "ffao:sectors=8"},
     {OBSCURA_METHOD_FFAO, "paper: SAAO, K=18x2", "ffao:saao=on"},
@@ -116,14 +117,14 @@ const Preset kPresets[] = {
     {OBSCURA_METHOD_GTAO, "temporal: 1 slice x 4 steps, 16 frames", "gtao:slices=1:steps=4:temporal.enabled=on:temporal.max_frames=16"},
     // LSAO's free directions turn with the layout phase: 4 of them a frame cover 32 over 8 frames.
     {OBSCURA_METHOD_LSAO, "temporal: 4 free directions, 16 frames",
-     "lsao:pattern=free:directions=4:step_length=2:line_spacing=1.64:temporal.enabled=on:temporal.max_frames=16"},
+     "lsao:pattern=free:directions=4:step_length=1.41:line_spacing=1.41:temporal.enabled=on:temporal.max_frames=16"},
     // Reduced resolution: half costs 0.25-0.34x of full on llvmpipe, within +0.01 of its error at 640x360 for these
-    // (docs/performance.md, docs/quality.md, "Reduced resolution"; LSAO's preset derives to k8 there).
+    // (docs/performance.md, docs/quality.md, "Reduced resolution").
     {OBSCURA_METHOD_HBAO, "half resolution", "hbao:resolution.scale=half"},
     {OBSCURA_METHOD_GTAO, "half resolution", "gtao:resolution.scale=half"},
     {OBSCURA_METHOD_SAO, "half resolution", "sao:resolution.scale=half"},
     {OBSCURA_METHOD_FFAO, "half resolution (a quarter of the memory)", "ffao:resolution.scale=half"},
-    {OBSCURA_METHOD_LSAO, "half resolution (k8)", "lsao:resolution.scale=half"},
+    {OBSCURA_METHOD_LSAO, "half resolution", "lsao:resolution.scale=half"},
 };
 
 // One method's panel state: its settings and the text boxes of save/load, copy-as-C and the falloff table's

@@ -69,11 +69,15 @@ TEST_P(ReducedResolution, PlanesAreUnoccluded) {
             Stats s = geometry_stats(scene, render_visibility(ctx(), scene.input, settings));
             ASSERT_GT(s.count, kWidth * kHeight / 2);
             Stats at_full = geometry_stats(scene, render_visibility(ctx(), scene.input, full));
-            // Measured: at least 0.9995 (one R16F step below 1) for every method but FFAO, every size and
+            // Measured: at least 0.9995 (one R16F step below 1) for every method but FFAO and LSAO, every size and
             // projection; FFAO's reduced minimum is at or above its full-resolution one (steep floor, quarter:
-            // 0.9868 against 0.9829).
+            // 0.9868 against 0.9829). LSAO with the receiver's tangent (its default since 2026-12-05) compares each
+            // plane point with the tangent from its 16-bit normal: under perspective 0.9980 at full size, 0.9971 at
+            // half and 0.9932 at quarter (less than two 8-bit steps; orthographic 0.9995).
             if (GetParam().method == OBSCURA_METHOD_FFAO) {
                 EXPECT_GT(s.min, at_full.min - 0.001) << describe(s) << "; at full resolution " << describe(at_full);
+            } else if (GetParam().method == OBSCURA_METHOD_LSAO) {
+                EXPECT_GT(s.min, 0.99) << describe(s) << "; at full resolution " << describe(at_full);
             } else {
                 EXPECT_GT(s.min, 0.999) << describe(s);
             }

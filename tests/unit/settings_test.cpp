@@ -183,13 +183,13 @@ TEST(SettingsDefaults, EditingMovesWhatIsDerived) {
     EXPECT_EQ(resolved(s).lsao.directions, 8);
 }
 
-// LSAO's preset derives from the resolution: k16 at full size, k8 (the shortest step) at half and quarter size,
-// where every step spans 2 or 4 host texels; a preset that is set is kept at any resolution.
-TEST(SettingsDefaults, LsaoPresetDerivesFromTheResolution) {
+// LSAO's preset derives to k8 (the shortest step) at every size, at half and quarter size too, where every step
+// spans 2 or 4 host texels; a preset that is set is kept at any resolution.
+TEST(SettingsDefaults, LsaoPresetDerivesToK8AtEveryResolution) {
     obscura_settings s;
     ASSERT_EQ(obscura_default_settings(OBSCURA_METHOD_LSAO, &s), OBSCURA_OK);
-    EXPECT_EQ(resolved(s).lsao.preset, 2);
-    EXPECT_EQ(resolved(s).lsao.directions, 16);
+    EXPECT_EQ(resolved(s).lsao.preset, 1);
+    EXPECT_EQ(resolved(s).lsao.directions, 8);
     for (obscura_resolution scale : {OBSCURA_RESOLUTION_HALF, OBSCURA_RESOLUTION_QUARTER}) {
         s.resolution.scale = scale;
         const obscura_settings r = resolved(s);
@@ -229,7 +229,7 @@ TEST(SettingsDefaults, ZeroCanBeSetWhereTheRangeIncludesIt) {
     EXPECT_EQ(value, 0.0);
     // Derived fields still derive from 0, in either form.
     ASSERT_EQ(obscura_set_setting(&zero, "directions", 0.0), OBSCURA_OK);
-    EXPECT_EQ(resolved(zero).lsao.directions, 16);
+    EXPECT_EQ(resolved(zero).lsao.directions, 8);
 }
 
 // Every released header's obscura_settings is accepted, its missing fields reading as their defaults; a size

@@ -316,9 +316,9 @@ typedef struct obscura_lsao_settings {
     float decay_rate;     /* r in m^2, [1e-10, 1e8]. Derived: C*radius^2 */
     int32_t preset;       /* K, D_S, D_L of the paper: 1: 8, 1.41, 1.41; 2: 16, 2.43, 1.64; 3: 24, 3.56, 1.69;
                              4: 32, 4.69, 1.70 (Table 2); 5: 8, 2.83, 2.12 (Figure 1); 6: 16, 4.87, 2.46
-                             (Figure 13), [1, 6]. Derived: 2, and 1 at reduced resolution (resolution.scale: a
-                             reduced texel's step spans 2 or 4 host texels; the shortest one keeps the error
-                             within 0.01 of full resolution's at half size) */
+                             (Figure 13), [1, 6]. Derived: 1 (with the receiver's tangent as close to the
+                             geometry truth as 2 at less cost; its step, the shortest, keeps reduced resolution
+                             within 0.01 of full resolution's error at half size) */
     int32_t pattern;      /* 1: aligned 8n directions on texel centres (sec. 5.2); 2: free: any K, interpolated
                              depth, snapped at depth edges, [1, 2]. Default 1 */
     int32_t directions;   /* K, [1, 64]; aligned: a multiple of 8. Derived: the preset's */
@@ -326,7 +326,8 @@ typedef struct obscura_lsao_settings {
     float line_spacing;   /* D_L in texels, [0.5, 16]. Derived: the preset's */
     float tangent;        /* the fixed sin(t), [-1, 0.5]. Default -0.85 */
     int32_t tangent_strategy; /* sec. 4.1: 1 the receiver's tangent for hull and occlusion, 2 fixed for the hull
-                             and the receiver's for occlusion, 3 fixed for both, [1, 3]. Default 3 */
+                             and the receiver's for occlusion, 3 fixed for both, [1, 3]. Default 1 (half the
+                             error of 3 against the geometry truth, docs/quality.md; 3 reads no normals) */
     int32_t hull_capacity; /* points kept per line (the oldest is dropped when full), [2, 64]. Default 24: on the
                              H100 the sweep takes 0.37 ms at 24 and 0.43 at 32 (shared memory per group), and
                              the AO moves by at most 0.0007 mean on the built-in scenes (docs/performance.md) */
