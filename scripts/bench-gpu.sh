@@ -54,7 +54,7 @@ for what in "$@"; do
     bench)
       {
         bench --scene atrium --sizes 1920x1080 \
-              --methods hbao,hbao:steps=12:estimator=horizon_split:intensity=1:power=1:blur_radius=4:blur_sharpness=16,hbao:directions=16:steps=48:estimator=horizon_split:intensity=1:power=1:blur_radius=4:blur_sharpness=16,sao,lsao,lsao:preset=1,lsao:preset=3,lsao:preset=4,lsao:exact=on,gtao,gtao:thickness_mode=bitmask,gtao:preset=low,gtao:preset=medium,gtao:preset=ultra \
+              --methods hbao,hbao:steps=12:estimator=horizon_split:intensity=1:power=1:blur_radius=4:blur_sharpness=16,hbao:directions=16:steps=48:estimator=horizon_split:intensity=1:power=1:blur_radius=4:blur_sharpness=16,sao,lsao,lsao:preset=k16:tangent_strategy=fixed,lsao:preset=3,lsao:preset=4,lsao:exact=on,gtao,gtao:thickness_mode=bitmask,gtao:preset=low,gtao:preset=medium,gtao:preset=ultra \
               --json "$out/methods_1080.json"
         bench --scene atrium --sizes 1280x720,2560x1600,3840x2160 --methods hbao:directions=16:steps=48:estimator=horizon_split:intensity=1:power=1:blur_radius=4:blur_sharpness=16,sao,lsao \
               --json "$out/methods_sizes.json"
@@ -74,7 +74,7 @@ for what in "$@"; do
     lsao)
       # Sweep parallelism: whole lines vs segments of several lengths and warm-up tolerances.
       bench --scene atrium --sizes 1920x1080 \
-            --methods lsao:segment_steps=-1,lsao,lsao:segment_steps=64,lsao:segment_steps=256,lsao:warmup_stride=1,lsao:warmup_stride=2,lsao:warmup_stride=8,lsao:warmup_stride=16,lsao:warmup_tolerance=0.01,lsao:warmup_tolerance=0.2,lsao:hull_capacity=16,lsao:hull_capacity=64,lsao:hull_capacity=16:segment_steps=-1,lsao:hull_capacity=64:segment_steps=-1,lsao:hull_capacity=16:warmup_stride=8,lsao:hull_capacity=32,lsao:radius=0.1,lsao:radius=10,lsao:radius=10:warmup_stride=8,lsao:preset=1,lsao:preset=3,lsao:preset=4,hbao:directions=16:steps=48:estimator=horizon_split:intensity=1:power=1:blur_radius=4:blur_sharpness=16,hbao,sao \
+            --methods lsao:segment_steps=-1,lsao,lsao:segment_steps=64,lsao:segment_steps=256,lsao:warmup_stride=1,lsao:warmup_stride=2,lsao:warmup_stride=8,lsao:warmup_stride=16,lsao:warmup_tolerance=0.01,lsao:warmup_tolerance=0.2,lsao:hull_capacity=16,lsao:hull_capacity=64,lsao:hull_capacity=16:segment_steps=-1,lsao:hull_capacity=64:segment_steps=-1,lsao:hull_capacity=16:warmup_stride=8,lsao:hull_capacity=32,lsao:radius=0.1,lsao:radius=10,lsao:radius=10:warmup_stride=8,lsao:preset=k16:tangent_strategy=fixed,lsao:preset=3,lsao:preset=4,hbao:directions=16:steps=48:estimator=horizon_split:intensity=1:power=1:blur_radius=4:blur_sharpness=16,hbao,sao \
             --json "$out/lsao.json" 2>&1 | grep -E '^[a-z].* @ |total|line_sweep|gather' | tee "$out/lsao.txt"
       ;;
     lsao-error)

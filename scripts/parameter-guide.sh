@@ -55,6 +55,7 @@ declare -A context=(
   [lsao.warmup_stride]="segment_steps=16"
   [lsao.normal_threshold]="normal_test=on"
   [ffao.saao_blur]="saao=on"
+  [lsao.tangent]="tangent_strategy=fixed"  # the receiver's tangent (the default) does not read it
 )
 # Values where the automatic rule gives a useless picture.
 declare -A fixed_values=(

@@ -33,6 +33,9 @@
 #ifndef OBSCURA_CPU_RASTERISER
 #error "OBSCURA_CPU_RASTERISER must be defined"
 #endif
+#ifndef OBSCURA_GTAO_STEP_DISTRIBUTION
+#error "OBSCURA_GTAO_STEP_DISTRIBUTION must be defined"
+#endif
 
 layout(local_size_x = OBSCURA_GTAO_GROUP_X, local_size_y = OBSCURA_GTAO_GROUP_Y) in;
 

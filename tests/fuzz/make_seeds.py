@@ -55,7 +55,7 @@ def settings_seeds():
     seeds["name_falloff_table_array"] = settings_seed(7, METHODS["ffao"], name=b"falloff_table", value=0.5)
     seeds["name_unknown"] = settings_seed(7, METHODS["sao"], name=b"no_such_setting", value=1.0)
     seeds["name_nan"] = settings_seed(7, METHODS["lsao"], name=b"radius", value=float("nan"))
-    seeds["name_enum"] = settings_seed(7, METHODS["lsao"], name=b"tangent_strategy", value=1.0)
+    seeds["name_enum"] = settings_seed(7, METHODS["lsao"], name=b"tangent_strategy", value=3.0)  # not the default
     # 0 where 0 is a value: in the editable form, in a zero struct (sets ZERO_IS_VALUE), in a 0.3 struct (refused).
     seeds["name_tangent_zero_defaults"] = settings_seed(7, METHODS["lsao"], name=b"tangent", value=0.0)
     seeds["name_tangent_zero_zero_struct"] = settings_seed(3, METHODS["lsao"], name=b"tangent", value=0.0)

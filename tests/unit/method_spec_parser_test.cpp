@@ -119,7 +119,7 @@ TEST(MethodSpecParser, EnumsTakeTheirNamesOrNumbers) {
     EXPECT_EQ(get(parse_method_spec("ffao:falloff=rho0"), "falloff"), double(OBSCURA_FALLOFF_RHO0));
     EXPECT_EQ(get(parse_method_spec("ffao:falloff=2"), "falloff"), double(OBSCURA_FALLOFF_INVERSE_QUADRATIC));
     EXPECT_EQ(get(parse_method_spec("lsao:pattern=free"), "pattern"), 2.0);
-    EXPECT_EQ(get(parse_method_spec("lsao:tangent_strategy=receiver"), "tangent_strategy"), 1.0);
+    EXPECT_EQ(get(parse_method_spec("lsao:tangent_strategy=fixed"), "tangent_strategy"), 3.0);  // not the default
     EXPECT_EQ(get(parse_method_spec("ffao:geometry=mipmap"), "geometry"), 2.0);
     EXPECT_EQ(get(parse_method_spec("sao:mip_filter=max"), "mip_filter"), 5.0);
     EXPECT_EQ(get(parse_method_spec("hbao:estimator=largest_occluder"), "estimator"), 2.0);

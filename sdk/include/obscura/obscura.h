@@ -324,13 +324,14 @@ typedef struct obscura_lsao_settings {
     int32_t directions;   /* K, [1, 64]; aligned: a multiple of 8. Derived: the preset's */
     float step_length;    /* D_S in texels, [0.5, 16]; free pattern only (aligned ones derive it). Derived: preset's */
     float line_spacing;   /* D_L in texels, [0.5, 16]. Derived: the preset's */
-    float tangent;        /* the fixed sin(t), [-1, 0.5]. Default -0.85 */
+    float tangent;        /* the fixed sin(t), [-1, 0.5]; read with tangent_strategy 3 (and 2's hull). Default -0.85 */
     int32_t tangent_strategy; /* sec. 4.1: 1 the receiver's tangent for hull and occlusion, 2 fixed for the hull
                              and the receiver's for occlusion, 3 fixed for both, [1, 3]. Default 1 (half the
                              error of 3 against the geometry truth, docs/quality.md; 3 reads no normals) */
     int32_t hull_capacity; /* points kept per line (the oldest is dropped when full), [2, 64]. Default 24: on the
                              H100 the sweep takes 0.37 ms at 24 and 0.43 at 32 (shared memory per group), and
-                             the AO moves by at most 0.0007 mean on the built-in scenes (docs/performance.md) */
+                             the AO moves by at most 0.0007 mean on the built-in scenes (docs/performance.md;
+                             both measured with K = 16 and the fixed tangent, the defaults before 0.5) */
     obscura_toggle exact; /* brute-force largest occluder over all earlier samples instead of the hull (O(M^2)
                              per line, for validation). Default off */
     int32_t segment_steps; /* lines are swept in segments of this many steps (rounded up to a multiple of 8), one

@@ -13,7 +13,8 @@ namespace {
 constexpr const char* const kGtaoPresetNames[] = {"low", "medium", "high", "ultra"};
 constexpr const char* const kGtaoModeNames[] = {"horizon", "bitmask"};
 
-// Defaults: XeGTAO's High preset (3 slices x 3 steps per side), step distribution (2) and MIP offset (3.3).
+// Defaults: XeGTAO's High preset (3 slices x 3 steps per side) and MIP offset (3.3); its step distribution (2) until
+// 2026-12-05 (below).
 // Measured against the geometry truth on the atrium, objects, clutter and terrain at 320x180 (docs/quality.md):
 // horizon mode and power 1.5 beat the bitmask mode and power 1 or 2 on every scene; `obscura tune` then moved the
 // falloff range to the whole radius (XeGTAO: 0.615; the falloff becomes 1 - d/R, close to HBAO's rho0) and the

@@ -43,7 +43,7 @@ const obscura_setting_info kLsaoSettings[] = {
      OBSCURA_SETTING_OFFSET(lsao, step_length), OBSCURA_SETTING_FLAG_DERIVED),
     setting_row("line_spacing", OBSCURA_SETTING_FLOAT, 0.0, 0.5, 16.0, "px", "D_L between parallel lines; derived: the preset's",
      OBSCURA_SETTING_OFFSET(lsao, line_spacing), OBSCURA_SETTING_FLAG_DERIVED),
-    setting_row("tangent", OBSCURA_SETTING_FLOAT, -0.85, -1.0, 0.5, "", "the fixed sin(t) of the hull and the occlusion",
+    setting_row("tangent", OBSCURA_SETTING_FLOAT, -0.85, -1.0, 0.5, "", "the fixed sin(t) of the hull and the occlusion (tangent_strategy fixed; the hull's with fixed_hull)",
      OBSCURA_SETTING_OFFSET(lsao, tangent)),
     enum_row("tangent_strategy", 1, 1,
              "sec. 4.1: receiver: the receiver's tangent for hull and occlusion; fixed_hull: fixed for the hull, the "
@@ -118,7 +118,7 @@ public:
         const obscura_lsao_settings& lsao = settings.lsao;
         TechniquePlan plan;
         plan.radius = lsao.radius;
-        // With the fixed tangent and no normal test (the defaults) only the gather's receiver reads its normal.
+        // With the fixed tangent and no normal test only the gather's receiver reads its normal.
         // Otherwise the whole texture: with the receiver's tangent (strategies receiver and fixed_hull) the sweeps
         // read the normal of every point of their lines, the guard band's included, and the normal test reads the
         // gather's nearest samples, which lie beyond a lattice step of the pixel where a line ends short of it.
