@@ -114,7 +114,7 @@ const Preset kPresets[] = {
     // converges, on a still camera, to less error than its method's defaults).
     {OBSCURA_METHOD_HBAO, "temporal: K=4, no blur, 16 frames", "hbao:directions=4:blur=off:temporal.enabled=on:temporal.max_frames=16"},
     {OBSCURA_METHOD_SAO, "temporal: s=3, 16 frames", "sao:samples=3:temporal.enabled=on:temporal.max_frames=16"},
-    {OBSCURA_METHOD_GTAO, "temporal: 1 slice x 4 steps, 16 frames", "gtao:slices=1:steps=4:temporal.enabled=on:temporal.max_frames=16"},
+    {OBSCURA_METHOD_GTAO, "temporal: 1 slice x 4 steps, 16 frames", "gtao:slices=1:steps=4:power=1.65:temporal.enabled=on:temporal.max_frames=16"},
     // LSAO's free directions turn with the layout phase: 4 of them a frame cover 32 over 8 frames.
     {OBSCURA_METHOD_LSAO, "temporal: 4 free directions, 16 frames",
      "lsao:pattern=free:directions=4:step_length=1.41:line_spacing=1.41:temporal.enabled=on:temporal.max_frames=16"},
