@@ -104,7 +104,7 @@ for what in "$@"; do
       # per side), then each method at full, half and quarter resolution at 1080p, then the temporal pass
       # still and moving (--motion 1: reprojection through the matrices every frame).
       hbao_k16='hbao:directions=16:steps=48:estimator=horizon_split:intensity=1:power=1:blur_radius=4:blur_sharpness=16'
-      methods="hbao,$hbao_k16,sao,lsao:preset=k8,lsao,lsao:preset=k32,ffao,ffao:saao=on,gtao:preset=low,gtao:preset=medium,gtao,gtao:preset=ultra,gtao:thickness_mode=bitmask,gtao:thickness_mode=bitmask:preset=ultra"
+      methods="hbao,$hbao_k16,sao,lsao,lsao:preset=k16:tangent_strategy=fixed,lsao:preset=k32:tangent_strategy=fixed,ffao,ffao:saao=on,gtao:preset=low,gtao:preset=medium,gtao,gtao:preset=ultra,gtao:thickness_mode=bitmask,gtao:thickness_mode=bitmask:preset=ultra"
       reduced=""
       for m in hbao sao lsao ffao:saao=on gtao gtao:thickness_mode=bitmask; do
         for r in half quarter; do
