@@ -109,7 +109,7 @@ const Preset kPresets[] = {
     {OBSCURA_METHOD_GTAO, "Medium, 2x2 (XeGTAO's counts)", "gtao:preset=medium"},
     {OBSCURA_METHOD_GTAO, "Ultra, 9x3 (XeGTAO's counts)", "gtao:preset=ultra"},
     {OBSCURA_METHOD_GTAO, "XeGTAO's High, step distribution 2", "gtao:step_power=2"},
-    {OBSCURA_METHOD_GTAO, "visibility bitmask, 0.3 m thick", "gtao:thickness_mode=bitmask"},
+    {OBSCURA_METHOD_GTAO, "visibility bitmask, 0.4 m thick", "gtao:thickness_mode=bitmask"},
     // Temporal presets: fewer samples a frame, accumulated over up to 16 (docs/quality.md, "Temporal presets": each
     // converges, on a still camera, to less error than its method's defaults).
     {OBSCURA_METHOD_HBAO, "temporal: K=4, no blur, 16 frames", "hbao:directions=4:blur=off:temporal.enabled=on:temporal.max_frames=16"},

@@ -449,7 +449,7 @@ typedef struct obscura_gtao_settings {
     int32_t steps;        /* N steps to each side, [1, 32]. Derived: the preset's */
     int32_t thickness_mode; /* 1 horizon (the paper's two horizons), 2 bitmask (finite thickness), [1, 2].
                              Default 1 (measured closer to the geometry truth at 3 steps, docs/quality.md) */
-    float thickness;      /* bitmask: metres of solid behind every depth sample, [1e-3, 1e4]. Default 0.3 */
+    float thickness;      /* bitmask: metres of solid behind every depth sample, [1e-3, 1e4]. Default 0.4 */
     float thickness_blend; /* horizon: the paper's thickness heuristic; a sample below the current horizon pulls
                              it this fraction of the way down, [0, 1]. Default 0 (zero is the default) */
     int32_t sectors;      /* bitmask: sectors per slice, [4, 32]. Default 32 */
@@ -461,7 +461,8 @@ typedef struct obscura_gtao_settings {
     float mip_offset;     /* log2 of the step's distance in pixels at which it reads one level down, [0, 8].
                              Default 3.3 */
     float intensity;      /* obscurance multiplier, [1e-3, 16]. Default 1 */
-    float power;          /* visibility exponent, [1e-3, 16]. Default 1.75: makes up for the horizons 3 steps miss */
+    float power;          /* visibility exponent, [1e-3, 16]: makes up for the occluders 3 steps miss. Derived:
+                             1.75 in horizon mode, 1.5 in bitmask mode */
     float albedo;         /* the paper's multi-bounce fit for this surface albedo, [0, 0.95]; 0: none. Default 0 */
     float max_radius_pixels; /* cap of the radius on screen, [1, 4096]. Default 256 */
     obscura_toggle denoise; /* edge-aware 5x5 denoise over the 4x4 noise pattern. Default on */
