@@ -18,6 +18,7 @@
 #include "method_spec_parser.h"
 #include "settings_document.h"
 #include "viewer_camera.h"
+#include "viewer_presets.h"
 #include "viewer_truth.h"
 
 namespace obscura::viewer {
@@ -79,53 +80,6 @@ std::vector<obscura_setting_info> infos_of(obscura_method method) {
     }
 }
 
-// Settings that reproduce configurations of the papers (spec keys over the method's defaults). LSAO's own
-// `preset` setting selects the configurations of its paper's Table 2.
-struct Preset {
-    obscura_method method;
-    const char* label;
-    const char* spec;
-};
-// (The specs start from obscura_default_settings: the preset moves LSAO's K, D_S and D_L, and SAAO FFAO's K.)
-const Preset kPresets[] = {
-    {OBSCURA_METHOD_HBAO, "defaults (K=8, N=7, tuned)", "hbao"},
-    {OBSCURA_METHOD_HBAO, "defaults before 0.5 (K=8, N=12)",
-     "hbao:steps=12:estimator=horizon_split:intensity=1:power=1:blur_radius=4:blur_sharpness=16"},
-    {OBSCURA_METHOD_HBAO, "K=16, N=48: the docs' quality baseline", "hbao:directions=16:steps=48:estimator=horizon_split:intensity=1:power=1:blur_radius=4:blur_sharpness=16"},
-    {OBSCURA_METHOD_SAO, "paper: s=9, tau=7, q'=8 (defaults)", "sao"},
-    {OBSCURA_METHOD_LSAO, "paper Table 2, K=8, receiver's tangent (defaults)", "lsao"},
-    {OBSCURA_METHOD_LSAO, "paper Table 2, K=16, fixed tangent (defaults before 0.5)", "lsao:preset=k16:tangent_strategy=fixed"},
-    {OBSCURA_METHOD_LSAO, "paper Table 2, K=24, fixed tangent", "lsao:preset=k24:tangent_strategy=fixed"},
-    {OBSCURA_METHOD_LSAO, "paper Table 2, K=32, fixed tangent", "lsao:preset=k32:tangent_strategy=fixed"},
-    {OBSCURA_METHOD_LSAO, "paper Figure 1, K=8, fixed tangent", "lsao:preset=k8_figure1:tangent_strategy=fixed"},
-    {OBSCURA_METHOD_LSAO, "paper Figure 13, K=16, fixed tangent", "lsao:preset=k16_figure13:tangent_strategy=fixed"},
-    {OBSCURA_METHOD_FFAO, "paper: K=16x2, B0=10 (defaults)", "ffao"},
-    {OBSCURA_METHOD_FFAO, "paper: K=8x2", "ffao:sectors=8"},
-    {OBSCURA_METHOD_FFAO, "paper: SAAO, K=18x2", "ffao:saao=on"},
-    {OBSCURA_METHOD_FFAO, "paper sec. 5: mipmap baseline", "ffao:geometry=mipmap"},
-    {OBSCURA_METHOD_REFERENCE, "256 rays (defaults)", "reference"},
-    {OBSCURA_METHOD_GTAO, "High, 3x3 (XeGTAO's counts), horizon (defaults)", "gtao"},
-    {OBSCURA_METHOD_GTAO, "Low, 1x2 (XeGTAO's counts)", "gtao:preset=low"},
-    {OBSCURA_METHOD_GTAO, "Medium, 2x2 (XeGTAO's counts)", "gtao:preset=medium"},
-    {OBSCURA_METHOD_GTAO, "Ultra, 9x3 (XeGTAO's counts)", "gtao:preset=ultra"},
-    {OBSCURA_METHOD_GTAO, "XeGTAO's High, step distribution 2", "gtao:step_power=2"},
-    {OBSCURA_METHOD_GTAO, "visibility bitmask, 0.4 m thick", "gtao:thickness_mode=bitmask"},
-    // Temporal presets: fewer samples a frame, accumulated over up to 16 (docs/quality.md, "Temporal presets": each
-    // converges, on a still camera, to less error than its method's defaults).
-    {OBSCURA_METHOD_HBAO, "temporal: K=4, no blur, 16 frames", "hbao:directions=4:blur=off:temporal.enabled=on:temporal.max_frames=16"},
-    {OBSCURA_METHOD_SAO, "temporal: s=3, 16 frames", "sao:samples=3:temporal.enabled=on:temporal.max_frames=16"},
-    {OBSCURA_METHOD_GTAO, "temporal: 1 slice x 4 steps, 16 frames", "gtao:slices=1:steps=4:power=1.65:temporal.enabled=on:temporal.max_frames=16"},
-    // LSAO's free directions turn with the layout phase: 4 of them a frame cover 32 over 8 frames.
-    {OBSCURA_METHOD_LSAO, "temporal: 4 free directions, 16 frames",
-     "lsao:pattern=free:directions=4:step_length=1.41:line_spacing=1.41:temporal.enabled=on:temporal.max_frames=16"},
-    // Reduced resolution: half costs 0.25-0.34x of full on llvmpipe, within +0.01 of its error at 640x360 for these
-    // (docs/performance.md, docs/quality.md, "Reduced resolution").
-    {OBSCURA_METHOD_HBAO, "half resolution", "hbao:resolution.scale=half"},
-    {OBSCURA_METHOD_GTAO, "half resolution", "gtao:resolution.scale=half"},
-    {OBSCURA_METHOD_SAO, "half resolution", "sao:resolution.scale=half"},
-    {OBSCURA_METHOD_FFAO, "half resolution (a quarter of the memory)", "ffao:resolution.scale=half"},
-    {OBSCURA_METHOD_LSAO, "half resolution", "lsao:resolution.scale=half"},
-};
 
 // One method's panel state: its settings and the text boxes of save/load, copy-as-C and the falloff table's
 // file.
@@ -411,7 +365,7 @@ bool ViewerApp::method_panel(const char* id, MethodPanel& panel) {
         ImGui::EndCombo();
     }
     if (ImGui::BeginCombo("preset", "choose...")) {
-        for (const Preset& preset : kPresets) {
+        for (const ViewerPreset& preset : kViewerPresets) {
             if (preset.method != settings.method) continue;
             if (ImGui::Selectable(preset.label)) {
                 settings = settings_from_spec(preset.spec);
