@@ -1,5 +1,6 @@
 #include "context.h"
 
+#include <algorithm>
 #include <new>
 
 #include "gl/state_guard.h"
@@ -324,25 +325,45 @@ Error Context::render(const obscura_input& input, const obscura_settings& settin
         error = check_input_textures(gl, input, &frame);
         if (!error) error = check_output_target(gl, output, frame.output_rect, &target);
         if (!error) error = check_bent_normal_target(gl, output, frame.output_rect, &target);
+        const bool recorded = !error;
         if (!error) error = record_frame(frame, resolved, target);
         // A failed validation may leave a probing error (wrong texture target) behind: drain it.
         const GLenum gl_error = device_.take_error();
         if (gl_error == GlDevice::kContextLost || (!error && gl_error != GL_NO_ERROR)) {
             error = device_.error_status(gl_error, "while rendering");
         }
+        // A frame whose passes raised a GL error (seen here unless OBSCURA_CONTEXT_FLAG_VALIDATE_PASSES checked each
+        // pass) may not have written the history it swapped in: the next frame starts anew.
+        if (error && recorded) find_view(frame.view)->history.invalidate();
     }
     const GLenum restore_error = device_.take_error();
     if (restore_error == GlDevice::kContextLost || (!error && restore_error != GL_NO_ERROR)) {
         error = device_.error_status(restore_error, "while restoring the host's GL state");
+        find_view(frame.view)->history.invalidate();
     }
     return error;
 }
 
-Error Context::record_frame(const FrameInput& host, const obscura_settings& settings, const OutputTarget& target) {
+Error Context::record_frame(const FrameInput& host_input, const obscura_settings& settings,
+                            const OutputTarget& target) {
     const PassEnv pass_env = env();
     Technique* technique = nullptr;
     Error error = technique_for(settings.method, &technique);
     if (error) return error;
+    View* view = find_view(host_input.view);
+    const bool debug_view = target.debug_view != OBSCURA_DEBUG_NONE;
+    const bool temporal = settings.temporal.enabled == OBSCURA_TOGGLE_ON && !debug_view;
+    // A debug view shows this frame alone and leaves the view's history as it is, but a camera cut drops it.
+    if (debug_view && host_input.reset_history) view->history.invalidate();
+    // With matrices the history is reprojected from the frame it was made at. That is the host's previous frame
+    // unless the host rendered that one with a debug view (or not at all): then its previous_view_projection would
+    // miss a frame of motion. (On the host's grid: the reprojection maps view spaces, before any reduction.)
+    FrameInput host = host_input;
+    if (temporal && host.has_matrices && view->history.valid() && view->history.view_projection()) {
+        double previous[16];
+        std::copy(view->history.view_projection(), view->history.view_projection() + 16, previous);
+        set_reprojection(previous, &host);
+    }
     // The frame the method runs on: the host's, or at reduced resolution the reduced grid's.
     const int shift = resolution_shift(settings);
     const FrameInput input = shift > 0 ? reduced_frame_input(host, shift) : host;
@@ -367,10 +388,7 @@ Error Context::record_frame(const FrameInput& host, const obscura_settings& sett
     if (error) return error;
     if (shift == 0) upsample_.release();  // the context holds what its latest configuration needs
     // Temporal accumulation: the view's history continues when the frame can be reprojected and nothing it was
-    // computed with changed. A debug view shows this frame alone and leaves the history as it is.
-    View* view = find_view(input.view);
-    const bool debug_view = target.debug_view != OBSCURA_DEBUG_NONE;
-    const bool temporal = settings.temporal.enabled == OBSCURA_TOGGLE_ON && !debug_view;
+    // computed with changed.
     bool history_continues = false;
     if (temporal) {
         const bool reproject = input.has_matrices || input.motion_vector_texture != 0;
@@ -433,7 +451,7 @@ Error Context::record_frame(const FrameInput& host, const obscura_settings& sett
     // The frame's blend is the view's history from now on (a failed frame leaves it for the next to start anew).
     if (temporal) {
         if (error) view->history.invalidate();
-        else view->history.swap();
+        else view->history.swap(input);
     }
     // The host may read the result any way (sampling, image load, framebuffer, readback).
     device_.gl().MemoryBarrier(GL_ALL_BARRIER_BITS);

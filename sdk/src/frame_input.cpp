@@ -112,25 +112,42 @@ Error check_temporal_fields(const obscura_input& input, int32_t layout, FrameInp
     }
     const glm::dmat4 view_projection = host_matrix(input.view_projection, layout);
     const glm::dmat4 previous = host_matrix(input.previous_view_projection, layout);
-    // The SDK's view space maps to this frame's clip space through the decoded projection (normalised, an
-    // orthographic near plane shifted: same clip coordinates up to scale); world space is one inverse away.
-    glm::dmat4 projection;
-    for (int column = 0; column < 4; ++column) {
-        for (int row = 0; row < 4; ++row) projection[column][row] = frame->projection.m[column * 4 + row];
-    }
     const double det = glm::determinant(view_projection);
     if (!std::isfinite(det) || std::fabs(det) < 1e-30) {
         return Error::make(OBSCURA_STATUS_INVALID_PROJECTION, "view_projection is singular (determinant %g)", det);
     }
     frame->has_matrices = true;
-    frame->identity_reprojection = std::memcmp(input.view_projection, input.previous_view_projection,
-                                               sizeof input.view_projection) == 0;
-    const glm::dmat4 reprojection = glm::inverse(projection) * previous * glm::inverse(view_projection) * projection;
-    store_matrix(frame->identity_reprojection ? glm::dmat4(1.0) : reprojection, frame->reprojection);
+    double previous_columns[16];
+    for (int column = 0; column < 4; ++column) {
+        for (int row = 0; row < 4; ++row) {
+            frame->view_projection[column * 4 + row] = view_projection[column][row];
+            previous_columns[column * 4 + row] = previous[column][row];
+        }
+    }
+    set_reprojection(previous_columns, frame);
     return Error();
 }
 
 }  // namespace
+
+void set_reprojection(const double (&previous)[16], FrameInput* frame) {
+    // The SDK's view space maps to this frame's clip space through the decoded projection (normalised, an
+    // orthographic near plane shifted: same clip coordinates up to scale); world space is one inverse away.
+    glm::dmat4 projection, view_projection, previous_matrix;
+    for (int column = 0; column < 4; ++column) {
+        for (int row = 0; row < 4; ++row) {
+            projection[column][row] = frame->projection.m[column * 4 + row];
+            view_projection[column][row] = frame->view_projection[column * 4 + row];
+            previous_matrix[column][row] = previous[column * 4 + row];
+        }
+    }
+    // Equal matrices (a static camera): the identity, read by its own program variant (exact: both are the host's
+    // floats converted).
+    frame->identity_reprojection = std::memcmp(previous, frame->view_projection, sizeof previous) == 0;
+    const glm::dmat4 reprojection =
+        glm::inverse(projection) * previous_matrix * glm::inverse(view_projection) * projection;
+    store_matrix(frame->identity_reprojection ? glm::dmat4(1.0) : reprojection, frame->reprojection);
+}
 
 Error check_input_fields(const obscura_input& input, GLint max_texture_size, FrameInput* out) {
     FrameInput frame;

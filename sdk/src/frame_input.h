@@ -35,6 +35,9 @@ struct FrameInput {
     bool has_matrices = false;
     bool identity_reprojection = false;
     float reprojection[16] = {};
+    // This frame's view-projection (column-major, the host's converted; with has_matrices): kept with the history
+    // it writes, so that the next frame reprojects from the frame the history was made at (set_reprojection).
+    double view_projection[16] = {};
     GLuint motion_vector_texture = 0;
     int motion_units = OBSCURA_MOTION_PIXELS;
     // Reduced resolution (reduced_resolution.h): this frame's texel t is the host's texel t << resolution_shift in a
@@ -42,6 +45,11 @@ struct FrameInput {
     int resolution_shift = 0;
     int host_width = 0, host_height = 0;
 };
+
+// Points `frame`'s reprojection (and identity_reprojection) at the view-projection `previous` (column-major): the
+// host's previous_view_projection in stage 1, and the view's history's own frame where that differs (a debug-view
+// frame or a frame the host skipped lies between them). Needs frame->has_matrices.
+void set_reprojection(const double (&previous)[16], FrameInput* frame);
 
 // Stage 1, no GL: every field of `input` (sizes against `max_texture_size`, the rectangle, the enums, the
 // projection). Errors: INVALID_SIZE, INVALID_RECT, INVALID_PROJECTION, PROJECTION_TRANSPOSED, INVALID_ENUM,

@@ -3,6 +3,8 @@
 //   - a static camera converges towards the many-sample image: the error falls with the frames;
 //   - an identity reprojection with the same noise every frame reproduces the one-frame image exactly;
 //   - a reset flag, and a frame without matrices, drop the history;
+//   - a debug-view frame leaves the history and the camera it was made with (a reset on it drops the history);
+//   - motion vectors continue a history only from the previous frame index;
 //   - two views keep separate histories, and a resize of one leaves the other's history alone;
 //   - motion vectors and matrices reproject alike after a camera move; an orbit with a guard band stays on the still
 //     image of its last camera, at the output rectangle's edge too;
@@ -202,7 +204,7 @@ TEST_F(GLTest, TemporalViewsKeepSeparateHistoriesAndAResizeInvalidatesOnlyItsVie
     EXPECT_EQ(obscura_destroy_view(ctx(), b), OBSCURA_OK);
     uint64_t without_b = 0;
     ASSERT_EQ(obscura_get_memory_usage(ctx(), &without_b), OBSCURA_OK);
-    EXPECT_EQ(with_views - without_b, uint64_t(2) * 160 * 90 * 8) << "b's two RGBA16F histories";
+    EXPECT_EQ(with_views - without_b, uint64_t(2) * 160 * 90 * 8) << "b's two RG32F histories";
     EXPECT_EQ(obscura_destroy_view(ctx(), b), OBSCURA_STATUS_INVALID_VIEW);
     EXPECT_EQ(obscura_destroy_view(ctx(), a), OBSCURA_OK);
 }
@@ -300,6 +302,72 @@ TEST_F(GLTest, TemporalOrbitStaysOnTheStillImageUpToTheOutputRectanglesEdge) {
     // read this frame's AO and the history outside the rectangle).
     EXPECT_LT(mean_abs_difference(accumulated, still, all), 0.001);
     EXPECT_LT(mean_abs_difference(accumulated, still, edge), 0.003);
+}
+
+// The host's previous frame may have been a debug view, which shows that frame alone and leaves the view's history
+// as it was: the next frame's previous_view_projection then describes the debug frame, a frame of motion after the
+// history. With matrices the SDK reprojects from the frame the history was made at, so the debug frame between
+// changes nothing; a camera cut on the debug frame still drops the history.
+TEST_F(GLTest, TemporalDebugViewFramesLeaveTheHistoryAndTheCameraItWasMadeWith) {
+    const std::vector<Primitive> primitives = {
+        plane(1, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0)),
+        box(2, glm::dvec3(-kBoxHalf, 0.0, -kBoxHalf), glm::dvec3(kBoxHalf, kBoxHeight, kBoxHalf))};
+    const glm::dvec3 target(0.0, 0.3, 0.0);
+    AoScene first_scene = make_ao_scene(Projection::Perspective, look_at(glm::dvec3(0.9, 2.4, 3.2), target), primitives);
+    AoScene debug_scene = make_ao_scene(Projection::Perspective, look_at(glm::dvec3(1.0, 2.4, 3.1), target), primitives);
+    AoScene last_scene = make_ao_scene(Projection::Perspective, look_at(glm::dvec3(1.1, 2.4, 3.0), target), primitives);
+    const obscura_settings settings = noisy_hbao(true);
+    obscura_input first = first_scene.input;
+    set_matrices(&first, first_scene.camera);
+    first.flags = OBSCURA_INPUT_FLAG_RESET_HISTORY;
+    obscura_input debug = debug_scene.input;
+    set_matrices(&debug, debug_scene.camera, &first_scene.camera);
+    debug.frame_index = 1;
+
+    // Without the debug frame: the last frame follows the first.
+    obscura_input last = last_scene.input;
+    set_matrices(&last, last_scene.camera, &first_scene.camera);
+    last.frame_index = 2;
+    render_visibility(ctx(), first, settings);
+    const std::vector<float> direct = render_visibility(ctx(), last, settings);
+    const std::vector<float> last_alone = render_frames(ctx(), last, noisy_hbao(false), 2, 1);
+    EXPECT_GT(mean_abs_difference(direct, last_alone, geometry_mask(last_scene)), 0.001) << "the history was not used";
+
+    // With it, as the host saw it: the last frame's previous camera is the debug frame's.
+    obscura_input after_debug = last;
+    set_matrices(&after_debug, last_scene.camera, &debug_scene.camera);
+    render_visibility(ctx(), first, settings);
+    render_visibility(ctx(), debug, settings, OBSCURA_DEBUG_AO_BEFORE_BLUR);
+    EXPECT_EQ(max_abs_difference(render_visibility(ctx(), after_debug, settings), direct), 0.0);
+
+    // A camera cut on the debug frame.
+    render_visibility(ctx(), first, settings);
+    debug.flags = OBSCURA_INPUT_FLAG_RESET_HISTORY;
+    render_visibility(ctx(), debug, settings, OBSCURA_DEBUG_AO_BEFORE_BLUR);
+    EXPECT_EQ(max_abs_difference(render_visibility(ctx(), after_debug, settings), last_alone), 0.0);
+}
+
+// Motion vectors give the offsets to the host's previous frame, so the history must be that frame's: it continues
+// when the frame index advanced by one since the history was made and is dropped when it advanced by two (the
+// host skipped the SDK for a frame, or showed a debug view then).
+TEST_F(GLTest, TemporalMotionVectorsContinueOnlyFromThePreviousFrameIndex) {
+    AoScene scene = box_scene();  // a still camera: zero vectors
+    const std::vector<float> zeros(size_t(kWidth) * kHeight * 2, 0.0f);
+    HostTexture vectors = make_texture(GL_RG32F, kWidth, kHeight);
+    glBindTexture(GL_TEXTURE_2D, vectors.get());
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kWidth, kHeight, GL_RG, GL_FLOAT, zeros.data());
+    glBindTexture(GL_TEXTURE_2D, 0);
+    obscura_input input = scene.input;  // no matrices
+    input.motion_vector_texture = vectors.get();
+    const obscura_settings settings = noisy_hbao(true);
+    const std::vector<float> frame5_alone = render_frames(ctx(), input, noisy_hbao(false), 5, 1);
+    const std::vector<float> frame6_alone = render_frames(ctx(), input, noisy_hbao(false), 6, 1);
+
+    EXPECT_GT(max_abs_difference(render_frames(ctx(), input, settings, 0, 6), frame5_alone), 0.01)
+        << "frames 0-4, then 5: the history continues";
+    render_frames(ctx(), input, settings, 0, 5);
+    EXPECT_EQ(max_abs_difference(render_frames(ctx(), input, settings, 6, 1), frame6_alone), 0.0)
+        << "frames 0-4, then 6: a frame missing, the history dropped";
 }
 
 TEST_F(GLTest, TemporalInputErrors) {

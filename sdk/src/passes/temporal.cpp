@@ -1,6 +1,8 @@
 #include "passes/temporal.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <iterator>
 
 namespace obscura {
 
@@ -35,10 +37,24 @@ Error TemporalHistory::prepare(const PassEnv& env, const FrameInput& input, bool
     const obscura_rect& rect = input.output_rect;
     const bool same_rect = rect.x == rect_.x && rect.y == rect_.y && rect.width == rect_.width &&
                            rect.height == rect_.height;
-    *continues = valid_ && same_rect && signature == signature_ && reproject && !input.reset_history;
+    // Motion vectors give this frame's offsets to the host's previous frame: the history must be that frame's.
+    const bool follows = input.frame_index - frame_index_ <= 1u;  // +1, or the same index (unsigned: wraps)
+    const bool motion = input.motion_vector_texture != 0;
+    *continues = valid_ && same_rect && signature == signature_ && reproject && !input.reset_history &&
+                 (!motion || follows);
+    // Dropped now, not at the swap: a frame that fails after this point must not leave the old history valid.
+    if (!*continues) valid_ = false;
     rect_ = rect;
     signature_ = signature;
     return Error();
+}
+
+void TemporalHistory::swap(const FrameInput& input) {
+    current_ = 1 - current_;
+    valid_ = true;
+    has_view_projection_ = input.has_matrices;
+    std::copy(std::begin(input.view_projection), std::end(input.view_projection), view_projection_);
+    frame_index_ = input.frame_index;
 }
 
 void TemporalHistory::release() {

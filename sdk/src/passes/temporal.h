@@ -10,7 +10,10 @@
 namespace obscura {
 
 // One view's history. A frame continues it only when the frame has the same size, output rectangle and outputs,
-// the same method and method settings (`signature`), a reprojection, and no reset.
+// the same method and method settings (`signature`), a reprojection, and no reset; with motion vectors (which span
+// one frame) also only when its frame index follows the history's (+1, or equal for hosts that keep it constant).
+// The history keeps the view-projection of the frame that wrote it: with matrices the next frame reprojects from
+// there, not from the host's previous frame, which may have been a debug view's (it leaves the history alone).
 class TemporalHistory {
 public:
     // The texture a frame writes (and the composite then reads), and the one it reads.
@@ -22,8 +25,11 @@ public:
     // frame's history may be read (`*continues`).
     Error prepare(const PassEnv& env, const FrameInput& input, bool bent_normals, uint64_t signature, bool reproject,
                   bool* continues);
-    // The frame's writes become the history.
-    void swap() { current_ = 1 - current_; valid_ = true; }
+    // The frame's writes become the history, made at `input`'s view-projection and frame index.
+    void swap(const FrameInput& input);
+    bool valid() const { return valid_; }
+    // The view-projection (column-major) of the frame the history was made at; null if it had no matrices.
+    const double* view_projection() const { return has_view_projection_ ? view_projection_ : nullptr; }
     // Drops the history (the next frame starts anew) but keeps the textures.
     void invalidate() { valid_ = false; }
     void release();
@@ -35,6 +41,9 @@ private:
     bool valid_ = false;
     obscura_rect rect_ = {};
     uint64_t signature_ = 0;
+    bool has_view_projection_ = false;
+    double view_projection_[16] = {};
+    uint32_t frame_index_ = 0;
 };
 
 class TemporalPass {
