@@ -481,9 +481,16 @@ typedef struct obscura_gtao_settings {
    mean of that many frames. Each method moves its noise with obscura_input.frame_index. Without the matrices and
    motion vectors, or with OBSCURA_INPUT_FLAG_RESET_HISTORY, the frame starts a new history; so does a change of
    size, output rectangle, method, method settings or bent-normal output. A debug view (obscura_output.debug_view)
-   shows its frame alone and leaves the history as it is; a frame with `enabled` off frees the view's history.
+   shows its frame alone and leaves the history as it is (a reset flag on it still drops the history); a frame with
+   `enabled` off frees the view's history. With matrices the history is reprojected from the view-projection of the
+   frame that made it, which is previous_view_projection unless the host's previous frame rendered this view with a
+   debug view or not at all: such a frame costs nothing. Motion vectors span one frame, so with them the history
+   continues only when frame_index is the history's + 1 (or equal, for a host that keeps it constant). A frame that
+   fails while rendering (GL_ERROR, OUT_OF_MEMORY, SHADER_COMPILE_FAILED ...) leaves no history, the next starts
+   anew; one refused before rendering (an invalid input or output) leaves the history as it was.
    Timing label "temporal" (after the method's passes). Memory: 16 bytes per depth texel per view, 32 with bent
-   normals.
+   normals (per texel of the reduced grid at half or quarter resolution), allocated by the first temporal render
+   of the view (obscura_prepare does not know the views).
    Every field: 0 selects the default given after it. */
 typedef struct obscura_temporal_settings {
     obscura_toggle enabled; /* accumulate frames. Default off */
@@ -673,7 +680,9 @@ typedef struct obscura_view obscura_view;
 OBSCURA_API obscura_status obscura_create_view(obscura_context* context, obscura_view** out_view);
 
 /* Destroys a view of `context` and frees its history textures (NULL: nothing). Returns OK, NULL_ARGUMENT (no
-   context), INVALID_VIEW (not this context's view), WRONG_GL_CONTEXT (nothing freed). */
+   context), INVALID_VIEW (not this context's view), WRONG_GL_CONTEXT (nothing freed). A destroyed view's handle is
+   refused with INVALID_VIEW as far as the context can tell: views are told apart by address, so once a new view
+   reuses it the old handle names the new view. Do not keep handles past obscura_destroy_view. */
 OBSCURA_API obscura_status obscura_destroy_view(obscura_context* context, obscura_view* view);
 
 typedef enum obscura_motion_units {
@@ -708,7 +717,9 @@ typedef struct obscura_input {
     float previous_view_projection[16]; /* the same of the previous frame; all zero: none */
     uint32_t motion_vector_texture; /* optional GL_TEXTURE_2D (RG16F or RG32F, the depth's size): per texel, the offset
                                        from this frame's position to the previous frame's (previous = current +
-                                       vector); used instead of the matrices, which may then be zero. 0: none */
+                                       vector), in GL's texture axes: +y is up, towards higher rows (a D3D-style
+                                       vector in UV, +y down, needs its y negated); used instead of the matrices,
+                                       which may then be zero. 0: none */
     obscura_motion_units motion_vector_units; /* default PIXELS */
 } obscura_input;
 
@@ -751,8 +762,9 @@ typedef struct obscura_output {
    rectangle outside the depth, or a result that does not fit the output target, is INVALID_RECT.
    Returns OK or NULL_ARGUMENT, INVALID_STRUCT_SIZE, WRONG_GL_CONTEXT, HOST_GL_ERROR, INVALID_SIZE,
    INVALID_RECT, INVALID_TEXTURE, UNSUPPORTED_FORMAT, INVALID_PROJECTION, PROJECTION_TRANSPOSED,
-   INVALID_SETTING, INVALID_ENUM, METHOD_NOT_AVAILABLE, INVALID_FRAMEBUFFER, SHADER_COMPILE_FAILED (a
-   variant built on first use), OUT_OF_MEMORY, GL_ERROR, CONTEXT_LOST.
+   INVALID_SETTING, INVALID_ENUM, INVALID_VIEW (input->view is not a live view of this context),
+   METHOD_NOT_AVAILABLE, INVALID_FRAMEBUFFER, SHADER_COMPILE_FAILED (a variant built on first use), OUT_OF_MEMORY,
+   GL_ERROR, CONTEXT_LOST.
    Host errors and context loss: a GL error the host left pending is consumed and reported as HOST_GL_ERROR
    before anything is done (never blamed on a pass). A reset reported by glGetGraphicsResetStatus (GL 4.5,
    KHR/ARB_robustness; only robust contexts report one) or GL_CONTEXT_LOST from glGetError makes this and
