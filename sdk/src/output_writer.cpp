@@ -36,12 +36,14 @@ GLenum staging_format(const OutputTarget& target) { return target.attachment_flo
 
 const char* image_format_qualifier(GLenum internal_format, int* channels) {
     struct Entry { GLenum format; const char* qualifier; int channels; };
-    static const Entry kFormats[] = {
+    static constexpr Entry kFormats[] = {
         {GL_R8, "r8", 1}, {GL_R16, "r16", 1}, {GL_R16F, "r16f", 1}, {GL_R32F, "r32f", 1},
         {GL_RG8, "rg8", 2}, {GL_RG16, "rg16", 2}, {GL_RG16F, "rg16f", 2}, {GL_RG32F, "rg32f", 2},
         {GL_RGBA8, "rgba8", 4}, {GL_RGBA16, "rgba16", 4}, {GL_RGBA16F, "rgba16f", 4}, {GL_RGBA32F, "rgba32f", 4},
         {GL_RGB10_A2, "rgb10_a2", 4}, {GL_R11F_G11F_B10F, "r11f_g11f_b10f", 3},
     };
+    static_assert(sizeof kFormats / sizeof kFormats[0] == CompositePass::kFormats,
+                  "the composite's program table is sized by the number of target formats");
     for (const Entry& entry : kFormats) {
         if (entry.format == internal_format) {
             if (channels) *channels = entry.channels;
@@ -274,7 +276,10 @@ Error OutputWriter::prepare(const PassEnv& env, const OutputTarget& target, cons
     if (!error && target.bent_texture) error = bent_.prepare(env, target.bent_format);
     if (error) return error;
     if (target.kind != TargetKind::Blit) {
-        staging_ = gl::Texture2D();  // a texture target again: the blit's staging is not needed
+        // A texture target again: the blit's staging is not needed. Its framebuffer goes too: a texture deleted
+        // while attached to a framebuffer that is not bound lives on until it is detached.
+        staging_ = gl::Texture2D();
+        staging_framebuffer_ = gl::Object();
         return Error();
     }
     if (staging_ && staging_.width() == rect.width && staging_.height() == rect.height &&
@@ -282,8 +287,11 @@ Error OutputWriter::prepare(const PassEnv& env, const OutputTarget& target, cons
         return Error();
     }
     staging_ = env.create_texture(format, rect.width, rect.height);
+    if (!staging_) {
+        staging_framebuffer_ = gl::Object();  // which still held the old staging texture
+        return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating the staging texture failed");
+    }
     if (!staging_framebuffer_) staging_framebuffer_ = gl::create_framebuffer(gl);
-    if (!staging_) return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating the staging texture failed");
     gl.BindFramebuffer(GL_FRAMEBUFFER, staging_framebuffer_.name());
     gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, staging_.name(), 0);
     return Error();
@@ -330,11 +338,21 @@ void OutputWriter::write(const PassEnv& env, const UniformRange& frame, const Fr
     gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, host);
     gl.BlitFramebuffer(0, 0, rect.width, rect.height, target.x, target.y, target.x + rect.width,
                        target.y + rect.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    // Hold no reference to the host's image between frames: a renderbuffer or texture the host deletes would live
+    // on, attached to this framebuffer, until the next blit (the next frame attaches it again).
+    if (host == target_framebuffer_.name()) detach_target(gl);
 }
 
 void OutputWriter::release() {
     staging_ = gl::Texture2D();
     staging_framebuffer_ = gl::Object();
+    target_framebuffer_ = gl::Object();
+}
+
+void OutputWriter::detach_target(const gl::Table& gl) {
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, target_framebuffer_.name());
+    gl.FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, 0);
+    gl.FramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
 }
 
 GLuint OutputWriter::blit_framebuffer(const gl::Table& gl, const OutputTarget& target) {

@@ -77,6 +77,8 @@ private:
     // The framebuffer a blit reaches the host's target through: 0 (default) or ours with the host's colour
     // attachment 0 attached, so only that attachment is read and written.
     GLuint blit_framebuffer(const gl::Table& gl, const OutputTarget& target);
+    // Attaches nothing to target_framebuffer_ again (binds it to GL_DRAW_FRAMEBUFFER: under the write's guard).
+    void detach_target(const gl::Table& gl);
     CompositePass composite_;
     BentNormalWritePass bent_;
     gl::Texture2D staging_;  // RGBA8 or RGBA16F, output-rect sized: blit targets only

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <initializer_list>
 
 #include "analytic_scene.h"
 #include "gl_test_support.h"
@@ -88,6 +89,31 @@ INSTANTIATE_TEST_SUITE_P(
                       // 6-bit mantissa: half an ulp below 1 is 2^-8.
                       FormatCase{GL_R11F_G11F_B10F, "R11F_G11F_B10F", std::ldexp(1.0, -7)}),
     [](const ::testing::TestParamInfo<FormatCase>& param_info) { return std::string(param_info.param.name); });
+
+// One context, every target format with every blend mode, with and without a debug view that reads the depth or
+// normals: each combination is its own composite program, and the context must hold all of them (it held 32 of
+// the 56, and the 33rd failed with INTERNAL_ERROR).
+TEST_F(OutputTargets, OneContextWritesEveryFormatBlendAndDebugView) {
+    Frame frame = facing_plane_frame();
+    obscura_settings settings = make_settings(1.0f);
+    const GLenum formats[] = {GL_R8, GL_R16, GL_R16F, GL_R32F, GL_RG8, GL_RG16, GL_RG16F, GL_RG32F,
+                              GL_RGBA8, GL_RGBA16, GL_RGBA16F, GL_RGBA32F, GL_RGB10_A2, GL_R11F_G11F_B10F};
+    int rendered = 0;
+    for (GLenum format : formats) {
+        HostTexture target = make_texture(format, kWidth, kHeight);
+        for (obscura_blend_mode blend : {OBSCURA_BLEND_OVERWRITE, OBSCURA_BLEND_MULTIPLY}) {
+            for (obscura_debug_view view : {OBSCURA_DEBUG_NONE, OBSCURA_DEBUG_LINEAR_DEPTH}) {
+                obscura_output output = make_output(target.get(), view);
+                output.blend = blend;
+                EXPECT_EQ(obscura_render(ctx(), &frame.input, &settings, &output), OBSCURA_OK)
+                    << "format 0x" << std::hex << format << std::dec << ", blend " << blend << ", debug view " << view
+                    << ": " << obscura_get_last_error(ctx());
+                ++rendered;
+            }
+        }
+    }
+    EXPECT_EQ(rendered, 56);
+}
 
 TEST_F(OutputTargets, OverwriteRgba8WritesGreyAndOpaqueAlpha) {
     Frame frame = corner_frame();
@@ -242,6 +268,51 @@ TEST_F(OutputTargets, FramebufferRenderbufferBlit) {
     ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
     std::vector<uint8_t> got = read_framebuffer_rgba8(target.framebuffer.get(), kWidth, kHeight);
     EXPECT_EQ(got, expected) << "the blit path must give the RGBA8 result of the direct path";
+}
+
+// The framebuffers the SDK creates in the host's context (their names are the context's, so a scan finds them)
+// must hold no image the frame no longer needs: after a blit, not the host's renderbuffer (a host that deletes it,
+// on a window resize, would not get its memory back), and once the host renders into a texture again, not the
+// staging texture either (a texture deleted while attached to an unbound framebuffer lives on).
+std::vector<GLuint> framebuffers_with_colour(std::initializer_list<GLuint> except) {
+    std::vector<GLuint> found;
+    for (GLuint name = 1; name < 512; ++name) {
+        if (std::find(except.begin(), except.end(), name) != except.end() || !glIsFramebuffer(name)) continue;
+        glBindFramebuffer(GL_FRAMEBUFFER, name);
+        GLint type = GL_NONE;
+        glGetFramebufferAttachmentParameteriv(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
+                                              GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
+        if (type != GL_NONE) found.push_back(name);
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    return found;
+}
+
+TEST_F(OutputTargets, TheSdksFramebuffersKeepNoImageAfterTheFrame) {
+    Frame frame = corner_frame();
+    obscura_settings settings = make_settings(1.0f);
+    RenderbufferTarget target = make_renderbuffer_target(GL_RGBA8, kWidth, kHeight);
+    obscura_output output = make_output(0);
+    output.framebuffer = target.framebuffer.get();
+    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    for (GLuint name : framebuffers_with_colour({target.framebuffer.get()})) {
+        glBindFramebuffer(GL_FRAMEBUFFER, name);
+        GLint type = GL_NONE, object = 0;
+        glGetFramebufferAttachmentParameteriv(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
+                                              GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
+        glGetFramebufferAttachmentParameteriv(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
+                                              GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &object);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        EXPECT_FALSE(type == GL_RENDERBUFFER && GLuint(object) == target.renderbuffer.get())
+            << "framebuffer " << name << " still holds the host's renderbuffer";
+    }
+    EXPECT_EQ(framebuffers_with_colour({target.framebuffer.get()}).size(), 1u) << "the staging framebuffer";
+
+    HostTexture texture = make_texture(GL_RGBA8, kWidth, kHeight);
+    obscura_output texture_output = make_output(texture.get());
+    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &texture_output), OBSCURA_OK);
+    EXPECT_TRUE(framebuffers_with_colour({target.framebuffer.get()}).empty());
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 }
 
 TEST_F(OutputTargets, FramebufferRenderbufferOffsetWritesOnlyTheRect) {

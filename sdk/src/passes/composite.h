@@ -24,6 +24,8 @@ public:
     // Writes `rect` of `source` (plus the debug sources) into `target_texture` at frame.target_params.xy.
     void run(const PassEnv& env, const UniformRange& frame, const obscura_rect& rect, const gl::Texture2D& source,
              const FrameResources& resources, GLuint target_texture, const CompositeVariant& variant);
+    // The target formats the composite writes (image_format_qualifier's table; output_writer.cpp checks the count).
+    static constexpr int kFormats = 14;
 
 private:
     struct Program {
@@ -31,7 +33,9 @@ private:
         gl::Object program;
     };
     Program* find(const CompositeVariant& variant);
-    static constexpr int kMaxVariants = 32;
+    // Room for every variant: each format, with and without debug views, overwriting and multiplying (it held 32
+    // once, and an editor cycling blend modes and debug views over 9 formats got INTERNAL_ERROR).
+    static constexpr int kMaxVariants = kFormats * 2 * 2;
     Program programs_[kMaxVariants];
 };
 
