@@ -296,9 +296,12 @@ Error Context::prepare(int width, int height, const obscura_settings& settings) 
     const int shift = resolution_shift(resolved);
     const int working_width = reduced_extent(width, shift), working_height = reduced_extent(height, shift);
     const TechniquePlan plan = technique->plan(resolved, working_width, working_height, request);
+    // Whether the last render asked for bent normals, read before ensure_resources, which may release the upsample
+    // (GTAO keeps its own record of the request).
+    const bool upsample_bent = upsample_.bent() != nullptr;
     error = ensure_resources(working_width, working_height, plan);
     if (!error) error = technique->prepare(env(), resolved, request, resources_);
-    if (!error && shift > 0) error = upsample_.allocate(env(), width, height, upsample_.bent() != nullptr);
+    if (!error && shift > 0) error = upsample_.allocate(env(), width, height, upsample_bent);
     if (!error && shift == 0) upsample_.release();
     return error;
 }

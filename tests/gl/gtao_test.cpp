@@ -533,6 +533,26 @@ TEST_F(GLTest, GtaoBentNormalsInEveryFormatAndOnlyForGtao) {
     EXPECT_EQ(obscura_render(ctx(), &scene.input, &settings, &old_output), OBSCURA_OK) << obscura_get_last_error(ctx());
 }
 
+// The same at half resolution, where the full-size bent normals belong to the upsample: obscura_prepare at a new
+// size released the upsample with the other working textures before asking whether it had bent normals, so the
+// first render at that size still allocated them.
+TEST_F(GLTest, GtaoPrepareKeepsTheUpsampledBentNormalsAtHalfResolution) {
+    obscura_settings settings = gtao_settings(kHorizon);
+    settings.resolution.scale = OBSCURA_RESOLUTION_HALF;
+    const glm::dmat4 view = look_at(glm::dvec3(0.3, 1.3, 2.8), glm::dvec3(0.0, 0.45, 0.0));
+    const std::vector<Primitive> corner = {plane(1, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0)),
+                                           plane(2, glm::dvec3(0.0), glm::dvec3(0.0, 0.0, 1.0))};
+    AoScene large = make_ao_scene(Projection::Perspective, view, corner);
+    AoScene small = make_ao_scene(Projection::Perspective, view, corner, Lens(), kWidth / 2, kHeight / 2);
+    ASSERT_FALSE(render_bent(ctx(), large, settings).bent.empty());
+    ASSERT_EQ(obscura_prepare(ctx(), kWidth / 2, kHeight / 2, &settings), OBSCURA_OK) << obscura_get_last_error(ctx());
+    uint64_t prepared = 0, rendered = 0;
+    ASSERT_EQ(obscura_get_memory_usage(ctx(), &prepared), OBSCURA_OK);
+    ASSERT_FALSE(render_bent(ctx(), small, settings).bent.empty());
+    ASSERT_EQ(obscura_get_memory_usage(ctx(), &rendered), OBSCURA_OK);
+    EXPECT_EQ(rendered, prepared) << "the render allocated what obscura_prepare should have";
+}
+
 // obscura_prepare knows no output: it keeps the bent-normal textures a render allocated (a host that renders bent
 // normals every frame calls prepare on a resize and must not lose them); a render without bent normals frees them.
 TEST_F(GLTest, GtaoPrepareKeepsTheBentNormalTextures) {
