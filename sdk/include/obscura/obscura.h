@@ -511,7 +511,8 @@ typedef struct obscura_temporal_settings {
    distance, so AO does not cross depth edges or creases; where all four are off the pixel's plane, the nearest
    plane's texel alone. The raw debug views (ao-before-blur, tap-count) and the depth and normal views show the
    reduced grid, each texel covering its 2^k x 2^k pixels. Timing label "upsample" (before "composite"). Memory:
-   the working textures at the reduced size, plus a full-size R16F result (RGBA16F with bent normals).
+   the working textures at the reduced size, plus a full-size R16F result (and with bent normals a full-size
+   RGBA16F one beside it).
    Every field: 0 selects the default given after it. */
 typedef enum obscura_resolution {
     OBSCURA_RESOLUTION_DEFAULT = 0, /* full */
@@ -740,9 +741,14 @@ typedef enum obscura_debug_view {
 
 typedef struct obscura_output {
     uint32_t struct_size;          /* sizeof(obscura_output); required */
-    uint32_t texture;              /* GL_TEXTURE_2D (R8, R16F, R32F, RG*, RGBA8, RGBA16F, RGBA32F) ... */
+    uint32_t texture;              /* GL_TEXTURE_2D (R8, R16, R16F, R32F, RG8, RG16, RG16F, RG32F, RGBA8, RGBA16,
+                                      RGBA16F, RGBA32F, RGB10_A2, R11F_G11F_B10F) ... */
     uint32_t framebuffer;          /* ... or a framebuffer object (colour attachment 0) when texture is 0.
-                                      Both 0: the default framebuffer. */
+                                      Both 0: the default framebuffer. A blit target (a renderbuffer, another
+                                      texture format, the default framebuffer) receives the result through an
+                                      RGBA8 staging texture (RGBA16F for float attachments): 8 bits for unorm
+                                      attachments deeper than that, and for multiply the target's colour read
+                                      back through it. */
     int32_t x, y;                  /* where the output rectangle lands in the target; default (0, 0) */
     obscura_blend_mode blend;      /* default OVERWRITE */
     obscura_debug_view debug_view; /* default NONE */
