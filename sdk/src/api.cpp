@@ -351,10 +351,11 @@ OBSCURA_API obscura_status obscura_get_timings(obscura_context* context, obscura
         return report_without_context(Error::make(OBSCURA_STATUS_NULL_ARGUMENT,
                                                   "obscura_get_timings: context, out_count (and out) are required"));
     }
+    Context* ctx = as_context(context);
     uint64_t frame_index = 0;
-    *out_count = as_context(context)->timings(out, capacity, &frame_index);
+    const Error error = ctx->timings(out, capacity, out_count, &frame_index);
     if (out_frame_index) *out_frame_index = frame_index;
-    return OBSCURA_OK;
+    return error ? ctx->report(error) : OBSCURA_OK;
 }
 
 OBSCURA_API obscura_status obscura_get_memory_usage(const obscura_context* context, uint64_t* out_bytes) {

@@ -328,15 +328,17 @@ Error Context::render(const obscura_input& input, const obscura_settings& settin
         error = check_input_textures(gl, input, &frame);
         if (!error) error = check_output_target(gl, output, frame.output_rect, &target);
         if (!error) error = check_bent_normal_target(gl, output, frame.output_rect, &target);
-        const bool recorded = !error;
         if (!error) error = record_frame(frame, resolved, target);
+        // record_frame succeeded: the view's history (with temporal on) is this frame's.
+        const bool recorded = !error;
         // A failed validation may leave a probing error (wrong texture target) behind: drain it.
         const GLenum gl_error = device_.take_error();
         if (gl_error == GlDevice::kContextLost || (!error && gl_error != GL_NO_ERROR)) {
             error = device_.error_status(gl_error, "while rendering");
         }
         // A frame whose passes raised a GL error (seen here unless OBSCURA_CONTEXT_FLAG_VALIDATE_PASSES checked each
-        // pass) may not have written the history it swapped in: the next frame starts anew.
+        // pass) may not have written the history it swapped in: the next frame starts anew. (A frame refused inside
+        // record_frame, before its passes, left the history as it was: still the previous frame's.)
         if (error && recorded) find_view(frame.view)->history.invalidate();
     }
     const GLenum restore_error = device_.take_error();
@@ -345,6 +347,17 @@ Error Context::render(const obscura_input& input, const obscura_settings& settin
         find_view(frame.view)->history.invalidate();
     }
     return error;
+}
+
+Error Context::timings(obscura_timing* out, uint32_t capacity, uint32_t* count, uint64_t* frame_index) {
+    *count = 0;
+    *frame_index = 0;
+    // The GL context first: the reset status is the current context's.
+    Error error = device_.check_gl_context();
+    if (!error) error = device_.check_context_lost();
+    if (error) return error;
+    *count = timer_.latest(out, capacity, frame_index);
+    return Error();
 }
 
 Error Context::record_frame(const FrameInput& host_input, const obscura_settings& settings,

@@ -44,9 +44,9 @@ public:
     // obscura_release_resources: frees every per-size resource, unless another GL context is current (a warning,
     // nothing freed: our names would denote that context's objects there).
     void release_resources_from_host();
-    uint32_t timings(obscura_timing* out, uint32_t capacity, uint64_t* frame_index) {
-        return timer_.latest(out, capacity, frame_index);
-    }
+    // obscura_get_timings: the timer's latest complete frame. Reads GL queries, so only with this context's GL
+    // context current (WRONG_GL_CONTEXT) and not after a loss (CONTEXT_LOST): nothing is read then.
+    Error timings(obscura_timing* out, uint32_t capacity, uint32_t* count, uint64_t* frame_index);
     uint64_t memory_bytes() const;
     // obscura_create_view / obscura_destroy_view. Views are freed with the context.
     Error create_view(View** out);

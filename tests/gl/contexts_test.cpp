@@ -125,6 +125,34 @@ TEST_F(Contexts, ContextOfAnotherGlContextIsRefused) {
     EXPECT_EQ(status, OBSCURA_STATUS_WRONG_GL_CONTEXT) << obscura_get_last_error(ctx());
 }
 
+// Timings are GL queries: read with another GL context current they would be that context's names (a GL error
+// left in it, or its own timestamps read as ours). Refused, and nothing read, as every call that would touch GL.
+TEST_F(Contexts, TimingsOfAnotherGlContextAreRefused) {
+    HeadlessGL& gl_a = shared_gl();
+    Frame frame = box_frame(96, 64);
+    for (int f = 0; f < 4; ++f) ASSERT_FALSE(render(ctx(), frame).empty());  // A's queries exist
+    obscura_timing timings[16];
+    uint32_t count = 99;
+    uint64_t index = 99;
+    obscura_status status;
+    GLenum error_in_b;
+    {
+        HeadlessGL gl_b;
+        ContextPtr ctx_b = create_context();
+        ASSERT_NE(ctx_b, nullptr);
+        ASSERT_FALSE(render(ctx_b.get(), box_frame(96, 64)).empty());  // B's queries have A's names
+        status = obscura_get_timings(ctx(), timings, 16, &count, &index);
+        error_in_b = take_gl_error();
+        ctx_b.reset();
+    }
+    gl_a.make_current();
+    EXPECT_EQ(status, OBSCURA_STATUS_WRONG_GL_CONTEXT) << obscura_get_last_error(ctx());
+    EXPECT_EQ(error_in_b, GLenum(GL_NO_ERROR));
+    EXPECT_EQ(count, 0u);
+    EXPECT_EQ(index, 0u);
+    EXPECT_EQ(obscura_get_timings(ctx(), timings, 16, &count, &index), OBSCURA_OK) << "A's own context again";
+}
+
 TEST_F(Contexts, TwoContextsOnOneGlContext) {
     Frame frame = box_frame(96, 64);
     std::vector<float> reference = render(ctx(), frame);

@@ -810,7 +810,9 @@ typedef struct obscura_timing {
    NULL) receives the 1-based index of the frame they belong to, counting the obscura_render calls that
    passed validation and reached the GPU, so a caller can
    tell a new result from the same one read twice; 0 and *out_count = 0 until a frame's queries have
-   completed. Returns OK, NULL_ARGUMENT. */
+   completed. It reads the context's GL queries: with another GL context current it returns WRONG_GL_CONTEXT, after
+   a loss CONTEXT_LOST, and reads nothing (*out_count = 0). Returns OK, NULL_ARGUMENT, WRONG_GL_CONTEXT,
+   CONTEXT_LOST. */
 OBSCURA_API obscura_status obscura_get_timings(obscura_context* context, obscura_timing* out, uint32_t capacity,
                                                uint32_t* out_count, uint64_t* out_frame_index);
 
