@@ -56,6 +56,23 @@ TEST_P(LsaoFlatPlane, TiltedIsUnoccluded) {
 
 INSTANTIATE_TEST_SUITE_P(Variants, LsaoFlatPlane, all_projections(), projection_test_name);
 
+// The aligned layout places a line's steps in double precision; the sweep recomputes them in float. For the
+// horizontal and vertical directions (a step of sqrt 2 at K = 8) at widths such as 3362 and 3363 a last step just
+// inside the texture (x = 3361.99993) rounds onto its edge in float: a fetch past it, whose undefined depth (0 on
+// Mesa: a point at the eye) darkened a plane facing the camera to 0.985 (at 3363; 0.994 at the widths around).
+// The sample is held to the texture.
+TEST_F(Lsao, PlaneStaysUnoccludedWhereFloatStepsReachTheEdge) {
+    constexpr int kRows = 24;
+    for (int width : {3362, 3363}) {
+        AoScene scene = make_ao_scene(Projection::Perspective, glm::dmat4(1.0),
+                                      {plane(1, glm::dvec3(0.0, 0.0, -5.0), glm::dvec3(0.0, 0.0, 1.0))}, Lens(), width,
+                                      kRows);
+        Stats s = geometry_stats(scene, render_visibility(ctx(), scene.input, lsao_settings(2.0f)));
+        ASSERT_EQ(s.count, width * kRows);
+        EXPECT_GT(s.min, 0.99) << width << ": " << describe(s);
+    }
+}
+
 TEST_F(Lsao, CornerOcclusionNearTheCreaseFadesAway) {
     AoScene scene = corner_scene();
     obscura_settings settings = lsao_settings(1.0f);

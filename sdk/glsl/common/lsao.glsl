@@ -50,7 +50,9 @@ bool lsao_aligned() { return OBSCURA_LSAO_ALIGNED != 0; }
 // free ones the point itself.
 vec2 lsao_sample_point(LsaoLine line, int j) {
     vec2 p = line.origin + float(j) * line.step;
-    return lsao_aligned() ? floor(p) + 0.5 : p;
+    // The layout keeps every step inside the texture in double precision; in float a last step just inside the edge
+    // (x = 3361.99993 at width 3362, K = 8's step sqrt 2) can round onto it, and a fetch there is undefined.
+    return lsao_aligned() ? min(floor(p), vec2(depth_size.xy - 1)) + 0.5 : p;
 }
 
 // An orthonormal 2D frame in the slice through `pixel` along screen direction `dir`: origin b0, axes a (along
