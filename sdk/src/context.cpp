@@ -204,6 +204,9 @@ Error Context::ensure_resources(int width, int height, const TechniquePlan& plan
         resources_.blur_temp = pass_env.create_texture(GL_R16F, width, height);
         resources_.ao_blurred = pass_env.create_texture(GL_R16F, width, height);
         if (!resources_.blur_temp || !resources_.ao_blurred) {
+            // Both or neither: a pair left half allocated would never be completed (only a missing blur_temp is).
+            resources_.blur_temp = gl::Texture2D();
+            resources_.ao_blurred = gl::Texture2D();
             return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating the %dx%d reconstruction textures failed",
                                width, height);
         }
