@@ -208,8 +208,8 @@ typedef struct obscura_context_desc {
 /* Creates a context for the GL context current on this thread (programs are built by obscura_prepare() or by
    the first render that needs them).
    Returns OK, NULL_ARGUMENT, INVALID_STRUCT_SIZE, VERSION_MISMATCH, NO_GL_CONTEXT,
-   GL_VERSION_UNSUPPORTED, MISSING_GL_FUNCTION, HOST_GL_ERROR, SHADER_COMPILE_FAILED, OUT_OF_MEMORY,
-   GL_ERROR, CONTEXT_LOST, INTERNAL_ERROR. On failure the message goes to desc->log (there is no context to ask). */
+   GL_VERSION_UNSUPPORTED, MISSING_GL_FUNCTION, HOST_GL_ERROR, OUT_OF_MEMORY, GL_ERROR, CONTEXT_LOST,
+   INTERNAL_ERROR (no program is built here, so no SHADER_COMPILE_FAILED). On failure the message goes to desc->log (there is no context to ask). */
 OBSCURA_API obscura_status obscura_create_context(const obscura_context_desc* desc, obscura_context** out_context);
 
 /* Destroys the context and every GL object it owns. The same GL context must be current: with another one
@@ -774,7 +774,9 @@ typedef struct obscura_output {
    Host errors and context loss: a GL error the host left pending is consumed and reported as HOST_GL_ERROR
    before anything is done (never blamed on a pass). A reset reported by glGetGraphicsResetStatus (GL 4.5,
    KHR/ARB_robustness; only robust contexts report one) or GL_CONTEXT_LOST from glGetError makes this and
-   every later call on the context return CONTEXT_LOST. */
+   every later obscura_render, obscura_prepare and obscura_get_timings on the context return CONTEXT_LOST
+   (after the checks of their arguments, which need no GL); calls that touch no GL (settings, views, memory
+   usage) go on answering, and obscura_destroy_context deletes nothing. */
 OBSCURA_API obscura_status obscura_render(obscura_context* context, const obscura_input* input,
                                           const obscura_settings* settings, const obscura_output* output);
 
@@ -784,7 +786,8 @@ OBSCURA_API obscura_status obscura_render(obscura_context* context, const obscur
    allocated when the context's last render asked for them, and textures sized to the output rectangle (FFAO's
    running total at sizes it splits into chunks, 4K on Mesa) take the last render's, or the depth's size. Optional. Returns OK, NULL_ARGUMENT,
    INVALID_STRUCT_SIZE, INVALID_SETTING, INVALID_ENUM, METHOD_NOT_AVAILABLE, INVALID_SIZE,
-   WRONG_GL_CONTEXT, HOST_GL_ERROR, OUT_OF_MEMORY, CONTEXT_LOST. */
+   WRONG_GL_CONTEXT, HOST_GL_ERROR, SHADER_COMPILE_FAILED (it builds the method's programs), OUT_OF_MEMORY,
+   CONTEXT_LOST. */
 OBSCURA_API obscura_status obscura_prepare(obscura_context* context, int32_t depth_width, int32_t depth_height,
                                            const obscura_settings* settings);
 
