@@ -120,7 +120,9 @@ int warmup_steps(LsaoLine line, int begin, int end) {
     // View-space length of one step at distance 1 (perspective) or at any distance (orthographic).
     float step_angle = length(obscura_view_position_at(first + step, 1.0) - obscura_view_position_at(first, 1.0));
     float scale = obscura_is_perspective() ? nearest : 1.0;
-    return min(begin, int(ceil(distance / max(step_angle * scale, 1e-20))));
+    // Compared in float before converting: a quotient past the int range (a large radius, a tiny warm-up tolerance,
+    // a receiver near the eye) converts to an undefined value (INT_MIN on x86).
+    return int(min(float(begin), ceil(distance / max(step_angle * scale, 1e-20))));
 }
 
 // The invocation's line (of direction g_direction, one per workgroup layer), its first value's index, its
