@@ -264,6 +264,22 @@ TEST_F(FfaoPasses, ChunkedAoIsBitIdentical) {
     cpu_renderer_ = true;
 }
 
+// A size FFAO cannot lay out within its storage blocks is refused with INVALID_SIZE, and asked again (a host that
+// keeps rendering) it is refused again without building the layout: at 16384^2 a build took about a second.
+TEST_F(FfaoPasses, ASizeRefusedIsNotLaidOutAgain) {
+    upload_depth(false);
+    const obscura_ffao_settings settings = resolved(defaults());
+    obscura::FfaoPassInspection::limit_storage_block(&pass_, 64);  // no orientation fits 4 entries
+    const obscura::Region region{0, 0, kWidth, kHeight};
+    EXPECT_EQ(pass_.ensure_layout(env(), settings, kWidth, kHeight, 0, region).status(), OBSCURA_STATUS_INVALID_SIZE);
+    const int built = obscura::FfaoPassInspection::layouts_built(pass_);
+    EXPECT_EQ(pass_.ensure_layout(env(), settings, kWidth, kHeight, 0, region).status(), OBSCURA_STATUS_INVALID_SIZE);
+    EXPECT_EQ(obscura::FfaoPassInspection::layouts_built(pass_), built);
+    obscura::FfaoPassInspection::limit_storage_block(&pass_, 0);  // a new key: laid out, and it fits
+    EXPECT_FALSE(pass_.ensure_layout(env(), settings, kWidth, kHeight, 0, region));
+    EXPECT_EQ(obscura::FfaoPassInspection::layouts_built(pass_), built + 1);
+}
+
 // The running total covers the pixels the obscurance computes, not the guard band around them: chunked over an inner
 // region, the AO there is the one-block AO bit for bit, and the running total takes that region's bytes only.
 TEST_F(FfaoPasses, ChunkedRunningTotalCoversTheRegionOnly) {

@@ -71,6 +71,10 @@ Error FfaoPass::ensure_layout(const PassEnv& env, const obscura_ffao_settings& s
                               uint32_t frame_index, const Region& obscurance) {
     const LayoutKey key{width, height, settings.sectors, settings.base_interval, !ffao_uses_mipmap(settings),
                         ffao_uses_saao(settings), storage_block_limit_};
+    const int phase = layout_phase(frame_index);
+    // A refusal for the size is the same every time: answered again without building the layout (at 16384^2 that
+    // took about a second on llvmpipe, every frame of a host that keeps asking).
+    if (key == refused_key_ && phase == refused_phase_) return refused_;
     if (!(key == key_)) {
         release();
         if (key.saao) {
@@ -85,10 +89,14 @@ Error FfaoPass::ensure_layout(const PassEnv& env, const obscura_ffao_settings& s
         }
         key_ = key;
     }
-    const int phase = layout_phase(frame_index);
     if (grids_[phase].layout.width == 0) {
         Error error = build_grid(env, settings, phase);
         if (error) {
+            if (error.status() == OBSCURA_STATUS_INVALID_SIZE) {
+                refused_key_ = key;
+                refused_phase_ = phase;
+                refused_ = error;
+            }
             release();
             return error;
         }
@@ -119,6 +127,7 @@ Error FfaoPass::ensure_layout(const PassEnv& env, const obscura_ffao_settings& s
 }
 
 Error FfaoPass::build_grid(const PassEnv& env, const obscura_ffao_settings& settings, int phase) {
+    ++layouts_built_;
     const int width = key_.width, height = key_.height;
     Grid& grid = grids_[phase];
     grid.layout =

@@ -40,6 +40,8 @@ public:
     // Caps the storage block the peaks may take (0: GL's limit), so that small sizes split them into chunks as 4K
     // does on Mesa; the next ensure_layout lays them out anew.
     static void limit_storage_block(FfaoPass* pass, int64_t bytes) { pass->storage_block_limit_ = bytes; }
+    // How many phase layouts the pass has built.
+    static int layouts_built(const FfaoPass& pass) { return pass.layouts_built_; }
 };
 
 }  // namespace obscura
