@@ -90,8 +90,10 @@ OBSCURA_API obscura_status obscura_create_context(const obscura_context_desc* de
     }
     Error error = check_struct(desc->struct_size, sizeof(obscura_context_desc), "obscura_context_desc");
     if (error) return fail(error);
-    // Same major version, and a header no newer than the library (its structs would be larger).
-    if (desc->header_version / 10000 != OBSCURA_VERSION_MAJOR || desc->header_version > OBSCURA_VERSION) {
+    // Same major version, and a header no newer than the library (its structs would be larger). 0 is a field left
+    // unset (the header has always been at least 0.1: 100), not a version.
+    if (desc->header_version == 0 || desc->header_version / 10000 != OBSCURA_VERSION_MAJOR ||
+        desc->header_version > OBSCURA_VERSION) {
         return fail(Error::make(OBSCURA_STATUS_VERSION_MISMATCH,
                                 "header version %u is not compatible with library version %u", desc->header_version,
                                 unsigned(OBSCURA_VERSION)));

@@ -482,6 +482,15 @@ TEST_F(ApiErrors, HeaderNewerThanLibrary) {
     EXPECT_EQ(context, nullptr);
 }
 
+// header_version is required: 0 is the field left unset (a zeroed desc), not version 0.0.0, and was accepted.
+TEST_F(ApiErrors, HeaderVersionLeftUnset) {
+    obscura_context_desc desc = make_desc();
+    desc.header_version = 0;
+    obscura_context* context = nullptr;
+    EXPECT_EQ(obscura_create_context(&desc, &context), OBSCURA_STATUS_VERSION_MISMATCH);
+    EXPECT_EQ(context, nullptr);
+}
+
 TEST_F(ApiErrors, AllocatorNeedsBothFunctions) {
     obscura_context_desc desc = make_desc();
     desc.allocator.alloc = [](size_t size, void*) { return std::malloc(size); };

@@ -198,7 +198,7 @@ enum {
 
 typedef struct obscura_context_desc {
     uint32_t struct_size;                       /* sizeof(obscura_context_desc); required */
-    uint32_t header_version;                    /* OBSCURA_VERSION; required */
+    uint32_t header_version;                    /* OBSCURA_VERSION; required (0: VERSION_MISMATCH) */
     obscura_get_proc_address_fn get_proc_address; /* the host's GL loader: this ... */
     obscura_get_proc_address_with_user_data_fn get_proc_address_with_user_data; /* ... or this, not both */
     void* get_proc_address_user_data;           /* passed to get_proc_address_with_user_data */
