@@ -98,7 +98,7 @@ int ring(int start_plus_i) { return start_plus_i >= kCapacity ? start_plus_i - k
 
 // Steps of the warm-up before the segment [begin, end) of `line`: enough that the warm-up distance separates
 // the segment's nearest receiver from anything before the warm-up; all of the line before it if the
-// distance is unbounded (negative).
+// distance is unbounded (infinite: the quotient below, held to `begin`).
 int warmup_steps(LsaoLine line, int begin, int end) {
     float distance = lsao.warmup.x;
     if (distance < 0.0 || begin == 0) return begin;

@@ -29,8 +29,9 @@ constexpr int kLsaoGpuSegmentSteps = 128;
 int lsao_segment_steps(const obscura_lsao_settings& settings, bool cpu_renderer);
 
 // The warm-up distance (view units) beyond which an occluder casts at most `warmup_tolerance` on any
-// receiver under the settings' falloff and tangent; negative when no distance bounds it (a tolerance under
-// the falloff's floor).
+// receiver under the settings' falloff and tangent; 0 when every occluder casts less (a tolerance above the
+// falloff's largest value), +infinity when no distance bounds it (a tolerance of 0 with a falloff that never
+// reaches 0).
 double lsao_warmup_distance(const obscura_lsao_settings& settings, float meters_to_view_units);
 
 // The margin (texels) of the depth tile a GPU gather group shares: how far from a pixel the nearest sample
