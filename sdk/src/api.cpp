@@ -30,6 +30,14 @@ obscura_status report_without_context(const Error& error) {
     return error.status();
 }
 
+// An argument error of a call that names a context goes to that context (its last error, its log callback);
+// without one, to this thread's.
+obscura_status report_to(const obscura_context* context, const Error& error) {
+    // Reporting writes the context's last-error record only, which obscura_get_last_error reads back.
+    return context ? const_cast<Context*>(static_cast<const Context*>(context))->report(error)
+                   : report_without_context(error);
+}
+
 // Runs `body` (returning Error) and maps its result and any exception to a status on `context`.
 template <class Body>
 obscura_status guarded(Context* context, Body&& body) {
@@ -124,8 +132,8 @@ OBSCURA_API void obscura_destroy_context(obscura_context* context) { Context::de
 OBSCURA_API obscura_status obscura_create_view(obscura_context* context, obscura_view** out_view) {
     if (out_view) *out_view = nullptr;
     if (!context || !out_view) {
-        return report_without_context(
-            Error::make(OBSCURA_STATUS_NULL_ARGUMENT, "obscura_create_view: context and out_view are required"));
+        return report_to(context,
+                         Error::make(OBSCURA_STATUS_NULL_ARGUMENT, "obscura_create_view: context and out_view are required"));
     }
     Context* ctx = as_context(context);
     return guarded(ctx, [&]() -> Error {
@@ -350,8 +358,8 @@ OBSCURA_API void obscura_release_resources(obscura_context* context) {
 OBSCURA_API obscura_status obscura_get_timings(obscura_context* context, obscura_timing* out, uint32_t capacity,
                                                uint32_t* out_count, uint64_t* out_frame_index) {
     if (!context || !out_count || (!out && capacity > 0)) {
-        return report_without_context(Error::make(OBSCURA_STATUS_NULL_ARGUMENT,
-                                                  "obscura_get_timings: context, out_count (and out) are required"));
+        return report_to(context, Error::make(OBSCURA_STATUS_NULL_ARGUMENT,
+                                              "obscura_get_timings: context, out_count (and out) are required"));
     }
     Context* ctx = as_context(context);
     uint64_t frame_index = 0;
@@ -362,8 +370,8 @@ OBSCURA_API obscura_status obscura_get_timings(obscura_context* context, obscura
 
 OBSCURA_API obscura_status obscura_get_memory_usage(const obscura_context* context, uint64_t* out_bytes) {
     if (!context || !out_bytes) {
-        return report_without_context(
-            Error::make(OBSCURA_STATUS_NULL_ARGUMENT, "obscura_get_memory_usage: context and out_bytes are required"));
+        return report_to(context, Error::make(OBSCURA_STATUS_NULL_ARGUMENT,
+                                              "obscura_get_memory_usage: context and out_bytes are required"));
     }
     *out_bytes = static_cast<const Context*>(context)->memory_bytes();
     return OBSCURA_OK;

@@ -107,8 +107,15 @@ TEST_F(ApiErrors, NullOutput) {
 }
 
 TEST_F(ApiErrors, NullQueryOutputs) {
+    // A call that names a valid context reports to it (its last error and log), not to the thread's record.
+    const size_t logged = log_.entries.size();
     EXPECT_EQ(obscura_get_memory_usage(ctx(), nullptr), OBSCURA_STATUS_NULL_ARGUMENT);
+    EXPECT_NE(std::string(obscura_get_last_error(ctx())).find("out_bytes"), std::string::npos);
+    EXPECT_EQ(obscura_create_view(ctx(), nullptr), OBSCURA_STATUS_NULL_ARGUMENT);
+    EXPECT_NE(std::string(obscura_get_last_error(ctx())).find("out_view"), std::string::npos);
+    EXPECT_EQ(log_.entries.size(), logged + 2);
     EXPECT_EQ(obscura_get_timings(ctx(), nullptr, 4, nullptr, nullptr), OBSCURA_STATUS_NULL_ARGUMENT);
+    EXPECT_NE(std::string(obscura_get_last_error(ctx())).find("out_count"), std::string::npos);
     uint32_t count = 99;
     EXPECT_EQ(obscura_get_timings(ctx(), nullptr, 4, &count, nullptr), OBSCURA_STATUS_NULL_ARGUMENT);
     // Asking only for the count is allowed.
