@@ -137,6 +137,12 @@ Error Context::initialize() {
         planner_.create(gl, device_.uniform_alignment());
         timer_.create(gl, (flags_ & OBSCURA_CONTEXT_FLAG_SYNC_TIMING) != 0);
     }
+    // Buffer::create consumes the GL error of a failed allocation and returns an empty buffer: checked here, or
+    // the context would be created without its uniform buffer and every render would fail.
+    if (planner_.uniform_buffer() == 0) {
+        return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating the %d-byte uniform buffer failed (a GL error)",
+                           int(UniformArena::kCapacity));
+    }
     const GLenum gl_error = device_.take_error();
     if (gl_error != GL_NO_ERROR) {
         return Error::make(OBSCURA_STATUS_GL_ERROR, "%s while creating the context's GL objects",
