@@ -1,6 +1,5 @@
 #include "context.h"
 
-#include <algorithm>
 #include <new>
 
 #include "gl/state_guard.h"
@@ -332,14 +331,14 @@ Error Context::render(const obscura_input& input, const obscura_settings& settin
     error = device_.check_host_state("obscura_render");
     if (error) return error;
     const gl::Table& gl = device_.gl();
+    bool recorded = false;  // record_frame succeeded: the view's history (with temporal on) is this frame's
     {
         gl::StateGuard guard(gl);
         error = check_input_textures(gl, input, &frame);
         if (!error) error = check_output_target(gl, output, frame.output_rect, &target);
         if (!error) error = check_bent_normal_target(gl, output, frame.output_rect, &target);
         if (!error) error = record_frame(frame, resolved, target);
-        // record_frame succeeded: the view's history (with temporal on) is this frame's.
-        const bool recorded = !error;
+        recorded = !error;
         // A failed validation may leave a probing error (wrong texture target) behind: drain it.
         const GLenum gl_error = device_.take_error();
         if (gl_error == GlDevice::kContextLost || (!error && gl_error != GL_NO_ERROR)) {
@@ -353,7 +352,7 @@ Error Context::render(const obscura_input& input, const obscura_settings& settin
     const GLenum restore_error = device_.take_error();
     if (restore_error == GlDevice::kContextLost || (!error && restore_error != GL_NO_ERROR)) {
         error = device_.error_status(restore_error, "while restoring the host's GL state");
-        find_view(frame.view)->history.invalidate();
+        if (recorded) find_view(frame.view)->history.invalidate();
     }
     return error;
 }
@@ -385,9 +384,7 @@ Error Context::record_frame(const FrameInput& host_input, const obscura_settings
     // miss a frame of motion. (On the host's grid: the reprojection maps view spaces, before any reduction.)
     FrameInput host = host_input;
     if (temporal && host.has_matrices && view->history.valid() && view->history.view_projection()) {
-        double previous[16];
-        std::copy(view->history.view_projection(), view->history.view_projection() + 16, previous);
-        set_reprojection(previous, &host);
+        set_reprojection(view->history.view_projection(), &host);
     }
     // The frame the method runs on: the host's, or at reduced resolution the reduced grid's.
     const int shift = resolution_shift(settings);

@@ -130,7 +130,7 @@ Error check_temporal_fields(const obscura_input& input, int32_t layout, FrameInp
 
 }  // namespace
 
-void set_reprojection(const double (&previous)[16], FrameInput* frame) {
+void set_reprojection(const double* previous, FrameInput* frame) {
     // The SDK's view space maps to this frame's clip space through the decoded projection (normalised, an
     // orthographic near plane shifted: same clip coordinates up to scale); world space is one inverse away.
     glm::dmat4 projection, view_projection, previous_matrix;
@@ -143,7 +143,7 @@ void set_reprojection(const double (&previous)[16], FrameInput* frame) {
     }
     // Equal matrices (a static camera): the identity, read by its own program variant (exact: both are the host's
     // floats converted).
-    frame->identity_reprojection = std::memcmp(previous, frame->view_projection, sizeof previous) == 0;
+    frame->identity_reprojection = std::memcmp(previous, frame->view_projection, sizeof frame->view_projection) == 0;
     const glm::dmat4 reprojection =
         glm::inverse(projection) * previous_matrix * glm::inverse(view_projection) * projection;
     store_matrix(frame->identity_reprojection ? glm::dmat4(1.0) : reprojection, frame->reprojection);

@@ -46,10 +46,11 @@ struct FrameInput {
     int host_width = 0, host_height = 0;
 };
 
-// Points `frame`'s reprojection (and identity_reprojection) at the view-projection `previous` (column-major): the
+// Points `frame`'s reprojection (and identity_reprojection) at the view-projection `previous` (16 values,
+// column-major): the
 // host's previous_view_projection in stage 1, and the view's history's own frame where that differs (a debug-view
 // frame or a frame the host skipped lies between them). Needs frame->has_matrices.
-void set_reprojection(const double (&previous)[16], FrameInput* frame);
+void set_reprojection(const double* previous, FrameInput* frame);
 
 // Stage 1, no GL: every field of `input` (sizes against `max_texture_size`, the rectangle, the enums, the
 // projection). Errors: INVALID_SIZE, INVALID_RECT, INVALID_PROJECTION, PROJECTION_TRANSPOSED, INVALID_ENUM,
