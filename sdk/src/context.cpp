@@ -1,5 +1,6 @@
 #include "context.h"
 
+#include <cstdio>
 #include <new>
 
 #include "gl/state_guard.h"
@@ -20,11 +21,10 @@ public:
         timer_.mark(pass);
         if (!validate_) return error_;
         const GLenum e = device_.take_error();
-        if (e == GlDevice::kContextLost) {
-            error_ = device_.error_status(e, pass_label(pass));
-        } else if (e != GL_NO_ERROR) {
-            error_ = Error::make(OBSCURA_STATUS_GL_ERROR, "%s raised in pass %s", GlDevice::error_name(e),
-                                 pass_label(pass));
+        if (e != GL_NO_ERROR) {
+            char where[64];
+            std::snprintf(where, sizeof where, "in pass %s", pass_label(pass));
+            error_ = device_.error_status(e, where);
         }
         return error_;
     }
@@ -143,10 +143,7 @@ Error Context::initialize() {
                            int(UniformArena::kCapacity));
     }
     const GLenum gl_error = device_.take_error();
-    if (gl_error != GL_NO_ERROR) {
-        return Error::make(OBSCURA_STATUS_GL_ERROR, "%s while creating the context's GL objects",
-                           GlDevice::error_name(gl_error));
-    }
+    if (gl_error != GL_NO_ERROR) return device_.error_status(gl_error, "while creating the context's GL objects");
     return Error();
 }
 

@@ -187,7 +187,8 @@ Error GlDevice::error_status(GLenum error, const char* where) {
         lost_reason_ = kGlContextLost;
         return check_context_lost();
     }
-    return Error::make(OBSCURA_STATUS_GL_ERROR, "%s (0x%04X) raised %s", error_name(error), unsigned(error), where);
+    return Error::make(error == GL_OUT_OF_MEMORY ? OBSCURA_STATUS_OUT_OF_MEMORY : OBSCURA_STATUS_GL_ERROR,
+                       "%s (0x%04X) raised %s", error_name(error), unsigned(error), where);
 }
 
 Error GlDevice::check_host_state(const char* call) {

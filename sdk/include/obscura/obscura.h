@@ -779,7 +779,10 @@ typedef struct obscura_output {
    KHR/ARB_robustness; only robust contexts report one) or GL_CONTEXT_LOST from glGetError makes this and
    every later obscura_render, obscura_prepare and obscura_get_timings on the context return CONTEXT_LOST
    (after the checks of their arguments, which need no GL); calls that touch no GL (settings, views, memory
-   usage) go on answering, and obscura_destroy_context deletes nothing. */
+   usage) go on answering, and obscura_destroy_context deletes nothing.
+   Out of memory: an allocation that fails, or GL_OUT_OF_MEMORY raised by any call of the frame, returns
+   OUT_OF_MEMORY; the context stays usable: what was allocated stays, and the next render or prepare allocates
+   what is missing (tests/gl/allocation_failure_test.cpp fails each allocation of every method in turn). */
 OBSCURA_API obscura_status obscura_render(obscura_context* context, const obscura_input* input,
                                           const obscura_settings* settings, const obscura_output* output);
 
