@@ -1,15 +1,17 @@
-// Every GL allocation the SDK makes can fail, and the host must be able to go on. A host loader plays a GL that runs
+// Every allocation the SDK makes can fail, and the host must be able to go on. A host loader plays a GL that runs
 // out of memory at the n-th allocation (glTexStorage2D/3D or glBufferData: the call does nothing and the next
-// glGetError answers GL_OUT_OF_MEMORY), for every n that a context's creation, its obscura_prepare and its first two
-// frames make, for every method and the paths around them (reduced resolution, temporal history, bent normals, the
-// blit to a host framebuffer). Each failure must
+// glGetError answers GL_OUT_OF_MEMORY), and the host allocator returns NULL when the n-th allocation is one of its
+// own, for every n that a context's creation, its obscura_prepare and its first two frames make, for every method
+// and the paths around them (reduced resolution, temporal history, bent normals, the blit to a host framebuffer).
+// Each failure must
 //   - return OBSCURA_STATUS_OUT_OF_MEMORY from the call that made the allocation (create, prepare or render), with a
 //     message, and be noticed there (the SDK reads the error it was given);
 //   - leave no GL error and no host GL state changed;
 //   - leave the context whole: the same frames rendered again, nothing failing, give the image of a context that
 //     never failed, bit for bit, and the same memory report;
-//   - leave no GL object behind once the context is destroyed.
+//   - leave no GL object and no host allocation behind once the context is destroyed.
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <functional>
 #include <map>
@@ -25,11 +27,13 @@ namespace {
 
 constexpr int kWidth = 64, kHeight = 48;
 
-// The failing GL: the allocation calls and glGetError wrapped, everything else the real GL.
+// The failing GL and host allocator: the GL allocation calls and glGetError wrapped (everything else is the real
+// GL), and the allocator counting its live blocks.
 struct FailingGL {
-    static int allocations;  // allocation calls seen since reset()
+    static int allocations;  // GL and host allocations seen since reset()
     static int fail_at;      // the one that fails (-1: none)
     static bool pending;     // GL_OUT_OF_MEMORY waiting for the SDK's next glGetError
+    static int live_blocks;  // host allocations not yet freed
 
     static GLenum (*real_get_error)();
     static void (*real_tex_storage_2d)(GLenum, GLsizei, GLenum, GLsizei, GLsizei);
@@ -64,6 +68,17 @@ struct FailingGL {
         if (!fails()) real_buffer_data(target, size, data, usage);
     }
 
+    static void* host_alloc(size_t size, void*) {
+        if (allocations++ == fail_at) return nullptr;
+        void* block = std::malloc(size);
+        if (block) ++live_blocks;
+        return block;
+    }
+    static void host_free(void* block, void*) {
+        if (block) --live_blocks;
+        std::free(block);
+    }
+
     static obscura_gl_function loader(void*, const char* name) {
         const std::pair<const char*, obscura_gl_function> wrapped[] = {
             {"glGetError", reinterpret_cast<obscura_gl_function>(&get_error)},
@@ -88,6 +103,7 @@ struct FailingGL {
 int FailingGL::allocations = 0;
 int FailingGL::fail_at = -1;
 bool FailingGL::pending = false;
+int FailingGL::live_blocks = 0;
 GLenum (*FailingGL::real_get_error)() = nullptr;
 void (*FailingGL::real_tex_storage_2d)(GLenum, GLsizei, GLenum, GLsizei, GLsizei) = nullptr;
 void (*FailingGL::real_tex_storage_3d)(GLenum, GLsizei, GLenum, GLsizei, GLsizei, GLsizei) = nullptr;
@@ -184,6 +200,8 @@ protected:
         obscura_context_desc d = make_desc(flags_);
         d.get_proc_address = nullptr;
         d.get_proc_address_with_user_data = &FailingGL::loader;
+        d.allocator.alloc = &FailingGL::host_alloc;
+        d.allocator.free = &FailingGL::host_free;
         log_.attach(&d);
         return d;
     }
@@ -245,8 +263,10 @@ protected:
             ASSERT_EQ(clean.status, OBSCURA_OK) << clean.failed_call << ": " << clean.message;
             allocations = FailingGL::allocations;
         }
-        // Creation allocates the uniform buffer; the frames the working textures, the method's own, the output's.
-        ASSERT_GE(allocations, 3);
+        // Creation allocates the context (host) and the uniform buffer; the frames the working textures, the method's
+        // own, the output's.
+        ASSERT_GE(allocations, 4);
+        ASSERT_EQ(FailingGL::live_blocks, 0);
 
         for (int n = 0; n < allocations; ++n) {
             SCOPED_TRACE("allocation " + std::to_string(n) + " of " + std::to_string(allocations) +
@@ -279,6 +299,7 @@ protected:
             EXPECT_EQ(diff(state_before, capture()), "");
             context.reset();
             EXPECT_EQ(describe(count_gl_objects()), describe(objects_before)) << "GL objects left behind";
+            EXPECT_EQ(FailingGL::live_blocks, 0) << "host allocations left behind";
             if (HasFailure()) return;  // one allocation's report is enough to read
         }
     }

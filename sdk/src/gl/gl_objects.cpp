@@ -11,6 +11,7 @@ void Object::reset() {
         case ObjectKind::Texture: gl_->DeleteTextures(1, &name_); break;
         case ObjectKind::Buffer: gl_->DeleteBuffers(1, &name_); break;
         case ObjectKind::Program: gl_->DeleteProgram(name_); break;
+        case ObjectKind::Shader: gl_->DeleteShader(name_); break;
         case ObjectKind::Sampler: gl_->DeleteSamplers(1, &name_); break;
         case ObjectKind::Query: gl_->DeleteQueries(1, &name_); break;
         case ObjectKind::Framebuffer: gl_->DeleteFramebuffers(1, &name_); break;

@@ -12,7 +12,7 @@ namespace obscura::gl {
 
 using Table = ObscuraGladGLContext;
 
-enum class ObjectKind { Texture, Buffer, Program, Sampler, Query, Framebuffer };
+enum class ObjectKind { Texture, Buffer, Program, Shader, Sampler, Query, Framebuffer };
 
 class Object {
 public:

@@ -1,6 +1,10 @@
 #include "gl/program.h"
 
+#include <algorithm>
+#include <cstdio>
 #include <cstring>
+#include <new>
+#include <utility>
 
 #include "gl/shader_sources.h"
 
@@ -19,9 +23,19 @@ int find_shader(const char* path, size_t length) {
     return -1;
 }
 
+// Stands in for the source string in a first pass that only measures it, so the string is allocated once at its
+// final size (a source is 20-60 KB: appended to a growing string it took a dozen reallocations).
+struct LengthCounter {
+    size_t length = 0;
+    void append(const char* text) { length += std::strlen(text); }
+    void append(const char*, size_t count) { length += count; }
+    void push_back(char) { ++length; }
+};
+
 // Appends shader `index` to `out`, expanding includes. Each file appears once (include guards are
 // implicit); #line <line> <file index> keeps driver messages pointing at the original file.
-Error expand(int index, int depth, HostVector<char>* included, HostString* out) {
+template <class Sink>
+Error expand(int index, int depth, HostVector<char>* included, Sink* out) {
     if (depth > kMaxIncludeDepth) {
         return Error::make(OBSCURA_STATUS_INTERNAL_ERROR, "shader include depth exceeds %d at %s", kMaxIncludeDepth,
                            kEmbeddedShaders[index].path);
@@ -85,41 +99,58 @@ HostString read_log(const Table& gl, GLuint object, bool program, const Allocato
 
 }  // namespace
 
-Error assemble_shader_source(const char* entry, const char* defines, HostString* out_source) {
-    int index = find_shader(entry, std::strlen(entry));
-    if (index < 0) return Error::make(OBSCURA_STATUS_INTERNAL_ERROR, "no embedded shader named %s", entry);
-    HostVector<char> included(kEmbeddedShaderCount, 0, HostAllocator<char>(out_source->get_allocator()));
-    out_source->clear();
-    out_source->append("#version 430 core\n");
-    // `defines` holds "NAME VALUE" lines; each becomes a #define.
+namespace {
+
+// The version line, `defines` ("NAME VALUE" lines, each made a #define) and the expanded entry, into `out`.
+template <class Sink>
+Error assemble(int index, const char* defines, HostVector<char>* included, Sink* out) {
+    std::fill(included->begin(), included->end(), char(0));
+    out->append("#version 430 core\n");
     for (const char* p = defines; p && *p;) {
         const char* eol = std::strchr(p, '\n');
         size_t length = eol ? size_t(eol - p) : std::strlen(p);
         if (length > 0) {
-            out_source->append("#define ");
-            out_source->append(p, length);
-            out_source->push_back('\n');
+            out->append("#define ");
+            out->append(p, length);
+            out->push_back('\n');
         }
         p = eol ? eol + 1 : p + length;
     }
-    return expand(index, 0, &included, out_source);
+    return expand(index, 0, included, out);
 }
 
-Error build_compute_program(const Table& gl, const char* entry, const char* defines, const AllocatorCallbacks& alloc,
-                            obscura_log_fn log, void* log_user_data, Object* out_program) {
+}  // namespace
+
+Error assemble_shader_source(const char* entry, const char* defines, HostString* out_source) {
+    int index = find_shader(entry, std::strlen(entry));
+    if (index < 0) return Error::make(OBSCURA_STATUS_INTERNAL_ERROR, "no embedded shader named %s", entry);
+    HostVector<char> included(kEmbeddedShaderCount, 0, HostAllocator<char>(out_source->get_allocator()));
+    LengthCounter counter;
+    Error error = assemble(index, defines, &included, &counter);
+    if (error) return error;
+    out_source->clear();
+    out_source->reserve(counter.length);
+    return assemble(index, defines, &included, out_source);
+}
+
+namespace {
+
+// build_compute_program without the catch: the shader and program are owned (deleted on every way out, an exception
+// from the host allocator included) until the linked program is handed over.
+Error build_program(const Table& gl, const char* entry, const char* defines, const AllocatorCallbacks& alloc,
+                    obscura_log_fn log, void* log_user_data, Object* out_program) {
     HostString source{HostAllocator<char>(&alloc)};
     Error error = assemble_shader_source(entry, defines, &source);
     if (error) return error;
 
-    GLuint shader = gl.CreateShader(GL_COMPUTE_SHADER);
+    Object shader(&gl, ObjectKind::Shader, gl.CreateShader(GL_COMPUTE_SHADER));
     const GLchar* text = source.c_str();
-    gl.ShaderSource(shader, 1, &text, nullptr);
-    gl.CompileShader(shader);
+    gl.ShaderSource(shader.name(), 1, &text, nullptr);
+    gl.CompileShader(shader.name());
     GLint compiled = GL_FALSE;
-    gl.GetShaderiv(shader, GL_COMPILE_STATUS, &compiled);
+    gl.GetShaderiv(shader.name(), GL_COMPILE_STATUS, &compiled);
     if (!compiled) {
-        HostString message = read_log(gl, shader, false, alloc);
-        gl.DeleteShader(shader);
+        HostString message = read_log(gl, shader.name(), false, alloc);
         if (log) {
             HostString full{HostAllocator<char>(&alloc)};
             full.append("compiling ").append(entry).append(" failed (#line file numbers index sdk/glsl files):\n");
@@ -128,21 +159,35 @@ Error build_compute_program(const Table& gl, const char* entry, const char* defi
         }
         return Error::make(OBSCURA_STATUS_SHADER_COMPILE_FAILED, "compiling %s failed: %s", entry, message.c_str());
     }
-    GLuint program = gl.CreateProgram();
-    gl.AttachShader(program, shader);
-    gl.LinkProgram(program);
-    gl.DetachShader(program, shader);
-    gl.DeleteShader(shader);
+    Object program(&gl, ObjectKind::Program, gl.CreateProgram());
+    gl.AttachShader(program.name(), shader.name());
+    gl.LinkProgram(program.name());
+    gl.DetachShader(program.name(), shader.name());
+    shader.reset();
     GLint linked = GL_FALSE;
-    gl.GetProgramiv(program, GL_LINK_STATUS, &linked);
+    gl.GetProgramiv(program.name(), GL_LINK_STATUS, &linked);
     if (!linked) {
-        HostString message = read_log(gl, program, true, alloc);
-        gl.DeleteProgram(program);
+        HostString message = read_log(gl, program.name(), true, alloc);
         if (log) log(OBSCURA_LOG_ERROR, OBSCURA_STATUS_SHADER_COMPILE_FAILED, message.c_str(), log_user_data);
         return Error::make(OBSCURA_STATUS_SHADER_COMPILE_FAILED, "linking %s failed: %s", entry, message.c_str());
     }
-    *out_program = Object(&gl, ObjectKind::Program, program);
+    *out_program = std::move(program);
     return Error();
+}
+
+}  // namespace
+
+Error build_compute_program(const Table& gl, const char* entry, const char* defines, const AllocatorCallbacks& alloc,
+                            obscura_log_fn log, void* log_user_data, Object* out_program) {
+    // The source and logs come from the host allocator, whose failure throws std::bad_alloc (HostAllocator). Caught
+    // here, so that every caller sees an Error and its own failure path runs: a pass that builds several programs
+    // in turn drops the ones it made (FFAO's table program once stayed without its scan and prefix programs, and
+    // every later frame dispatched program 0).
+    try {
+        return build_program(gl, entry, defines, alloc, log, log_user_data, out_program);
+    } catch (const std::bad_alloc&) {
+        return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "building %s: the host allocator returned NULL", entry);
+    }
 }
 
 }  // namespace obscura::gl
