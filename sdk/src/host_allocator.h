@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <new>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "obscura/obscura.h"
@@ -19,31 +20,46 @@ struct AllocatorCallbacks {
     void* user_data = nullptr;
 
     static AllocatorCallbacks from(const obscura_allocator& host) {
+        if (!(host.alloc && host.free)) return system();
         AllocatorCallbacks callbacks;
-        if (host.alloc && host.free) {
-            callbacks.alloc = host.alloc;
-            callbacks.free = host.free;
-            callbacks.user_data = host.user_data;
-        } else {
-            callbacks.alloc = [](size_t size, void*) { return std::malloc(size); };
-            callbacks.free = [](void* ptr, void*) { std::free(ptr); };
-        }
+        callbacks.alloc = host.alloc;
+        callbacks.free = host.free;
+        callbacks.user_data = host.user_data;
+        return callbacks;
+    }
+    // malloc/free: what a context without a host allocator uses, and what code outside a context (the unit tests
+    // of the layouts) builds with.
+    static const AllocatorCallbacks& system() {
+        static const AllocatorCallbacks callbacks = [] {
+            AllocatorCallbacks c;
+            c.alloc = [](size_t size, void*) { return std::malloc(size); };
+            c.free = [](void* ptr, void*) { std::free(ptr); };
+            return c;
+        }();
         return callbacks;
     }
     void* allocate(size_t size) const { return alloc(size, user_data); }
     void release(void* ptr) const { if (ptr) free(ptr, user_data); }
 };
 
-// Stateful standard allocator that forwards to AllocatorCallbacks (which must outlive it).
+// Stateful standard allocator that forwards to AllocatorCallbacks (which must outlive it). Containers take their
+// allocator along when moved, copied or swapped into another (the propagate traits): a structure default-constructed
+// as a member (its containers then on the system allocator, holding nothing) and later assigned a value built with
+// the context's allocator keeps that allocator.
 template <class T>
 class HostAllocator {
 public:
     using value_type = T;
+    using propagate_on_container_move_assignment = std::true_type;
+    using propagate_on_container_copy_assignment = std::true_type;
+    using propagate_on_container_swap = std::true_type;
+    HostAllocator() noexcept : callbacks_(&AllocatorCallbacks::system()) {}
     explicit HostAllocator(const AllocatorCallbacks* callbacks) noexcept : callbacks_(callbacks) {}
     template <class U>
     HostAllocator(const HostAllocator<U>& other) noexcept : callbacks_(other.callbacks()) {}
 
     T* allocate(size_t n) {
+        if (n > size_t(-1) / sizeof(T)) throw std::bad_alloc();
         void* p = callbacks_->allocate(n * sizeof(T));
         if (!p) throw std::bad_alloc();
         return static_cast<T*>(p);

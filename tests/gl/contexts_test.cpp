@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <cstdlib>
 #include <cstring>
 #include <map>
@@ -34,6 +35,12 @@ Frame box_frame(int width, int height) {
 
 std::vector<float> render(obscura_context* context, const Frame& frame) {
     return render_to_new_texture(context, frame.input, make_settings(1.0f), GL_R32F, 1);
+}
+
+obscura_settings method_defaults(obscura_method method) {
+    obscura_settings settings;
+    obscura_default_settings(method, &settings);
+    return settings;
 }
 
 bool identical(const std::vector<float>& a, const std::vector<float>& b) {
@@ -279,28 +286,40 @@ TEST_F(Contexts, ObjectScanSeesLiveContexts) {
 struct CountingAllocator {
     long long live_blocks = 0;
     long long total_blocks = 0;
+    long long live_bytes = 0;
+    // Each block carries its size in front (as much room as malloc's alignment, which the SDK relies on).
+    static constexpr size_t kHeader = alignof(std::max_align_t);
     static void* alloc(size_t size, void* user) {
         auto* self = static_cast<CountingAllocator*>(user);
-        void* p = std::malloc(size);
-        if (p) {
-            ++self->live_blocks;
-            ++self->total_blocks;
-        }
-        return p;
+        auto* block = static_cast<unsigned char*>(std::malloc(size + kHeader));
+        if (!block) return nullptr;
+        std::memcpy(block, &size, sizeof size);
+        ++self->live_blocks;
+        ++self->total_blocks;
+        self->live_bytes += static_cast<long long>(size);
+        return block + kHeader;
     }
     static void release(void* ptr, void* user) {
         if (!ptr) return;
-        --static_cast<CountingAllocator*>(user)->live_blocks;
-        std::free(ptr);
+        auto* self = static_cast<CountingAllocator*>(user);
+        unsigned char* block = static_cast<unsigned char*>(ptr) - kHeader;
+        size_t size = 0;
+        std::memcpy(&size, block, sizeof size);
+        --self->live_blocks;
+        self->live_bytes -= static_cast<long long>(size);
+        std::free(block);
+    }
+    void attach(obscura_context_desc* desc) {
+        desc->allocator.alloc = &CountingAllocator::alloc;
+        desc->allocator.free = &CountingAllocator::release;
+        desc->allocator.user_data = this;
     }
 };
 
 TEST_F(Contexts, HostAllocatorBalanced) {
     CountingAllocator counter;
     obscura_context_desc desc = make_desc();
-    desc.allocator.alloc = &CountingAllocator::alloc;
-    desc.allocator.free = &CountingAllocator::release;
-    desc.allocator.user_data = &counter;
+    counter.attach(&desc);
     obscura_context* context = nullptr;
     ASSERT_EQ(obscura_create_context(&desc, &context), OBSCURA_OK);
     EXPECT_GE(counter.live_blocks, 1) << "the context itself lives in host-allocated memory";
@@ -309,6 +328,52 @@ TEST_F(Contexts, HostAllocatorBalanced) {
     obscura_destroy_context(context);
     EXPECT_EQ(counter.live_blocks, 0) << "of " << counter.total_blocks << " allocations";
     EXPECT_GT(counter.total_blocks, 1) << "shader assembly goes through the allocator too";
+}
+
+// LSAO's and FFAO's line layouts (kept per layout phase, megabytes at 4K) are the context's largest CPU memory: they
+// live in the host allocator's memory, and obscura_release_resources gives them back. At 320x180 each layout holds a
+// line record per line (hundreds per direction); they once came from the C++ heap, unseen by the allocator.
+TEST_F(Contexts, HostAllocatorHoldsTheLineLayouts) {
+    const Frame frame = box_frame(320, 180);
+    for (obscura_method method : {OBSCURA_METHOD_LSAO, OBSCURA_METHOD_FFAO}) {
+        SCOPED_TRACE(method == OBSCURA_METHOD_LSAO ? "LSAO" : "FFAO");
+        CountingAllocator counter;
+        obscura_context_desc desc = make_desc();
+        counter.attach(&desc);
+        obscura_context* raw = nullptr;
+        ASSERT_EQ(obscura_create_context(&desc, &raw), OBSCURA_OK);
+        ContextPtr context(raw);
+        const obscura_settings settings = method_defaults(method);
+        EXPECT_FALSE(render_to_new_texture(context.get(), frame.input, settings, GL_R32F, 1).empty());
+        const long long rendered = counter.live_bytes;
+        obscura_release_resources(context.get());
+        const long long released = counter.live_bytes;
+        // Every direction's lines across the 352x198 texture (guard band included), 16 bytes or more a line.
+        EXPECT_GT(rendered - released, 16 * 1024) << rendered << " bytes live after a frame, " << released
+                                                  << " after release";
+        context.reset();
+        EXPECT_EQ(counter.live_blocks, 0);
+        EXPECT_EQ(counter.live_bytes, 0);
+    }
+}
+
+// A tuning session sweeps the settings that are compiled in (GTAO's slices and steps): the context keeps the last
+// few programs of each pass, not one per value it ever ran.
+TEST_F(Contexts, CompiledVariantsAreBoundedWhenASettingIsSwept) {
+    const Frame frame = box_frame(48, 32);
+    obscura_settings settings = method_defaults(OBSCURA_METHOD_GTAO);
+    settings.gtao.slices = 1;
+    EXPECT_FALSE(render_to_new_texture(ctx(), frame.input, settings, GL_R32F, 1).empty());
+    const int first = count_gl_objects()["program"];
+    for (int slices = 2; slices <= 8; ++slices) {
+        settings.gtao.slices = slices;
+        EXPECT_FALSE(render_to_new_texture(ctx(), frame.input, settings, GL_R32F, 1).empty());
+    }
+    // 8 variants rendered; the pass keeps 4 of them.
+    EXPECT_EQ(count_gl_objects()["program"], first + 3);
+    // The latest one is still there: rendering it again compiles nothing.
+    EXPECT_FALSE(render_to_new_texture(ctx(), frame.input, settings, GL_R32F, 1).empty());
+    EXPECT_EQ(count_gl_objects()["program"], first + 3);
 }
 
 // ---- Timings ---------------------------------------------------------------------------------------------
@@ -339,12 +404,6 @@ void expect_valid_values(const obscura_timing* timings, uint32_t count) {
         if (i > 0) largest_pass = std::max(largest_pass, timings[i].milliseconds);
     }
     EXPECT_GE(timings[0].milliseconds, largest_pass) << "the total is less than one of its passes";
-}
-
-obscura_settings method_defaults(obscura_method method) {
-    obscura_settings settings;
-    obscura_default_settings(method, &settings);
-    return settings;
 }
 
 // With sync timing a frame's timings are there the moment obscura_render returns, and they name exactly the

@@ -25,7 +25,7 @@ TEST(LsaoPattern, AlignedDirectionsMatchTable2) {
     // Average step lengths D_S of Table 2 for K = 8, 16, 24, 32.
     const double table2[] = {1.41, 2.43, 3.56, 4.69};
     for (int n = 1; n <= 4; ++n) {
-        std::vector<LsaoDirection> dirs = obscura::aligned_directions(n);
+        obscura::LsaoDirections dirs = obscura::aligned_directions(n);
         ASSERT_EQ(dirs.size(), size_t(8 * n));
         EXPECT_NEAR(obscura::average_step_length(dirs), table2[n - 1], 0.006) << "n " << n;
         double weight_sum = 0.0;
@@ -49,12 +49,12 @@ TEST(LsaoPattern, AlignedDirectionsMatchTable2) {
         }
     }
     // Diagonals of the box pattern are denser: they weigh less than the axis directions.
-    std::vector<LsaoDirection> k16 = obscura::aligned_directions(2);
+    obscura::LsaoDirections k16 = obscura::aligned_directions(2);
     EXPECT_LT(k16[2].weight, k16[0].weight);
 }
 
 TEST(LsaoPattern, FreeDirectionsAreEven) {
-    std::vector<LsaoDirection> dirs = obscura::free_directions(12, 2.5);
+    obscura::LsaoDirections dirs = obscura::free_directions(12, 2.5);
     ASSERT_EQ(dirs.size(), 12u);
     for (const LsaoDirection& d : dirs) {
         EXPECT_NEAR(d.weight, 1.0 / 12.0, 1e-12);
@@ -64,7 +64,7 @@ TEST(LsaoPattern, FreeDirectionsAreEven) {
 
 struct LayoutCase {
     const char* name;
-    std::vector<LsaoDirection> directions;
+    obscura::LsaoDirections directions;
     double line_spacing;
     bool aligned;
 };
@@ -155,7 +155,7 @@ TEST(LsaoLayout, LinesOfADirectionDoNotShareSamples) {
 // directions by its fraction of the angle between them; phase 0 is the layout without one. Frames visit the eight
 // phases bit-reversed, so that two, four or eight consecutive frames spread evenly.
 TEST(LsaoLayout, PhasesShiftTheLinesAndTurnFreeDirections) {
-    const std::vector<LsaoDirection> aligned = obscura::aligned_directions(2);
+    const obscura::LsaoDirections aligned = obscura::aligned_directions(2);
     const LsaoLayout plain = obscura::make_lsao_layout(aligned, 1.64, 97, 61, true);
     const LsaoLayout zero = obscura::make_lsao_layout(aligned, 1.64, 97, 61, true, 0.0);
     const LsaoLayout moved = obscura::make_lsao_layout(aligned, 1.64, 97, 61, true, 0.5);
@@ -181,7 +181,7 @@ TEST(LsaoLayout, PhasesShiftTheLinesAndTurnFreeDirections) {
         }
     }
     EXPECT_GT(differing, plain.lines.size() / 4);
-    const std::vector<LsaoDirection> turned = obscura::free_directions(12, 2.0, 0.25);
+    const obscura::LsaoDirections turned = obscura::free_directions(12, 2.0, 0.25);
     for (int i = 0; i < 12; ++i) {
         const double angle = 2.0 * 3.14159265358979323846 * (i + 0.25) / 12.0;
         EXPECT_NEAR(turned[size_t(i)].dir[0], std::cos(angle), 1e-12);

@@ -175,10 +175,11 @@ typedef enum obscura_log_level {
 typedef void (*obscura_log_fn)(obscura_log_level level, obscura_status status, const char* message,
                                void* user_data);
 
-/* Optional allocator for the CPU memory of the context and its views (both functions or neither). `alloc` must
-   return memory aligned for any type, as malloc does (16 bytes on 64-bit platforms): the context holds 16-byte
-   aligned members. Not yet routed through it: the tables built per configuration (LSAO's and FFAO's line
-   layouts, the shader variants' sources), which come from the C++ heap. */
+/* Optional allocator for all the CPU memory of the context (both functions or neither): the context, its views and
+   techniques, LSAO's and FFAO's line layouts (megabytes at 4K, one per layout phase) and the scratch of building
+   them, shader sources and logs. `alloc` must return memory aligned for any type, as malloc does (16 bytes on 64-bit
+   platforms): the context holds 16-byte aligned members. It may return NULL: the call that needed the memory
+   returns OUT_OF_MEMORY and the context stays usable. */
 typedef struct obscura_allocator {
     void* (*alloc)(size_t size, void* user_data);
     void (*free)(void* ptr, void* user_data);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <new>
 
 namespace obscura {
 namespace {
@@ -90,7 +91,15 @@ Error FfaoPass::ensure_layout(const PassEnv& env, const obscura_ffao_settings& s
         key_ = key;
     }
     if (grids_[phase].layout.width == 0) {
-        Error error = build_grid(env, settings, phase);
+        Error error;
+        try {
+            error = build_grid(env, settings, phase);
+        } catch (const std::bad_alloc&) {
+            // The layout's memory (HostAllocator throws when the host's allocator fails). A grid whose layout was
+            // assigned before the throw would pass for built: release() below drops it with the rest.
+            error = Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "building FFAO's %dx%d layout: the host allocator returned NULL",
+                                width, height);
+        }
         if (error) {
             if (error.status() == OBSCURA_STATUS_INVALID_SIZE) {
                 refused_key_ = key;
@@ -131,7 +140,7 @@ Error FfaoPass::build_grid(const PassEnv& env, const obscura_ffao_settings& sett
     const int width = key_.width, height = key_.height;
     Grid& grid = grids_[phase];
     grid.layout =
-        make_ffao_layout(settings.sectors, settings.base_interval, width, height, layout_phase_fraction(phase));
+        make_ffao_layout(settings.sectors, settings.base_interval, width, height, layout_phase_fraction(phase), env.alloc);
     const FfaoLayout& layout = grid.layout;
     const int orientations = int(layout.orientations.size());
     if (!key_.buffers) {  // the mipmap baseline: one chunk of every orientation, no peaks
@@ -191,7 +200,7 @@ Error FfaoPass::build_grid(const PassEnv& env, const obscura_ffao_settings& sett
     for (int c = 0; c < grid.chunk_count; ++c) {
         buffer_entries = std::max(buffer_entries, grid.chunks[c].end - grid.chunks[c].first);
     }
-    std::vector<GpuLine> lines(layout.lines.size());
+    HostVector<GpuLine> lines(layout.lines.size(), GpuLine{}, HostAllocator<GpuLine>(&env.alloc));
     for (size_t i = 0; i < lines.size(); ++i) {
         const FfaoLine& l = layout.lines[i];
         lines[i] = GpuLine{{l.origin[0], l.origin[1]}, l.first_step, l.steps};

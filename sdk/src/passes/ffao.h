@@ -10,7 +10,6 @@
 #include "passes/ffao_layout.h"
 #include "passes/pass_common.h"
 
-#include <vector>
 
 namespace obscura {
 

@@ -58,8 +58,9 @@ int ffao_block_shift(int level, int levels, int base_interval, int sectors) {
     return shift;
 }
 
-FfaoLayout make_ffao_layout(int sectors, int base_interval, int width, int height, double line_shift) {
-    FfaoLayout layout;
+FfaoLayout make_ffao_layout(int sectors, int base_interval, int width, int height, double line_shift,
+                            const AllocatorCallbacks& alloc) {
+    FfaoLayout layout(alloc);
     layout.width = width;
     layout.height = height;
     layout.sectors = sectors;
@@ -67,8 +68,9 @@ FfaoLayout make_ffao_layout(int sectors, int base_interval, int width, int heigh
     const double corners[4][2] = {{0.0, 0.0}, {double(width), 0.0}, {0.0, double(height)},
                                   {double(width), double(height)}};
     // Each line's walked steps, per orientation: [first, last] (empty: first > last).
-    std::vector<int> first_steps, last_steps;
+    HostVector<int> first_steps{HostAllocator<int>(&alloc)}, last_steps{HostAllocator<int>(&alloc)};
     int longest = 1;
+    layout.orientations.reserve(size_t(sectors / 2));
     for (int k = 0; k < sectors / 2; ++k) {
         FfaoOrientation o = {};
         const double angle = 2.0 * kPi * k / sectors;
@@ -93,11 +95,25 @@ FfaoLayout make_ffao_layout(int sectors, int base_interval, int width, int heigh
             o.v_min += line_shift - 1.0;
             o.line_count += 1;
         }
-        o.first_line = int32_t(layout.lines.size());
+        o.first_line = layout.orientations.empty()
+                           ? 0
+                           : layout.orientations.back().first_line + layout.orientations.back().line_count;
         longest = std::max(longest, o.steps);
+        layout.orientations.push_back(o);
+    }
+    // Every container is sized once (each growth is an allocation from the host's allocator).
+    const size_t line_total =
+        layout.orientations.empty()
+            ? 0
+            : size_t(layout.orientations.back().first_line + layout.orientations.back().line_count);
+    layout.lines.reserve(line_total);
+    first_steps.reserve(line_total);
+    last_steps.reserve(line_total);
+    for (const FfaoOrientation& o : layout.orientations) {
+        const double perp[2] = {-o.dir[1], o.dir[0]};
         for (int l = 0; l < o.line_count; ++l) {
             FfaoLine line = {};
-            const double u = u_min + 0.5, v = o.v_min + 0.5 + l;
+            const double u = o.u_min + 0.5, v = o.v_min + 0.5 + l;
             line.origin[0] = float(u * o.dir[0] + v * perp[0]);
             line.origin[1] = float(u * o.dir[1] + v * perp[1]);
             int first = 0, last = -1;
@@ -109,7 +125,6 @@ FfaoLayout make_ffao_layout(int sectors, int base_interval, int width, int heigh
             last_steps.push_back(last);
             layout.lines.push_back(line);
         }
-        layout.orientations.push_back(o);
     }
     int levels = 1;
     while (levels < kFfaoMaxLevels && (base_interval << (levels - 1)) * 2 < longest) ++levels;
@@ -120,17 +135,19 @@ FfaoLayout make_ffao_layout(int sectors, int base_interval, int width, int heigh
     // entries are written by a contiguous run of lines; repeat until no run changes.
     layout.column_base.assign(size_t(sectors / 2) * kFfaoMaxLevels, 0);
     layout.column_count.assign(size_t(sectors / 2) * kFfaoMaxLevels, 0);
-    std::vector<int> lo, hi;  // per column: the run of lines
+    int32_t column_total = 0;
     for (int k = 0; k < sectors / 2; ++k) {
         const FfaoOrientation& o = layout.orientations[size_t(k)];
         for (int n = 0; n < levels; ++n) {
             const size_t index = size_t(k) * kFfaoMaxLevels + size_t(n);
-            layout.column_base[index] = int32_t(lo.size());
+            layout.column_base[index] = column_total;
             layout.column_count[index] = ceil_div(o.steps, base_interval << n);
-            lo.resize(lo.size() + size_t(layout.column_count[index]));
-            hi.resize(lo.size());
+            column_total += layout.column_count[index];
         }
     }
+    // Per column: the run of lines.
+    HostVector<int> lo(size_t(column_total), 0, HostAllocator<int>(&alloc));
+    HostVector<int> hi(size_t(column_total), 0, HostAllocator<int>(&alloc));
     for (int pass = 0; pass < 8; ++pass) {
         std::fill(lo.begin(), lo.end(), 1 << 30);
         std::fill(hi.begin(), hi.end(), -1);
@@ -179,6 +196,7 @@ FfaoLayout make_ffao_layout(int sectors, int base_interval, int width, int heigh
         if (!changed) break;
     }
     int64_t offset = 0;
+    layout.columns.reserve(size_t(column_total));
     for (int k = 0; k < sectors / 2; ++k) {
         for (int n = 0; n < levels; ++n) {
             const size_t index = size_t(k) * kFfaoMaxLevels + size_t(n);

@@ -7,7 +7,8 @@
 #define OBSCURA_FFAO_LAYOUT_H
 
 #include <cstdint>
-#include <vector>
+
+#include "host_allocator.h"
 
 namespace obscura {
 
@@ -37,20 +38,28 @@ struct FfaoColumn {
     int32_t block_shift;   // the prefix sums restart every 2^block_shift entries
 };
 
+// Held by the pass for every layout phase it ran (megabytes at 4K): in the host allocator's memory.
 struct FfaoLayout {
+    FfaoLayout() = default;
+    explicit FfaoLayout(const AllocatorCallbacks& alloc)
+        : orientations(HostAllocator<FfaoOrientation>(&alloc)), lines(HostAllocator<FfaoLine>(&alloc)),
+          columns(HostAllocator<FfaoColumn>(&alloc)), column_base(HostAllocator<int32_t>(&alloc)),
+          column_count(HostAllocator<int32_t>(&alloc)) {}
     int width = 0, height = 0, sectors = 0, base_interval = 0, levels = 0;
-    std::vector<FfaoOrientation> orientations;  // K / 2
-    std::vector<FfaoLine> lines;
-    std::vector<FfaoColumn> columns;
-    std::vector<int32_t> column_base;   // [k * kFfaoMaxLevels + n]: index of column 0 of (k, n) in columns
-    std::vector<int32_t> column_count;  // [k * kFfaoMaxLevels + n]
-    int64_t entries = 0;                // peaks-buffer length (vec4 each)
+    HostVector<FfaoOrientation> orientations;  // K / 2
+    HostVector<FfaoLine> lines;
+    HostVector<FfaoColumn> columns;
+    HostVector<int32_t> column_base;   // [k * kFfaoMaxLevels + n]: index of column 0 of (k, n) in columns
+    HostVector<int32_t> column_count;  // [k * kFfaoMaxLevels + n]
+    int64_t entries = 0;               // peaks-buffer length (vec4 each)
 };
 
 // The layout for `sectors` (even, >= 4) sectors and base interval B0 over a width x height texture. A layout phase
 // (layout_phase.h) moves every line across by `line_shift` in [0, 1) of a texel (the orientations stay: turned
-// ones made the accumulated AO darker than the truth, docs/algorithms.md).
-FfaoLayout make_ffao_layout(int sectors, int base_interval, int width, int height, double line_shift = 0.0);
+// ones made the accumulated AO darker than the truth, docs/algorithms.md). Everything, the layout and the scratch
+// of building it, is allocated through `alloc` (which throws std::bad_alloc when the host's allocator fails).
+FfaoLayout make_ffao_layout(int sectors, int base_interval, int width, int height, double line_shift = 0.0,
+                            const AllocatorCallbacks& alloc = AllocatorCallbacks::system());
 
 // Widest run of lines a sector segment averages at level n (see ffao_obscurance.comp): the prefix sums restart
 // every power of two at least this wide; the top level never restarts.

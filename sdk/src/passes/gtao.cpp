@@ -28,17 +28,18 @@ uint32_t GtaoPass::variant_key(const obscura_gtao_settings& settings, bool bent_
 }
 
 Error GtaoPass::prepare(const PassEnv& env, const obscura_gtao_settings& settings, bool bent_normals) {
-    gl::Object& built = programs_[variant_key(settings, bent_normals)];
-    if (built) return Error();
-    char defines[224];
-    std::snprintf(defines, sizeof defines,
-                  "OBSCURA_GTAO_MODE %d\nOBSCURA_GTAO_STEP_DISTRIBUTION %d\nOBSCURA_GTAO_BENT_NORMALS %d\n"
-                  "OBSCURA_GTAO_SLICES %d\nOBSCURA_GTAO_STEPS %d\nOBSCURA_GTAO_THICKNESS_BLEND %d\n"
-                  "OBSCURA_CPU_RASTERISER %d\n",
-                  settings.thickness_mode == OBSCURA_GTAO_MODE_BITMASK ? 2 : 1, step_distribution(settings),
-                  bent_normals ? 1 : 0, settings.slices, settings.steps, settings.thickness_blend != 0.0f ? 1 : 0,
-                  env.cpu_renderer ? 1 : 0);
-    return env.build("gtao.comp", defines, &built);
+    GLuint program = 0;
+    return programs_.get(variant_key(settings, bent_normals), [&](gl::Object* built) {
+        char defines[224];
+        std::snprintf(defines, sizeof defines,
+                      "OBSCURA_GTAO_MODE %d\nOBSCURA_GTAO_STEP_DISTRIBUTION %d\nOBSCURA_GTAO_BENT_NORMALS %d\n"
+                      "OBSCURA_GTAO_SLICES %d\nOBSCURA_GTAO_STEPS %d\nOBSCURA_GTAO_THICKNESS_BLEND %d\n"
+                      "OBSCURA_CPU_RASTERISER %d\n",
+                      settings.thickness_mode == OBSCURA_GTAO_MODE_BITMASK ? 2 : 1, step_distribution(settings),
+                      bent_normals ? 1 : 0, settings.slices, settings.steps, settings.thickness_blend != 0.0f ? 1 : 0,
+                      env.cpu_renderer ? 1 : 0);
+        return env.build("gtao.comp", defines, built);
+    }, &program);
 }
 
 int GtaoPass::wanted_levels(const obscura_gtao_settings& settings) {
@@ -82,7 +83,7 @@ void GtaoPass::run(const PassEnv& env, const obscura_gtao_settings& settings, bo
                    const UniformRange& frame, const UniformRange& pass, const Region& region,
                    const FrameResources& resources, const gl::Texture2D& destination) {
     const gl::Table& gl = env.gl;
-    gl.UseProgram(programs_[variant_key(settings, bent_normals)].name());
+    gl.UseProgram(programs_.find(variant_key(settings, bent_normals)));
     env.bind_texture_mipmapped(OBSCURA_UNIT_LINEAR_DEPTH, resources.linear_depth.name());
     env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
     gl.BindImageTexture(OBSCURA_IMAGE_OUT0, destination.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY,

@@ -4,9 +4,9 @@
 #define OBSCURA_GTAO_H
 
 #include <cstdint>
-#include <map>
 
 #include "frame_input.h"
+#include "gl/program_cache.h"
 #include "passes/pass_common.h"
 
 namespace obscura {
@@ -36,7 +36,8 @@ public:
 
 private:
     // By variant: thickness mode, step distribution, bent normals, slices, steps, thickness blend on (variant_key).
-    std::map<uint32_t, gl::Object> programs_;
+    // The last few (a tuning session that sweeps slices x steps held a program per pair it tried).
+    gl::ProgramCache<uint32_t, 4> programs_;
     static int step_distribution(const obscura_gtao_settings& settings);
     static uint32_t variant_key(const obscura_gtao_settings& settings, bool bent_normals);
 };

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <new>
 
 #include "falloff.h"
 
@@ -20,9 +21,9 @@ static_assert(sizeof(GpuLine) == 16, "one RGBA32UI texel");
 
 }  // namespace
 
-std::vector<LsaoDirection> lsao_directions(const obscura_lsao_settings& settings, int phase) {
-    if (settings.pattern == 1) return aligned_directions(settings.directions / 8);
-    return free_directions(settings.directions, settings.step_length, layout_phase_fraction(phase));
+LsaoDirections lsao_directions(const obscura_lsao_settings& settings, int phase, const AllocatorCallbacks& alloc) {
+    if (settings.pattern == 1) return aligned_directions(settings.directions / 8, alloc);
+    return free_directions(settings.directions, settings.step_length, layout_phase_fraction(phase), alloc);
 }
 
 int lsao_segment_steps(const obscura_lsao_settings& settings, bool cpu_renderer) {
@@ -41,21 +42,9 @@ double lsao_warmup_distance(const obscura_lsao_settings& settings, float meters_
     return std::sqrt(std::max(0.0, rho0_distance_sq(r, c, double(settings.warmup_tolerance) / a)));
 }
 
-Error LsaoPass::program_for(const PassEnv& env, const char* shader, const std::string& defines,
-                            std::vector<Variant>* cache, GLuint* program) {
-    for (const Variant& v : *cache) {
-        if (v.defines == defines) {
-            *program = v.program.name();
-            return Error();
-        }
-    }
-    Variant built{defines, gl::Object()};
-    Error error = env.build(shader, defines.c_str(), &built.program);
-    if (error) return error;
-    if (cache->size() >= kMaxVariants) cache->erase(cache->begin());  // the oldest
-    *program = built.program.name();
-    cache->push_back(std::move(built));
-    return Error();
+Error LsaoPass::program_for(const PassEnv& env, const char* shader, const gl::DefineLines& defines,
+                            VariantCache* cache, GLuint* program) {
+    return cache->get(defines, [&](gl::Object* built) { return env.build(shader, defines.text, built); }, program);
 }
 
 int lsao_gather_margin(const obscura_lsao_settings& settings) {
@@ -70,15 +59,16 @@ int lsao_gather_margin(const obscura_lsao_settings& settings) {
 Error LsaoPass::prepare(const PassEnv& env, const obscura_lsao_settings& settings) {
     const int aligned = settings.pattern == 1 ? 1 : 0;
     const int cpu = env.cpu_renderer ? 1 : 0;
-    char defines[320];
-    std::snprintf(defines, sizeof defines,
+    gl::DefineLines defines;
+    std::snprintf(defines.text, sizeof defines.text,
                   "OBSCURA_LSAO_ALIGNED %d\nOBSCURA_LSAO_HULL_CAPACITY %d\nOBSCURA_LSAO_EXACT_SWEEP %d\n"
                   "OBSCURA_LSAO_TANGENT_STRATEGY %d\nOBSCURA_CPU_RASTERISER %d\nOBSCURA_LSAO_SEGMENTS %d\n",
                   aligned, settings.hull_capacity, settings.exact == OBSCURA_TOGGLE_ON ? 1 : 0,
                   settings.tangent_strategy, cpu, lsao_segment_steps(settings, env.cpu_renderer) > 0 ? 1 : 0);
     Error error = program_for(env, "line_sweep.comp", defines, &sweep_variants_, &sweep_program_);
     if (error) return error;
-    std::snprintf(defines, sizeof defines,
+    defines = gl::DefineLines();
+    std::snprintf(defines.text, sizeof defines.text,
                   "OBSCURA_LSAO_ALIGNED %d\nOBSCURA_LSAO_NORMAL_TEST %d\nOBSCURA_CPU_RASTERISER %d\n"
                   "OBSCURA_LSAO_DIRECTIONS %d\nOBSCURA_LSAO_GATHER_MARGIN %d\nOBSCURA_LSAO_GATHER_BATCH %d\n",
                   aligned, settings.normal_test == OBSCURA_TOGGLE_ON ? 1 : 0, cpu, settings.directions,
@@ -97,7 +87,13 @@ Error LsaoPass::ensure_layout(const PassEnv& env, const obscura_lsao_settings& s
     key_ = key;
     const int phase = layout_phase(frame_index);
     if (phases_[phase].lines.name() == 0) {
-        Error error = build_phase(env, settings, phase);
+        Error error;
+        try {
+            error = build_phase(env, settings, phase);
+        } catch (const std::bad_alloc&) {  // the layout's memory: HostAllocator throws when the host's allocator fails
+            error = Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "building LSAO's %dx%d layout: the host allocator returned NULL",
+                                width, height);
+        }
         if (error) {
             release();
             return error;
@@ -107,15 +103,16 @@ Error LsaoPass::ensure_layout(const PassEnv& env, const obscura_lsao_settings& s
     return Error();
 }
 
-LsaoLayout lsao_layout(const obscura_lsao_settings& settings, int width, int height, int phase) {
-    return make_lsao_layout(lsao_directions(settings, phase), settings.line_spacing, width, height,
-                            settings.pattern == 1, layout_phase_fraction(phase));
+LsaoLayout lsao_layout(const obscura_lsao_settings& settings, int width, int height, int phase,
+                       const AllocatorCallbacks& alloc) {
+    return make_lsao_layout(lsao_directions(settings, phase, alloc), settings.line_spacing, width, height,
+                            settings.pattern == 1, layout_phase_fraction(phase), alloc);
 }
 
 Error LsaoPass::build_phase(const PassEnv& env, const obscura_lsao_settings& settings, int phase) {
     const int width = key_.width, height = key_.height;
     Phase& built = phases_[phase];
-    built.layout = lsao_layout(settings, width, height, phase);
+    built.layout = lsao_layout(settings, width, height, phase, env.alloc);
     const gl::Table& gl = env.gl;
     // The sweep writes the values as one storage block, whose size GL bounds (at least 16 MiB in 4.3; 2 GiB
     // on NVIDIA's driver, 128 MiB on llvmpipe, where K = 16 at 1920x1080 + 10 % takes 24 MiB). CPU
@@ -135,7 +132,7 @@ Error LsaoPass::build_phase(const PassEnv& env, const obscura_lsao_settings& set
                            over_block ? "GL_MAX_SHADER_STORAGE_BLOCK_SIZE bytes" : "GL_MAX_TEXTURE_BUFFER_SIZE texels",
                            over_block ? static_cast<long long>(max_block_bytes) : static_cast<long long>(max_texels));
     }
-    std::vector<GpuLine> lines(built.layout.lines.size());
+    HostVector<GpuLine> lines(built.layout.lines.size(), GpuLine{}, HostAllocator<GpuLine>(&env.alloc));
     for (size_t i = 0; i < lines.size(); ++i) {
         const LsaoLine& l = built.layout.lines[i];
         // A line's origin is near the texture's centre: |first step| is at most half its diagonal in steps.

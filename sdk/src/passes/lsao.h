@@ -5,23 +5,23 @@
 #define OBSCURA_LSAO_H
 
 #include "frame_input.h"
+#include "gl/program_cache.h"
 #include "layout_phase.h"
 #include "passes/lsao_pattern.h"
 #include "passes/pass_common.h"
-
-#include <string>
-#include <vector>
 
 namespace obscura {
 
 // The directions of resolved LSAO settings in a layout phase (layout_phase.h): the aligned 8n pattern for K = 8n
 // (the same in every phase: its directions are fixed by the texel template), or K free directions turned by the
 // phase's fraction of the angle between them.
-std::vector<LsaoDirection> lsao_directions(const obscura_lsao_settings& settings, int phase = 0);
+LsaoDirections lsao_directions(const obscura_lsao_settings& settings, int phase = 0,
+                               const AllocatorCallbacks& alloc = AllocatorCallbacks::system());
 
 // The layout of resolved LSAO settings over a width x height texture in a layout phase: lsao_directions, with
 // every line shifted across by the phase's fraction of D_L.
-LsaoLayout lsao_layout(const obscura_lsao_settings& settings, int width, int height, int phase);
+LsaoLayout lsao_layout(const obscura_lsao_settings& settings, int width, int height, int phase,
+                       const AllocatorCallbacks& alloc = AllocatorCallbacks::system());
 
 // Steps per sweep segment for resolved settings, 0 for whole lines: segment_steps, or for 0 (auto) whole
 // lines on a CPU renderer and kLsaoGpuSegmentSteps on a GPU.
@@ -63,16 +63,11 @@ public:
 private:
     friend class LsaoPassInspection;  // the tests' readbacks (testing/pass_inspection.h)
     // Programs with the settings that select code compiled in (the pattern, the tangent strategy, the hull
-    // capacity, the normal test): CPU rasterisers run both sides of a branch, even of one on a uniform. The
-    // last few are kept, so toggling a setting does not compile again.
-    struct Variant {
-        std::string defines;
-        gl::Object program;
-    };
-    static constexpr size_t kMaxVariants = 4;
-    static Error program_for(const PassEnv& env, const char* shader, const std::string& defines,
-                             std::vector<Variant>* cache, GLuint* program);
-    std::vector<Variant> sweep_variants_, gather_variants_;
+    // capacity, the normal test), by their #define lines: the last few of each shader.
+    using VariantCache = gl::ProgramCache<gl::DefineLines, 4>;
+    static Error program_for(const PassEnv& env, const char* shader, const gl::DefineLines& defines,
+                             VariantCache* cache, GLuint* program);
+    VariantCache sweep_variants_, gather_variants_;
     GLuint sweep_program_ = 0, gather_program_ = 0;  // the current settings' variants
     int gather_group_[2] = {OBSCURA_LSAO_GATHER_GROUP_X, OBSCURA_LSAO_GATHER_GROUP_Y};
     bool collect_stats_ = false;

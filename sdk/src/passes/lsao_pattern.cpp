@@ -16,7 +16,7 @@ double angle_of(const double v[2]) {
 }
 
 // Azimuthal coverage: half the angular gap to each neighbour, over 2 pi.
-void assign_coverage_weights(std::vector<LsaoDirection>* directions) {
+void assign_coverage_weights(LsaoDirections* directions) {
     const size_t k = directions->size();
     if (k == 1) {
         (*directions)[0].weight = 1.0;
@@ -35,8 +35,8 @@ void assign_coverage_weights(std::vector<LsaoDirection>* directions) {
 
 }  // namespace
 
-std::vector<LsaoDirection> aligned_directions(int n) {
-    std::vector<LsaoDirection> out;
+LsaoDirections aligned_directions(int n, const AllocatorCallbacks& alloc) {
+    LsaoDirections out{HostAllocator<LsaoDirection>(&alloc)};
     if (n < 1) return out;
     double sum = 0.0;
     int non_axis = 0;
@@ -71,8 +71,8 @@ std::vector<LsaoDirection> aligned_directions(int n) {
     return out;
 }
 
-std::vector<LsaoDirection> free_directions(int k, double step_length, double rotation) {
-    std::vector<LsaoDirection> out;
+LsaoDirections free_directions(int k, double step_length, double rotation, const AllocatorCallbacks& alloc) {
+    LsaoDirections out{HostAllocator<LsaoDirection>(&alloc)};
     for (int i = 0; i < k; ++i) {
         const double angle = kTwoPi * (i + rotation) / k;
         LsaoDirection d = {};
@@ -88,7 +88,7 @@ std::vector<LsaoDirection> free_directions(int k, double step_length, double rot
     return out;
 }
 
-double average_step_length(const std::vector<LsaoDirection>& directions) {
+double average_step_length(const LsaoDirections& directions) {
     double sum = 0.0;
     for (const LsaoDirection& d : directions) sum += d.step_length;
     return directions.empty() ? 0.0 : sum / double(directions.size());
@@ -130,34 +130,52 @@ void lsao_sample_position(const LsaoLayout& layout, const LsaoLine& line, int j,
     }
 }
 
-LsaoLayout make_lsao_layout(const std::vector<LsaoDirection>& directions, double line_spacing, int width, int height,
-                            bool aligned, double line_shift) {
-    LsaoLayout layout;
+namespace {
+
+// The lines of direction `d` across a width x height texture, D_L apart (first_line left 0).
+LsaoDirectionLines lines_across(const LsaoDirection& d, double line_spacing, int width, int height, double line_shift) {
+    const double corners[4][2] = {{0.0, 0.0}, {double(width), 0.0}, {0.0, double(height)},
+                                  {double(width), double(height)}};
+    const double perp[2] = {-d.dir[1], d.dir[0]};
+    double v_min = 1e300, v_max = -1e300;
+    for (const auto& c : corners) {
+        const double v = c[0] * perp[0] + c[1] * perp[1];
+        v_min = std::min(v_min, v);
+        v_max = std::max(v_max, v);
+    }
+    LsaoDirectionLines summary = {};
+    summary.line_count = std::max(1, int(std::ceil((v_max - v_min) / line_spacing)));
+    summary.line_origin_v = v_min + 0.5 * line_spacing;
+    if (line_shift > 0.0) {  // a shifted grid starts one line earlier, so the band below line 0 stays as narrow
+        summary.line_origin_v += (line_shift - 1.0) * line_spacing;
+        summary.line_count += 1;
+    }
+    return summary;
+}
+
+}  // namespace
+
+LsaoLayout make_lsao_layout(const LsaoDirections& directions, double line_spacing, int width, int height,
+                            bool aligned, double line_shift, const AllocatorCallbacks& alloc) {
+    LsaoLayout layout(alloc);
     layout.width = width;
     layout.height = height;
     layout.line_spacing = line_spacing;
-    layout.directions = directions;
-    const double corners[4][2] = {{0.0, 0.0}, {double(width), 0.0}, {0.0, double(height)},
-                                  {double(width), double(height)}};
+    layout.directions.assign(directions.begin(), directions.end());  // in `alloc`'s memory, whatever theirs is
     const double center[2] = {0.5 * width, 0.5 * height};
+    // Every container is sized once (each growth is an allocation from the host's allocator).
+    size_t line_total = 0;
+    for (const LsaoDirection& d : directions) {
+        line_total += size_t(lines_across(d, line_spacing, width, height, line_shift).line_count);
+    }
+    layout.lines.reserve(line_total);
+    layout.direction_lines.reserve(directions.size());
     int64_t offset = 0;
     for (size_t k = 0; k < directions.size(); ++k) {
         const LsaoDirection& d = directions[k];
         const double perp[2] = {-d.dir[1], d.dir[0]};
-        double v_min = 1e300, v_max = -1e300;
-        for (const auto& c : corners) {
-            const double v = c[0] * perp[0] + c[1] * perp[1];
-            v_min = std::min(v_min, v);
-            v_max = std::max(v_max, v);
-        }
-        LsaoDirectionLines summary;
+        LsaoDirectionLines summary = lines_across(d, line_spacing, width, height, line_shift);
         summary.first_line = int32_t(layout.lines.size());
-        summary.line_count = std::max(1, int(std::ceil((v_max - v_min) / line_spacing)));
-        summary.line_origin_v = v_min + 0.5 * line_spacing;
-        if (line_shift > 0.0) {  // a shifted grid starts one line earlier, so the band below line 0 stays as narrow
-            summary.line_origin_v += (line_shift - 1.0) * line_spacing;
-            summary.line_count += 1;
-        }
         const double center_v = center[0] * perp[0] + center[1] * perp[1];
         for (int l = 0; l < summary.line_count; ++l) {
             const double v = summary.line_origin_v + l * line_spacing;

@@ -8,7 +8,8 @@
 #define OBSCURA_LSAO_PATTERN_H
 
 #include <cstdint>
-#include <vector>
+
+#include "host_allocator.h"
 
 namespace obscura {
 
@@ -20,16 +21,21 @@ struct LsaoDirection {
     bool axis;           // an axis direction (aligned patterns: it uses the average step)
 };
 
+// Every container here lives in the host allocator's memory (`alloc`, which throws std::bad_alloc when the host's
+// allocator fails): the pass keeps a layout per layout phase.
+using LsaoDirections = HostVector<LsaoDirection>;
+
 // K = 8n aligned directions from the (2n+1)x(2n+1) texel template (Figure 10), ordered by angle from +x.
 // Non-axis directions step to the outer ring's texel centres; axis ones use the average of those lengths.
-std::vector<LsaoDirection> aligned_directions(int n);
+LsaoDirections aligned_directions(int n, const AllocatorCallbacks& alloc = AllocatorCallbacks::system());
 
 // K evenly spaced directions (angle 2 pi (k + rotation) / K, rotation in [0, 1): a layout phase's turn) with step
 // length `step_length` and weight 1/K.
-std::vector<LsaoDirection> free_directions(int k, double step_length, double rotation = 0.0);
+LsaoDirections free_directions(int k, double step_length, double rotation = 0.0,
+                               const AllocatorCallbacks& alloc = AllocatorCallbacks::system());
 
 // The average step length D_S of a pattern.
-double average_step_length(const std::vector<LsaoDirection>& directions);
+double average_step_length(const LsaoDirections& directions);
 
 // One sweep line: samples at origin + j * step for j in [first_step, first_step + steps); aligned patterns
 // snap each sample to the texel that contains it (floor), free ones interpolate.
@@ -50,11 +56,15 @@ struct LsaoDirectionLines {
 };
 
 struct LsaoLayout {
+    LsaoLayout() = default;
+    explicit LsaoLayout(const AllocatorCallbacks& alloc)
+        : directions(HostAllocator<LsaoDirection>(&alloc)), direction_lines(HostAllocator<LsaoDirectionLines>(&alloc)),
+          lines(HostAllocator<LsaoLine>(&alloc)) {}
     int width = 0, height = 0;
     double line_spacing = 0.0;  // D_L
-    std::vector<LsaoDirection> directions;
-    std::vector<LsaoDirectionLines> direction_lines;
-    std::vector<LsaoLine> lines;
+    LsaoDirections directions;
+    HostVector<LsaoDirectionLines> direction_lines;
+    HostVector<LsaoLine> lines;
     int64_t values = 0;  // intermediate buffer length (each line's count rounded up to a multiple of 8)
     int32_t longest_line = 0;  // the most steps of any line
 };
@@ -62,8 +72,9 @@ struct LsaoLayout {
 // Lines D_L apart across a width x height texture for every direction. `aligned`: line origins are chosen
 // so that samples fall on texel centres (the snapped pattern repeats along the line). `line_shift` in [0, 1)
 // moves every line across by that fraction of D_L (a layout phase; 0: the first line half a spacing in).
-LsaoLayout make_lsao_layout(const std::vector<LsaoDirection>& directions, double line_spacing, int width, int height,
-                            bool aligned, double line_shift = 0.0);
+LsaoLayout make_lsao_layout(const LsaoDirections& directions, double line_spacing, int width, int height,
+                            bool aligned, double line_shift = 0.0,
+                            const AllocatorCallbacks& alloc = AllocatorCallbacks::system());
 
 // The sample j of `line` as the texel it reads (aligned) or the point it interpolates at (free).
 void lsao_sample_position(const LsaoLayout& layout, const LsaoLine& line, int j, bool aligned, double out[2]);
