@@ -48,7 +48,7 @@ void main() {
         if (i >= run_length) break;
         ivec2 p = first + axis * i;
         float center_ao = value[i + kRadius], center_depth = depth[i + kRadius];
-        float sharpness = blur.params.x / center_depth;
+        float sharpness = blur.params.x / obscura_tolerance_distance(center_depth);
         // The weighted mean is taken as the centre plus the weighted mean of the differences, so a uniform
         // neighbourhood returns its value exactly: sum / weight_sum lands a rounding step below it, which a
         // truncating conversion to r16f keeps (NVIDIA: unoccluded 1.0 came out 0.99902 after x and y).

@@ -86,10 +86,15 @@ const float kOtherSurfaceError = 0.1;
 // How far the surface on one side, continued linearly from its two texels (in affine_depth, affine on planes),
 // misses the centre's depth; kOneTexelError and up when only one texel is there, a huge value for none.
 // k_*: affine_depth of each depth, computed once per texel read.
+// Relative to the centre's affine depth under perspective; under an orthographic projection (affine depth = depth)
+// to obscura_orthographic_distance(), so that where the eye plane sits changes nothing.
 float continuation_error(float center, float k_center, float near, float k_near, float far, float k_far) {
     if (obscura_is_sky(near)) return 3.0e38;
-    if (obscura_is_sky(far)) return kOneTexelError * (1.0 + abs(near - center) / center);  // rank by the step
-    return abs(2.0 * k_near - k_far - k_center) / k_center;
+    if (obscura_is_sky(far)) {  // rank by the step
+        return kOneTexelError * (1.0 + abs(near - center) / obscura_tolerance_distance(center));
+    }
+    float scale = obscura_is_perspective() ? k_center : obscura_orthographic_distance();
+    return abs(2.0 * k_near - k_far - k_center) / scale;
 }
 
 // The function of depth that is affine in screen space on planes: 1 / clip w under perspective, the depth itself

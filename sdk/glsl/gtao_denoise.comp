@@ -88,7 +88,8 @@ void main() {
         }
         vec3 origin = position[i + 2];
         // Bounded: a point at (almost) the eye would make it infinite, and 0 * inf a NaN weight.
-        float sharpness = gtao_denoise.params.x * inversesqrt(max(dot(origin, origin), 1e-38));
+        float sharpness = gtao_denoise.params.x * (obscura_is_perspective() ? inversesqrt(max(dot(origin, origin), 1e-38))
+                                                                           : 1.0 / obscura_orthographic_distance());
         // Neighbour j's weight is c_j / d_j with d_j = 1 + (its plane distance)^2 (c_j: 1/2 at the ends, 0 where
         // invalid). The mean is taken as the centre plus the weighted mean of the differences, so a uniform window
         // returns its value exactly (see bilateral_blur.comp: r16f truncates a sum that lands a rounding step below

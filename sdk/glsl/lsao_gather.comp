@@ -142,7 +142,7 @@ void main() {
             ivec2 q_texel = clamp(ivec2(floor(nearest.point)), ivec2(0), depth_size.xy - 1);
             float q_depth = candidate_depth(q_texel);
             bool keep = k0 + u < OBSCURA_LSAO_DIRECTIONS && nearest.distance_sq < 1e30 &&
-                        !obscura_is_sky(q_depth) && abs(q_depth - depth) <= lsao.gather.x * depth;
+                        !obscura_is_sky(q_depth) && abs(q_depth - depth) <= lsao.gather.x * obscura_tolerance_distance(depth);
             if (normal_test) {
                 vec3 q_normal = obscura_decode_normal(texelFetch(u_normals, q_texel, 0).xy);
                 keep = keep && dot(q_normal, normal) >= lsao.gather.y;

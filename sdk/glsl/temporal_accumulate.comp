@@ -170,9 +170,11 @@ void main() {
 #if OBSCURA_TEMPORAL_BENT_NORMALS
     vec3 history_bent = vec3(0.0);
 #endif
-    // A texel is on the plane when |(X - P) . n| <= tolerance |P| |n|, compared squared: no square roots.
-    float limit_sq = temporal.params.z * temporal.params.z * dot(previous_position, previous_position) *
-                     dot(previous_normal, previous_normal);
+    // A texel is on the plane when |(X - P) . n| <= tolerance |P| |n|, compared squared: no square roots (|P|: the
+    // orthographic tolerance distance under an orthographic projection, obscura_tolerance_distance).
+    float reach_sq = obscura_is_perspective() ? dot(previous_position, previous_position)
+                                              : obscura_orthographic_distance() * obscura_orthographic_distance();
+    float limit_sq = temporal.params.z * temporal.params.z * reach_sq * dot(previous_normal, previous_normal);
     int valid_taps = 0;
 #if OBSCURA_TEMPORAL_REPROJECT == OBSCURA_TEMPORAL_REPROJECT_IDENTITY
     // The one tap: the pixel's own texel (always inside the output rectangle).

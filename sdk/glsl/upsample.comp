@@ -81,7 +81,7 @@ void main() {
         float depth = obscura_host_linear_depth(p);
         vec3 position = obscura_view_position(p, obscura_is_sky(depth) ? 1.0 : depth);
         vec2 f = vec2(p - (base << k)) * upsample.params.y;  // where p lies between the reduced texels, in [0, 1)
-        vec4 d = abs(position.x * nx + position.y * ny + position.z * nz - plane_offset) * (upsample.params.x / depth);
+        vec4 d = abs(position.x * nx + position.y * ny + position.z * nz - plane_offset) * (upsample.params.x / obscura_tolerance_distance(depth));
         d = mix(vec4(3.0e19), d, valid);
         vec4 bilinear = mix(vec4(1.0 - f.x), vec4(f.x), kCornerX) * mix(vec4(1.0 - f.y), vec4(f.y), kCornerY);
         vec4 w = bilinear * exp(-d * d);

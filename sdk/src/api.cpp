@@ -244,6 +244,7 @@ OBSCURA_API obscura_status obscura_resolve_settings(obscura_context* context, co
         obscura_settings whole, resolved;
         Error error = obscura::read_host_settings(in, &whole, "obscura_resolve_settings");
         if (!error) error = obscura::resolve_settings(whole, &resolved);
+        if (!error && context) obscura::derive_for_renderer(as_context(context)->cpu_renderer(), &resolved);
         if (!error) obscura::write_host_settings(resolved, out, size);
         return error;
     });

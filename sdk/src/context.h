@@ -48,6 +48,8 @@ public:
     // context current (WRONG_GL_CONTEXT) and not after a loss (CONTEXT_LOST): nothing is read then.
     Error timings(obscura_timing* out, uint32_t capacity, uint32_t* count, uint64_t* frame_index);
     uint64_t memory_bytes() const;
+    // Whether the GL renderer is a CPU rasteriser (what some settings derive from: obscura_resolve_settings).
+    bool cpu_renderer() const { return device_.cpu_renderer(); }
     // obscura_create_view / obscura_destroy_view. Views are freed with the context.
     Error create_view(View** out);
     Error destroy_view(obscura_view* view);

@@ -1,5 +1,6 @@
 #include "frame_planner.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace obscura {
@@ -39,14 +40,13 @@ FrameConstants base_constants(const FrameInput& input, const OutputTarget& targe
     return c;
 }
 
-// SAO's quad filter pairs pixels of 2x2 quads in absolute coordinates: such regions start on even ones.
-Region aligned_to_quads(Region r) {
+// SAO's quad filter pairs pixels of 2x2 quads in absolute coordinates: such regions start and end on quad boundaries
+// (clamped to the texture), so the last column or row keeps its partner (it was left unpaired when the region ended
+// on an even coordinate, and a pixel's AO then depended on where the output rectangle ended).
+Region aligned_to_quads(Region r, int width_limit, int height_limit) {
     const int x0 = r.x & ~1, y0 = r.y & ~1;
-    r.width += r.x - x0;
-    r.height += r.y - y0;
-    r.x = x0;
-    r.y = y0;
-    return r;
+    const int x1 = std::min((r.x + r.width + 1) & ~1, width_limit), y1 = std::min((r.y + r.height + 1) & ~1, height_limit);
+    return Region{x0, y0, x1 - x0, y1 - y0};
 }
 
 }  // namespace
@@ -62,7 +62,7 @@ FrameRegions FramePlanner::regions(const FrameInput& input, const TechniquePlan&
     r.whole = Region{0, 0, input.width, input.height};
     r.output = Region{rect.x, rect.y, rect.width, rect.height};
     r.ao = r.output.expanded(plan.apron, plan.apron, input.width, input.height);
-    if (plan.ao_on_quads) r.ao = aligned_to_quads(r.ao);
+    if (plan.ao_on_quads) r.ao = aligned_to_quads(r.ao, input.width, input.height);
     r.blur_x = r.output.expanded(0, plan.apron, input.width, input.height);
     r.normals = plan.normals_margin == TechniquePlan::kNormalsEverywhere
                     ? r.whole

@@ -34,6 +34,9 @@ struct MethodDescriptor {
     uint32_t pass_count;
     Technique* (*create_technique)(const AllocatorCallbacks& alloc);
     bool bent_normals = false;           // writes output.bent_normal_texture (obscura_method_writes_bent_normals)
+    // Derives what depends on the GL renderer (zero fields the context settles when it renders), for
+    // obscura_resolve_settings with a context; null if nothing does.
+    void (*derive_for_renderer)(bool cpu_renderer, obscura_settings* resolved) = nullptr;
 };
 
 // Every method, in obscura_method order (OBSCURA_METHOD_DEFAULT excluded).

@@ -213,6 +213,17 @@ Error read_host_settings(const obscura_settings* host, obscura_settings* out, co
     std::memset(&whole, 0, sizeof whole);
     std::memcpy(&whole, host, size);  // an older header's struct: the fields it lacks read 0, their defaults
     whole.struct_size = sizeof whole;
+    // ... except where the struct says 0 is a value (OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE, which a 0.4 struct has):
+    // there the fields it lacks hold their defaults explicitly (a 0.4 host's gtao.mip_offset read 0, not 3.3).
+    if (whole.flags & OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE) {
+        for_each_table([&](const char*, const obscura_setting_info* rows, uint32_t count) {
+            for (uint32_t i = 0; i < count; ++i) {
+                if (!field_fits(rows[i], size) && zero_can_be_value(rows[i])) {
+                    store_value(&whole, rows[i], rows[i].default_value);
+                }
+            }
+        });
+    }
     *out = whole;
     return Error();
 }
@@ -257,6 +268,13 @@ Error resolve_settings(const obscura_settings& in, obscura_settings* out) {
         return Error::make(OBSCURA_STATUS_INVALID_SETTING, "obscura_settings.flags = 0x%x has unknown bits",
                            unsigned(in.flags));
     }
+    // resolution.scale is declared as the C enum obscura_resolution (its metadata row an ENUM like those of the int32_t
+    // fields with named values): a value the enum does not have is INVALID_ENUM, as for every C enum field.
+    const int32_t scale = stored_enum(in.resolution.scale);
+    if (scale < OBSCURA_RESOLUTION_DEFAULT || scale > OBSCURA_RESOLUTION_QUARTER) {
+        return Error::make(OBSCURA_STATUS_INVALID_ENUM, "obscura_settings.resolution.scale = %d is not an obscura_resolution",
+                           int(scale));
+    }
     const bool zero_is_value = (in.flags & OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE) != 0;
     obscura_settings resolved = in;
     resolved.method = method;
@@ -299,6 +317,14 @@ Error resolve_settings(const obscura_settings& in, obscura_settings* out) {
     return Error();
 }
 
+void derive_for_renderer(bool cpu_renderer, obscura_settings* resolved) {
+    uint32_t method_count = 0;
+    const MethodDescriptor* const* methods = method_descriptors(&method_count);
+    for (uint32_t m = 0; m < method_count; ++m) {
+        if (methods[m]->derive_for_renderer) methods[m]->derive_for_renderer(cpu_renderer, resolved);
+    }
+}
+
 Error reference_settings_for(const obscura_settings& method_settings, obscura_settings* out) {
     obscura_settings resolved;
     Error error = resolve_settings(method_settings, &resolved);
@@ -339,7 +365,9 @@ Error get_setting(const obscura_settings& settings, const char* name, double* va
         *value = info->type == OBSCURA_SETTING_TOGGLE ? (stored > 0.0 ? 1.0 : 0.0) : stored;
         return Error();
     }
-    // Settings that do not resolve read as stored, zero fields as their defaults.
+    // Settings that do not resolve read as stored, zero fields as their defaults: a derived field left to derive
+    // reads 0, "derive" (there is no derived value; obscura_resolve_settings says why). Editors read every row
+    // while a user is half way through a change (a table falloff before its table), so this is not an error.
     const double stored = stored_value(settings, *info);
     if (info->type == OBSCURA_SETTING_TOGGLE) {
         *value = stored == 0.0 ? info->default_value : (stored > 0.0 ? 1.0 : 0.0);

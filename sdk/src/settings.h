@@ -79,6 +79,9 @@ Error default_settings(const obscura_method& method, obscura_settings* out);
 // Defaults every zero field, validates every field, and derives dependent values (each method's `derive`).
 // `in` is whole (read_host_settings).
 Error resolve_settings(const obscura_settings& in, obscura_settings* out);
+// What resolved settings leave to the context because it depends on the GL renderer (LSAO's segment_steps 0), as a
+// context on such a renderer settles it (MethodDescriptor::derive_for_renderer).
+void derive_for_renderer(bool cpu_renderer, obscura_settings* resolved);
 
 // REFERENCE settings with the falloff of `method_settings`'s method (obscura_reference_settings_for).
 Error reference_settings_for(const obscura_settings& method_settings, obscura_settings* out);

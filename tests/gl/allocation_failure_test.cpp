@@ -181,14 +181,7 @@ protected:
         std::memcpy(scene_->input.previous_view_projection, projection, sizeof scene_->input.previous_view_projection);
         target_ = make_texture(GL_RGBA8, kWidth, kHeight);
         bent_ = make_texture(GL_RGBA8, kWidth, kHeight);
-        renderbuffer_ = HostRenderbuffer::create();
-        glBindRenderbuffer(GL_RENDERBUFFER, renderbuffer_.get());
-        glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, kWidth, kHeight);
-        glBindRenderbuffer(GL_RENDERBUFFER, 0);
-        framebuffer_ = HostFramebuffer::create();
-        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.get());
-        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, renderbuffer_.get());
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        blit_target_ = make_renderbuffer_target(GL_RGBA8, kWidth, kHeight);
         ASSERT_EQ(take_gl_error(), GLenum(GL_NO_ERROR));
     }
     void TearDown() override {
@@ -209,7 +202,7 @@ protected:
     std::vector<uint8_t> read_target() {
         if (!GetParam().framebuffer) return read_texture_rgba8(target_.get(), kWidth, kHeight);
         std::vector<uint8_t> bytes(size_t(kWidth) * kHeight * 4);
-        glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_.get());
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, blit_target_.framebuffer.get());
         glReadPixels(0, 0, kWidth, kHeight, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
         glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
         return bytes;
@@ -230,7 +223,7 @@ protected:
         };
         if (prepare && !check(obscura_prepare(context, kWidth, kHeight, &settings), "obscura_prepare")) return outcome;
         obscura_output output = make_output(c.framebuffer ? 0u : target_.get());
-        output.framebuffer = c.framebuffer ? framebuffer_.get() : 0u;
+        output.framebuffer = c.framebuffer ? blit_target_.framebuffer.get() : 0u;
         output.bent_normal_texture = c.bent_normals ? bent_.get() : 0u;
         for (uint32_t frame = 0; frame < 2; ++frame) {
             obscura_input input = scene_->input;
@@ -306,8 +299,7 @@ protected:
 
     std::unique_ptr<AoScene> scene_;
     HostTexture target_, bent_;
-    HostRenderbuffer renderbuffer_;
-    HostFramebuffer framebuffer_;
+    RenderbufferTarget blit_target_;
     LogCapture log_;
     uint32_t flags_ = 0;
 };

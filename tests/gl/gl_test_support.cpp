@@ -378,6 +378,20 @@ Stats stats(const std::vector<float>& values, const std::vector<bool>& mask) {
 // test process (the whole suite in one binary, as on a GPU run) pushes query names past a few thousand.
 constexpr GLuint kNameRange = 1u << 16;
 
+RenderbufferTarget make_renderbuffer_target(GLenum format, int width, int height, int samples) {
+    RenderbufferTarget t;
+    t.renderbuffer = HostRenderbuffer::create();
+    glBindRenderbuffer(GL_RENDERBUFFER, t.renderbuffer.get());
+    if (samples > 0) glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, format, width, height);
+    else glRenderbufferStorage(GL_RENDERBUFFER, format, width, height);
+    glBindRenderbuffer(GL_RENDERBUFFER, 0);
+    t.framebuffer = HostFramebuffer::create();
+    glBindFramebuffer(GL_FRAMEBUFFER, t.framebuffer.get());
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t.renderbuffer.get());
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    return t;
+}
+
 std::map<std::string, int> count_gl_objects() {
     std::map<std::string, int> counts;
     const std::pair<const char*, GLboolean (*)(GLuint)> kinds[] = {

@@ -98,6 +98,13 @@ void store_raw(Enum* field, int32_t value) {
     std::memcpy(field, &value, sizeof value);
 }
 
+// A renderbuffer of `format` (multisampled with `samples` > 0) as colour attachment 0 of a framebuffer: a blit target.
+struct RenderbufferTarget {
+    HostRenderbuffer renderbuffer;
+    HostFramebuffer framebuffer;
+};
+RenderbufferTarget make_renderbuffer_target(GLenum format, int width, int height, int samples = 0);
+
 // ---- API structs ------------------------------------------------------------------------------------
 obscura_input make_input(GLuint depth_texture, int width, int height, const float projection[16],
                          obscura_clip_depth clip_depth = OBSCURA_CLIP_DEPTH_NEGATIVE_ONE_TO_ONE);

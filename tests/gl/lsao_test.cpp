@@ -151,6 +151,24 @@ TEST_F(Lsao, EveryPresetStrategyAndPatternRendersCleanly) {
     EXPECT_LT(near_mean(normals), 0.85);
 }
 
+// segment_steps 0 depends on the renderer: resolved with a context it reads what that context's renders use (whole
+// lines, -1, on llvmpipe; 128 on GPUs), without one it stays 0; a value the host set is kept either way.
+TEST_F(Lsao, ResolveWithAContextSettlesSegmentSteps) {
+    obscura_settings s;
+    ASSERT_EQ(obscura_default_settings(OBSCURA_METHOD_LSAO, &s), OBSCURA_OK);
+    ASSERT_EQ(s.lsao.segment_steps, 0);
+    obscura_settings resolved;
+    ASSERT_EQ(obscura_resolve_settings(nullptr, &s, &resolved), OBSCURA_OK);
+    EXPECT_EQ(resolved.lsao.segment_steps, 0);
+    ASSERT_EQ(obscura_resolve_settings(ctx(), &s, &resolved), OBSCURA_OK);
+    const std::string renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    const bool cpu = renderer.find("llvmpipe") != std::string::npos || renderer.find("softpipe") != std::string::npos;
+    EXPECT_EQ(resolved.lsao.segment_steps, cpu ? -1 : 128) << renderer;
+    s.lsao.segment_steps = 24;
+    ASSERT_EQ(obscura_resolve_settings(ctx(), &s, &resolved), OBSCURA_OK);
+    EXPECT_EQ(resolved.lsao.segment_steps, 24);
+}
+
 TEST_F(Lsao, AlignedPatternNeedsEightNDirections) {
     obscura_settings settings = lsao_settings(1.0f);
     settings.lsao.directions = 12;

@@ -226,25 +226,6 @@ std::vector<uint8_t> read_framebuffer_rgba8(GLuint framebuffer, int width, int h
     return bytes;
 }
 
-struct RenderbufferTarget {
-    HostRenderbuffer renderbuffer;
-    HostFramebuffer framebuffer;
-};
-
-RenderbufferTarget make_renderbuffer_target(GLenum format, int width, int height, int samples = 0) {
-    RenderbufferTarget t;
-    t.renderbuffer = HostRenderbuffer::create();
-    glBindRenderbuffer(GL_RENDERBUFFER, t.renderbuffer.get());
-    if (samples > 0) glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, format, width, height);
-    else glRenderbufferStorage(GL_RENDERBUFFER, format, width, height);
-    glBindRenderbuffer(GL_RENDERBUFFER, 0);
-    t.framebuffer = HostFramebuffer::create();
-    glBindFramebuffer(GL_FRAMEBUFFER, t.framebuffer.get());
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t.renderbuffer.get());
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    return t;
-}
-
 void clear_framebuffer(GLuint framebuffer, float r, float g, float b, float a) {
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
     const GLfloat colour[4] = {r, g, b, a};

@@ -200,6 +200,27 @@ TEST_F(Sao, BlurSmoothsTheSpiralNoise) {
     EXPECT_LT(roughness(a), 0.5 * roughness(b)) << "blurred " << roughness(a) << ", raw " << roughness(b);
 }
 
+// The quad filter pairs the pixels of absolute 2x2 quads: a pixel's AO does not depend on where the output rectangle
+// ends. Without the blur (no apron) a rectangle ending on an odd coordinate once left its last column and row
+// unpaired; they differed from a rectangle one texel larger.
+TEST_F(Sao, QuadFilterDoesNotDependOnWhereTheRectangleEnds) {
+    AoScene scene = corner_scene();
+    obscura_settings settings = sao_settings(1.0f);
+    settings.sao.blur = OBSCURA_TOGGLE_OFF;
+    ASSERT_EQ(settings.sao.quad_filter == OBSCURA_TOGGLE_OFF, false);
+    obscura_input odd_end = scene.input, even_end = scene.input;
+    odd_end.output_rect = obscura_rect{8, 8, 47, 47};
+    even_end.output_rect = obscura_rect{8, 8, 48, 48};
+    const std::vector<float> a = render_visibility(ctx(), odd_end, settings);
+    const std::vector<float> b = render_visibility(ctx(), even_end, settings);
+    ASSERT_EQ(a.size(), size_t(47 * 47));
+    ASSERT_EQ(b.size(), size_t(48 * 48));
+    int differing = 0;
+    for (int y = 0; y < 47; ++y)
+        for (int x = 0; x < 47; ++x) differing += a[size_t(y) * 47 + x] != b[size_t(y) * 48 + x] ? 1 : 0;
+    EXPECT_EQ(differing, 0);
+}
+
 TEST_F(Sao, MemoryIncludesThePyramidAndPackedTextures) {
     AoScene scene = corner_scene();
     ASSERT_FALSE(render_visibility(ctx(), scene.input, make_settings(1.0f)).empty());

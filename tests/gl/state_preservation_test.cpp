@@ -65,14 +65,7 @@ protected:
         settings_ = make_settings(1.0f);
         output_texture_ = make_texture(GL_RGBA8, kWidth, kHeight);
         fill_texture(output_texture_.get(), kWidth, kHeight, 0.5f, 0.5f, 0.5f, 1.0f);
-        renderbuffer_ = HostRenderbuffer::create();
-        glBindRenderbuffer(GL_RENDERBUFFER, renderbuffer_.get());
-        glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, kWidth, kHeight);
-        glBindRenderbuffer(GL_RENDERBUFFER, 0);
-        output_framebuffer_ = HostFramebuffer::create();
-        glBindFramebuffer(GL_FRAMEBUFFER, output_framebuffer_.get());
-        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, renderbuffer_.get());
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        blit_target_ = make_renderbuffer_target(GL_RGBA8, kWidth, kHeight);
     }
 
     void build_host_objects() {
@@ -229,7 +222,7 @@ protected:
     }
 
     void clear_output_framebuffer() {
-        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, output_framebuffer_.get());
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, blit_target_.framebuffer.get());
         const GLfloat zero[4] = {0, 0, 0, 0};
         glClearBufferfv(GL_COLOR, 0, zero);
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
@@ -241,7 +234,7 @@ protected:
         glPixelStorei(GL_PACK_ROW_LENGTH, 0);
         glPixelStorei(GL_PACK_SKIP_ROWS, 0);
         glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-        glBindFramebuffer(GL_READ_FRAMEBUFFER, output_framebuffer_.get());
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, blit_target_.framebuffer.get());
         std::vector<uint8_t> bytes(size_t(kWidth) * kHeight * 4);
         glReadPixels(0, 0, kWidth, kHeight, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
         glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
@@ -257,7 +250,7 @@ protected:
     }
     obscura_output framebuffer_output() {
         obscura_output output = make_output(0);
-        output.framebuffer = output_framebuffer_.get();
+        output.framebuffer = blit_target_.framebuffer.get();
         output.blend = OBSCURA_BLEND_MULTIPLY;
         return output;
     }
@@ -266,8 +259,7 @@ protected:
     obscura_input input_{};
     obscura_settings settings_{};
     HostTexture output_texture_;
-    HostRenderbuffer renderbuffer_;
-    HostFramebuffer output_framebuffer_;
+    RenderbufferTarget blit_target_;  // the output as a framebuffer with a renderbuffer
 
     HostProgram program_;
     std::vector<HostTexture> textures_2d_, textures_ms_;
@@ -462,7 +454,7 @@ TEST_F(StatePreservation, BlitTargetWrittenDespiteHostScissorAndMask) {
     // The host's scissor box (1, 2, 30x40) and colour mask (r, b only) must not clip the blit into the
     // output framebuffer.
     obscura_output output = make_output(0);
-    output.framebuffer = output_framebuffer_.get();
+    output.framebuffer = blit_target_.framebuffer.get();
     clear_output_framebuffer();
     set_sentinel_state();
     ASSERT_EQ(obscura_render(ctx(), &input_, &settings_, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
@@ -474,7 +466,7 @@ TEST_F(StatePreservation, BlitTargetWrittenDespiteRasterizerDiscard) {
     // GL_RASTERIZER_DISCARD left enabled by the host (transform-feedback passes) must not swallow the
     // blit into the output framebuffer, and must still be enabled afterwards.
     obscura_output output = make_output(0);
-    output.framebuffer = output_framebuffer_.get();
+    output.framebuffer = blit_target_.framebuffer.get();
     clear_output_framebuffer();
     glEnable(GL_RASTERIZER_DISCARD);
     obscura_status status = obscura_render(ctx(), &input_, &settings_, &output);

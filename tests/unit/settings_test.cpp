@@ -253,6 +253,7 @@ TEST(SettingsDefaults, EveryReleasedStructSizeIsAccepted) {
     const uint32_t sizes[] = {uint32_t(offsetof(obscura_settings, reference)),  // 0.1: HBAO
                               uint32_t(offsetof(obscura_settings, sao)),        // 0.2: + REFERENCE
                               uint32_t(offsetof(obscura_settings, flags)),      // 0.3: + SAO, LSAO, FFAO
+                              uint32_t(offsetof(obscura_settings, gtao)),       // 0.4: + flags
                               uint32_t(sizeof(obscura_settings))};
     for (uint32_t size : sizes) {
         SCOPED_TRACE(size);
@@ -440,6 +441,33 @@ TEST(SettingsValidation, BadToggleIsInvalidEnum) {
     EXPECT_EQ(resolve_status(s), OBSCURA_STATUS_INVALID_ENUM);
 }
 
+// A 0.4 struct carries OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE but ends before GTAO's block: the fields it lacks hold their
+// defaults, not a literal 0 (gtao.mip_offset, whose range includes 0, read 0 instead of 3.3).
+TEST(SettingsDefaults, FieldsAnOlderStructLacksHoldTheirDefaultsUnderZeroIsValue) {
+    const uint32_t size_04 = uint32_t(offsetof(obscura_settings, gtao));
+    obscura_settings s;
+    ASSERT_EQ(obscura_default_settings_sized(OBSCURA_METHOD_HBAO, &s, size_04), OBSCURA_OK);
+    ASSERT_NE(s.flags & OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE, 0u);
+    store_raw(&s.method, int32_t(OBSCURA_METHOD_GTAO));  // a host that passes GTAO's value by number
+    double v = 0.0;
+    ASSERT_EQ(obscura_get_setting(&s, "mip_offset", &v), OBSCURA_OK) << obscura_get_last_error(nullptr);
+    obscura_settings current;
+    ASSERT_EQ(obscura_default_settings(OBSCURA_METHOD_GTAO, &current), OBSCURA_OK);
+    EXPECT_FLOAT_EQ(float(v), current.gtao.mip_offset);
+    EXPECT_GT(v, 0.0);
+}
+
+TEST(SettingsValidation, ResolutionScaleOutsideTheEnumIsInvalidEnum) {
+    // resolution.scale is the C enum obscura_resolution: an unknown value is INVALID_ENUM, as for every C enum field.
+    obscura_settings s = zero_settings();
+    store_raw(&s.resolution.scale, 7);
+    EXPECT_EQ(resolve_status(s), OBSCURA_STATUS_INVALID_ENUM);
+    store_raw(&s.resolution.scale, -1);
+    EXPECT_EQ(resolve_status(s), OBSCURA_STATUS_INVALID_ENUM);
+    store_raw(&s.resolution.scale, int32_t(OBSCURA_RESOLUTION_QUARTER));
+    EXPECT_EQ(resolve_status(s), OBSCURA_OK);
+}
+
 TEST(SettingsValidation, WrongStructSize) {
     obscura_settings s = zero_settings();
     // Sizes no released header had (EveryReleasedStructSizeIsAccepted covers the ones they had).
@@ -545,6 +573,25 @@ TEST(SettingsSetGet, GetOfDerivedDecayRate) {
     double v = 0;
     ASSERT_EQ(obscura_get_setting(&s, "decay_rate", &v), OBSCURA_OK);
     EXPECT_NEAR(v, 0.3 * 4.0, 1e-6);
+}
+
+TEST(SettingsSetGet, DerivedFieldsOfSettingsThatDoNotResolveReadDerive) {
+    // LSAO at K = 12 with the aligned pattern (which needs 8n): decay_rate has no derived value and reads 0, "derive"
+    // (an editor keeps reading every row while the user is half way through a change); resolve says why.
+    obscura_settings s;
+    ASSERT_EQ(obscura_default_settings(OBSCURA_METHOD_LSAO, &s), OBSCURA_OK);
+    ASSERT_EQ(obscura_set_setting(&s, "directions", 12.0), OBSCURA_OK);
+    double v = -1.0;
+    ASSERT_EQ(obscura_get_setting(&s, "decay_rate", &v), OBSCURA_OK);
+    EXPECT_EQ(v, 0.0);
+    obscura_settings resolved;
+    EXPECT_EQ(obscura_resolve_settings(nullptr, &s, &resolved), OBSCURA_STATUS_INVALID_SETTING);
+    EXPECT_NE(std::string(obscura_get_last_error(nullptr)).find("directions"), std::string::npos)
+        << obscura_get_last_error(nullptr);
+    // A derived field the host fixed reads its value.
+    s.lsao.decay_rate = 0.5f;
+    ASSERT_EQ(obscura_get_setting(&s, "decay_rate", &v), OBSCURA_OK);
+    EXPECT_EQ(v, 0.5);
 }
 
 TEST(SettingsSetGet, GetReportsTheValueResolveUses) {

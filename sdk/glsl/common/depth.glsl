@@ -93,6 +93,19 @@ float obscura_pixels_per_view_unit(float view_depth) {
     return 0.5 * abs(proj_scale.y) * float(depth_size.y) / obscura_clip_w(view_depth);
 }
 
+// The distance that tolerances relative to "the pixel's distance" scale with (the denoisers' and the upsample's plane
+// tests, the temporal pass's, LSAO's gather, the normal reconstruction's planarity), for the perspective distance
+// `perspective_distance` (the view depth or |position|, as the caller measures it). A perspective pixel's footprint
+// grows with its distance; an orthographic one is the same at every depth, and where the eye plane sits changes
+// nothing in the image (an orthographic camera slid along its axis shifts every depth by a constant): there the
+// distance from which a 60-degree perspective view has the same footprint, half the view's height / tan 30 degrees
+// = sqrt(3) / |m5|. (Depth-relative tolerances once made an orthographic camera 1000 units back blur AO across
+// every edge.)
+float obscura_orthographic_distance() { return 1.7320508 / abs(proj_scale.y); }
+float obscura_tolerance_distance(float perspective_distance) {
+    return obscura_is_perspective() ? perspective_distance : obscura_orthographic_distance();
+}
+
 // Unit vector from a view-space point towards the eye: the eye itself (perspective) or +z (orthographic).
 vec3 obscura_towards_eye(vec3 position) {
     return obscura_is_perspective() ? normalize(-position) : vec3(0.0, 0.0, 1.0);

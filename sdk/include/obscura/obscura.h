@@ -541,10 +541,10 @@ typedef struct obscura_resolution_settings {
    resolves the same way.
    Zero-initialised structs (struct_size and method set, the rest 0) also work: every zero field means its
    default. In them a field whose range includes 0 but whose default is not 0 (lsao.tangent,
-   lsao.normal_threshold) cannot be 0; the editable form carries OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE, under
-   which 0 in such a field is 0, and obscura_set_setting() sets the flag when it stores such a 0.
+   lsao.normal_threshold, gtao.mip_offset) cannot be 0; the editable form carries OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE,
+   under which 0 in such a field is 0, and obscura_set_setting() sets the flag when it stores such a 0.
    Struct sizes: the library accepts the obscura_settings of every released header (0.1 to this one); the fields
-   an older header does not have read as 0 (their defaults). */
+   an older header does not have hold their defaults (with the flag too). */
 enum {
     /* 0 in a field whose range includes 0 is the value 0 (not the default). Derived fields still derive. */
     OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE = 1u << 0
@@ -575,8 +575,10 @@ OBSCURA_API obscura_status obscura_default_settings_sized(obscura_method method,
 
 /* Replaces zero fields of `in` with their defaults, derives the derived fields, validates every field, and
    writes the effective values to `out` (may alias `in`; `in->struct_size` bytes, so both are the caller's
-   struct version); for UIs and logs. `context` may be NULL (then the error detail goes nowhere). Returns OK,
-   NULL_ARGUMENT, INVALID_STRUCT_SIZE, INVALID_ENUM, INVALID_SETTING. */
+   struct version); for UIs and logs. With a context, the fields that depend on its GL renderer are derived too, as
+   its renders derive them (lsao.segment_steps: -1 on CPU renderers, 128 on GPUs); with NULL they stay 0 and the
+   error detail goes to obscura_get_last_error(NULL). Returns OK, NULL_ARGUMENT, INVALID_STRUCT_SIZE, INVALID_ENUM
+   (resolution.scale too), INVALID_SETTING. */
 OBSCURA_API obscura_status obscura_resolve_settings(obscura_context* context, const obscura_settings* in,
                                                     obscura_settings* out);
 
@@ -653,6 +655,9 @@ OBSCURA_API obscura_status obscura_set_setting(obscura_settings* settings, const
 
 /* Reads the setting `name` of settings->method as it will be used: zero fields report their default
    (derived fields their derived value); toggles read 0 (off) or 1 (on). Array settings: INVALID_SETTING.
+   While the settings do not resolve (K = 12 with LSAO's aligned pattern, a table falloff without its table) there
+   is no derived value: a derived field left 0 reads 0, "derive", and obscura_resolve_settings() says why.
+   lsao.segment_steps 0 reads 0: it depends on the renderer (obscura_resolve_settings() with a context gives it).
    Returns OK, NULL_ARGUMENT, UNKNOWN_SETTING, INVALID_SETTING, INVALID_STRUCT_SIZE, INVALID_ENUM. */
 OBSCURA_API obscura_status obscura_get_setting(const obscura_settings* settings, const char* name, double* out_value);
 

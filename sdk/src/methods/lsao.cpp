@@ -157,6 +157,11 @@ private:
 
 const PassId kLsaoPasses[] = {PassId::LineSweep, PassId::Gather};
 
+// segment_steps 0 (auto) as the context settles it: whole lines (-1) on CPU renderers, kLsaoGpuSegmentSteps on GPUs.
+void derive_lsao_for_renderer(bool cpu_renderer, obscura_settings* resolved) {
+    if (resolved->lsao.segment_steps == 0) resolved->lsao.segment_steps = cpu_renderer ? -1 : kLsaoGpuSegmentSteps;
+}
+
 }  // namespace
 
 extern const MethodDescriptor kLsaoMethod = {
@@ -171,6 +176,8 @@ extern const MethodDescriptor kLsaoMethod = {
     kLsaoPasses,
     uint32_t(sizeof kLsaoPasses / sizeof kLsaoPasses[0]),
     create_technique<LsaoTechnique>,
+    false,
+    derive_lsao_for_renderer,
 };
 
 }  // namespace obscura
