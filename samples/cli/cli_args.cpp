@@ -1,8 +1,10 @@
 #include "cli_args.h"
 
-#include <cerrno>
+#include <cctype>
+#include <charconv>
 #include <cmath>
-#include <cstdlib>
+#include <cstdio>
+#include <filesystem>
 #include <utility>
 
 #include "cli_errors.h"
@@ -103,6 +105,24 @@ void ArgumentList::require_all_taken() const {
     if (!arguments_.empty()) throw UsageError("unknown argument '" + arguments_.front() + "'");
 }
 
+ImageFormat image_format_of(const std::string& path) {
+    const std::string extension = std::filesystem::path(path).extension().string();
+    std::string lower;
+    for (char c : extension) lower += char(std::tolower(static_cast<unsigned char>(c)));
+    return lower == ".pfm" ? ImageFormat::Pfm : ImageFormat::Png;
+}
+
+const std::string& check_image_path(const std::string& option, const std::string& path, ImageFormat format,
+                                    const char* other_option) {
+    if (image_format_of(path) == format) return path;
+    const bool png = format == ImageFormat::Png;
+    std::string message = option + " writes " + (png ? "PNG" : "PFM") + ", but '" + path + "' is " +
+                          (png ? "named as a PFM file" : "not named .pfm") +
+                          " (diff reads a .pfm name as PFM, any other as PNG)";
+    if (other_option) message += "; " + std::string(other_option) + " writes " + (png ? "PFM" : "PNG");
+    throw UsageError(message);
+}
+
 std::vector<std::string> split_list(const std::string& option, const std::string& text) {
     std::vector<std::string> items;
     size_t start = 0;
@@ -125,10 +145,11 @@ ImageSize parse_size(const std::string& option, const std::string& text) {
 }
 
 int parse_int(const std::string& option, const std::string& text, int min_value, int max_value) {
-    char* end = nullptr;
-    errno = 0;
-    const long value = std::strtol(text.c_str(), &end, 10);
-    if (text.empty() || *end != '\0' || errno != 0 || value < min_value || value > max_value) {
+    // std::from_chars, not strtol: digits with an optional '-' only (no leading spaces, no '+').
+    long value = 0;
+    const char* const end = text.data() + text.size();
+    const std::from_chars_result parsed = std::from_chars(text.data(), end, value);
+    if (text.empty() || parsed.ec != std::errc() || parsed.ptr != end || value < min_value || value > max_value) {
         throw UsageError(option + ": '" + text + "' is not an integer in [" + std::to_string(min_value) + ", " +
                          std::to_string(max_value) + "]");
     }
@@ -136,9 +157,12 @@ int parse_int(const std::string& option, const std::string& text, int min_value,
 }
 
 double parse_double(const std::string& option, const std::string& text) {
-    char* end = nullptr;
-    const double value = std::strtod(text.c_str(), &end);
-    if (text.empty() || *end != '\0' || !std::isfinite(value)) {
+    // std::from_chars, not strtod: a decimal (or exponent) form with an optional '-' only (no leading spaces, no
+    // '+', no hexadecimal floats such as 0x10).
+    double value = 0.0;
+    const char* const end = text.data() + text.size();
+    const std::from_chars_result parsed = std::from_chars(text.data(), end, value);
+    if (text.empty() || parsed.ec != std::errc() || parsed.ptr != end || !std::isfinite(value)) {
         throw UsageError(option + ": '" + text + "' is not a number");
     }
     return value;

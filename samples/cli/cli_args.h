@@ -43,12 +43,25 @@ private:
     std::vector<std::string> arguments_;
 };
 
+// The image files the commands write and `diff` reads; `diff` tells them apart by the name alone.
+enum class ImageFormat { Png, Pfm };
+// Pfm for a name ending in ".pfm" (any case), Png for any other.
+ImageFormat image_format_of(const std::string& path);
+// `path`, checked as the file `option` writes in `format`: UsageError when its name says the other format (a PNG
+// named .pfm, a PFM not named .pfm), so that `diff` reads back what was written. `other_option`, when given: the
+// option of the same command that writes the other format, named in the message.
+const std::string& check_image_path(const std::string& option, const std::string& path, ImageFormat format,
+                                    const char* other_option = nullptr);
+
 // "a,b,c" -> {"a", "b", "c"}; an empty entry (",," or a leading/trailing ',') or an empty text is a
 // UsageError naming `option`.
 std::vector<std::string> split_list(const std::string& option, const std::string& text);
 // "640x360" -> {640, 360}; UsageError otherwise.
 ImageSize parse_size(const std::string& option, const std::string& text);
+// Decimal digits with an optional '-' ("16", "-2"; not " 16", "+16" or "0x10") in [min_value, max_value].
 int parse_int(const std::string& option, const std::string& text, int min_value, int max_value);
+// A finite decimal number with an optional '-' and exponent ("0.5", ".5", "-2", "1e+08"; not "+1", " 1" or the
+// hexadecimal "0x10").
 double parse_double(const std::string& option, const std::string& text);
 // A finite number in [min_value, max_value].
 double parse_double_in(const std::string& option, const std::string& text, double min_value, double max_value);

@@ -91,13 +91,9 @@ CompareConfig take_compare_config(ArgumentList& arguments) {
         throw UsageError("--classes needs a perspective projection (the radius's size on screen shrinks with depth); "
                          "--projection ortho has none");
     }
-    if (auto rays = arguments.take_value("--reference-rays")) {
-        config.reference_rays = parse_int("--reference-rays", *rays, 1, 65536);
-    }
-    if (auto rays = arguments.take_value("--truth-rays")) config.truth_rays = parse_int("--truth-rays", *rays, 1, 65536);
-    if (auto seed = arguments.take_value("--truth-seed")) {
-        config.truth_seed = uint32_t(parse_int("--truth-seed", *seed, 0, 1 << 30));
-    }
+    const std::optional<std::string> reference_rays = arguments.take_value("--reference-rays");
+    const std::optional<std::string> truth_rays = arguments.take_value("--truth-rays");
+    const std::optional<std::string> truth_seed = arguments.take_value("--truth-seed");
     // A depth file has no triangles: its only truth is the screen-space reference.
     const std::string truth = arguments.take_value("--truth").value_or(config.scene.depth_file ? "screen" : "geometry");
     if (truth == "geometry") {
@@ -112,6 +108,22 @@ CompareConfig take_compare_config(ArgumentList& arguments) {
     if (config.scene.depth_file && config.truths.front() == TruthKind::Geometry) {
         throw UsageError("--truth " + truth + " needs a scene's triangles: a depth file has only the screen-space reference");
     }
+    // Each truth's own options: given without that truth they would do nothing, so they are refused (as --converged
+    // is without --frames).
+    const auto compared = [&](TruthKind kind) {
+        return std::find(config.truths.begin(), config.truths.end(), kind) != config.truths.end();
+    };
+    if (!compared(TruthKind::Geometry) && (truth_rays || truth_seed)) {
+        throw UsageError(std::string(truth_rays ? "--truth-rays" : "--truth-seed") + " sets the geometry truth, which --truth " +
+                         truth + " does not trace (give --truth geometry or both)");
+    }
+    if (!compared(TruthKind::Screen) && reference_rays) {
+        throw UsageError("--reference-rays sets the screen-space reference, which --truth " + truth +
+                         " does not render (give --truth screen or both)");
+    }
+    if (reference_rays) config.reference_rays = parse_int("--reference-rays", *reference_rays, 1, 65536);
+    if (truth_rays) config.truth_rays = parse_int("--truth-rays", *truth_rays, 1, 65536);
+    if (truth_seed) config.truth_seed = uint32_t(parse_int("--truth-seed", *truth_seed, 0, 1 << 30));
     const std::string pixels = arguments.take_value("--metrics-pixels").value_or("geometry");
     if (pixels != "geometry" && pixels != "all") {
         throw UsageError("unknown --metrics-pixels '" + pixels + "' (valid: geometry, all)");
@@ -120,6 +132,7 @@ CompareConfig take_compare_config(ArgumentList& arguments) {
     if (auto dir = arguments.take_value("--out-dir")) config.out_dir = *dir;
     config.json_path = arguments.take_value("--json");
     config.strip_path = arguments.take_value("--strip");
+    if (config.strip_path) check_image_path("--strip", *config.strip_path, ImageFormat::Png);
     const std::optional<std::string> orbit = arguments.take_value("--orbit");
     const std::optional<std::string> frames = arguments.take_value("--frames");
     const std::optional<std::string> motion_vectors = arguments.take_value("--motion-vectors");
@@ -135,7 +148,10 @@ CompareConfig take_compare_config(ArgumentList& arguments) {
     if (motion_vectors && *motion_vectors != "on" && *motion_vectors != "off") {
         throw UsageError("--motion-vectors takes on or off, not '" + *motion_vectors + "'");
     }
-    if (motion_vectors) config.motion_vectors = *motion_vectors == "on";
+    if (motion_vectors) {
+        if (config.frames < 2) throw UsageError("--motion-vectors needs --frames N (a single frame has no motion)");
+        config.motion_vectors = *motion_vectors == "on";
+    }
     if (converged) {
         if (config.frames < 2) throw UsageError("--converged needs --frames N");
         config.converged_frames = *converged == "off" ? 0 : parse_int("--converged", *converged, 2, 64);
@@ -143,10 +159,17 @@ CompareConfig take_compare_config(ArgumentList& arguments) {
     return config;
 }
 
+// Before any GL: a UsageError for what the scene's defaults do not go with.
 void resolve_scene_defaults(CompareConfig& config, const SceneSource& source) {
     const bool animated = source.scene() && source.scene()->animated();
     if (!config.motion_vectors) config.motion_vectors = animated;
     if (!config.converged_frames) config.converged_frames = animated && config.frames > 1 ? kDefaultConvergedFrames : 0;
+    // samples::render_scene rasterises motion vectors into a single-sample target only.
+    if (*config.motion_vectors && config.frames > 1 && config.scene.raster.samples > 1) {
+        throw UsageError("motion vectors (--motion-vectors on, the default on an animated scene) need a single-sample "
+                         "depth buffer: drop --msaa " + std::to_string(config.scene.raster.samples) +
+                         " or give --motion-vectors off");
+    }
 }
 
 // The cameras of the frames: the chosen one, or N along an orbit of `degrees` in total.

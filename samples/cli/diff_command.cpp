@@ -7,7 +7,6 @@
 // line on stderr.
 #include <algorithm>
 #include <cstdio>
-#include <filesystem>
 #include <exception>
 #include <optional>
 #include <stdexcept>
@@ -76,14 +75,13 @@ void write_json_report(const std::string& path, const std::string& image_path, c
 
 // PNG, or PFM (exact floats, as `render --pfm` and `truth --out` write them) by the file's extension.
 samples::FloatImage read_image(const std::string& path) {
-    const std::string extension = std::filesystem::path(path).extension().string();
-    if (extension == ".pfm" || extension == ".PFM") return samples::read_pfm(path);
-    return samples::read_png(path);
+    return image_format_of(path) == ImageFormat::Pfm ? samples::read_pfm(path) : samples::read_png(path);
 }
 
 int diff(ArgumentList& arguments) {
     const std::optional<std::string> tolerance_text = arguments.take_value("--tolerance");
     const std::optional<std::string> heat_map_path = arguments.take_value("--out");
+    if (heat_map_path) check_image_path("--out", *heat_map_path, ImageFormat::Png);
     const std::optional<std::string> json_path = arguments.take_value("--json");
     const std::vector<std::string> paths = arguments.take_positionals();
     arguments.require_all_taken();

@@ -40,7 +40,7 @@ SCENE (render, compare, bench, truth; tune takes the scenes as --scenes):
   --viewpoint NAME        one of the scene's cameras (--list-scenes; default: default)
   --eye X,Y,Z --target X,Y,Z [--fovy DEG]   a camera of your own instead
   --size WxH              the visible image (default 640x360); the depth texture adds the guard band
-  --guard-band F          fraction of the size added on each side (default 0.1)
+  --guard-band F          fraction of the size added on each side, in [0, 1) (default 0.1)
   --projection perspective|reversed|infinite|reversed-infinite|ortho    --depth-format d32f|d24|d24s8
   --msaa N    --no-clip-control    --normals (pass the scene's normals; else the SDK reconstructs them)
  or a captured depth buffer, a 1-channel PFM (rows bottom-up) whose size is the depth texture's:
@@ -59,12 +59,15 @@ Defaults: render --method hbao; compare every available method but the reference
 
 render writes the AO (visibility) of the visible image. --json: scene, size, method, effective settings,
   gpu_ms (the SDK's total and per pass) and wall_ms, medians of warm frames.
+Image files are named by their format, as diff reads them back: PFM files (render --pfm, truth --out and
+  --depth-out) .pfm, PNG files (render --out, truth --png, compare --strip, diff --out) anything else.
 compare renders each method and measures it against its truth with the same falloff as that method
   (obscura_reference_settings_for): --truth geometry (default for scenes) ray-traces the scene's
   triangles (--truth-rays per pixel, Embree on every core), screen (the only one for --depth files) is the
   SDK's screen-space REFERENCE through the depth buffer, infinitely thick unless reference:thickness is set
-  (--reference-rays per pixel), both reports each. Progress on stderr. Prints per truth and method: gpu and
-  wall ms, mean_abs, within_5pct (fraction of pixels within 0.05), PSNR, max_abs and the signed mean
+  (--reference-rays per pixel), both reports each (--truth-rays and --truth-seed need the geometry truth,
+  --reference-rays the screen-space one). Progress on stderr. Prints per truth and method: gpu and wall ms,
+  mean_abs, within_5pct (fraction of pixels within 0.05), PSNR, max_abs and the signed mean
   (method - truth: > 0 too bright), over the geometry pixels (sky left out and its fraction printed;
   --metrics-pixels all counts every pixel). --out-dir gets <n>_<method>.png,
   <n>_<method>_error_<geometry|screen>.png (white 0, black >= 0.2), <n>_<method>_signed_<truth>.png (red
@@ -79,8 +82,9 @@ compare renders each method and measures it against its truth with the same fall
   frame's many-sample image (N still frames accumulated): noise flicker is the flicker against those (the
   sampling noise's, apart from what the view itself changes) and converged their mean_abs; on an animated
   scene seen still a ghosting table follows: the error above the converged one of the pixels the moving object
-  uncovered and of those whose converged AO it changed by > 0.02, by the frames since.
-  order. --strip writes one sheet of the methods' AO labelled with their settings, then the first truth's
+  uncovered and of those whose converged AO it changed by > 0.02, by the frames since. --motion-vectors and
+  --converged need --frames; motion vectors need a single-sample depth buffer (no --msaa).
+  --strip writes one sheet of the methods' AO labelled with their settings, then the first truth's
   images if there are several (falloffs differ).
   --classes [RADIUS_M[,THICKNESS_M]] (default 1,0.3) splits the geometry pixels by where a screen-space method's
   thickness assumption matters and prints per truth and method mean_abs and signed over each class: silhouette
@@ -103,14 +107,15 @@ tune searches SPEC's settings, starting from them, for the lowest mean_abs again
   averaged over the --scenes views (e.g. atrium,objects,clutter@VIEWPOINT; default viewpoints otherwise), the
   truth weighed with each candidate's own falloff (obscura_reference_settings_for; one truth traced per
   falloff, --truth-rays per pixel, --seed). Searched: every number, enum and toggle of the method's metadata
-  (--list-settings) that is not derived, not scheduling or noise (frame_index, first_ray, rays_per_dispatch)
-  and does not define the falloff (radius, falloff_c, falloff, GTAO's falloff_range: they move the target);
-  --keys names the settings to search instead (derived and falloff ones too). Ranges are the metadata's, on a
-  log scale where they span more than 2 decades. The search (seeded, deterministic): compass steps with
-  halving, pattern moves, random directions and restarts, --evaluations renders in all. Cost: the SDK's total
-  summed over the scenes, median of warm frames, timed in the same run; --budget 1.0x:hbao rejects candidates
-  costing more than 1.0 times the spec hbao on the same scenes, and the best is timed again against it
-  (alternately) before it is reported; settings of the best that leave its pictures unchanged are put back.
+  (--list-settings) that is not derived, not scheduling or noise (frame_index, first_ray, rays_per_dispatch),
+  not temporal accumulation (temporal.*: tune weighs one frame) and does not define the falloff (radius,
+  falloff_c, falloff, GTAO's falloff_range: they move the target); --keys names the settings to search instead
+  (derived and falloff ones too; it refuses the scheduling, noise and temporal.* ones). Ranges are the
+  metadata's, on a log scale where they span more than 2 decades. The search (seeded, deterministic): compass
+  steps with halving, pattern moves, random directions and restarts, --evaluations renders in all. Cost: the
+  SDK's total summed over the scenes, median of warm frames, timed in the same run; --budget 1.0x:hbao rejects
+  candidates costing more than 1.0 times the spec hbao on the same scenes, and the best is timed again against
+  it (alternately) before it is reported; settings of the best that leave its pictures unchanged are put back.
   Progress on stderr; prints the start's and the best's error (per scene) and cost, the budget, and the best
   settings as a spec (for --method) and as C code; --json writes them with every evaluation. Exit 1 when no
   candidate is within the budget.

@@ -45,6 +45,8 @@ RenderConfig take_render_config(ArgumentList& arguments) {
     config.sync_timing = arguments.take_flag("--sync-timing");
     config.png_path = arguments.take_value("--out");
     config.pfm_path = arguments.take_value("--pfm");
+    if (config.png_path) check_image_path("--out", *config.png_path, ImageFormat::Png, "--pfm");
+    if (config.pfm_path) check_image_path("--pfm", *config.pfm_path, ImageFormat::Pfm, "--out");
     config.json_path = arguments.take_value("--json");
     arguments.require_all_taken();
     if (!config.png_path && !config.pfm_path && !config.json_path) {

@@ -18,6 +18,22 @@ glm::vec3 parse_vec3(const std::string& option, const std::string& text) {
                      float(parse_double(option, parts[2])));
 }
 
+// --guard-band F, scenes and depth files alike: a fraction per side in [0, kGuardBandBelow). A depth file's
+// (samples::DepthFileOptions) must be below 1, and truth --depth-out writes a scene's for --depth to read back, so the
+// two take the same range.
+constexpr float kGuardBandBelow = 1.0f;
+
+float parse_guard_band(const std::string& text) {
+    // Checked as the float it is kept in: 0.9999999999 rounds to 1.
+    const float value = float(parse_double("--guard-band", text));
+    if (!(value >= 0.0f && value < kGuardBandBelow)) {
+        char range[32];
+        std::snprintf(range, sizeof range, "[0, %g)", double(kGuardBandBelow));
+        throw UsageError("--guard-band: " + text + " is outside " + range);
+    }
+    return value;
+}
+
 // Options that only one kind of source has: given with the other kind, they are a UsageError.
 struct Given {
     std::string name;
@@ -28,6 +44,18 @@ void reject(const std::vector<Given>& options, const std::string& why) {
     for (const Given& option : options) {
         if (option.present) throw UsageError(option.name + " " + why);
     }
+}
+
+// glm::lookAt needs an up vector that is not along the view direction (its cross product with it is the image's x
+// axis: zero gives a NaN view matrix). At or below this sine of the angle between them the camera takes another.
+constexpr float kParallelUpSine = 1e-3f;
+
+// `up`, or for a camera looking (nearly) straight along it another: -Z, as the scene library's "top" viewpoint has
+// (the image's top towards -Z), or +Y for a camera looking along Z.
+glm::vec3 up_for_view(const glm::vec3& eye, const glm::vec3& target, const glm::vec3& up) {
+    const glm::vec3 forward = glm::normalize(target - eye);
+    if (glm::length(glm::cross(forward, glm::normalize(up))) > kParallelUpSine) return up;
+    return std::fabs(forward.z) < 0.5f ? glm::vec3(0.0f, 0.0f, -1.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
 }
 
 // Turns the scene library's std::invalid_argument (unknown names) into a UsageError.
@@ -76,7 +104,7 @@ SceneSourceOptions take_scene_source_options(ArgumentList& arguments, bool takes
         file.path = *depth;
         if (depth_kind) file.kind = as_usage_error([&] { return samples::parse_depth_file_kind(*depth_kind); });
         if (options.fov_y_degrees) file.fov_y_degrees = *options.fov_y_degrees;
-        if (guard_band) file.guard_band = float(parse_double_in("--guard-band", *guard_band, 0.0, 0.99));
+        if (guard_band) file.guard_band = parse_guard_band(*guard_band);
         if (near_plane) file.near_plane = float(parse_double_in("--near", *near_plane, 1e-6, 1e9));
         if (far_plane) {
             file.far_plane = *far_plane == "inf" ? std::numeric_limits<float>::infinity()
@@ -105,7 +133,7 @@ SceneSourceOptions take_scene_source_options(ArgumentList& arguments, bool takes
         options.raster.width = parsed.width;
         options.raster.height = parsed.height;
     }
-    if (guard_band) options.raster.guard_band = float(parse_double_in("--guard-band", *guard_band, 0.0, 1.0));
+    if (guard_band) options.raster.guard_band = parse_guard_band(*guard_band);
     if (projection) options.raster.projection = as_usage_error([&] { return samples::parse_projection_kind(*projection); });
     if (depth_format) {
         options.raster.depth_format = as_usage_error([&] { return samples::parse_depth_format(*depth_format); });
@@ -123,6 +151,7 @@ SceneSource::SceneSource(SceneSourceOptions options) : options_(std::move(option
         camera_ = scene_.viewpoints.front().camera;
         camera_.eye = *options_.eye;
         camera_.target = *options_.target;
+        camera_.up = up_for_view(camera_.eye, camera_.target, camera_.up);
         camera_name_ = "command-line camera";
     } else {
         const std::string name = options_.viewpoint.value_or("default");

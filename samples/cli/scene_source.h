@@ -3,8 +3,8 @@
 // (a PFM file). The command-line options:
 //   --scene NAME|FILE.obj (default atrium), --viewpoint NAME, or --eye X,Y,Z --target X,Y,Z [--fovy DEG];
 //   --size WxH (visible image, default 640x360; commands that take several sizes parse their own),
-//   --guard-band F (default 0.1 per side), --projection P, --depth-format D, --msaa N, --no-clip-control,
-//   --normals (hand the scene's view-space normals to the SDK; otherwise it reconstructs them);
+//   --guard-band F (default 0.1 per side, in [0, 1) as a depth file's), --projection P, --depth-format D, --msaa N,
+//   --no-clip-control, --normals (hand the scene's view-space normals to the SDK; otherwise it reconstructs them);
 // or instead of a scene:
 //   --depth FILE.pfm [--depth-kind linear|hardware] [--near N] [--far F|inf] [--reversed-z] [--fovy DEG]
 //   [--guard-band F (default 0: what the file includes per side)]; the size is the file's.

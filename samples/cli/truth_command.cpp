@@ -43,15 +43,17 @@ TruthConfig take_truth_config(ArgumentList& arguments) {
     arguments.require_all_taken();
     if (!out) throw UsageError("truth needs --out TRUTH.pfm (and optionally --depth-out DEPTH.pfm, --png TRUTH.png)");
     if (config.depth_path) {
-        // What --depth reads back: one perspective, single-sample depth buffer with a guard band it accepts.
+        // What --depth reads back: one perspective, single-sample depth buffer (any scene guard band is one it
+        // accepts: both take [0, 1)).
         const samples::SceneRenderOptions& raster = config.scene.raster;
         if (raster.samples > 1) throw UsageError("--depth-out needs a single-sample depth buffer (no --msaa)");
         if (raster.projection == samples::ProjectionKind::Orthographic) {
             throw UsageError("--depth-out needs a perspective projection: --depth reads perspective captures only");
         }
-        if (!(raster.guard_band < 1.0f)) throw UsageError("--depth-out needs --guard-band below 1 (what --depth reads)");
     }
-    config.out_path = *out;
+    config.out_path = check_image_path("--out", *out, ImageFormat::Pfm, "--png");
+    if (config.png_path) check_image_path("--png", *config.png_path, ImageFormat::Png, "--out");
+    if (config.depth_path) check_image_path("--depth-out", *config.depth_path, ImageFormat::Pfm);
     return config;
 }
 

@@ -7,12 +7,59 @@
 #include <stdexcept>
 
 namespace obscura::samples {
+namespace {
+
+// The length of the well-formed UTF-8 sequence (RFC 3629: no overlong forms, no surrogates, nothing above U+10FFFF)
+// that starts at text[at], 1 to 4; 0 when the bytes there are not one.
+size_t utf8_sequence_length(std::string_view text, size_t at) {
+    const auto byte = [&](size_t k) {
+        return at + k < text.size() ? unsigned(static_cast<unsigned char>(text[at + k])) : 0u;  // 0: past the end
+    };
+    const unsigned lead = byte(0);
+    if (lead < 0x80) return 1;
+    size_t length = 0;
+    unsigned second_min = 0x80, second_max = 0xBF;  // the second byte's range, narrower after some leads
+    if (lead >= 0xC2 && lead <= 0xDF) {
+        length = 2;
+    } else if (lead >= 0xE0 && lead <= 0xEF) {
+        length = 3;
+        if (lead == 0xE0) second_min = 0xA0;  // below: overlong
+        if (lead == 0xED) second_max = 0x9F;  // above: surrogates
+    } else if (lead >= 0xF0 && lead <= 0xF4) {
+        length = 4;
+        if (lead == 0xF0) second_min = 0x90;  // below: overlong
+        if (lead == 0xF4) second_max = 0x8F;  // above: beyond U+10FFFF
+    } else {
+        return 0;  // a continuation byte, an overlong lead (C0, C1) or F5-FF
+    }
+    if (byte(1) < second_min || byte(1) > second_max) return 0;
+    for (size_t k = 2; k < length; ++k) {
+        if (byte(k) < 0x80 || byte(k) > 0xBF) return 0;
+    }
+    return length;
+}
+
+}  // namespace
 
 std::string JsonWriter::quote(std::string_view text) {
     std::string quoted;
     quoted.reserve(text.size() + 2);
     quoted += '"';
-    for (const char character : text) {
+    for (size_t at = 0; at < text.size();) {
+        // JSON text is UTF-8: a byte that does not begin a well-formed sequence (a Latin-1 file name, say) becomes
+        // U+FFFD, the replacement character, and the text goes on after it.
+        if (static_cast<unsigned char>(text[at]) >= 0x80) {
+            const size_t length = utf8_sequence_length(text, at);
+            if (length == 0) {
+                quoted += "\xEF\xBF\xBD";
+                ++at;
+            } else {
+                quoted.append(text.substr(at, length));
+                at += length;
+            }
+            continue;
+        }
+        const char character = text[at++];
         switch (character) {
             case '"': quoted += "\\\""; break;
             case '\\': quoted += "\\\\"; break;
@@ -27,7 +74,7 @@ std::string JsonWriter::quote(std::string_view text) {
                     std::snprintf(escape, sizeof escape, "\\u%04x", unsigned(static_cast<unsigned char>(character)));
                     quoted += escape;
                 } else {
-                    quoted += character;  // printable ASCII or a byte of UTF-8: as is
+                    quoted += character;  // printable ASCII
                 }
         }
     }

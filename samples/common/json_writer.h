@@ -6,8 +6,9 @@
 //     json.key("size").begin_array().value(320).value(180).end_array();
 //     json.end_object().write_file("report.json");
 //
-// Strings are UTF-8, escaped as JSON requires (quote, backslash, control characters). Numbers that
-// JSON cannot hold (NaN, +-infinity, e.g. the PSNR of identical images) are written as null; finite
+// Strings are UTF-8, escaped as JSON requires (quote, backslash, control characters); a byte that is not
+// part of well-formed UTF-8 (a Latin-1 file name, say) is written as U+FFFD, the replacement character.
+// Numbers that JSON cannot hold (NaN, +-infinity, e.g. the PSNR of identical images) are written as null; finite
 // doubles in the shortest form that reads back to the same double. Misuse (a value in an object
 // without a key, a key in an array, an unbalanced end, a second top-level value, str() before the
 // document is complete) throws std::logic_error.

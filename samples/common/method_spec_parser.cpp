@@ -32,13 +32,18 @@ std::string range_text(const obscura_setting_info& info) {
            (info.unit && *info.unit ? std::string(" ") + info.unit : std::string());
 }
 
+// Whether `text` is, as a whole, a finite decimal number (optional '-', digits, '.', exponent), and if so its value in
+// `value`. std::from_chars, not strtod: no leading spaces, no '+', no hexadecimal floats ("0x10").
+bool read_decimal(const std::string& text, double& value) {
+    const char* const end = text.data() + text.size();
+    const std::from_chars_result parsed = std::from_chars(text.data(), end, value);
+    return !text.empty() && parsed.ec == std::errc() && parsed.ptr == end && std::isfinite(value);
+}
+
 // A finite number, the whole of `text`; MethodSpecError naming `what` otherwise.
 double parse_number(const std::string& text, const std::string& what) {
-    char* end = nullptr;
-    const double value = std::strtod(text.c_str(), &end);
-    if (text.empty() || *end != '\0' || !std::isfinite(value)) {
-        throw MethodSpecError(what + ": '" + text + "' is not a number");
-    }
+    double value = 0.0;
+    if (!read_decimal(text, value)) throw MethodSpecError(what + ": '" + text + "' is not a number");
     return value;
 }
 
@@ -245,9 +250,8 @@ double parse_setting_value(const obscura_setting_info& info, const std::string& 
         for (uint32_t i = 0; info.value_names && i < info.value_count; ++i) {
             if (info.value_names[i] && text == info.value_names[i]) return info.min_value + i;
         }
-        char* end = nullptr;
-        const double value = std::strtod(text.c_str(), &end);
-        if (text.empty() || *end != '\0' || !std::isfinite(value)) {
+        double value = 0.0;
+        if (!read_decimal(text, value)) {
             throw MethodSpecError(what + ": '" + text + "' is not one of its values (valid: " + value_name_list(info) +
                                   ", or their numbers " + format_number(info.min_value) + " to " +
                                   format_number(info.max_value) + ")");

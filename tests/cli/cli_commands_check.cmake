@@ -12,8 +12,11 @@
 #   orbit        report.json: methods[0] has a flicker and a last frame's error against the geometry truth in range
 #   classes      report.json of --classes 1,0.3: the "classes" block (radius, thickness, its image, the counts adding
 #                up to the geometry pixels) and each method's errors per class; the other keys as without it
-#   truth        the capture `truth` wrote reads back: `render --depth` of its depth gives the scene's own
-#                image exactly (obscura diff), and the truth PFM has the visible size
+#   truth        the capture `truth` wrote reads back: `render --depth` of its depth with the guard band and fovy
+#                truth prints gives the scene's own image (160x90, that guard band) exactly (obscura diff), and the
+#                truth PFM has the visible size
+#   json_utf8    `diff --json` of two copies of data/gradient.png, one named with a byte that is not UTF-8 (0xFF),
+#                one with UTF-8 (U+00E9): the report names the first with U+FFFD in its place, the second as is
 #   bench        bench.json: two results (160x90, 96x54), clock "wall" (either clock with GPU=ON)
 #   bench_refused  a configuration the SDK refuses is reported in bench.json/csv and the next one runs
 #   strip        strip.png: 8-bit gray, 3 x 2 tiles of 160x90 with labels (7 + 4 px) and 4-pixel gaps
@@ -127,6 +130,35 @@ if(CHECK STREQUAL "unavailable")
     problem("stderr does not name '${method}'")
   endif()
   expect_one_line_stderr("${err}")
+elseif(CHECK STREQUAL "json_utf8")
+  # A Latin-1 file name (0xFF, not UTF-8) and a UTF-8 one (0xC3 0xA9): JSON text is UTF-8, so the report writes U+FFFD
+  # (0xEF 0xBF 0xBD) for the stray byte and passes the UTF-8 through. Read as hex: CMake's JSON parser takes either.
+  string(ASCII 255 latin1_byte)
+  string(ASCII 195 169 utf8_e_acute)
+  set(latin1_name "g${latin1_byte}.png")
+  set(utf8_name "g${utf8_e_acute}.png")
+  file(COPY_FILE "${CMAKE_CURRENT_LIST_DIR}/data/gradient.png" "${WORK_DIR}/${latin1_name}")
+  file(COPY_FILE "${CMAKE_CURRENT_LIST_DIR}/data/gradient.png" "${WORK_DIR}/${utf8_name}")
+  run_obscura(diff ${latin1_name} ${utf8_name} --json report.json)
+  if(NOT status EQUAL 0)
+    problem("exit status ${status}, expected 0")
+  endif()
+  if(EXISTS "${WORK_DIR}/report.json")
+    file(READ "${WORK_DIR}/report.json" report HEX)
+    # "g", then U+FFFD or the two UTF-8 bytes, then ".png" and the closing quote.
+    foreach(expected "67efbfbd2e706e6722" "67c3a92e706e6722")
+      string(FIND "${report}" "${expected}" found)
+      if(found EQUAL -1)
+        problem("report.json (hex ${report}) has no ${expected}")
+      endif()
+    endforeach()
+    string(FIND "${report}" "67ff2e706e67" raw)
+    if(NOT raw EQUAL -1)
+      problem("report.json has the byte 0xFF as is: not UTF-8")
+    endif()
+  else()
+    problem("report.json was not written")
+  endif()
 elseif(CHECK STREQUAL "bench_refused")
   # The first configuration needs 2.7 GB in one storage block (over every driver's limit that we know:
   # 128 MiB on llvmpipe, 2 GiB on NVIDIA's): bench reports it, times the second, writes both, exits 1.
@@ -309,7 +341,7 @@ elseif(CHECK STREQUAL "truth")
     if(NOT status EQUAL 0)
       problem("render --depth of the capture exited ${status}: ${err}")
     endif()
-    run_obscura(render --scene analytic --size 160x90 --method hbao --pfm from_scene.pfm)
+    run_obscura(render --scene analytic --size 160x90 --guard-band ${guard} --method hbao --pfm from_scene.pfm)
     run_obscura(diff from_depth.pfm from_scene.pfm --tolerance mean=0.0005,pixels=0.002,threshold=2)
     if(NOT status EQUAL 0)
       problem("HBAO of the captured depth differs from HBAO of the scene: ${out}")

@@ -143,6 +143,21 @@ obscura_cli_command_test(tune_small 0
 obscura_cli_command_test(truth_capture 0
   "truth|${scene}|--rays|16|--falloff|hbao|--out|truth.pfm|--depth-out|depth.pfm|--png|truth.png"
   GL CHECK truth EXPECT_FILES "truth.pfm|depth.pfm|truth.png" EXPECT_STDOUT "traced [0-9]+ rays")
+# The widest guard band a scene takes is one --depth reads back too: the capture's read-back command runs.
+obscura_cli_command_test(truth_capture_widest_guard_band 0
+  "truth|${scene}|--guard-band|0.995|--rays|4|--falloff|hbao|--out|truth.pfm|--depth-out|depth.pfm"
+  GL CHECK truth EXPECT_FILES "truth.pfm|depth.pfm" EXPECT_STDOUT "--guard-band 0.995 ")
+# A camera looking straight down its up vector (+Y) takes another (-Z, as the "top" viewpoints do) rather than a
+# NaN view matrix: truth writes its capture, render its image, and compare finds geometry to measure (it refuses
+# a view of sky only).
+obscura_cli_command_test(truth_camera_straight_down 0
+  "truth|--scene|analytic|--size|64x36|--eye|0,10,0|--target|0,0,0|--rays|1|--out|truth.pfm|--depth-out|depth.pfm"
+  GL EXPECT_FILES "truth.pfm|depth.pfm")
+obscura_cli_command_test(render_camera_straight_down 0
+  "render|--scene|analytic|--size|64x36|--eye|0,10,0|--target|0,0,0|--out|ao.png" GL EXPECT_FILES "ao.png")
+obscura_cli_command_test(compare_camera_straight_down 0
+  "compare|--scene|analytic|--size|64x36|--eye|0,10,0|--target|0,0,0|--methods|hbao|--truth-rays|1"
+  GL EXPECT_FILES "compare-output/1_hbao.png" EXPECT_STDOUT "over [1-9][0-9]* geometry pixels")
 
 # ---- Lists and help (no GL) --------------------------------------------------------------------------
 obscura_cli_command_test(list_scenes 0 "--list-scenes" EXPECT_STDOUT "atrium +available[^\n]*\n[^\n]*viewpoints: default")
@@ -155,6 +170,10 @@ obscura_cli_command_test(list_settings_enums_derived_arrays 0 "--list-settings|f
 obscura_cli_command_test(list_settings_lsao_preset 0 "--list-settings|lsao"
   EXPECT_STDOUT "\n +preset +enum +derived +1 +6 +[{]k8, k16, k24, k32, k8_figure1, k16_figure13[}].*\n +directions +int +derived +1 +64 ")
 obscura_cli_command_test(help 0 "--help" EXPECT_STDOUT "obscura compare[^\n]*--methods")
+obscura_cli_command_test(help_compare_frames 0 "--help"
+  EXPECT_STDOUT "by the frames since[.] --motion-vectors and\n  --converged need --frames; [^\n]*\n  --strip writes ")
+obscura_cli_command_test(help_tune_never_searched 0 "--help"
+  EXPECT_STDOUT "not temporal accumulation [(]temporal[.][*]: tune weighs one frame[)].*--keys [^.]*it refuses the scheduling, noise and temporal[.][*] ones[)]")
 
 # ---- Bad arguments: exit 2 and one line on stderr, before any GL -----------------------------------------
 obscura_cli_command_test(unknown_option 2 "render|--out|ao.png|--no-such-option")
@@ -204,6 +223,48 @@ obscura_cli_command_test(tune_bad_budget 2 "tune|--method|hbao|--scenes|analytic
 obscura_cli_command_test(tune_key_not_searched 2 "tune|--method|gtao|--scenes|analytic|--keys|power,frame_index"
   EXPECT_STDERR "^obscura: --keys: frame_index is not searched: it moves the noise pattern only[^\n]*\n$")
 obscura_cli_command_test(tune_without_scenes 2 "tune|--method|hbao" EXPECT_STDERR "^obscura: tune needs --scenes ")
+# Motion vectors are rasterised single-sample only: with --msaa a usage error before any GL, whether asked for or the
+# animated scene's default.
+obscura_cli_command_test(compare_motion_vectors_msaa 2 "compare|--scene|analytic|--motion-vectors|on|--frames|3|--msaa|2"
+  EXPECT_STDERR "^obscura: motion vectors [^\n]*need a single-sample depth buffer: drop --msaa 2 or give --motion-vectors off")
+obscura_cli_command_test(compare_animated_scene_msaa 2 "compare|--scene|sliding|--frames|3|--msaa|4"
+  EXPECT_STDERR "^obscura: motion vectors [^\n]*the default on an animated scene[^\n]*: drop --msaa 4 ")
+# Options that would do nothing are refused, as --converged without --frames is (the commands are small, so that
+# without the check they finish quickly with exit 0).
+obscura_cli_command_test(compare_motion_vectors_without_frames 2
+  "compare|--scene|analytic|--size|32x18|--methods|hbao|--truth-rays|1|--motion-vectors|on"
+  EXPECT_STDERR "--motion-vectors needs --frames N")
+obscura_cli_command_test(compare_truth_rays_without_geometry_truth 2
+  "compare|--scene|analytic|--size|32x18|--methods|hbao|--reference-rays|1|--truth|screen|--truth-rays|4"
+  EXPECT_STDERR "^obscura: --truth-rays sets the geometry truth, which --truth screen does not trace")
+obscura_cli_command_test(compare_truth_seed_without_geometry_truth 2
+  "compare|--scene|analytic|--size|32x18|--methods|hbao|--reference-rays|1|--truth|screen|--truth-seed|4"
+  EXPECT_STDERR "^obscura: --truth-seed sets the geometry truth")
+obscura_cli_command_test(compare_reference_rays_without_screen_truth 2
+  "compare|--scene|analytic|--size|32x18|--methods|hbao|--truth-rays|1|--reference-rays|4"
+  EXPECT_STDERR "^obscura: --reference-rays sets the screen-space reference, which --truth geometry does not render")
+# diff reads a .pfm name as PFM and any other as PNG: a file named for the other format is refused.
+obscura_cli_command_test(render_out_named_pfm 2 "render|--scene|analytic|--size|32x18|--out|ao.pfm"
+  EXPECT_STDERR "^obscura: --out writes PNG, but 'ao.pfm' is named as a PFM file [^\n]*; --pfm writes PFM ")
+obscura_cli_command_test(truth_out_named_png 2 "truth|--scene|analytic|--size|32x18|--rays|1|--out|truth.png"
+  EXPECT_STDERR "^obscura: --out writes PFM, but 'truth.png' is not named .pfm [^\n]*; --png writes PNG ")
+# A guard band of 1 or more: refused for scenes as for depth files (which take [0, 1)).
+obscura_cli_command_test(scene_guard_band_one 2 "render|--scene|analytic|--size|32x18|--guard-band|1|--out|ao.png"
+  EXPECT_STDERR "^obscura: --guard-band: 1 is outside \\[0, 1[)]")
+obscura_cli_command_test(depth_file_guard_band_one 2 "render|--depth|plane.pfm|--guard-band|1|--out|ao.png"
+  EXPECT_STDERR "^obscura: --guard-band: 1 is outside \\[0, 1[)]")
+# Numbers are decimal: no '+', no leading space, no hexadecimal (strtol and strtod took all three).
+obscura_cli_command_test(integer_with_plus_sign 2 "render|--scene|analytic|--size|+32x18|--out|ao.png"
+  EXPECT_STDERR "^obscura: --size [(]width[)]: '[+]32' is not an integer")
+obscura_cli_command_test(integer_with_leading_space 2 "render|--scene|analytic|--size| 32x18|--out|ao.png"
+  EXPECT_STDERR "^obscura: --size [(]width[)]: ' 32' is not an integer")
+obscura_cli_command_test(hexadecimal_float_option 2
+  "compare|--scene|analytic|--size|32x18|--methods|hbao|--truth-rays|1|--frames|2|--orbit|0x10"
+  EXPECT_STDERR "^obscura: --orbit: '0x10' is not a number")
+obscura_cli_command_test(hexadecimal_spec_value 2 "render|--scene|analytic|--size|32x18|--method|hbao:steps=0x10|--out|ao.png"
+  EXPECT_STDERR "^obscura: hbao steps: '0x10' is not a number")
+# JSON reports stay UTF-8 whatever the file names (no GL: diff).
+obscura_cli_command_test(json_report_file_name_not_utf8 0 "" CHECK json_utf8)
 # A camera that sees only sky has no geometry pixel to measure: refused with a reason, not a perfect score.
 obscura_cli_command_test(compare_sky_only_view 1
   "compare|--scene|analytic|--size|64x36|--eye|0,2,0|--target|0,10,5|--methods|hbao|--truth-rays|1"
