@@ -224,11 +224,13 @@ void main() {
         reference_basis(normal, tangent, bitangent);
         // A rank-1 lattice in [0,1)^2 (the R2 sequence, generator 1/phi_2 and 1/phi_2^2 in 0.32 fixed
         // point) with a per-pixel Cranley-Patterson rotation: any prefix of it is well stratified, so
-        // batches and frames with consecutive first_ray values accumulate into one low-discrepancy set.
-        vec2 noise = obscura_pixel_noise(p);
+        // batches and frames with consecutive first rays accumulate into one low-discrepancy set. The frame moves
+        // the first ray (ReferencePass::first_ray_of_frame), not the rotation: the frames' R2 offset is this
+        // lattice's own generator, so adding it to the rotation only shifted the sequence by one ray a frame.
+        vec2 noise = obscura_pixel_hash_noise(p);
         uvec2 rotation = uvec2(noise * 4294967296.0);
         for (int j = 0; j < u_batch.y; ++j) {
-            uint index = uint(u_batch.x + j);
+            uint index = uint(u_batch.x) + uint(j);
             uvec2 lattice = rotation + index * uvec2(3242174889u, 2447445414u);
             vec2 u = vec2(lattice >> 8u) * (1.0 / 16777216.0);
             float r = sqrt(u.x);

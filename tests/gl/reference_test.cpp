@@ -150,6 +150,29 @@ TEST_F(Reference, FramesWithConsecutiveFirstRaysAverageToOneRender) {
     EXPECT_GT(max_abs_difference(first, second), 0.01);  // the two frames did trace different rays
 }
 
+// Frame n traces rays first_ray + n * rays ...: advancing frame_index draws the next rays of the sequence, so two
+// 8-ray frames 0 and 1 average to the 16-ray render, as first_ray 0 and 8 do. (The frames' R2 noise offset, added
+// to the rotation, once only shifted the sequence by one ray: frame 1 repeated 7 of frame 0's 8 rays.)
+TEST_F(Reference, FrameIndexTracesTheNextRaysOfTheSequence) {
+    AoScene scene = box_scene();
+    const std::vector<float> whole = render_visibility(ctx(), scene.input, reference_settings(16));
+    const obscura_settings half = reference_settings(8);
+    obscura_input input = scene.input;
+    input.frame_index = 0;
+    const std::vector<float> frame0 = render_visibility(ctx(), input, half);
+    input.frame_index = 1;
+    const std::vector<float> frame1 = render_visibility(ctx(), input, half);
+    ASSERT_EQ(frame0.size(), whole.size());
+    std::vector<float> average(whole.size());
+    for (size_t i = 0; i < whole.size(); ++i) average[i] = 0.5f * (frame0[i] + frame1[i]);
+    EXPECT_LT(max_abs_difference(average, whole), 1e-5);
+    // Frame 1 with first_ray 0 is first_ray 8 of frame 0.
+    obscura_settings second_half = half;
+    second_half.reference.first_ray = 8;
+    input.frame_index = 0;
+    EXPECT_LT(max_abs_difference(render_visibility(ctx(), input, second_half), frame1), 1e-6);
+}
+
 TEST_F(Reference, AccumulatorIsCountedInMemory) {
     AoScene scene = box_scene();
     // HBAO without its blur: neither holds the reconstruction's two textures, so the accumulator is the difference.

@@ -7,9 +7,12 @@ uint obscura_hash(uint v) {
     return (word >> 22u) ^ word;
 }
 
-// Two values in [0, 1) for a pixel.
-vec2 obscura_pixel_noise(ivec2 pixel) {
+// Two values in [0, 1) for a pixel, the same in every frame.
+vec2 obscura_pixel_hash_noise(ivec2 pixel) {
     uint h = obscura_hash(uint(pixel.x) + obscura_hash(uint(pixel.y)));
     uint g = obscura_hash(h);
-    return fract(vec2(float(h >> 8u), float(g >> 8u)) * (1.0 / 16777216.0) + noise_offset.xy);
+    return vec2(float(h >> 8u), float(g >> 8u)) * (1.0 / 16777216.0);
 }
+
+// The same moved by the frame's offset: two values in [0, 1) for a pixel in this frame.
+vec2 obscura_pixel_noise(ivec2 pixel) { return fract(obscura_pixel_hash_noise(pixel) + noise_offset.xy); }

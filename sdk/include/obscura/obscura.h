@@ -376,8 +376,10 @@ typedef enum obscura_falloff {
    the geometry truth (rays against the scene's triangles, in the samples): with thickness 0 every ray that
    passes behind a silhouette counts as blocked, which darkens the sides of convex objects, the insides of
    arches and the floor behind thin objects. The rays are cast in dispatches of rays_per_dispatch (progressive
-   accumulation: no single dispatch runs long); hosts may accumulate further across frames by averaging
-   renders with first_ray = 0, rays, 2 * rays, ... (each frame then traces new rays of one sequence).
+   accumulation: no single dispatch runs long). Frame n (obscura_input.frame_index) traces the rays first_ray +
+   n * rays ... of one low-discrepancy sequence per pixel, so frames that advance frame_index (temporal accumulation
+   included) trace new rays each; hosts that keep frame_index may instead average renders with first_ray = 0,
+   rays, 2 * rays, ... (the same rays).
    obscura_reference_settings_for() makes these settings match another method's falloff. */
 typedef struct obscura_reference_settings {
     float radius;         /* metres, [1e-3, 1e4]: where RHO0 (with the default decay rate) and TABLE reach 0. Default 1 */

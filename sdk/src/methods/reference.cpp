@@ -79,7 +79,7 @@ public:
         // Each batch is flushed so the GPU starts on it while the next is recorded, and no single submission
         // runs long (watchdogs, a responsive desktop).
         pass_.run(frame.env, frame.uniforms.ao, pass_constants_, frame.regions.ao, frame.settings.reference,
-                  frame.resources, accumulator_, [&] { recorder.flush(); });
+                  frame.input.frame_index, frame.resources, accumulator_, [&] { recorder.flush(); });
         out->raw = out->result = &accumulator_;
         return recorder.end(PassId::Reference);
     }

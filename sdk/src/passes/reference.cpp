@@ -49,10 +49,11 @@ void ReferencePass::bind(const PassEnv& env, const UniformRange& frame, const Un
     env.bind_uniforms(OBSCURA_UBO_PASS, pass);
 }
 
-void ReferencePass::dispatch(const PassEnv& env, const Region& region, int first_ray, int count, bool first,
+void ReferencePass::dispatch(const PassEnv& env, const Region& region, uint32_t first_ray, int count, bool first,
                              bool last) {
     const gl::Table& gl = env.gl;
-    gl.Uniform4i(kBatchLocation, first_ray, count, first ? 1 : 0, last ? 1 : 0);
+    // The first ray's index as the int's bits: the shader reads it back as a uint (the sequence wraps modulo 2^32).
+    gl.Uniform4i(kBatchLocation, int32_t(first_ray), count, first ? 1 : 0, last ? 1 : 0);
     env.dispatch(region.width, region.height, OBSCURA_REFERENCE_GROUP_X, OBSCURA_REFERENCE_GROUP_Y);
     // The next batch reads what this one accumulated; after the last, the composite samples it.
     gl.MemoryBarrier(last ? GL_TEXTURE_FETCH_BARRIER_BIT : GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);

@@ -17,18 +17,27 @@ public:
     Error prepare(const PassEnv& env);
     // Converts resolved settings (metres) to the shader's constants (view units).
     static ReferenceConstants constants(const obscura_reference_settings& settings, const FrameInput& input);
+    // The index of frame `frame_index`'s first ray in the per-pixel sequence: the frames of a host that advances
+    // frame_index trace consecutive, disjoint runs of one low-discrepancy sequence, rays apart (as renders with
+    // first_ray 0, rays, 2 rays ... do), so accumulated frames converge like one render of all their rays. (The
+    // frame's R2 offset of the other methods' noise, added to this sequence's rotation, only shifted it by one ray
+    // a frame: 8 accumulated frames of 16 rays held 23 distinct rays.) Wraps modulo 2^32, as the shader's index does.
+    static uint32_t first_ray_of_frame(const obscura_reference_settings& settings, uint32_t frame_index) {
+        return uint32_t(settings.first_ray) + frame_index * uint32_t(settings.rays);
+    }
     // Traces settings.rays rays per pixel of `region` into `accumulator` (R32F), which then holds visibility.
     // `between_batches` runs after every dispatch but the last (the context flushes and marks timings there).
     template <class Callback>
     void run(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
-             const obscura_reference_settings& settings, FrameResources& resources, const gl::Texture2D& accumulator,
-             Callback&& between_batches) {
+             const obscura_reference_settings& settings, uint32_t frame_index, FrameResources& resources,
+             const gl::Texture2D& accumulator, Callback&& between_batches) {
         bind(env, frame, pass, resources, accumulator);
         const int total = settings.rays, per_batch = settings.rays_per_dispatch;
+        const uint32_t first = first_ray_of_frame(settings, frame_index);
         for (int done = 0; done < total; done += per_batch) {
             const int count = total - done < per_batch ? total - done : per_batch;
             const bool last = done + count >= total;
-            dispatch(env, region, settings.first_ray + done, count, done == 0, last);
+            dispatch(env, region, first + uint32_t(done), count, done == 0, last);
             if (!last) between_batches();
         }
     }
@@ -36,7 +45,7 @@ public:
 private:
     void bind(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const FrameResources& resources,
               const gl::Texture2D& accumulator);
-    void dispatch(const PassEnv& env, const Region& region, int first_ray, int count, bool first, bool last);
+    void dispatch(const PassEnv& env, const Region& region, uint32_t first_ray, int count, bool first, bool last);
     gl::Object program_;
 };
 
