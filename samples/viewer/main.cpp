@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "settings_document.h"
 #include "viewer_app.h"
 
 namespace {
@@ -97,6 +98,8 @@ int main(int argc, char** argv) {
         }
     }
     if (options.frames > 0 && options.screenshot.empty()) return usage_error("--frames goes with --screenshot");
+    // Without --frames the window would stay open and never write the screenshot.
+    if (!options.screenshot.empty() && options.frames == 0) return usage_error("--screenshot goes with --frames N");
     try {
         obscura::viewer::settings_from_spec(options.method);
         if (!options.compare.empty() && options.compare != "reference" && options.compare != "truth") {
@@ -104,6 +107,16 @@ int main(int argc, char** argv) {
         }
     } catch (const std::invalid_argument& error) {
         return usage_error(error.what());
+    }
+    // A settings file that does not load is a bad argument too (the window reads it again when it starts).
+    if (!options.settings_file.empty()) {
+        std::string text, error;
+        if (!obscura::viewer::read_text_file(options.settings_file, &text, &error)) return usage_error(error);
+        try {
+            obscura::viewer::settings_from_json(text);
+        } catch (const std::exception& failure) {
+            return usage_error("--settings " + options.settings_file + ": " + failure.what());
+        }
     }
     return obscura::viewer::run_viewer(options);
 }

@@ -63,6 +63,10 @@ double sky_fraction(const samples::ErrorMetrics& metrics) {
     return metrics.pixels_total > 0 ? 1.0 - double(metrics.pixels) / double(metrics.pixels_total) : 0.0;
 }
 
+// Temporal accumulation changes the method's image from frame to frame with the view held still: its metrics are
+// measured again each frame rather than once per view (its first, unconverged frame).
+bool accumulates(const obscura_settings& settings) { return settings.temporal.enabled == OBSCURA_TOGGLE_ON; }
+
 obscura_gl_function glfw_proc(const char* name) { return reinterpret_cast<obscura_gl_function>(glfwGetProcAddress(name)); }
 
 std::vector<obscura_method> methods() {
@@ -80,6 +84,12 @@ std::vector<obscura_setting_info> infos_of(obscura_method method) {
     }
 }
 
+
+// A bad argument found once the window is open (a --viewpoint the scene does not have): exit 2, as the
+// command line's usage errors.
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
 
 // One method's panel state: its settings and the text boxes of save/load, copy-as-C and the falloff table's
 // file.
@@ -122,10 +132,13 @@ private:
     bool truth_available() const { return scene_.mesh.has_value(); }
     std::string truth_key(const samples::TruthView& view) const;
     std::string comparison_label() const;
+    // The captions over the scene area; scene_x and width in ImGui points (not framebuffer pixels).
     void draw_scene_caption(int scene_x, int width);
     // Screenshot mode: prints the metrics of the comparison shown (stdout); a failed geometry truth sets 1.
     void report_comparison(int* exit_code);
     std::string view_key() const;
+    // view_key() and the rays: what the screen-space reference is of (the rays slider restarts it).
+    std::string reference_key() const { return view_key() + "|rays=" + std::to_string(reference_rays_); }
     bool save_screenshot(const std::string& path);
 
     ViewerOptions options_;
@@ -165,11 +178,16 @@ void ViewerApp::open_scene(const std::string& name) {
     try {
         ViewerScene scene = load_viewer_scene(name);
         if (scene.mesh) {
-            const samples::NamedCamera& view = samples::find_viewpoint(
-                *scene.mesh, scene_.name.empty() ? options_.viewpoint : std::string("default"));
-            camera_.reset(view.camera);
+            const bool first = scene_.name.empty();  // the command line's scene: its --viewpoint
+            try {
+                camera_.reset(samples::find_viewpoint(*scene.mesh, first ? options_.viewpoint : "default").camera);
+            } catch (const std::invalid_argument& error) {
+                if (first) throw UsageError(error.what());
+                throw;
+            }
         }
         scene_ = std::move(scene);
+        renderer_->reset_history();  // a cut: the old scene's history must not be blended into the new one
         ++scene_generation_;  // a reopened OBJ may have changed on disk: the truth's BVH is rebuilt
         job_.cancel();
         truth_.cancel();
@@ -356,8 +374,10 @@ bool ViewerApp::method_panel(const char* id, MethodPanel& panel) {
     if (ImGui::BeginCombo("method", obscura_method_name(settings.method))) {
         for (obscura_method m : methods()) {
             const bool available = obscura_method_available(m) != 0;
+            // Picking the method already selected keeps its edits; another one starts from its defaults.
             if (ImGui::Selectable(obscura_method_name(m), m == settings.method,
-                                  available ? 0 : ImGuiSelectableFlags_Disabled)) {
+                                  available ? 0 : ImGuiSelectableFlags_Disabled) &&
+                m != settings.method) {
                 obscura_default_settings(m, &settings);
                 changed = true;
             }
@@ -486,7 +506,7 @@ void ViewerApp::reference_section() {
          "thick, so it knows only what the camera sees. Not ground truth.");
     ImGui::SliderInt("rays", &reference_rays_, ReferenceJob::kChunkRays, 1024);
     if (ImGui::Button(job_.active() ? "Restart" : "Compute")) {
-        job_.start(view_key(), panels_[0].settings, reference_rays_);
+        job_.start(reference_key(), panels_[0].settings, reference_rays_);
         if (view_ != ViewMode::Split) view_ = ViewMode::ErrorMap;
     }
     if (job_.active()) {
@@ -573,7 +593,10 @@ void ViewerApp::build_panel() {
         }
         if (scene_.mesh && ImGui::BeginCombo("viewpoint", "choose...")) {
             for (const samples::NamedCamera& view : scene_.mesh->viewpoints) {
-                if (ImGui::Selectable(view.name.c_str())) camera_.reset(view.camera);
+                if (ImGui::Selectable(view.name.c_str())) {
+                    camera_.reset(view.camera);
+                    renderer_->reset_history();  // a jump, not motion that reprojection could follow
+                }
             }
             ImGui::EndCombo();
         }
@@ -683,9 +706,10 @@ void ViewerApp::update_truth(bool wanted, bool wait) {
         truth_metrics_.reset();
         return;
     }
-    // The method is measured again when it changes without changing the falloff (no new trace needed).
+    // The method is measured again when it changes without changing the falloff (no new trace needed), and every
+    // frame while it accumulates frames (temporal), so that the metrics follow its current image.
     const std::string method_key = view_key();
-    if (method_key != truth_method_key_) {
+    if (method_key != truth_method_key_ || accumulates(panels_[0].settings)) {
         try {
             truth_metrics_ = renderer_->compare_with_truth(truth_snapshot_.visibility, *truth_snapshot_.mask);
         } catch (const std::exception& error) {
@@ -848,7 +872,11 @@ int ViewerApp::run() {
             build_panel();
             int window_width = 0, height = 0;
             glfwGetFramebufferSize(window_, &window_width, &height);
-            const int scene_x = std::min(int(kPanelWidth), std::max(window_width - 16, 0));
+            // The panel is kPanelWidth ImGui points wide; the scene's viewport is in framebuffer pixels, which
+            // are more than points on a HiDPI display.
+            const float pixels_per_point = std::max(ImGui::GetIO().DisplayFramebufferScale.x, 1e-3f);
+            const int scene_x =
+                std::min(int(std::lround(kPanelWidth * pixels_per_point)), std::max(window_width - 16, 0));
             const int width = window_width - scene_x;
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
             glViewport(0, 0, window_width, height);
@@ -867,9 +895,17 @@ int ViewerApp::run() {
                 const bool wait_for_truth = options_.frames > 0 && frame + 2 >= options_.frames;
                 truth_current_ = false;
                 if (wants_comparison && ok && comparison_ == Comparison::ScreenSpaceReference) {
-                    const std::string key = view_key();
+                    const std::string key = reference_key();
                     if (!job_.active() || job_.key() != key) job_.start(key, panels_[0].settings, reference_rays_);
-                    if (!job_.done() && !renderer_->step_reference(job_, use_normals_)) status_ = renderer_->last_error();
+                    if (!job_.done()) {
+                        if (!renderer_->step_reference(job_, use_normals_)) status_ = renderer_->last_error();
+                    } else if (accumulates(panels_[0].settings)) {
+                        renderer_->measure_reference(job_);  // the method's current frame, not its first
+                    }
+                }
+                if (ok && comparison_ == Comparison::ScreenSpaceReference) {
+                    // Comparing with the reference: a geometry truth job is of no use and would keep the CPU busy.
+                    if (!truth_.key().empty()) truth_.cancel();
                 } else if (ok) {
                     update_truth(wants_comparison && comparison_ == Comparison::GeometryTruth, wait_for_truth);
                 }
@@ -888,7 +924,7 @@ int ViewerApp::run() {
                 glViewport(scene_x, 0, width, height);
                 renderer_->composite(view_, split_, right, heat);
                 glViewport(0, 0, window_width, height);
-                draw_scene_caption(scene_x, width);
+                draw_scene_caption(int(float(scene_x) / pixels_per_point), int(float(width) / pixels_per_point));
             }
             ImGui::Render();
             ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
@@ -911,11 +947,15 @@ int ViewerApp::run() {
             std::fprintf(stderr, "obscura-viewer: %s\n", renderer_->last_error().c_str());
             exit_code = 1;
         }
+    } catch (const UsageError& error) {
+        std::fprintf(stderr, "obscura-viewer: %s\n", error.what());
+        exit_code = 2;
     } catch (const std::exception& error) {
         std::fprintf(stderr, "obscura-viewer: %s\n", error.what());
         exit_code = 1;
     }
     truth_.stop();  // the window is closing: the worker is cancelled and joined
+    scene_ = ViewerScene();  // a depth file's textures, while the GL context is current
     renderer_.reset();
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();

@@ -27,6 +27,21 @@ void angles_of(glm::vec3 d, float* yaw_degrees, float* pitch_degrees) {
 void ViewerCamera::reset(const samples::Camera& camera) {
     camera_ = camera;
     camera_.up = glm::vec3(0.0f, 1.0f, 0.0f);
+    // A viewpoint straight down or up (the library's "top", with its own up vector) has no basis with world up:
+    // lookAt and move() would divide by a zero cross product. Such a view is tilted to the pitch limit the mouse
+    // keeps to, around the same target, leaning the way the viewpoint's up points so the picture keeps its
+    // orientation.
+    const glm::vec3 offset = camera_.target - camera_.eye;
+    const float radius = glm::length(offset);
+    if (!(radius > 0.0f)) return;
+    float yaw = 0.0f, pitch = 0.0f;
+    angles_of(offset, &yaw, &pitch);
+    if (std::abs(pitch) <= kMaxPitchDegrees) return;
+    // Looking down, the top of the picture is where `up` points; looking up, the opposite way.
+    glm::vec3 lean = pitch < 0.0f ? camera.up : -camera.up;
+    lean.y = 0.0f;
+    if (glm::length(lean) > 1e-6f) yaw = glm::degrees(std::atan2(lean.x, -lean.z));
+    camera_.eye = camera_.target - radius * direction(yaw, std::clamp(pitch, -kMaxPitchDegrees, kMaxPitchDegrees));
 }
 
 float ViewerCamera::distance() const { return glm::length(camera_.target - camera_.eye); }
@@ -58,7 +73,10 @@ void ViewerCamera::dolly(float steps) {
 
 void ViewerCamera::move(float forward, float right, float up) {
     const glm::vec3 ahead = glm::normalize(camera_.target - camera_.eye);
-    const glm::vec3 side = glm::normalize(glm::cross(ahead, glm::vec3(0.0f, 1.0f, 0.0f)));
+    const glm::vec3 across = glm::cross(ahead, glm::vec3(0.0f, 1.0f, 0.0f));
+    // reset() and rotate() keep the view short of the poles; should it still be vertical, there is no "right".
+    const float across_length = glm::length(across);
+    const glm::vec3 side = across_length > 1e-6f ? across / across_length : glm::vec3(0.0f);
     const glm::vec3 step = forward * ahead + right * side + up * glm::vec3(0.0f, 1.0f, 0.0f);
     camera_.eye += step;
     camera_.target += step;

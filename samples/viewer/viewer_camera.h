@@ -16,7 +16,8 @@ class ViewerCamera {
 public:
     enum class Mode { Orbit, Fly };
 
-    // Starts from a scene viewpoint.
+    // Starts from a scene viewpoint, with world up (y); one looking straight down or up is tilted to the pitch
+    // limit, leaning towards the viewpoint's own up, so that the camera always has a basis.
     void reset(const samples::Camera& camera);
     // Mouse drag in degrees: orbit turns around the target, fly looks around the eye. Positive yaw turns
     // right, positive pitch up.

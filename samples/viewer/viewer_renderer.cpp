@@ -98,6 +98,36 @@ void upload_image(samples::HostTexture& texture, const samples::FloatImage& imag
     glBindTexture(GL_TEXTURE_2D, 0);
 }
 
+// The heat map of |method - reference| with the sky (mask 0) in the composite's sky colour (kCompositeFragment):
+// the composite tells sky by the normals' alpha, which a depth file has none of, so its sky would otherwise be
+// painted as the heat of 0 error (white) although the metrics leave it out.
+samples::FloatImage heat_map(const samples::FloatImage& method, const samples::FloatImage& reference,
+                             const std::vector<uint8_t>& mask) {
+    samples::FloatImage heat = samples::error_heat_map(method, reference);
+    const float sky[3] = {0.74f, 0.80f, 0.88f};
+    for (size_t i = 0; i < mask.size() && 3 * i + 2 < heat.pixels.size(); ++i) {
+        if (!mask[i]) std::copy(sky, sky + 3, heat.pixels.begin() + std::ptrdiff_t(3 * i));
+    }
+    return heat;
+}
+
+obscura_context* create_context(obscura_get_proc_address_fn get_proc_address, bool software) {
+    obscura_context_desc desc = {};
+    desc.struct_size = sizeof desc;
+    desc.header_version = OBSCURA_VERSION;
+    desc.get_proc_address = get_proc_address;
+    desc.flags = software ? uint32_t(OBSCURA_CONTEXT_FLAG_SYNC_TIMING) : 0u;
+    desc.log = [](obscura_log_level, obscura_status, const char* message, void*) {
+        std::fprintf(stderr, "obscura: %s\n", message);
+    };
+    obscura_context* context = nullptr;
+    const obscura_status status = obscura_create_context(&desc, &context);
+    if (status != OBSCURA_STATUS_OK) {
+        throw std::runtime_error(std::string("obscura_create_context: ") + obscura_status_string(status));
+    }
+    return context;
+}
+
 samples::FloatImage average(const ReferenceJob& job) {
     samples::FloatImage out = job.sum;
     const float scale = job.traced_rays() > 0 ? 1.0f / float(job.traced_rays()) : 0.0f;
@@ -113,7 +143,7 @@ ViewerScene load_viewer_scene(const std::string& name_or_path) {
     if (ends_with(lower(name_or_path), ".pfm")) {
         samples::DepthFileOptions options;
         options.path = name_or_path;
-        scene.depth_file = options;
+        scene.depth_file = std::make_shared<const samples::RenderedScene>(samples::load_depth_file(options));
     } else {
         scene.mesh = samples::load_scene(name_or_path);
     }
@@ -156,21 +186,20 @@ void ReferenceJob::start(const std::string& key, const obscura_settings& method,
 }
 
 ViewerRenderer::ViewerRenderer(obscura_get_proc_address_fn get_proc_address, bool software) {
-    obscura_context_desc desc = {};
-    desc.struct_size = sizeof desc;
-    desc.header_version = OBSCURA_VERSION;
-    desc.get_proc_address = get_proc_address;
-    desc.flags = software ? uint32_t(OBSCURA_CONTEXT_FLAG_SYNC_TIMING) : 0u;
-    desc.log = [](obscura_log_level, obscura_status, const char* message, void*) {
-        std::fprintf(stderr, "obscura: %s\n", message);
-    };
-    const obscura_status status = obscura_create_context(&desc, &context_);
-    if (status != OBSCURA_STATUS_OK) {
-        throw std::runtime_error(std::string("obscura_create_context: ") + obscura_status_string(status));
+    context_ = create_context(get_proc_address, software);
+    try {
+        compare_context_ = create_context(get_proc_address, software);
+    } catch (...) {
+        obscura_destroy_context(context_);
+        throw;
     }
-    for (obscura_view*& view : views_) {
-        if (obscura_create_view(context_, &view) != OBSCURA_STATUS_OK) {
-            throw std::runtime_error(std::string("obscura_create_view: ") + obscura_get_last_error(context_));
+    obscura_context* const contexts[2] = {context_, compare_context_};
+    for (int slot = 0; slot < 2; ++slot) {
+        if (obscura_create_view(contexts[slot], &views_[slot]) != OBSCURA_STATUS_OK) {
+            const std::string error = obscura_get_last_error(contexts[slot]);
+            obscura_destroy_context(compare_context_);
+            obscura_destroy_context(context_);
+            throw std::runtime_error("obscura_create_view: " + error);
         }
     }
     composite_ = samples::link_host_program(kFullscreenVertex, kCompositeFragment, "viewer composite");
@@ -181,25 +210,22 @@ ViewerRenderer::ViewerRenderer(obscura_get_proc_address_fn get_proc_address, boo
 
 ViewerRenderer::~ViewerRenderer() {
     scene_.reset();
+    obscura_destroy_context(compare_context_);
     obscura_destroy_context(context_);
 }
 
 void ViewerRenderer::render_scene(const ViewerScene& scene, const samples::Camera& camera, int width, int height,
                                   obscura_get_proc_address_fn get_proc_address) {
     if (scene.depth_file) {
-        if (scene_ && scene_key_ == scene.depth_file->path) return;
-        scene_.reset();
-        scene_.emplace(samples::load_depth_file(*scene.depth_file));
-        scene_key_ = scene.depth_file->path;
+        scene_ = scene.depth_file;  // loaded (and checked) when the scene was opened
     } else {
         samples::SceneRenderOptions options;
         options.width = std::max(width, 1);
         options.height = std::max(height, 1);
         options.camera = camera;
         options.get_proc_address = get_proc_address;
-        scene_.reset();
-        scene_.emplace(samples::render_scene(scene.mesh->mesh, options));
-        scene_key_.clear();
+        scene_.reset();  // the last frame's textures go before this one's are made
+        scene_ = std::make_shared<const samples::RenderedScene>(samples::render_scene(scene.mesh->mesh, options));
     }
     visible_width_ = scene_->frame().output_rect.width;
     visible_height_ = scene_->frame().output_rect.height;
@@ -218,17 +244,27 @@ bool ViewerRenderer::render_into(GLuint texture, const obscura_settings& setting
         const samples::SceneFrame* previous = previous_[slot] ? &*previous_[slot] : nullptr;
         input = frame.make_input(use_scene_normals, previous, frame_index_[slot]++);
         input.view = views_[slot];
+        if (reset_history_[slot]) input.flags |= OBSCURA_INPUT_FLAG_RESET_HISTORY;
+        reset_history_[slot] = false;
         previous_[slot] = frame;  // its camera, for the next frame's reprojection
     }
     obscura_output output = {};
     output.struct_size = sizeof output;
     output.texture = texture;
-    const obscura_status status = obscura_render(context_, &input, &settings, &output);
+    obscura_context* const context = slot == 0 ? context_ : compare_context_;
+    const obscura_status status = obscura_render(context, &input, &settings, &output);
     if (status != OBSCURA_STATUS_OK) {
-        last_error_ = std::string(obscura_status_string(status)) + ": " + obscura_get_last_error(context_);
+        last_error_ = std::string(obscura_status_string(status)) + ": " + obscura_get_last_error(context);
         return false;
     }
     return true;
+}
+
+void ViewerRenderer::reset_history() {
+    for (int slot = 0; slot < 2; ++slot) {
+        previous_[slot].reset();  // of the old scene or viewpoint: nothing to reproject from
+        reset_history_[slot] = true;
+    }
 }
 
 bool ViewerRenderer::step_reference(ReferenceJob& job, bool use_scene_normals) {
@@ -250,13 +286,17 @@ bool ViewerRenderer::step_reference(ReferenceJob& job, bool use_scene_normals) {
     job.traced_rays_ += ReferenceJob::kChunkRays;
     const samples::FloatImage reference = average(job);
     upload_image(reference_, reference);
-    if (job.done()) {
-        job.method_image = samples::read_texture_region(ao_[0].texture.get(), 0, 0, ao_[0].width, ao_[0].height);
-        const std::vector<uint8_t> mask = geometry_mask();
-        job.metrics = samples::compare_images(job.method_image, reference, &mask);
-        upload_image(heat_, samples::error_heat_map(job.method_image, reference));
-    }
+    if (job.done()) measure_reference(job);
     return true;
+}
+
+void ViewerRenderer::measure_reference(ReferenceJob& job) {
+    if (!job.done() || !ao_[0].texture.get()) return;
+    const samples::FloatImage reference = average(job);
+    job.method_image = samples::read_texture_region(ao_[0].texture.get(), 0, 0, ao_[0].width, ao_[0].height);
+    const std::vector<uint8_t> mask = geometry_mask();
+    job.metrics = samples::compare_images(job.method_image, reference, &mask);
+    upload_image(heat_, heat_map(job.method_image, reference, mask));
 }
 
 void ViewerRenderer::upload_truth(const samples::FloatImage& visibility) { upload_image(truth_, visibility); }
@@ -267,7 +307,7 @@ samples::ErrorMetrics ViewerRenderer::compare_with_truth(const samples::FloatIma
     const samples::FloatImage method =
         samples::read_texture_region(ao_[0].texture.get(), 0, 0, ao_[0].width, ao_[0].height);
     const samples::ErrorMetrics metrics = samples::compare_images(method, truth, &mask);
-    upload_image(truth_heat_, samples::error_heat_map(method, truth));
+    upload_image(truth_heat_, heat_map(method, truth, mask));
     return metrics;
 }
 

@@ -1,4 +1,5 @@
-// ViewerRenderer: what the viewer draws each frame, with host GL and one Obscura context.
+// ViewerRenderer: what the viewer draws each frame, with host GL and two Obscura contexts (the method's, and the
+// comparison's: the split view's second method and the reference chunks).
 //
 //   1. the scene (a library mesh through the camera, or a captured depth file) rasterised into a depth texture
 //      with a guard band and a view-space normal texture, as an engine's G-buffer pass would;
@@ -32,9 +33,12 @@ namespace obscura::viewer {
 struct ViewerScene {
     std::string name;
     std::optional<samples::Scene> mesh;
-    std::optional<samples::DepthFileOptions> depth_file;
+    // A depth file, read, checked and uploaded when it is opened (shared with the renderer, which draws it every
+    // frame), so that a missing or bad file is refused there and the scene shown stays.
+    std::shared_ptr<const samples::RenderedScene> depth_file;
 };
-// A built-in name, an .obj or a .pfm path (linear depth, 60 degrees vertical field of view). Throws
+// A built-in name, an .obj or a .pfm path (linear depth, 60 degrees vertical field of view). A .pfm is uploaded
+// with the current GL context (GL 4.3 core), which must then be current where the scene is destroyed. Throws
 // std::invalid_argument / std::runtime_error with the loader's message.
 ViewerScene load_viewer_scene(const std::string& name_or_path);
 
@@ -100,11 +104,19 @@ public:
                       obscura_get_proc_address_fn get_proc_address);
     // AO of `settings` for the current scene into slot 0 or 1. False on failure, with last_error() set. Each slot
     // is one obscura_view with its own frame index and previous camera, so with `temporal` on the two sides of the
-    // split accumulate their own histories as the camera moves.
+    // split accumulate their own histories as the camera moves. Slot 0 renders with context() (the method's:
+    // its timings and memory are the method's alone), slot 1 and the reference with a second context, so that
+    // alternating methods does not make the SDK free and rebuild one method's resources every frame.
     bool render_ao(int slot, const obscura_settings& settings, bool use_scene_normals);
+    // The next render of each slot starts a new temporal history (OBSCURA_INPUT_FLAG_RESET_HISTORY): another
+    // scene or a viewpoint jump is a camera cut, not motion to reproject.
+    void reset_history();
     // One step of `job` (a chunk of reference rays) for the current scene, given slot 0 holds the method's
     // AO. False on failure (last_error()).
     bool step_reference(ReferenceJob& job, bool use_scene_normals);
+    // Measures slot 0 against `job`'s completed reference again (metrics, heat map): the method's current frame,
+    // for temporal accumulation, whose image changes after the reference is done.
+    void measure_reference(ReferenceJob& job);
     // The geometry truth's estimate (visible size, rows bottom-up) into the truth texture, for the split view.
     void upload_truth(const samples::FloatImage& visibility);
     // Measures slot 0 (the method) against `truth` over the pixels where `mask` is non-zero and uploads the
@@ -138,12 +150,14 @@ private:
     // obscura_render of the current scene into `texture` (in `slot`'s view and frame sequence; -1: none, a static
     // view of the context's own); false with last_error() set on failure.
     bool render_into(GLuint texture, const obscura_settings& settings, bool use_scene_normals, int slot = -1);
-    obscura_context* context_ = nullptr;
-    obscura_view* views_[2] = {};                        // the AO slots' temporal histories
+    obscura_context* context_ = nullptr;            // slot 0: the method
+    obscura_context* compare_context_ = nullptr;    // slot 1 and the reference chunks
+    obscura_view* views_[2] = {};                        // the AO slots' temporal histories (of their contexts)
     std::optional<samples::SceneFrame> previous_[2];     // each slot's previous frame (its camera), not owned
     uint32_t frame_index_[2] = {};
-    std::optional<samples::RenderedScene> scene_;
-    std::string scene_key_;  // a depth file is loaded once
+    bool reset_history_[2] = {};                         // the slot's next render starts a new history
+    // The current frame: rasterised every frame for a mesh, the scene's own upload for a depth file.
+    std::shared_ptr<const samples::RenderedScene> scene_;
     int visible_width_ = 0, visible_height_ = 0;
     AoTexture ao_[2];
     AoTexture chunk_;                // one chunk of reference rays
