@@ -160,6 +160,7 @@ public:
     const obscura_settings* get() const { return reinterpret_cast<const obscura_settings*>(bytes_.data()); }
     size_t size() const { return bytes_.size(); }
     const unsigned char* bytes() const { return bytes_.data(); }
+    unsigned char* get_bytes() { return bytes_.data(); }
     uint32_t struct_size() const {
         uint32_t value;
         std::memcpy(&value, bytes_.data(), sizeof value);

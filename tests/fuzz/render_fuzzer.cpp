@@ -19,6 +19,7 @@
 // crash input replays the operations of one input on a fresh process, which normally reproduces it.
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -1121,9 +1122,21 @@ void op_resolve_with_context(Reader& in) {
     const int32_t status = status_code(obscura_resolve_settings(fx.context, settings.get(), out.get()));
     message.check("obscura_resolve_settings");
     check_after_call("obscura_resolve_settings", status, log_before, true);
-    // The same answer and bytes as without a context.
+    // The same answer and bytes as without a context, but for what the context derives for its renderer: LSAO's
+    // segment_steps, 0 ("the renderer decides") without one, -1 (whole lines, CPU renderers) or 128 (GPUs) with it.
     SettingsBuffer out_without(0x5A, settings.buffer.size());
     const int32_t status_without = status_code(obscura_resolve_settings(nullptr, settings.get(), out_without.get()));
+    const size_t segment_steps = offsetof(obscura_settings, lsao) + offsetof(obscura_lsao_settings, segment_steps);
+    if (status == kOk && status_without == kOk && out.size() >= segment_steps + sizeof(int32_t)) {
+        int32_t with_context = 0, without_context = 0;
+        std::memcpy(&with_context, out.bytes() + segment_steps, sizeof with_context);
+        std::memcpy(&without_context, out_without.bytes() + segment_steps, sizeof without_context);
+        if (without_context == 0) {
+            FUZZ_CHECK(with_context == -1 || with_context == 128,
+                       "obscura_resolve_settings with the context derived lsao.segment_steps = %d", int(with_context));
+            std::memcpy(out.get_bytes() + segment_steps, &without_context, sizeof without_context);
+        }
+    }
     FUZZ_CHECK(status == status_without && out == out_without,
                "obscura_resolve_settings with the context returned %s (or other bytes), without one %s",
                fuzz_status_string(status), fuzz_status_string(status_without));

@@ -24,6 +24,7 @@
 //
 // Every invariant below is a documented promise of obscura.h; a violation prints what failed and traps.
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <cstring>
 #include <functional>
@@ -93,12 +94,48 @@ obscura_settings with_method(const obscura_settings& settings, int32_t method) {
     return copy;
 }
 
+// Writes the default of every field that `size` bytes do not hold and whose 0 would be a value under
+// OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE (not derived, range including 0, default not 0), from the public metadata.
+void store_defaults_beyond(obscura_settings* whole, uint32_t size) {
+    auto store = [&](const obscura_setting_info* infos, uint32_t count) {
+        for (uint32_t i = 0; i < count; ++i) {
+            const obscura_setting_info& info = infos[i];
+            const bool zero_is_a_value = (info.flags & OBSCURA_SETTING_FLAG_DERIVED) == 0 && info.min_value <= 0.0 &&
+                                         info.max_value >= 0.0 && info.default_value != 0.0 &&
+                                         (info.type == OBSCURA_SETTING_FLOAT || info.type == OBSCURA_SETTING_INT);
+            if (!zero_is_a_value || info.offset + 4 <= size) continue;
+            unsigned char* field = reinterpret_cast<unsigned char*>(whole) + info.offset;
+            if (info.type == OBSCURA_SETTING_FLOAT) {
+                const float value = float(info.default_value);
+                std::memcpy(field, &value, sizeof value);
+            } else {
+                const int32_t value = int32_t(info.default_value);
+                std::memcpy(field, &value, sizeof value);
+            }
+        }
+    };
+    for (int32_t m = 0; m < int32_t(OBSCURA_METHOD_COUNT_); ++m) {
+        const obscura_setting_info* infos = nullptr;
+        uint32_t count = 0;
+        if (obscura_get_setting_infos(obscura_method(m), &infos, &count) == kOk) store(infos, count);
+    }
+    const obscura_setting_info* shared = nullptr;
+    uint32_t shared_count = 0;
+    if (obscura_get_shared_setting_infos(&shared, &shared_count) == kOk) store(shared, shared_count);
+}
+
 // The host's struct as the library reads it: a released size's bytes, then zeros (the defaults of the fields
-// that header lacks), with this header's struct_size. Other sizes stay as they are (refused).
+// that header lacks), with this header's struct_size; under OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE the fields it lacks
+// whose 0 would be a value hold their defaults instead (obscura.h, "Struct sizes"). Other sizes stay as they are
+// (refused).
 obscura_settings extend(const obscura_settings& settings) {
     if (!is_released_settings_size(settings.struct_size)) return settings;
     obscura_settings whole = SettingsBuffer(settings, settings.struct_size).whole();
     whole.struct_size = kFullSize;
+    if (settings.struct_size > offsetof(obscura_settings, flags) &&
+        (whole.flags & OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE) != 0) {
+        store_defaults_beyond(&whole, settings.struct_size);
+    }
     return whole;
 }
 
