@@ -131,19 +131,23 @@ private:
 
 }  // namespace
 
-TimingSummary time_frames(const ObscuraSession& session, const AoRenderRequest& request, int warmup, int frames) {
+TimingSummary time_frames(const ObscuraSession& session, const AoRenderRequest& request, int warmup, int frames,
+                          const AoRenderRequest* alternate) {
     session.check(obscura_prepare(session.get(), request.scene->depth_width, request.scene->depth_height,
                                   request.settings),
                   "obscura_prepare");
-    for (int i = 0; i < warmup; ++i) render_ao(session, request);
+    int rendered = 0;
+    auto next = [&]() -> const AoRenderRequest& { return alternate && rendered++ % 2 == 1 ? *alternate : request; };
+    for (int i = 0; i < warmup; ++i) render_ao(session, next());
     glFinish();
 
     PassTimes pass_times;
     pass_times.start(session.get());
     std::vector<double> wall;
     for (int i = 0; i < frames; ++i) {
+        const AoRenderRequest& frame = next();
         const auto start = std::chrono::steady_clock::now();
-        render_ao(session, request);
+        render_ao(session, frame);
         glFinish();
         const auto end = std::chrono::steady_clock::now();
         wall.push_back(std::chrono::duration<double, std::milli>(end - start).count());

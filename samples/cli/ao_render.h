@@ -82,8 +82,10 @@ void warm_up(const ObscuraSession& session, const AoRenderRequest& request);
 
 // Renders `warmup` untimed frames, then `frames` timed ones (each followed by glFinish). Pass times are
 // those the SDK reports for exactly these frames (told apart by their frame index); the target holds
-// the last frame's result afterwards.
-TimingSummary time_frames(const ObscuraSession& session, const AoRenderRequest& request, int warmup, int frames);
+// the last frame's result afterwards. With `alternate`, every other frame renders it instead (a camera that moves
+// back and forth between two views, each frame reprojecting the other's history).
+TimingSummary time_frames(const ObscuraSession& session, const AoRenderRequest& request, int warmup, int frames,
+                          const AoRenderRequest* alternate = nullptr);
 
 double median(std::vector<double> values);
 

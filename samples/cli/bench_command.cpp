@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
 #include "ao_render.h"
@@ -198,14 +199,19 @@ int run_bench(ArgumentList& arguments) {
         const samples::RenderedScene scene = source.render(source.camera(), size);
         std::printf("\nscene: %s\n", source.describe(scene.frame()).c_str());
         const AoTarget target(scene->output_rect.width, scene->output_rect.height, GL_R8);
-        // --motion: every frame reprojects from a camera turned by that much (temporal accumulation's moving path;
-        // only the previous frame's matrices are needed, not its depth).
-        samples::SceneFrame previous = scene.frame();
-        previous.view = samples::orbit_camera(source.camera(), float(-config.motion_degrees)).view();
+        // --motion: the camera moves every frame, back and forth between the scene's camera and one turned by that
+        // much along the orbit, each frame reprojecting the other's history (temporal accumulation's moving path).
+        // A camera that stays put while its previous_view_projection claims motion is a still camera to the SDK,
+        // which reprojects from the camera its history was made with (the bench measured the still path so from
+        // 2026-12-05, a3ec05a, until this was fixed).
+        std::optional<samples::RenderedScene> turned;
+        if (config.motion_degrees != 0.0) {
+            turned.emplace(source.render(samples::orbit_camera(source.camera(), float(-config.motion_degrees)), size));
+        }
         for (const MethodSpec& method : config.methods) {
             AoRenderRequest request;
             request.scene = &scene.frame();
-            if (config.motion_degrees != 0.0) request.previous_scene = &previous;
+            if (turned) request.previous_scene = &turned->frame();
             request.settings = &method.settings;
             request.target = &target;
             request.use_normals = source.use_normals();
@@ -213,7 +219,13 @@ int run_bench(ArgumentList& arguments) {
             // say) is reported and the rest still run: one refusal must not lose a long run's numbers.
             try {
                 warm_up(session, request);
-                const TimingSummary summary = time_frames(session, request, config.warmup, config.frames);
+                AoRenderRequest back = request;
+                if (turned) {
+                    back.scene = &turned->frame();
+                    back.previous_scene = &scene.frame();
+                }
+                const TimingSummary summary =
+                    time_frames(session, request, config.warmup, config.frames, turned ? &back : nullptr);
                 results.push_back(make_result(source, scene.frame(), method, summary, clock));
             } catch (const ApiError& error) {
                 BenchResult failed;
