@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -271,18 +272,20 @@ std::vector<ClassErrors> measure_classes(const ComparedMethod& method, const Com
     for (samples::ThicknessClass value : kMeasuredClasses) {
         ClassErrors errors;
         double sum_abs = 0.0, sum_signed = 0.0, sum_within = 0.0;
+        size_t signed_pixels = 0;  // mean_signed leaves non-finite pixels out: pooled over its own count
         for (size_t f = 0; f < classes.frames.size(); ++f) {
             std::vector<uint8_t> mask(classes.frames[f].size());
             for (size_t i = 0; i < mask.size(); ++i) mask[i] = classes.frames[f][i] == uint8_t(value);
             const samples::ErrorMetrics metrics = samples::compare_images(method.frames[f], reference.frames[f], &mask);
             errors.pixels += metrics.pixels;
             sum_abs += metrics.mean_abs * double(metrics.pixels);
-            sum_signed += metrics.mean_signed * double(metrics.pixels);
+            sum_signed += metrics.mean_signed * double(metrics.signed_pixels);
+            signed_pixels += metrics.signed_pixels;
             sum_within += metrics.within_5pct * double(metrics.pixels);
         }
         if (errors.pixels > 0) {
             errors.mean_abs = sum_abs / double(errors.pixels);
-            errors.mean_signed = sum_signed / double(errors.pixels);
+            errors.mean_signed = signed_pixels > 0 ? sum_signed / double(signed_pixels) : 0.0;
             errors.within_5pct = sum_within / double(errors.pixels);
         }
         // Flicker within the class (pixels of the class in both frames of a pair): the rest class holds what
@@ -415,6 +418,9 @@ void measure_method(const ObscuraSession& session, const std::vector<samples::Re
         samples::ErrorMetrics& mean = errors.metrics;
         mean.within_5pct = 0.0;
         const double weight = 1.0 / double(frames.size());
+        // Means over the frames, but the largest error is the largest of any frame, and the PSNR is that of the
+        // frames' mean squared error (a mean of dB would make one error-free frame +infinity for the whole run).
+        double mean_squared_error = 0.0;
         for (size_t f = 0; f < frames.size(); ++f) {
             const samples::ErrorMetrics metrics = samples::compare_images(
                 method.frames[f], reference.frames[f], result.all_pixels ? nullptr : &result.masks[f]);
@@ -422,11 +428,13 @@ void measure_method(const ObscuraSession& session, const std::vector<samples::Re
             mean.mean_signed += weight * metrics.mean_signed;
             mean.within_5pct += weight * metrics.within_5pct;
             mean.over_threshold += weight * metrics.over_threshold;
-            mean.psnr += weight * metrics.psnr;
-            mean.max_abs += weight * metrics.max_abs;
+            mean_squared_error += weight * (std::isfinite(metrics.psnr) ? std::pow(10.0, -metrics.psnr / 10.0) : 0.0);
+            mean.max_abs = std::max(mean.max_abs, metrics.max_abs);
             mean.pixels = metrics.pixels;
             mean.pixels_total = metrics.pixels_total;
         }
+        mean.psnr = mean_squared_error > 0.0 ? 10.0 * std::log10(1.0 / mean_squared_error)
+                                             : std::numeric_limits<double>::infinity();
         if (!method.bent_frames.empty() && !reference.bent_frames.empty()) {
             double degrees = 0.0;
             for (size_t f = 0; f < frames.size(); ++f) {

@@ -201,6 +201,7 @@ ErrorMetrics compare_images(const FloatImage& image, const FloatImage& reference
     const double count = double(metrics.pixels);
     metrics.mean_abs = sum / count;
     metrics.mean_signed = finite > 0 ? sum_signed / double(finite) : 0.0;
+    metrics.signed_pixels = finite;
     metrics.within_5pct = double(within) / count;
     metrics.over_threshold = double(over) / count;
     const double mse = sum_squares / count;

@@ -37,6 +37,7 @@ struct ErrorMetrics {
                                   // JSON has no infinity: writers print null (JsonWriter does so).
     double max_abs = 0.0;         // largest pixel error
     size_t pixels = 0;            // pixels compared
+    size_t signed_pixels = 0;     // of them, those whose signed difference is finite (mean_signed's count)
     size_t pixels_total = 0;      // pixels of the image: pixels_total - pixels were masked out (sky)
 };
 

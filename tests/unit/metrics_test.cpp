@@ -79,6 +79,17 @@ TEST(CompareImages, ConstantOffset) {
     EXPECT_EQ(swapped.psnr, m.psnr);
 }
 
+// mean_signed leaves non-finite pixels out, and says over how many it is taken: a pooled mean (obscura compare's
+// per-class figures over frames) weighs it by that count, not by all pixels (one NaN pixel doubled a class's +0.1).
+TEST(CompareImages, SignedMeanCountsItsFinitePixels) {
+    const FloatImage reference = make_image(2, 1, {0.5f, 0.5f});
+    const FloatImage image = make_image(2, 1, {0.6f, std::numeric_limits<float>::quiet_NaN()});
+    const ErrorMetrics m = compare_images(image, reference);
+    EXPECT_EQ(m.pixels, 2u);
+    EXPECT_EQ(m.signed_pixels, 1u);
+    EXPECT_NEAR(m.mean_signed, 0.1, 1e-6);
+}
+
 TEST(CompareImages, FivePercentBoundaryIsInclusive) {
     // Errors 0.05, 0.05 (within), 0.0501, 0.0501 (outside): e_<5% = 1/2.
     const FloatImage reference = constant_image(4, 1, 0.5f);
