@@ -68,7 +68,9 @@ float signed_weight(float h, float sin_n, float cos_n) {
 // (1 - |c|)^1.5 times a cubic fitted to it (one square root, where acos and sin h took two), and pi minus that for
 // c < 0.
 float segment_area(float c) {
-    float a = abs(c), t = 1.0 - a;
+    // |c| is held to 1: a cosine from sqrt or inversesqrt may exceed it by an ulp on GPUs (2.5 ulp allowed), and
+    // t sqrt(t) is NaN below 0.
+    float a = min(abs(c), 1.0), t = 1.0 - a;
     float r = t * sqrt(t) * (((0.0112192 * a - 0.0518837) * a + 0.3558693) * a + 1.5708017);
     return c < 0.0 ? OBSCURA_PI - r : r;
 }
@@ -191,8 +193,10 @@ void main() {
         // view). Each slice is weighted by d(angle around V) / d(screen angle): |V.z| / |across|^2 for the
         // projection of the image plane onto the plane normal to V, times the pixel aspect's own stretch.
         vec2 view_dir = dir * view_per_pixel;
+        // The pixel's area |a b| is unsigned: a mirrored projection (y flipped for render-to-texture, m5 < 0) made
+        // every slice's weight negative, and the pass returned 1 everywhere with bent normals towards the occluders.
         float slice_density = abs(towards_eye.z) / (across_length * across_length) *
-                              (view_per_pixel.x * view_per_pixel.y / dot(view_dir, view_dir));
+                              (abs(view_per_pixel.x * view_per_pixel.y) / dot(view_dir, view_dir));
         vec3 slice_normal = cross(along, towards_eye);
         // The normal projected into the slice: its length weighs the slice, its angle n from V.
         float n_along = dot(normal, along), n_view = dot(normal, towards_eye);

@@ -38,12 +38,34 @@ double mean(const std::vector<float>& v) {
     return v.empty() ? 0.0 : sum / double(v.size());
 }
 
-TEST_F(ReviewRegressions, YFlippedProjectionGivesTheMirroredAo) {
+// Every method on a y-flipped projection (render-to-texture conventions: m5 < 0) gives the upright image mirrored.
+// GTAO once weighed its slices by a signed pixel area there: every slice negative, so no AO at all, and bent normals
+// tilted towards the walls.
+struct FlipCase {
+    const char* name;
+    obscura_method method;
+    void (*tweak)(obscura_settings*);
+};
+const FlipCase kFlipCases[] = {
+    {"hbao", OBSCURA_METHOD_HBAO, nullptr},
+    {"gtao", OBSCURA_METHOD_GTAO, nullptr},
+    {"gtao_bitmask", OBSCURA_METHOD_GTAO, [](obscura_settings* s) { s->gtao.thickness_mode = 2; }},
+    {"sao", OBSCURA_METHOD_SAO, nullptr},
+    {"lsao", OBSCURA_METHOD_LSAO, nullptr},
+    {"ffao", OBSCURA_METHOD_FFAO, nullptr},
+};
+
+class YFlippedProjection : public GLTest, public ::testing::WithParamInterface<FlipCase> {};
+
+TEST_P(YFlippedProjection, GivesTheMirroredAo) {
+    obscura_settings settings;
+    ASSERT_EQ(obscura_default_settings(GetParam().method, &settings), OBSCURA_OK);
+    if (GetParam().tweak) GetParam().tweak(&settings);
     Camera camera(Projection::Perspective, kWidth, kHeight, Lens(), corner_view());
     CornerDepth corner = corner_depth(camera);
     HostTexture depth = make_depth_texture(GL_DEPTH_COMPONENT32F, kWidth, kHeight, corner.depth);
     obscura_input input = make_input(depth.get(), kWidth, kHeight, camera.matrix());
-    std::vector<float> upright = render_to_new_texture(ctx(), input, make_settings(1.0f), GL_R32F, 1);
+    std::vector<float> upright = render_to_new_texture(ctx(), input, settings, GL_R32F, 1);
     ASSERT_FALSE(upright.empty());
 
     // The same image stored upside down, with the projection that renders it so (y row and column negated).
@@ -57,7 +79,7 @@ TEST_F(ReviewRegressions, YFlippedProjectionGivesTheMirroredAo) {
     matrix[9] = -matrix[9];
     matrix[13] = -matrix[13];
     obscura_input flipped_input = make_input(flipped.get(), kWidth, kHeight, matrix);
-    std::vector<float> mirrored = render_to_new_texture(ctx(), flipped_input, make_settings(1.0f), GL_R32F, 1);
+    std::vector<float> mirrored = render_to_new_texture(ctx(), flipped_input, settings, GL_R32F, 1);
     ASSERT_FALSE(mirrored.empty());
 
     // Per-pixel noise differs between mirrored pixels, so compare the images' statistics and rows.
@@ -74,6 +96,9 @@ TEST_F(ReviewRegressions, YFlippedProjectionGivesTheMirroredAo) {
     }
     EXPECT_LT(row_error, 0.02) << "row means of the mirrored result must match the upright one";
 }
+
+std::string flip_case_name(const ::testing::TestParamInfo<FlipCase>& param) { return param.param.name; }
+INSTANTIATE_TEST_SUITE_P(Methods, YFlippedProjection, ::testing::ValuesIn(kFlipCases), flip_case_name);
 
 TEST_F(ReviewRegressions, OrthographicNearPlaneBehindEyeKeepsAo) {
     // The same parallel view twice: from the usual eye with near 0.1, and from an eye moved 4 units forward,

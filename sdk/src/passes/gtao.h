@@ -49,7 +49,7 @@ public:
     Error prepare(const PassEnv& env, bool bent_normals);
     static GtaoDenoiseConstants constants(const obscura_gtao_settings& settings, bool final);
     // Denoises `source` over `region` along the pass's axis into `destination`: with `final` the visibility (R16F)
-    // and, with bent normals, `bent` (RGBA16F: unit bent normal, visibility); else the same values as `source`
+    // and, with bent normals, `bent` (RGBA16F: visibility, unit bent normal xyz); else the same values as `source`
     // (R16F, or RGBA16F with bent normals).
     void run(const PassEnv& env, bool bent_normals, bool final, const UniformRange& frame, const UniformRange& pass,
              const Region& region, const FrameResources& resources, const gl::Texture2D& source,
