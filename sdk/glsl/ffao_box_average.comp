@@ -46,5 +46,7 @@ void main() {
         }
     }
     vec3 averaged = length(normal_sum) > 1e-6 ? normalize(normal_sum) : normal;
-    imageStore(u_box, pixel, vec4(depth_sum / count, obscura_encode_normal(averaged), uintBitsToFloat(mask)));
+    // The mask (1..511) as a float value, exact: its bits as a float would be a denormal, which GLSL lets drivers flush
+    // to 0 on the store or the fetch (and the gather would then drop the whole far field).
+    imageStore(u_box, pixel, vec4(depth_sum / count, obscura_encode_normal(averaged), float(mask)));
 }

@@ -22,7 +22,7 @@ void main() {
         imageStore(u_ao, pixel, vec4(count_taps ? 0.0 : 1.0));
         return;
     }
-    uint mask = floatBitsToUint(texelFetch(u_box, pixel, 0).w);
+    uint mask = uint(texelFetch(u_box, pixel, 0).w + 0.5);  // stored as float(mask) by ffao_box_average.comp
     float far_sum = 0.0, count = 0.0;
     for (int i = 0; i < 9; ++i) {
         if ((mask & (1u << uint(i))) == 0u) continue;

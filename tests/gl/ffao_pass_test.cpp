@@ -275,6 +275,13 @@ TEST_F(FfaoPasses, ASizeRefusedIsNotLaidOutAgain) {
     const int built = obscura::FfaoPassInspection::layouts_built(pass_);
     EXPECT_EQ(pass_.ensure_layout(env(), settings, kWidth, kHeight, 0, region).status(), OBSCURA_STATUS_INVALID_SIZE);
     EXPECT_EQ(obscura::FfaoPassInspection::layouts_built(pass_), built);
+    // A host that advances frame_index asks for another layout phase every frame: answered from the refusal too (it
+    // was laid out again in each phase).
+    for (uint32_t frame = 1; frame < 9; ++frame) {
+        EXPECT_EQ(pass_.ensure_layout(env(), settings, kWidth, kHeight, frame, region).status(),
+                  OBSCURA_STATUS_INVALID_SIZE);
+    }
+    EXPECT_EQ(obscura::FfaoPassInspection::layouts_built(pass_), built);
     obscura::FfaoPassInspection::limit_storage_block(&pass_, 0);  // a new key: laid out, and it fits
     EXPECT_FALSE(pass_.ensure_layout(env(), settings, kWidth, kHeight, 0, region));
     EXPECT_EQ(obscura::FfaoPassInspection::layouts_built(pass_), built + 1);

@@ -413,7 +413,9 @@ typedef struct obscura_ffao_settings {
     float decay_rate;     /* r in m^2, [1e-10, 1e8]. Derived: C*radius^2 */
     int32_t sectors;      /* K azimuthal sectors, an even number (a line orientation serves two), [4, 64]. Derived:
                              16, or 18 with saao */
-    int32_t segments;     /* evaluated parts of each sector, averaged separately (the paper's "x2"), [1, 4]. Default 2 */
+    int32_t segments;     /* evaluated parts of each sector, averaged separately (the paper's "x2"), [1, 4]. Default 2.
+                             geometry 2 samples each sector's centre line only: segments and jitter then change
+                             nothing */
     int32_t base_interval; /* B0: scan steps per level-0 interval; the near field covers B0 to 2 B0 texels,
                              [2, 64]. Default 10 */
     int32_t geometry;     /* the far field's scene points: 1 the scanned peaks (sec. 6-7); 2 the paper's baseline
@@ -815,7 +817,7 @@ typedef struct obscura_timing {
                           HBAO "hbao" ["blur"]; REFERENCE "reference"; SAO ["z_pyramid"] "sao" ["blur"]; LSAO
                           "line_sweep" "gather"; FFAO ["ffao_table" when the falloff's shape changed], then
                           ["ffao_box_average"] (saao) "ffao_scan" ["ffao_prefix"] (geometry=mipmap: ["z_pyramid"]
-                          instead), "ffao_obscurance" ["ffao_gather" "blur"] (saao); at sizes whose scan runs in
+                          instead, before ["ffao_box_average"]), "ffao_obscurance" ["ffao_gather" "blur"] (saao); at sizes whose scan runs in
                           chunks (4K) each of these three entries is the sum over the chunks;
                           GTAO ["z_pyramid"] "gtao" ["gtao_denoise"]; then ["temporal"] (settings.temporal on),
                           ["upsample"] (settings.resolution below full), then "composite". Static strings */

@@ -74,8 +74,11 @@ Error FfaoPass::ensure_layout(const PassEnv& env, const obscura_ffao_settings& s
                         ffao_uses_saao(settings), storage_block_limit_};
     const int phase = layout_phase(frame_index);
     // A refusal for the size is the same every time: answered again without building the layout (at 16384^2 that
-    // took about a second on llvmpipe, every frame of a host that keeps asking).
-    if (key == refused_key_ && phase == refused_phase_) return refused_;
+    // took about a second on llvmpipe, every frame of a host that keeps asking). For every layout phase: a host that
+    // advances frame_index asks for another phase each frame (the phases differ by a line per orientation, so a size
+    // refused in one is refused in all but at the very edge of the limit, where answering one way every frame beats
+    // AO on one frame in eight).
+    if (key == refused_key_) return refused_;
     if (!(key == key_)) {
         release();
         if (key.saao) {
@@ -103,7 +106,6 @@ Error FfaoPass::ensure_layout(const PassEnv& env, const obscura_ffao_settings& s
         if (error) {
             if (error.status() == OBSCURA_STATUS_INVALID_SIZE) {
                 refused_key_ = key;
-                refused_phase_ = phase;
                 refused_ = error;
             }
             release();

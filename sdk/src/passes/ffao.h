@@ -125,8 +125,7 @@ private:
     UniformRange chunk_uniforms_[OBSCURA_FFAO_PEAK_CHUNKS];
     int64_t storage_block_limit_ = 0;  // tests: a smaller storage block than GL's (FfaoPassInspection)
     // The last layout refused for its size (INVALID_SIZE), with its key and phase: ensure_layout answers it again.
-    LayoutKey refused_key_;
-    int refused_phase_ = -1;
+    LayoutKey refused_key_;  // the last size refused with INVALID_SIZE (in any layout phase), and why
     Error refused_;
     int layouts_built_ = 0;  // tests (FfaoPassInspection)
 };
