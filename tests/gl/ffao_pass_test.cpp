@@ -287,6 +287,33 @@ TEST_F(FfaoPasses, ASizeRefusedIsNotLaidOutAgain) {
     EXPECT_EQ(obscura::FfaoPassInspection::layouts_built(pass_), built + 1);
 }
 
+// A size on the storage block's edge: phase 0 fits one block, phase 4 (a line more per orientation) needs chunks. The
+// running total the chunked phase made is kept through the one-block frames (it was freed and made again every other
+// frame), so the memory the pass holds does not move from frame to frame.
+TEST_F(FfaoPasses, RunningTotalIsKeptWhenPhasesStraddleTheBlockLimit) {
+    upload_depth(false);
+    const obscura_ffao_settings settings = resolved(defaults());
+    const obscura::Region region{0, 0, kWidth, kHeight};
+    auto entries = [&](uint32_t frame) {
+        return obscura::make_ffao_layout(settings.sectors, settings.base_interval, kWidth, kHeight,
+                                         obscura::layout_phase_fraction(obscura::layout_phase(frame)))
+            .entries;
+    };
+    ASSERT_GT(entries(1), entries(0));
+    obscura::FfaoPassInspection::limit_storage_block(&pass_, entries(0) * 16);
+    // Both phases laid out first (each holds its line records; the shared peaks grow to the larger need).
+    ASSERT_FALSE(pass_.ensure_layout(env(), settings, kWidth, kHeight, 1, region));
+    ASSERT_FALSE(pass_.ensure_layout(env(), settings, kWidth, kHeight, 0, region));
+    ASSERT_FALSE(pass_.ensure_layout(env(), settings, kWidth, kHeight, 1, region));
+    ASSERT_GT(pass_.chunk_count(), 1);
+    const uint64_t chunked_bytes = pass_.bytes();
+    ASSERT_FALSE(pass_.ensure_layout(env(), settings, kWidth, kHeight, 0, region));
+    ASSERT_EQ(pass_.chunk_count(), 1);
+    EXPECT_EQ(pass_.bytes(), chunked_bytes);
+    ASSERT_FALSE(pass_.ensure_layout(env(), settings, kWidth, kHeight, 1, region));
+    EXPECT_EQ(pass_.bytes(), chunked_bytes);
+}
+
 // The running total covers the pixels the obscurance computes, not the guard band around them: chunked over an inner
 // region, the AO there is the one-block AO bit for bit, and the running total takes that region's bytes only.
 TEST_F(FfaoPasses, ChunkedRunningTotalCoversTheRegionOnly) {

@@ -115,10 +115,11 @@ Error FfaoPass::ensure_layout(const PassEnv& env, const obscura_ffao_settings& s
     current_ = phase;
     // The running total, chunk to chunk (SAAO carries its sums in its terms): as large as the pixels the obscurance
     // computes, not the guard band around them (FFAO at 4K: 31.6 MiB instead of 45.6).
-    if (!chunked() || key_.saao) {
-        running_ = gl::Texture2D();
-        return Error();
-    }
+    // Unchunked (or SAAO, which carries its sums in its terms): no running total needed. One that a chunked phase of
+    // this size made is kept: the phases differ by a line per orientation, so at a size on the storage block's edge
+    // they alternate between one block and chunks, and the texture was freed and made again every other frame (the
+    // memory report moving with it). release() frees it with the size.
+    if (!chunked() || key_.saao) return Error();
     int running_width = obscurance.width, running_height = obscurance.height;
     if (running_width <= 0 || running_height <= 0) {
         running_width = running_ ? running_.width() : width;
