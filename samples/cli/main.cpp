@@ -100,9 +100,9 @@ truth ray-traces the geometry truth of one view (--falloff: a method spec whose 
 bench times warm frames, median and min, in total and per pass. Clock: GL timer queries on a GPU
   ("gpu-timer"), wall time around render + glFinish on llvmpipe/softpipe, whose timer queries read 0
   ("wall"; passes then by glFinish + CPU clock). A configuration the SDK refuses is reported (JSON
-  "error", CSV pass "failed") and the others still run; the exit status is then 1. --motion DEG: each frame
-  passes the previous camera turned DEG degrees back along the orbit, so temporal accumulation times its
-  moving path (reprojection through the matrices) instead of a still camera's.
+  "error", CSV pass "failed") and the others still run; the exit status is then 1. --motion DEG: the frames
+  alternate between the view's camera and one turned DEG degrees back along the orbit, each reprojecting the
+  other's history, so temporal accumulation times its moving path instead of a still camera's.
 tune searches SPEC's settings, starting from them, for the lowest mean_abs against the geometry truth
   averaged over the --scenes views (e.g. atrium,objects,clutter@VIEWPOINT; default viewpoints otherwise), the
   truth weighed with each candidate's own falloff (obscura_reference_settings_for; one truth traced per
