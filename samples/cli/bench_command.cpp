@@ -115,7 +115,7 @@ void print_result(const BenchResult& result) {
 }
 
 void write_json(const std::string& path, const std::string& device, Clock clock, const BenchConfig& config,
-                const std::vector<BenchResult>& results) {
+                const std::vector<BenchResult>& results, obscura_context* context) {
     samples::JsonWriter json;
     json.begin_object();
     json.field("device", device).field("clock", clock_name(clock));
@@ -125,7 +125,7 @@ void write_json(const std::string& path, const std::string& device, Clock clock,
         json.begin_object();
         json.field("scene", result.scene).field("width", result.width).field("height", result.height);
         json.field("method", result.method->text);
-        write_settings_json(json, result.method->settings);
+        write_settings_json(json, result.method->settings, context);
         if (!result.error.empty()) {
             json.field("error", result.error).end_object();
             continue;
@@ -243,7 +243,7 @@ int run_bench(ArgumentList& arguments) {
         }
     }
     if (config.json_path) {
-        write_json(*config.json_path, gl.renderer(), clock, config, results);
+        write_json(*config.json_path, gl.renderer(), clock, config, results, session.get());
         std::printf("\nwrote %s\n", config.json_path->c_str());
     }
     if (config.csv_path) {

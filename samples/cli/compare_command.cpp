@@ -51,6 +51,7 @@ struct CompareConfig {
     std::optional<bool> motion_vectors;  // rasterised and handed to the SDK
     std::optional<int> converged_frames;  // 0: no many-sample images
     bool sync_timing = false;
+    bool gpu_code_paths = false;
     std::optional<PixelClasses> classes;  // --classes: radius and thickness
 };
 
@@ -139,6 +140,7 @@ CompareConfig take_compare_config(ArgumentList& arguments) {
     const std::optional<std::string> motion_vectors = arguments.take_value("--motion-vectors");
     const std::optional<std::string> converged = arguments.take_value("--converged");
     config.sync_timing = arguments.take_flag("--sync-timing");
+    config.gpu_code_paths = arguments.take_flag("--gpu-code-paths");
     arguments.require_all_taken();
     if (orbit && !frames) throw UsageError("--orbit DEG needs --frames N (the frames along the orbit)");
     if (frames) {
@@ -528,7 +530,7 @@ int run_compare(ArgumentList& arguments) {
 
     samples::HeadlessGL gl;
     std::printf("GL: %s\n", gl.describe().c_str());
-    ObscuraSession session(timing_flags(gl, config.sync_timing));
+    ObscuraSession session(timing_flags(gl, config.sync_timing) | code_path_flags(config.gpu_code_paths));
     std::vector<samples::RenderedScene> frames;
     const std::vector<samples::Camera> cameras = frame_cameras(source, config);
     for (size_t f = 0; f < cameras.size(); ++f) {
@@ -656,7 +658,7 @@ int run_compare(ArgumentList& arguments) {
         std::printf("wrote %s\n", config.strip_path->c_str());
     }
     if (config.json_path) {
-        write_compare_json(result, *config.json_path);
+        write_compare_json(result, *config.json_path, session.get());
         std::printf("wrote %s\n", config.json_path->c_str());
     }
     return 0;

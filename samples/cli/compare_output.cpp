@@ -300,7 +300,7 @@ void print_compare_table(const CompareResult& result) {
     std::printf("signed = mean of method - truth: > 0 brighter (less occlusion) than the truth, < 0 darker\n");
 }
 
-void write_compare_json(const CompareResult& result, const std::string& path) {
+void write_compare_json(const CompareResult& result, const std::string& path, obscura_context* context) {
     samples::JsonWriter json;
     json.begin_object();
     json.field("device", result.device);
@@ -338,7 +338,7 @@ void write_compare_json(const CompareResult& result, const std::string& path) {
         const ComparedMethod& method = result.methods[i];
         json.begin_object();
         json.field("method", method.spec.text);
-        write_settings_json(json, method.spec.settings);
+        write_settings_json(json, method.spec.settings, context);
         write_gpu_ms_json(json, method.timing);
         json.field("wall_ms", method.timing.wall.median_ms);
         json.field("image", method_file_stem(result, i) + ".png");

@@ -171,7 +171,8 @@ void print_compare_table(const CompareResult& result);
 // With --classes the report adds "classes" (radius_m, thickness_m, max_radius_px, frames, image, geometry_pixels and
 // per class {pixels, fraction}) and per method and truth errors.<truth>.classes (per class {pixels, mean_abs,
 // signed_mean, within_5pct}; the errors null for a class without pixels).
-void write_compare_json(const CompareResult& result, const std::string& path);
+// `context`: the session's, through which the methods' settings are resolved (the values its renderer derives).
+void write_compare_json(const CompareResult& result, const std::string& path, obscura_context* context);
 
 }  // namespace obscura::cli
 

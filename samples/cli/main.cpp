@@ -14,13 +14,14 @@ namespace {
 
 const char* const kUsage = R"(usage:
   obscura render [--method SPEC] [--set KEY=VALUE]... --out AO.png [--pfm AO.pfm] [--json OUT.json]
-                 [--debug-view none|depth|normals|ao-before-blur|tap-count] [--sync-timing] [SCENE]
+                 [--debug-view none|depth|normals|ao-before-blur|tap-count] [--sync-timing] [--gpu-code-paths]
+                 [SCENE]
   obscura compare [--methods SPEC,SPEC,...] [--set KEY=VALUE]... [--truth geometry|screen|both]
                   [--truth-rays 1024] [--truth-seed 1] [--reference-rays 256] [--metrics-pixels geometry|all]
                   [--out-dir compare-output] [--json REPORT.json] [--strip STRIP.png]
                   [[--orbit DEG] --frames N] [--temporal on|off] [--motion-vectors on|off]
                   [--converged N|off] [--classes [RADIUS_M[,THICKNESS_M]]]
-                  [--sync-timing] [SCENE]
+                  [--sync-timing] [--gpu-code-paths] [SCENE]
   obscura truth --out TRUTH.pfm [--depth-out DEPTH.pfm] [--png TRUTH.png] [--falloff SPEC]
                 [--rays 1024] [--seed 1] [SCENE without --depth]
   obscura bench [--methods SPEC,SPEC,...] [--set KEY=VALUE]... [--sizes 1280x720,1920x1080,...]
@@ -122,6 +123,9 @@ tune searches SPEC's settings, starting from them, for the lowest mean_abs again
 demo runs compare on the atrium at 640x360 with every available method against the geometry truth
   into demo-output/.
 --sync-timing times passes with glFinish (automatic on llvmpipe/softpipe, whose timer queries read 0).
+--gpu-code-paths (render, compare) runs the shader variants written for GPUs on a CPU rasteriser as well (the
+  SDK's OBSCURA_CONTEXT_FLAG_GPU_CODE_PATHS, with its per-pass GL error checks): to see what a GPU renders on a
+  machine without one; compare its images with `obscura diff`.
 diff compares luminance in [0, 1] without GL: it passes when the mean absolute error is <= mean and
 at most a fraction `pixels` of the pixels is off by more than threshold/255; exit 0 pass, 1 fail, 2 bad
 input. --out writes an error heat map (white 0, black >= 0.2).

@@ -69,10 +69,10 @@ std::vector<MethodSpec> parse_method_specs(const std::string& option, const std:
     return specs;
 }
 
-std::vector<EffectiveSetting> effective_settings(const obscura_settings& settings) {
+std::vector<EffectiveSetting> effective_settings(const obscura_settings& settings, obscura_context* context) {
     obscura_settings resolved{};
-    const obscura_status status = obscura_resolve_settings(nullptr, &settings, &resolved);
-    if (status != OBSCURA_OK) throw ApiError(api_error_message(status, "obscura_resolve_settings", nullptr));
+    const obscura_status status = obscura_resolve_settings(context, &settings, &resolved);
+    if (status != OBSCURA_OK) throw ApiError(api_error_message(status, "obscura_resolve_settings", context));
     std::vector<EffectiveSetting> values;
     for (const obscura_setting_info& info : setting_infos(resolved.method)) {
         EffectiveSetting value;
@@ -96,8 +96,8 @@ std::string format_setting_value(const obscura_setting_info& info, double value)
     return samples::format_setting_value(info, value);
 }
 
-void print_effective_settings(std::FILE* out, const obscura_settings& settings) {
-    const std::vector<EffectiveSetting> values = effective_settings(settings);
+void print_effective_settings(std::FILE* out, const obscura_settings& settings, obscura_context* context) {
+    const std::vector<EffectiveSetting> values = effective_settings(settings, context);
     const bool table = with_cli_errors([&] { return samples::uses_falloff_table(settings); });
     std::fprintf(out, "effective settings (%s):\n", obscura_method_name(settings.method));
     if (values.empty()) std::fprintf(out, "  (no settings)\n");

@@ -48,9 +48,12 @@ struct EffectiveSetting {
     std::vector<float> values;  // arrays: their values
     bool derived = false;       // a derived field the settings leave to the SDK (0, "derive")
 };
-std::vector<EffectiveSetting> effective_settings(const obscura_settings& settings);
+// With a context, resolved through it: the values its renderer derives (lsao.segment_steps: whole lines on a CPU
+// rasteriser, segments on a GPU or with OBSCURA_CONTEXT_FLAG_GPU_CODE_PATHS), what a frame there uses; without one, such
+// fields read 0.
+std::vector<EffectiveSetting> effective_settings(const obscura_settings& settings, obscura_context* context = nullptr);
 // Prints effective_settings(), one per line: enums by name, derived values marked, the falloff table inline.
-void print_effective_settings(std::FILE* out, const obscura_settings& settings);
+void print_effective_settings(std::FILE* out, const obscura_settings& settings, obscura_context* context = nullptr);
 // "1.5 m", "on", "exponential", "12".
 std::string format_setting_value(const obscura_setting_info& info, double value);
 

@@ -58,4 +58,8 @@ uint32_t timing_flags(const samples::HeadlessGL& gl, bool sync_timing_requested)
     return sync_timing_requested || gl.is_software() ? uint32_t(OBSCURA_CONTEXT_FLAG_SYNC_TIMING) : 0u;
 }
 
+uint32_t code_path_flags(bool gpu_code_paths) {
+    return gpu_code_paths ? uint32_t(OBSCURA_CONTEXT_FLAG_GPU_CODE_PATHS | OBSCURA_CONTEXT_FLAG_VALIDATE_PASSES) : 0u;
+}
+
 }  // namespace obscura::cli

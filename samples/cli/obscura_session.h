@@ -57,6 +57,10 @@ void log_to_stderr(obscura_log_level level, obscura_status status, const char* m
 // timer queries read 0 (llvmpipe, softpipe): per-pass times then come from glFinish + the CPU clock.
 uint32_t timing_flags(const samples::HeadlessGL& gl, bool sync_timing_requested);
 
+// --gpu-code-paths: OBSCURA_CONTEXT_FLAG_GPU_CODE_PATHS (the variants GPUs run, on a CPU rasteriser too) with
+// VALIDATE_PASSES, so that a GL error on those paths names its pass; 0 otherwise.
+uint32_t code_path_flags(bool gpu_code_paths);
+
 }  // namespace obscura::cli
 
 #endif  // OBSCURA_CLI_OBSCURA_SESSION_H

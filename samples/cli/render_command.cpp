@@ -29,6 +29,7 @@ struct RenderConfig {
     SceneSourceOptions scene;
     obscura_debug_view debug_view = OBSCURA_DEBUG_NONE;
     bool sync_timing = false;
+    bool gpu_code_paths = false;
     std::optional<std::string> png_path, pfm_path, json_path;
 };
 
@@ -43,6 +44,7 @@ RenderConfig take_render_config(ArgumentList& arguments) {
     config.scene = take_scene_source_options(arguments, /*takes_size=*/true);
     config.debug_view = parse_debug_view(arguments.take_value("--debug-view").value_or("none"));
     config.sync_timing = arguments.take_flag("--sync-timing");
+    config.gpu_code_paths = arguments.take_flag("--gpu-code-paths");
     config.png_path = arguments.take_value("--out");
     config.pfm_path = arguments.take_value("--pfm");
     if (config.png_path) check_image_path("--out", *config.png_path, ImageFormat::Png, "--pfm");
@@ -56,13 +58,13 @@ RenderConfig take_render_config(ArgumentList& arguments) {
 }
 
 void write_json(const std::string& path, const SceneSource& source, const samples::SceneFrame& frame,
-                const MethodSpec& method, const TimingSummary& timing) {
+                const MethodSpec& method, const TimingSummary& timing, obscura_context* context) {
     samples::JsonWriter json;
     json.begin_object();
     json.field("scene", source.name());
     json.field("width", frame.output_rect.width).field("height", frame.output_rect.height);
     json.field("method", method.text);
-    write_settings_json(json, method.settings);
+    write_settings_json(json, method.settings, context);
     write_gpu_ms_json(json, timing);
     json.field("wall_ms", timing.wall.median_ms);
     json.end_object().write_file(path);
@@ -76,11 +78,11 @@ int run_render(ArgumentList& arguments) {
 
     samples::HeadlessGL gl;
     std::printf("GL: %s\n", gl.describe().c_str());
-    ObscuraSession session(timing_flags(gl, config.sync_timing));
+    ObscuraSession session(timing_flags(gl, config.sync_timing) | code_path_flags(config.gpu_code_paths));
     const samples::RenderedScene scene = source.render();
     std::printf("scene: %s\n", source.describe(scene.frame()).c_str());
     std::printf("method: %s\n", config.method.text.c_str());
-    print_effective_settings(stdout, config.method.settings);
+    print_effective_settings(stdout, config.method.settings, session.get());
 
     // Normals need colour channels; every other view is one value per pixel, kept exact in R32F.
     const obscura_rect& rect = scene->output_rect;
@@ -111,7 +113,7 @@ int run_render(ArgumentList& arguments) {
                 plan.frames, timing.wall.median_ms, timing.sdk_total().median_ms,
                 sync ? "glFinish + CPU clock per pass" : "GL timer queries");
     if (config.json_path) {
-        write_json(*config.json_path, source, scene.frame(), config.method, timing);
+        write_json(*config.json_path, source, scene.frame(), config.method, timing, session.get());
         std::printf("wrote %s\n", config.json_path->c_str());
     }
     return 0;

@@ -22,9 +22,9 @@ double float_as_decimal(double value) {
 
 }  // namespace
 
-void write_settings_json(samples::JsonWriter& json, const obscura_settings& settings) {
+void write_settings_json(samples::JsonWriter& json, const obscura_settings& settings, obscura_context* context) {
     json.key("settings").begin_object();
-    for (const EffectiveSetting& setting : effective_settings(settings)) {
+    for (const EffectiveSetting& setting : effective_settings(settings, context)) {
         if (setting.info.type == OBSCURA_SETTING_TOGGLE) {
             json.field(setting.info.name, setting.value != 0.0);
         } else if (setting.info.type == OBSCURA_SETTING_INT || setting.info.type == OBSCURA_SETTING_ENUM) {

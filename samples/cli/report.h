@@ -15,7 +15,7 @@ namespace obscura::cli {
 
 // "settings": {NAME: value, ...}: the effective values (obscura_resolve_settings + obscura_get_setting)
 // by metadata name; toggles as true/false, enums as their numbers, arrays (falloff_table) as arrays.
-void write_settings_json(samples::JsonWriter& json, const obscura_settings& settings);
+void write_settings_json(samples::JsonWriter& json, const obscura_settings& settings, obscura_context* context = nullptr);
 // "gpu_ms": {"total": ms, "passes": {NAME: ms, ...}}: medians of the SDK's per-pass times.
 void write_gpu_ms_json(samples::JsonWriter& json, const TimingSummary& timing);
 

@@ -65,6 +65,7 @@ GlDevice::GlDevice(const obscura_context_desc& desc) {
     loader_.plain = desc.get_proc_address;
     loader_.with_user_data = desc.get_proc_address_with_user_data;
     loader_.user_data = desc.get_proc_address_user_data;
+    gpu_code_paths_ = (desc.flags & OBSCURA_CONTEXT_FLAG_GPU_CODE_PATHS) != 0;
 }
 
 const char* GlDevice::error_name(GLenum error) { return error_name_of(error); }
@@ -93,7 +94,7 @@ Error GlDevice::initialize() {
                            "OpenGL %d.%d is current; Obscura needs 4.3 core (GL_VERSION \"%s\")", version / 10000,
                            version % 10000, reinterpret_cast<const char*>(get_string(GL_VERSION)));
     }
-    cpu_renderer_ = is_cpu_renderer(reinterpret_cast<const char*>(get_string(GL_RENDERER)));
+    cpu_renderer_ = !gpu_code_paths_ && is_cpu_renderer(reinterpret_cast<const char*>(get_string(GL_RENDERER)));
     // Context loss: only robust contexts report a reset, through GL 4.5's query or its extension forms. A
     // loader may hand out stubs for any name, so the name is looked up only where the context has it.
     const char* reset_query = version >= 40005                                ? "glGetGraphicsResetStatus"

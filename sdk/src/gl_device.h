@@ -24,7 +24,9 @@ public:
     const gl::Table& gl() const { return gl_; }
     GLint uniform_alignment() const { return uniform_alignment_; }
     GLint max_texture_size() const { return max_texture_size_; }
-    bool cpu_renderer() const { return cpu_renderer_; }  // GL_RENDERER names a CPU rasteriser (llvmpipe ...)
+    // GL_RENDERER names a CPU rasteriser (llvmpipe ...), and the context's flags do not ask for the GPU code paths:
+    // which variants the passes compile.
+    bool cpu_renderer() const { return cpu_renderer_; }
 
     // WRONG_GL_CONTEXT unless the GL context this device was initialised on is current.
     Error check_gl_context() const;
@@ -54,6 +56,7 @@ private:
     GLint uniform_alignment_ = 256;
     GLint max_texture_size_ = 0;
     bool cpu_renderer_ = false;
+    bool gpu_code_paths_ = false;  // OBSCURA_CONTEXT_FLAG_GPU_CODE_PATHS
     // glGetGraphicsResetStatus (GL 4.5) or its KHR/ARB_robustness form; null when the context has neither.
     ResetStatusFn get_reset_status_ = nullptr;
     GLenum lost_reason_ = 0;  // the reset status (or GL_CONTEXT_LOST) that marked the context lost; 0: alive

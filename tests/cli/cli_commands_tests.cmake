@@ -120,6 +120,21 @@ obscura_cli_command_test(render_enum_names_and_derived 0
   "render|${scene}|--method|lsao:preset=k32:pattern=aligned:tangent_strategy=fixed|--out|ao.png|--json|render.json"
   GL CHECK preset EXPECT_FILES "ao.png"
   EXPECT_STDOUT "preset +k32\n +pattern +aligned\n +directions +32 [(]derived[)]\n +step_length +4.69 px [(]derived[)]")
+# The settings printed and reported are the ones the renderer derives: LSAO's segments (128 steps) with the GPU code
+# paths (and on a GPU), whole lines (-1) on a CPU rasteriser's own paths. --gpu-code-paths renders those variants.
+obscura_cli_command_test(render_gpu_code_paths 0
+  "render|${scene}|--method|lsao|--gpu-code-paths|--out|ao.png|--json|render.json"
+  GL EXPECT_FILES "ao.png|render.json" EXPECT_STDOUT "segment_steps +128 [(]derived[)]
+")
+if(NOT OBSCURA_CLI_COMMANDS_GPU)
+  obscura_cli_command_test(render_derives_for_the_cpu_rasteriser 0
+    "render|${scene}|--method|lsao|--out|ao.png"
+    GL EXPECT_FILES "ao.png" EXPECT_STDOUT "segment_steps +-1 [(]derived[)]
+")
+endif()
+obscura_cli_command_test(compare_gpu_code_paths 0
+  "compare|${scene}|--methods|lsao,gtao|--gpu-code-paths|--truth-rays|4|--out-dir|out"
+  GL EXPECT_FILES "out/1_lsao.png|out/2_gtao.png")
 obscura_cli_command_test(render_falloff_table_inline 0
   "render|${scene}|--method|reference:rays=4:falloff=table:falloff_table=1/0.95/0.9/0.8/0.7/0.6/0.5/0.4/0.3/0.2/0.15/0.1/0.05/0.02/0.01/0|--out|ao.png"
   GL EXPECT_FILES "ao.png"

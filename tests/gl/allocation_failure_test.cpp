@@ -117,6 +117,7 @@ struct FailureCase {
     bool temporal = false;      // matrices and frame indices given: the second frame reads the first's history
     bool bent_normals = false;  // GTAO's bent normals into a host texture
     bool framebuffer = false;   // the output into a host renderbuffer through a framebuffer (the SDK's blit)
+    uint32_t context_flags = 0; // OBSCURA_CONTEXT_FLAG_GPU_CODE_PATHS: the GPUs' storage buffers instead of buffer textures
 };
 
 obscura_settings settings_for(const FailureCase& c) {
@@ -149,6 +150,14 @@ const FailureCase kCases[] = {
      },
      false, true},
     {"reference", OBSCURA_METHOD_REFERENCE, nullptr},
+    // The code paths GPUs run: LSAO's values and line records, FFAO's peaks and columns in storage buffers.
+    {"lsao_gpu_code_paths", OBSCURA_METHOD_LSAO, nullptr, false, false, false, OBSCURA_CONTEXT_FLAG_GPU_CODE_PATHS},
+    {"ffao_saao_gpu_code_paths", OBSCURA_METHOD_FFAO,
+     [](obscura_settings* s) {
+         s->ffao.saao = OBSCURA_TOGGLE_ON;
+         s->ffao.sectors = 18;
+     },
+     false, false, false, OBSCURA_CONTEXT_FLAG_GPU_CODE_PATHS},
 };
 
 std::string case_name(const ::testing::TestParamInfo<FailureCase>& info) { return info.param.name; }
@@ -190,7 +199,7 @@ protected:
     }
 
     obscura_context_desc desc() {
-        obscura_context_desc d = make_desc(flags_);
+        obscura_context_desc d = make_desc(flags_ | GetParam().context_flags);
         d.get_proc_address = nullptr;
         d.get_proc_address_with_user_data = &FailingGL::loader;
         d.allocator.alloc = &FailingGL::host_alloc;

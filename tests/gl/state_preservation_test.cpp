@@ -16,12 +16,24 @@ namespace {
 constexpr int kWidth = 96;
 constexpr int kHeight = 64;
 
+// Which variants the passes compile: a CPU rasteriser's own (what llvmpipe gets) or, through
+// OBSCURA_CONTEXT_FLAG_GPU_CODE_PATHS, the GPUs' (storage buffers, shared memory): every test runs with both.
+enum class CodePaths { Cpu, Gpu };
+
 // The host's objects and the sentinel state made from them.
-class StatePreservation : public GLTest {
+class StatePreservation : public GLTest, public ::testing::WithParamInterface<CodePaths> {
+public:
+    StatePreservation() {
+        context_flags_ = GetParam() == CodePaths::Gpu ? uint32_t(OBSCURA_CONTEXT_FLAG_GPU_CODE_PATHS) : 0u;
+    }
+
 protected:
     void SetUp() override {
         GLTest::SetUp();
         if (HasFatalFailure()) return;
+        // Put back in TearDown: the sentinel's viewport would otherwise be the next test's default state, against
+        // which SentinelStateIsDistinctive compares.
+        glGetIntegerv(GL_VIEWPORT, viewport_);
         build_frame();
         build_host_objects();
     }
@@ -48,6 +60,7 @@ protected:
         glBindRenderbuffer(GL_RENDERBUFFER, 0);
         for (int unit = 0; unit < kSnapshotTextureUnits; ++unit) glBindSampler(GLuint(unit), 0);
         glActiveTexture(GL_TEXTURE0);
+        glViewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
         GLTest::TearDown();
     }
 
@@ -255,6 +268,7 @@ protected:
         return output;
     }
 
+    GLint viewport_[4] = {};
     HostTexture depth_;
     obscura_input input_{};
     obscura_settings settings_{};
@@ -276,7 +290,7 @@ public:
     }
 };
 
-TEST_F(StatePreservation, SentinelStateIsDistinctive) {
+TEST_P(StatePreservation, SentinelStateIsDistinctive) {
     // Guards the test itself: the sentinel state differs from the default in the fields that matter.
     Snapshot defaults = capture();
     set_sentinel_state();
@@ -289,7 +303,7 @@ TEST_F(StatePreservation, SentinelStateIsDistinctive) {
         EXPECT_NE(differences.find(std::string("  ") + field + ":"), std::string::npos) << field;
 }
 
-TEST_F(StatePreservation, RenderIntoTexture) {
+TEST_P(StatePreservation, RenderIntoTexture) {
     set_sentinel_state();
     Snapshot before = capture();
     obscura_output output = texture_output();
@@ -297,7 +311,7 @@ TEST_F(StatePreservation, RenderIntoTexture) {
     expect_unchanged(before, "render into a texture (multiply)");
 }
 
-TEST_F(StatePreservation, RenderIntoRenderbufferFramebuffer) {
+TEST_P(StatePreservation, RenderIntoRenderbufferFramebuffer) {
     set_sentinel_state();
     Snapshot before = capture();
     obscura_output output = framebuffer_output();
@@ -305,7 +319,7 @@ TEST_F(StatePreservation, RenderIntoRenderbufferFramebuffer) {
     expect_unchanged(before, "render into a renderbuffer FBO (blit, multiply)");
 }
 
-TEST_F(StatePreservation, RenderDebugViews) {
+TEST_P(StatePreservation, RenderDebugViews) {
     set_sentinel_state();
     Snapshot before = capture();
     for (obscura_debug_view view : {OBSCURA_DEBUG_LINEAR_DEPTH, OBSCURA_DEBUG_NORMALS, OBSCURA_DEBUG_AO_BEFORE_BLUR}) {
@@ -317,12 +331,13 @@ TEST_F(StatePreservation, RenderDebugViews) {
 }
 
 // Every method binds its own passes' resources: SAO six image units and a mipmapped sampler, LSAO storage
-// buffers, FFAO a 3D table with a linear sampler, the reference its accumulator.
-TEST_F(StatePreservation, EveryMethod) {
+// buffers (buffer textures on the CPU paths), FFAO a 3D table with a linear sampler, the reference its accumulator,
+// GTAO the z pyramid's levels.
+TEST_P(StatePreservation, EveryMethod) {
     set_sentinel_state();
     Snapshot before = capture();
     for (obscura_method method : {OBSCURA_METHOD_HBAO, OBSCURA_METHOD_SAO, OBSCURA_METHOD_LSAO, OBSCURA_METHOD_FFAO,
-                                  OBSCURA_METHOD_REFERENCE}) {
+                                  OBSCURA_METHOD_REFERENCE, OBSCURA_METHOD_GTAO}) {
         obscura_settings settings;
         ASSERT_EQ(obscura_default_settings(method, &settings), OBSCURA_OK);
         settings.reference.rays = 4;
@@ -340,7 +355,7 @@ TEST_F(StatePreservation, EveryMethod) {
 // Reduced resolution adds the upsample: the host's depth on unit 0 again, the reduced depth, normals and AO (or bent
 // normals, with GTAO's bent output and temporal frames) as samplers, one or two image units; the composite reads the
 // reduced textures in the debug views.
-TEST_F(StatePreservation, ReducedResolution) {
+TEST_P(StatePreservation, ReducedResolution) {
     HostTexture bent = make_texture(GL_RGBA16F, kWidth, kHeight);
     set_sentinel_state();
     Snapshot before = capture();
@@ -367,7 +382,7 @@ TEST_F(StatePreservation, ReducedResolution) {
 // Temporal accumulation binds the history, the bent-normal history, the motion vectors (unit 0) and two image
 // units; every frame of a sequence (the first starts the history, the second reads it), with and without
 // matrices and motion vectors, in a view of its own.
-TEST_F(StatePreservation, TemporalAccumulation) {
+TEST_P(StatePreservation, TemporalAccumulation) {
     HostTexture motion = make_texture(GL_RG16F, input_.depth_width, input_.depth_height);
     fill_texture(motion.get(), input_.depth_width, input_.depth_height, 0.25f, -0.5f, 0.0f, 0.0f);
     HostTexture bent = make_texture(GL_RGBA16F, kWidth, kHeight);
@@ -393,7 +408,7 @@ TEST_F(StatePreservation, TemporalAccumulation) {
     expect_unchanged(before, "temporal frames");
 }
 
-TEST_F(StatePreservation, FailedRender) {
+TEST_P(StatePreservation, FailedRender) {
     set_sentinel_state();
     Snapshot before = capture();
     obscura_output output = texture_output();
@@ -402,7 +417,7 @@ TEST_F(StatePreservation, FailedRender) {
     expect_unchanged(before, "a render failing in output validation");
 }
 
-TEST_F(StatePreservation, FailedRenderOnWrongTextureTarget) {
+TEST_P(StatePreservation, FailedRenderOnWrongTextureTarget) {
     set_sentinel_state();
     Snapshot before = capture();
     obscura_input input = input_;
@@ -413,7 +428,7 @@ TEST_F(StatePreservation, FailedRenderOnWrongTextureTarget) {
     expect_unchanged(before, "a render failing on a 3D depth texture");
 }
 
-TEST_F(StatePreservation, PrepareAndRelease) {
+TEST_P(StatePreservation, PrepareAndRelease) {
     set_sentinel_state();
     Snapshot before = capture();
     ASSERT_EQ(obscura_prepare(ctx(), 128, 72, &settings_), OBSCURA_OK) << obscura_get_last_error(ctx());
@@ -421,7 +436,7 @@ TEST_F(StatePreservation, PrepareAndRelease) {
     expect_unchanged(before, "obscura_prepare + obscura_release_resources");
 }
 
-TEST_F(StatePreservation, CreateAndDestroy) {
+TEST_P(StatePreservation, CreateAndDestroy) {
     set_sentinel_state();
     Snapshot before = capture();
     ContextPtr other = create_context();
@@ -432,7 +447,7 @@ TEST_F(StatePreservation, CreateAndDestroy) {
     expect_unchanged(before, "obscura_create_context + render + obscura_destroy_context");
 }
 
-TEST_F(StatePreservation, ResultStillCorrectUnderSentinelState) {
+TEST_P(StatePreservation, ResultStillCorrectUnderSentinelState) {
     // The host's bound objects and pixel-store state must not leak into the SDK's work: the result
     // under sentinel state equals the result under default state.
     obscura_output output = make_output(output_texture_.get());
@@ -450,7 +465,7 @@ TEST_F(StatePreservation, ResultStillCorrectUnderSentinelState) {
     EXPECT_EQ(clean, dirty);
 }
 
-TEST_F(StatePreservation, BlitTargetWrittenDespiteHostScissorAndMask) {
+TEST_P(StatePreservation, BlitTargetWrittenDespiteHostScissorAndMask) {
     // The host's scissor box (1, 2, 30x40) and colour mask (r, b only) must not clip the blit into the
     // output framebuffer.
     obscura_output output = make_output(0);
@@ -462,7 +477,7 @@ TEST_F(StatePreservation, BlitTargetWrittenDespiteHostScissorAndMask) {
     EXPECT_EQ(count_unwritten_output_texels(), 0);
 }
 
-TEST_F(StatePreservation, BlitTargetWrittenDespiteRasterizerDiscard) {
+TEST_P(StatePreservation, BlitTargetWrittenDespiteRasterizerDiscard) {
     // GL_RASTERIZER_DISCARD left enabled by the host (transform-feedback passes) must not swallow the
     // blit into the output framebuffer, and must still be enabled afterwards.
     obscura_output output = make_output(0);
@@ -476,6 +491,11 @@ TEST_F(StatePreservation, BlitTargetWrittenDespiteRasterizerDiscard) {
     EXPECT_TRUE(still_enabled);
     EXPECT_EQ(count_unwritten_output_texels(), 0);
 }
+
+INSTANTIATE_TEST_SUITE_P(CodePaths, StatePreservation, ::testing::Values(CodePaths::Cpu, CodePaths::Gpu),
+                         [](const ::testing::TestParamInfo<CodePaths>& paths) {
+                             return std::string(paths.param == CodePaths::Gpu ? "gpu" : "cpu");
+                         });
 
 }  // namespace
 }  // namespace obscura_test

@@ -194,7 +194,13 @@ enum {
        drivers whose timer queries read 0, such as llvmpipe). Stalls: never use in production. */
     OBSCURA_CONTEXT_FLAG_SYNC_TIMING = 1u << 0,
     /* Check glGetError after every pass and report the pass that raised one (debugging aid). */
-    OBSCURA_CONTEXT_FLAG_VALIDATE_PASSES = 1u << 1
+    OBSCURA_CONTEXT_FLAG_VALIDATE_PASSES = 1u << 1,
+    /* Run the code paths written for GPUs even where GL_RENDERER names a CPU rasteriser (llvmpipe, softpipe,
+       SwiftShader), which otherwise get variants of their own: a pass per texel block or run, buffer textures
+       instead of storage buffers, no shared-memory tiles, whole LSAO lines. For testing what GPUs run on a
+       machine without one (CI under llvmpipe); the images match the CPU paths' within rounding, slower there.
+       No effect on a GPU. */
+    OBSCURA_CONTEXT_FLAG_GPU_CODE_PATHS = 1u << 2
 };
 
 typedef struct obscura_context_desc {
