@@ -292,9 +292,31 @@ Error Context::prepare(int width, int height, const obscura_settings& settings) 
     }
     error = device_.check_host_state("obscura_prepare");
     if (error) return error;
-    gl::StateGuard guard(device_.gl());
+    {
+        gl::StateGuard guard(device_.gl());
+        error = prepare_resources(width, height, resolved);
+        // A GL error no call checked itself (an upload, a link that ran out of memory) is this call's, as in a
+        // render: left pending, the next call would blame it on the host.
+        error = take_pending_error(error, "while preparing");
+    }
+    return take_pending_error(error, "while restoring the host's GL state");
+}
+
+Error Context::take_pending_error(Error error, const char* where) {
+    const GLenum gl_error = device_.take_error();
+    // Out of memory is what failed, whatever it made fail after it (a link without memory reads as a failed link),
+    // and a lost context is lost; any other GL error only explains a call that succeeded otherwise.
+    const bool reported = error.status() == OBSCURA_STATUS_OUT_OF_MEMORY || error.status() == OBSCURA_STATUS_CONTEXT_LOST;
+    if (gl_error == GlDevice::kContextLost || (gl_error == GL_OUT_OF_MEMORY && !reported) ||
+        (!error && gl_error != GL_NO_ERROR)) {
+        return device_.error_status(gl_error, where);
+    }
+    return error;
+}
+
+Error Context::prepare_resources(int width, int height, const obscura_settings& resolved) {
     Technique* technique = nullptr;
-    error = technique_for(resolved.method, &technique);
+    Error error = technique_for(resolved.method, &technique);
     if (error) return error;
     FrameRequest request;  // no output yet: the AO, and whatever extra outputs the last render asked for
     request.output_known = false;
@@ -337,21 +359,15 @@ Error Context::render(const obscura_input& input, const obscura_settings& settin
         if (!error) error = record_frame(frame, resolved, target);
         recorded = !error;
         // A failed validation may leave a probing error (wrong texture target) behind: drain it.
-        const GLenum gl_error = device_.take_error();
-        if (gl_error == GlDevice::kContextLost || (!error && gl_error != GL_NO_ERROR)) {
-            error = device_.error_status(gl_error, "while rendering");
-        }
+        error = take_pending_error(error, "while rendering");
         // A frame whose passes raised a GL error (seen here unless OBSCURA_CONTEXT_FLAG_VALIDATE_PASSES checked each
         // pass) may not have written the history it swapped in: the next frame starts anew. (A frame refused inside
         // record_frame, before its passes, left the history as it was: still the previous frame's.)
         if (error && recorded) find_view(frame.view)->history.invalidate();
     }
-    const GLenum restore_error = device_.take_error();
-    if (restore_error == GlDevice::kContextLost || (!error && restore_error != GL_NO_ERROR)) {
-        error = device_.error_status(restore_error, "while restoring the host's GL state");
-        if (recorded) find_view(frame.view)->history.invalidate();
-    }
-    return error;
+    const Error restored = take_pending_error(error, "while restoring the host's GL state");
+    if (restored.status() != error.status() && recorded) find_view(frame.view)->history.invalidate();
+    return restored;
 }
 
 Error Context::timings(obscura_timing* out, uint32_t capacity, uint32_t* count, uint64_t* frame_index) {

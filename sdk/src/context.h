@@ -63,6 +63,11 @@ private:
     ~Context();
     Error initialize();
     PassEnv env() const;
+    // obscura_prepare's work under its state guard: the technique, the shared resources and the upsample's.
+    Error prepare_resources(int width, int height, const obscura_settings& resolved);
+    // Drains the GL errors left pending: `error` unless there was one, or unless it is GL_OUT_OF_MEMORY or a loss
+    // (then that, `where` in its message).
+    Error take_pending_error(Error error, const char* where);
     // The technique of a resolved method, created on first use; every other technique's resources are freed
     // when the method changes (the context holds what its latest configuration needs and nothing else).
     Error technique_for(obscura_method method, Technique** out);

@@ -40,7 +40,7 @@ public:
     GLenum take_error() const;
     // A GL error raised inside the SDK as a status: CONTEXT_LOST for GL_CONTEXT_LOST (the device is then
     // lost), OUT_OF_MEMORY for GL_OUT_OF_MEMORY (which GL may raise from any call that needs memory, the per-frame
-    // re-specification of the uniform buffer among them), else GL_ERROR; the message names `where` ("while ...").
+    // re-specification of the uniform buffer among them), else GL_ERROR; the message names `where` ("while rendering", "in pass hbao").
     Error error_status(GLenum error, const char* where);
     // Whether initialize() got as far as the identity object (so the GL context can be recognised).
     bool has_identity() const { return static_cast<bool>(identity_framebuffer_); }

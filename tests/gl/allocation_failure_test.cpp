@@ -1,6 +1,7 @@
 // Every allocation the SDK makes can fail, and the host must be able to go on. A host loader plays a GL that runs
-// out of memory at the n-th allocation (glTexStorage2D/3D or glBufferData: the call does nothing and the next
-// glGetError answers GL_OUT_OF_MEMORY), and the host allocator returns NULL when the n-th allocation is one of its
+// out of memory at the n-th allocation (glTexStorage2D/3D, glBufferData, and glCompileShader and glLinkProgram, for
+// which drivers allocate: the call does nothing and the next glGetError answers GL_OUT_OF_MEMORY), and the host
+// allocator returns NULL when the n-th allocation is one of its
 // own, for every n that a context's creation, its obscura_prepare and its first two frames make, for every method
 // and the paths around them (reduced resolution, temporal history, bent normals, the blit to a host framebuffer).
 // Each failure must
@@ -39,6 +40,8 @@ struct FailingGL {
     static void (*real_tex_storage_2d)(GLenum, GLsizei, GLenum, GLsizei, GLsizei);
     static void (*real_tex_storage_3d)(GLenum, GLsizei, GLenum, GLsizei, GLsizei, GLsizei);
     static void (*real_buffer_data)(GLenum, GLsizeiptr, const void*, GLenum);
+    static void (*real_compile_shader)(GLuint);
+    static void (*real_link_program)(GLuint);
 
     static void reset(int failing) {
         allocations = 0;
@@ -67,6 +70,13 @@ struct FailingGL {
     static void buffer_data(GLenum target, GLsizeiptr size, const void* data, GLenum usage) {
         if (!fails()) real_buffer_data(target, size, data, usage);
     }
+    // A driver allocates as it compiles and links: skipped, the shader is not compiled (the program not linked).
+    static void compile_shader(GLuint shader) {
+        if (!fails()) real_compile_shader(shader);
+    }
+    static void link_program(GLuint program) {
+        if (!fails()) real_link_program(program);
+    }
 
     static void* host_alloc(size_t size, void*) {
         if (allocations++ == fail_at) return nullptr;
@@ -85,6 +95,8 @@ struct FailingGL {
             {"glTexStorage2D", reinterpret_cast<obscura_gl_function>(&tex_storage_2d)},
             {"glTexStorage3D", reinterpret_cast<obscura_gl_function>(&tex_storage_3d)},
             {"glBufferData", reinterpret_cast<obscura_gl_function>(&buffer_data)},
+            {"glCompileShader", reinterpret_cast<obscura_gl_function>(&compile_shader)},
+            {"glLinkProgram", reinterpret_cast<obscura_gl_function>(&link_program)},
         };
         for (const auto& [wrapped_name, function] : wrapped) {
             if (std::strcmp(name, wrapped_name) == 0) return function;
@@ -98,6 +110,8 @@ struct FailingGL {
         real_tex_storage_2d = reinterpret_cast<decltype(real_tex_storage_2d)>(real("glTexStorage2D"));
         real_tex_storage_3d = reinterpret_cast<decltype(real_tex_storage_3d)>(real("glTexStorage3D"));
         real_buffer_data = reinterpret_cast<decltype(real_buffer_data)>(real("glBufferData"));
+        real_compile_shader = reinterpret_cast<decltype(real_compile_shader)>(real("glCompileShader"));
+        real_link_program = reinterpret_cast<decltype(real_link_program)>(real("glLinkProgram"));
     }
 };
 int FailingGL::allocations = 0;
@@ -108,6 +122,8 @@ GLenum (*FailingGL::real_get_error)() = nullptr;
 void (*FailingGL::real_tex_storage_2d)(GLenum, GLsizei, GLenum, GLsizei, GLsizei) = nullptr;
 void (*FailingGL::real_tex_storage_3d)(GLenum, GLsizei, GLenum, GLsizei, GLsizei, GLsizei) = nullptr;
 void (*FailingGL::real_buffer_data)(GLenum, GLsizeiptr, const void*, GLenum) = nullptr;
+void (*FailingGL::real_compile_shader)(GLuint) = nullptr;
+void (*FailingGL::real_link_program)(GLuint) = nullptr;
 
 // One configuration: a method's settings, and how the host hands over its frames.
 struct FailureCase {

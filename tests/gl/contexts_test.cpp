@@ -365,15 +365,35 @@ TEST_F(Contexts, CompiledVariantsAreBoundedWhenASettingIsSwept) {
     settings.gtao.slices = 1;
     EXPECT_FALSE(render_to_new_texture(ctx(), frame.input, settings, GL_R32F, 1).empty());
     const int first = count_gl_objects()["program"];
-    for (int slices = 2; slices <= 8; ++slices) {
+    for (int slices = 2; slices <= 12; ++slices) {
         settings.gtao.slices = slices;
         EXPECT_FALSE(render_to_new_texture(ctx(), frame.input, settings, GL_R32F, 1).empty());
     }
-    // 8 variants rendered; the pass keeps 4 of them.
-    EXPECT_EQ(count_gl_objects()["program"], first + 3);
+    // 12 variants rendered; the pass keeps 8 of them.
+    EXPECT_EQ(count_gl_objects()["program"], first + 7);
     // The latest one is still there: rendering it again compiles nothing.
     EXPECT_FALSE(render_to_new_texture(ctx(), frame.input, settings, GL_R32F, 1).empty());
-    EXPECT_EQ(count_gl_objects()["program"], first + 3);
+    EXPECT_EQ(count_gl_objects()["program"], first + 7);
+}
+
+// A host rendering several configurations of one method every frame (here five GTAO variants, views with their own
+// settings) compiles each once: the pass keeps them all, and the second round builds no program.
+TEST_F(Contexts, SeveralVariantsAFrameAreCompiledOnce) {
+    const Frame frame = box_frame(48, 32);
+    obscura_settings settings = method_defaults(OBSCURA_METHOD_GTAO);
+    auto render_variants = [&] {
+        for (int slices = 1; slices <= 5; ++slices) {
+            settings.gtao.slices = slices;
+            EXPECT_FALSE(render_to_new_texture(ctx(), frame.input, settings, GL_R32F, 1).empty());
+        }
+    };
+    settings.gtao.slices = 5;
+    EXPECT_FALSE(render_to_new_texture(ctx(), frame.input, settings, GL_R32F, 1).empty());  // the other passes' too
+    const int first = count_gl_objects()["program"];
+    render_variants();
+    EXPECT_EQ(count_gl_objects()["program"], first + 4) << "every variant kept";
+    render_variants();
+    EXPECT_EQ(count_gl_objects()["program"], first + 4);
 }
 
 // ---- Timings ---------------------------------------------------------------------------------------------

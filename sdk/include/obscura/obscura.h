@@ -843,7 +843,9 @@ OBSCURA_API obscura_status obscura_get_timings(obscura_context* context, obscura
 
 /* Sets *out_bytes to the GPU memory the context has allocated (textures and buffers). The context holds what its
    latest configuration (size, method, settings, output kind) needs and nothing else, so the same configuration
-   always reports the same bytes. Returns OK, NULL_ARGUMENT. */
+   reports the same bytes; LSAO and FFAO build the line layout of each of their 8 layout phases on the first frame
+   that uses it (frame_index chooses the phase), so theirs may grow over a host's first 8 frames. Returns OK,
+   NULL_ARGUMENT. */
 OBSCURA_API obscura_status obscura_get_memory_usage(const obscura_context* context, uint64_t* out_bytes);
 
 /* ---- The 0.3 ABI ----------------------------------------------------------------------------- */

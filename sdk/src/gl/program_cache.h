@@ -20,7 +20,12 @@ struct DefineLines {
     bool operator==(const DefineLines& other) const { return std::strcmp(text, other.text) == 0; }
 };
 
-template <class Key, int kCapacity>
+// How many variants a pass keeps: a host may render several configurations of one method every frame (views with
+// their own presets, bent normals on one of them), and each beyond the capacity would be compiled again every frame,
+// seconds on a CPU rasteriser; a sweep of a setting holds this many programs, not one per value it tried.
+constexpr int kProgramVariantsKept = 8;
+
+template <class Key, int kCapacity = kProgramVariantsKept>
 class ProgramCache {
 public:
     // The program for `key`: the cached one, or the one `build(gl::Object*)` makes (its Error returned as it is), kept

@@ -124,7 +124,7 @@ private:
     gl::Buffer peaks_;  // shared by the phases: the largest chunk of any phase built
     UniformRange chunk_uniforms_[OBSCURA_FFAO_PEAK_CHUNKS];
     int64_t storage_block_limit_ = 0;  // tests: a smaller storage block than GL's (FfaoPassInspection)
-    // The last layout refused for its size (INVALID_SIZE), with its key and phase: ensure_layout answers it again.
+    // The last layout refused for its size (INVALID_SIZE), by its key: ensure_layout answers it again, in every phase.
     LayoutKey refused_key_;  // the last size refused with INVALID_SIZE (in any layout phase), and why
     Error refused_;
     int layouts_built_ = 0;  // tests (FfaoPassInspection)

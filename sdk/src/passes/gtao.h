@@ -37,7 +37,7 @@ public:
 private:
     // By variant: thickness mode, step distribution, bent normals, slices, steps, thickness blend on (variant_key).
     // The last few (a tuning session that sweeps slices x steps held a program per pair it tried).
-    gl::ProgramCache<uint32_t, 4> programs_;
+    gl::ProgramCache<uint32_t> programs_;
     static int step_distribution(const obscura_gtao_settings& settings);
     static uint32_t variant_key(const obscura_gtao_settings& settings, bool bent_normals);
 };

@@ -64,7 +64,7 @@ private:
     friend class LsaoPassInspection;  // the tests' readbacks (testing/pass_inspection.h)
     // Programs with the settings that select code compiled in (the pattern, the tangent strategy, the hull
     // capacity, the normal test), by their #define lines: the last few of each shader.
-    using VariantCache = gl::ProgramCache<gl::DefineLines, 4>;
+    using VariantCache = gl::ProgramCache<gl::DefineLines>;
     static Error program_for(const PassEnv& env, const char* shader, const gl::DefineLines& defines,
                              VariantCache* cache, GLuint* program);
     VariantCache sweep_variants_, gather_variants_;
