@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "ao_test_scene.h"
 #include "demo_scene.h"
 #include "gl_test_support.h"
 #include "method_spec_parser.h"
@@ -160,6 +161,37 @@ TEST_P(GpuCodePaths, RenderWhatTheCpuPathsRender) {
 INSTANTIATE_TEST_SUITE_P(Methods, GpuCodePaths, ::testing::ValuesIn(kCases), case_name);
 
 class GpuCodePathsFlag : public GLTest {};
+
+// Odd sizes, where the GPU variants' tiles, runs and workgroups end part of the way (a shared-memory tile past the
+// texture's edge, a run of one pixel where the CPU's run of 16 is cut short, an LSAO segment shorter than the others):
+// a box on a floor at each size, the output rectangle inside a guard band where there is room, each method with
+// the variants that have GPU paths of their own. LSAO runs whole lines and explicit 16-step segments, the same
+// algorithm on both paths (its derived 128-step segments are the GPU's alone: the cases above).
+TEST_F(GpuCodePathsFlag, OddSizesRenderWhatTheCpuPathsRender) {
+    ContextPtr gpu = create_context(OBSCURA_CONTEXT_FLAG_GPU_CODE_PATHS | OBSCURA_CONTEXT_FLAG_VALIDATE_PASSES);
+    ASSERT_NE(gpu, nullptr);
+    const char* const specs[] = {"hbao", "hbao:resolution.scale=half", "sao", "gtao", "gtao:thickness_mode=bitmask",
+                                 "lsao:segment_steps=-1", "lsao:segment_steps=16", "ffao", "ffao:saao=on:sectors=18",
+                                 "reference:rays=4"};
+    const int sizes[][2] = {{1, 1}, {2, 3}, {3, 7}, {33, 5}, {5, 33}, {61, 47}, {150, 9}};
+    for (const auto& size : sizes) {
+        const int width = size[0], height = size[1];
+        AoScene scene = make_ao_scene(Projection::Perspective, look_at(glm::dvec3(0.9, 2.4, 3.2), glm::dvec3(0.0, 0.3, 0.0)),
+                                      {plane(1, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0)),
+                                       box(2, glm::dvec3(-0.5, 0.0, -0.5), glm::dvec3(0.5, 0.7, 0.5))},
+                                      Lens(), width, height);
+        if (width >= 20 && height >= 20) scene.input.output_rect = obscura_rect{3, 2, width - 6, height - 5};
+        for (const char* spec : specs) {
+            const obscura_settings settings = obscura::samples::parse_method_spec(spec);
+            const std::vector<float> on_gpu_paths = render_to_new_texture(gpu.get(), scene.input, settings, GL_R32F, 1);
+            const std::vector<float> on_cpu_paths = render_to_new_texture(ctx(), scene.input, settings, GL_R32F, 1);
+            ASSERT_EQ(on_gpu_paths.size(), on_cpu_paths.size()) << spec << " at " << width << "x" << height;
+            ASSERT_FALSE(on_cpu_paths.empty()) << spec << " at " << width << "x" << height;
+            const Difference d = difference(on_gpu_paths, on_cpu_paths);
+            EXPECT_LE(d.largest, 1e-3) << spec << " at " << width << "x" << height << ": mean " << d.mean;
+        }
+    }
+}
 
 // The flag is what the settings derive from as well: obscura_resolve_settings with the context gives LSAO's GPU
 // segments (128 steps) with it, whole lines (-1) without.
