@@ -2,10 +2,12 @@
 // obscura_release_resources, obscura_get_timings, obscura_get_memory_usage and obscura_resolve_settings with a
 // context, fed with fuzzed input / output / settings structs that name host GL objects from fixed pools.
 //
-// LLVMFuzzerInitialize creates one headless GL 4.3 context (llvmpipe in CI), one obscura context with
-// OBSCURA_CONTEXT_FLAG_VALIDATE_PASSES, the pools (depth-like textures of every kind the SDK must accept or
+// LLVMFuzzerInitialize creates one headless GL 4.3 context (llvmpipe in CI), two obscura contexts with
+// OBSCURA_CONTEXT_FLAG_VALIDATE_PASSES, the second also with OBSCURA_CONTEXT_FLAG_GPU_CODE_PATHS (the shader variants
+// GPUs run: shared-memory tiles, storage buffers, runs of one pixel, at the fuzzer's odd sizes), the pools (depth-like textures of every kind the SDK must accept or
 // refuse, normals, output targets) and then binds sentinel objects everywhere an SDK call may touch GL state.
-// Each input is a short list of operations (see run_operation); after every call the fuzzer checks that the
+// Each input is a short list of operations (see run_operation: the low 4 bits of an operation's byte pick it, bit 4
+// the context it runs on); after every call the fuzzer checks that the
 // status is a known code and one this call may return, that a failure left a message (and went to the log),
 // that glGetError() is GL_NO_ERROR, and that every sentinel binding is still in place. It traps otherwise.
 // Settings structs come in every released size (0.1 ... this header's), each in a heap buffer of exactly that
@@ -465,13 +467,32 @@ void log_callback(obscura_log_level level, obscura_status status, const char* me
 struct Fixture {
     HeadlessGL* gl = nullptr;
     HeadlessGL* other_gl = nullptr;  // a second GL context, current only inside op_wrong_context
+    // The context the current operation runs on (select()), and what the checks keep of it.
     obscura_context* context = nullptr;
+    bool gpu_code_paths = false;  // created with OBSCURA_CONTEXT_FLAG_GPU_CODE_PATHS
+    uint64_t baseline_memory = 0;
+    uint64_t last_frame_index = 0;
     LogRecord log;
     Pools pools;
     Sentinels sentinels;
     GLint max_texture_size = 0;
-    uint64_t baseline_memory = 0;
-    uint64_t last_frame_index = 0;
+
+    // Both contexts; `selected` is the one whose state the fields above hold.
+    struct ContextState {
+        obscura_context* context = nullptr;
+        bool gpu_code_paths = false;
+        uint64_t baseline_memory = 0, last_frame_index = 0;
+    };
+    ContextState states[2];
+    int selected = 0;
+    void select(int index) {
+        states[selected] = ContextState{context, gpu_code_paths, baseline_memory, last_frame_index};
+        selected = index;
+        context = states[index].context;
+        gpu_code_paths = states[index].gpu_code_paths;
+        baseline_memory = states[index].baseline_memory;
+        last_frame_index = states[index].last_frame_index;
+    }
 };
 Fixture* g_fixture = nullptr;
 
@@ -1132,8 +1153,9 @@ void op_resolve_with_context(Reader& in) {
         std::memcpy(&with_context, out.bytes() + segment_steps, sizeof with_context);
         std::memcpy(&without_context, out_without.bytes() + segment_steps, sizeof without_context);
         if (without_context == 0) {
-            FUZZ_CHECK(with_context == -1 || with_context == 128,
-                       "obscura_resolve_settings with the context derived lsao.segment_steps = %d", int(with_context));
+            FUZZ_CHECK(with_context == 128 || (with_context == -1 && !fx.gpu_code_paths),
+                       "obscura_resolve_settings with the %s context derived lsao.segment_steps = %d",
+                       fx.gpu_code_paths ? "GPU code paths'" : "default", int(with_context));
             std::memcpy(out.get_bytes() + segment_steps, &without_context, sizeof without_context);
         }
     }
@@ -1281,6 +1303,7 @@ void op_null_arguments(Reader& in) {
 }
 
 void run_operation(uint8_t op, Reader& in) {
+    g_fixture->select((op >> 4) & 1);
     switch (op % 16) {
         case 0: case 1: case 2: case 3: case 4: case 5: case 6: case 7: op_render(in, false); break;
         case 8: case 9: op_prepare(in); break;
@@ -1315,15 +1338,22 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
     desc.struct_size = sizeof desc;
     desc.header_version = OBSCURA_VERSION;
     desc.get_proc_address = &HeadlessGL::get_proc_address;
-    desc.flags = OBSCURA_CONTEXT_FLAG_VALIDATE_PASSES;
     desc.log = &log_callback;
     desc.log_user_data = &fx.log;
-    const int32_t status = status_code(obscura_create_context(&desc, &fx.context));
-    FUZZ_CHECK(status == kOk, "render_fuzzer setup: obscura_create_context returned %s", fuzz_status_string(status));
+    for (int i = 0; i < 2; ++i) {
+        desc.flags = OBSCURA_CONTEXT_FLAG_VALIDATE_PASSES | (i == 1 ? uint32_t(OBSCURA_CONTEXT_FLAG_GPU_CODE_PATHS) : 0u);
+        Fixture::ContextState& state = fx.states[i];
+        state.gpu_code_paths = i == 1;
+        const int32_t status = status_code(obscura_create_context(&desc, &state.context));
+        FUZZ_CHECK(status == kOk, "render_fuzzer setup: obscura_create_context returned %s", fuzz_status_string(status));
+        FUZZ_CHECK(obscura_get_memory_usage(state.context, &state.baseline_memory) == OBSCURA_OK, "memory usage failed");
+    }
+    fx.selected = 0;
+    fx.context = fx.states[0].context;
+    fx.baseline_memory = fx.states[0].baseline_memory;
     fx.max_texture_size = get_integer(GL_MAX_TEXTURE_SIZE);
     fx.other_gl = new HeadlessGL();  // current now: switch back
     fx.gl->make_current();
-    FUZZ_CHECK(obscura_get_memory_usage(fx.context, &fx.baseline_memory) == OBSCURA_OK, "memory usage failed");
     fx.pools = make_pools();
     GLenum error = glGetError();
     FUZZ_CHECK(error == GL_NO_ERROR, "render_fuzzer setup raised %s", gl_error_name(error));
