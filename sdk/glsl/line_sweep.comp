@@ -243,6 +243,11 @@ float sweep_step(int i, vec2 point, float depth) {
         g_top_point = pk;
         ++g_count;
 #endif
+        // With the receiver's own tangent for both uses (strategy 1) the value stored is the obscurance above that
+        // tangent, sin h - sin t clamped and weighted, rather than the horizon: the gather takes a nearby sample's
+        // value for its pixel, and across a crease or an edge that sample's tangent is another surface's (see
+        // lsao_gather.comp).
+        if (strategy == 1 && value < 0.5 * OBSCURA_LSAO_NO_OCCLUDER) value -= occlusion_sin_t;
     }
     return value;
 }

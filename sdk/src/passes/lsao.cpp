@@ -70,9 +70,11 @@ Error LsaoPass::prepare(const PassEnv& env, const obscura_lsao_settings& setting
     defines = gl::DefineLines();
     std::snprintf(defines.text, sizeof defines.text,
                   "OBSCURA_LSAO_ALIGNED %d\nOBSCURA_LSAO_NORMAL_TEST %d\nOBSCURA_CPU_RASTERISER %d\n"
-                  "OBSCURA_LSAO_DIRECTIONS %d\nOBSCURA_LSAO_GATHER_MARGIN %d\nOBSCURA_LSAO_GATHER_BATCH %d\n",
+                  "OBSCURA_LSAO_DIRECTIONS %d\nOBSCURA_LSAO_GATHER_MARGIN %d\nOBSCURA_LSAO_GATHER_BATCH %d\n"
+                  "OBSCURA_LSAO_TANGENT_STRATEGY %d\n",
                   aligned, settings.normal_test == OBSCURA_TOGGLE_ON ? 1 : 0, cpu, settings.directions,
-                  lsao_gather_margin(settings), cpu ? 1 : std::min(settings.directions, kLsaoGatherBatch));
+                  lsao_gather_margin(settings), cpu ? 1 : std::min(settings.directions, kLsaoGatherBatch),
+                  settings.tangent_strategy);
     gather_group_[0] = cpu ? OBSCURA_LSAO_GATHER_GROUP_X : OBSCURA_LSAO_GPU_GATHER_GROUP;
     gather_group_[1] = cpu ? OBSCURA_LSAO_GATHER_GROUP_Y : OBSCURA_LSAO_GPU_GATHER_GROUP;
     return program_for(env, "lsao_gather.comp", defines, &gather_variants_, &gather_program_);
