@@ -1,6 +1,6 @@
 // Soak: 2,000 frames of random methods, settings (drawn from the SDK's own metadata), sizes (1x1, 3x7, 4097x9,
 // 9x4097 among ordinary ones), reduced resolutions, depth kinds, output targets, prepares, releases, context
-// re-creations and temporal
+// re-creations (half of them on the GPUs' shader variants, OBSCURA_CONTEXT_FLAG_GPU_CODE_PATHS) and temporal
 // frames (random history settings, matrices, camera cuts, views created and destroyed), the way
 // an engine's editor drives the SDK for hours. Every call must return OK or, for random settings outside what
 // the method accepts together, INVALID_SETTING; no GL error may be left; sampled outputs are finite and in
@@ -93,6 +93,9 @@ void bound_cost(obscura_settings* s, int pixels, std::mt19937& rng) {
     if (large) s->lsao.exact = OBSCURA_TOGGLE_OFF;
     s->ffao.sectors = std::min(s->ffao.sectors, 36);
     s->reference.rays = std::min(s->reference.rays, 4);
+    // GTAO compiles slices x steps in: a few pairs (0: the preset's).
+    s->gtao.slices = pick({0, 1, 3});
+    s->gtao.steps = pick({0, 2, 3});
     s->reference.rays_per_dispatch = std::min(s->reference.rays_per_dispatch, 4);
 }
 
@@ -157,13 +160,17 @@ TEST_F(Soak, TwoThousandRandomFramesLeakNothing) {
                                                     {33, 17}, {64, 36}, {96, 54},  {128, 72}, {2, 2}};
     const std::vector<double> size_weights = {3, 3, 1, 1, 4, 4, 6, 4, 2, 2};
     std::discrete_distribution<size_t> pick_size(size_weights.begin(), size_weights.end());
-    const obscura_method methods[] = {OBSCURA_METHOD_HBAO, OBSCURA_METHOD_SAO, OBSCURA_METHOD_LSAO,
-                                      OBSCURA_METHOD_FFAO, OBSCURA_METHOD_REFERENCE};
+    const obscura_method methods[] = {OBSCURA_METHOD_HBAO, OBSCURA_METHOD_SAO,       OBSCURA_METHOD_LSAO,
+                                      OBSCURA_METHOD_FFAO, OBSCURA_METHOD_REFERENCE, OBSCURA_METHOD_GTAO};
+    const int method_count = int(sizeof methods / sizeof methods[0]);
     {
         std::map<size_t, std::unique_ptr<SizedInputs>> inputs;  // host textures, made on first use
         CountingAllocator allocator;
-        auto create = [&]() {
-            obscura_context_desc desc = make_desc();
+        // Re-created contexts run the GPUs' shader variants half of the time (OBSCURA_CONTEXT_FLAG_GPU_CODE_PATHS).
+        int gpu_code_path_contexts = 0;
+        auto create = [&](bool gpu_code_paths) {
+            obscura_context_desc desc = make_desc(gpu_code_paths ? uint32_t(OBSCURA_CONTEXT_FLAG_GPU_CODE_PATHS) : 0u);
+            gpu_code_path_contexts += gpu_code_paths ? 1 : 0;
             desc.allocator.alloc = &CountingAllocator::alloc;
             desc.allocator.free = &CountingAllocator::release;
             desc.allocator.user_data = &allocator;
@@ -172,7 +179,7 @@ TEST_F(Soak, TwoThousandRandomFramesLeakNothing) {
             EXPECT_EQ(obscura_create_context(&desc, &raw), OBSCURA_OK);
             return ContextPtr(raw);
         };
-        ContextPtr context = create();
+        ContextPtr context = create(false);
         ASSERT_NE(context, nullptr);
         std::vector<obscura_view*> views;  // the current context's (destroyed with it)
 
@@ -191,7 +198,7 @@ TEST_F(Soak, TwoThousandRandomFramesLeakNothing) {
             if (!slot) slot = make_inputs(sizes[size_index].first, sizes[size_index].second);
             const SizedInputs& in = *slot;
             const int pixels = in.width * in.height;
-            const obscura_method method = methods[std::uniform_int_distribution<int>(0, 4)(rng)];
+            const obscura_method method = methods[std::uniform_int_distribution<int>(0, method_count - 1)(rng)];
             obscura_settings settings = anchor ? anchor_settings : random_settings(method, pixels, rng);
             const bool linear = !anchor && unit(rng) < 0.3;
             const Camera& camera = linear ? *in.linear_camera : *in.hardware_camera;
@@ -252,7 +259,7 @@ TEST_F(Soak, TwoThousandRandomFramesLeakNothing) {
                 views.clear();  // destroyed with the context
                 input.view = nullptr;
                 context.reset();
-                context = create();
+                context = create(unit(rng) < 0.5);
                 ASSERT_NE(context, nullptr);
                 ++recreated;
             } else if (action < 0.046) {
@@ -301,10 +308,10 @@ TEST_F(Soak, TwoThousandRandomFramesLeakNothing) {
         EXPECT_GE(statuses[OBSCURA_STATUS_OK], frames * 3 / 5) << "most random frames must render";
         EXPECT_GT(checked_outputs, frames / 20);
         EXPECT_GT(recreated, 0);
-        std::printf("soak: %d frames, %d OK, %d INVALID_SETTING, %d outputs checked, %d contexts re-created, "
-                    "anchor %.1f KiB\n",
+        std::printf("soak: %d frames, %d OK, %d INVALID_SETTING, %d outputs checked, %d contexts re-created (%d on "
+                    "the GPU code paths), anchor %.1f KiB\n",
                     frames, statuses[OBSCURA_STATUS_OK], statuses[OBSCURA_STATUS_INVALID_SETTING], checked_outputs,
-                    recreated, anchor_bytes / 1024.0);
+                    recreated, gpu_code_path_contexts, anchor_bytes / 1024.0);
     }
     glFinish();
     const std::map<std::string, int> objects_after = count_gl_objects();
