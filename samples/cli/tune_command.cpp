@@ -441,7 +441,7 @@ struct TuneReport {
     double seconds = 0.0;
 };
 
-void write_tune_json(const TuneReport& report, const std::string& path) {
+void write_tune_json(const TuneReport& report, const std::string& path, obscura_context* context) {
     const TuneConfig& config = *report.config;
     const std::vector<Candidate>& candidates = report.tuner->candidates();
     samples::JsonWriter json;
@@ -499,7 +499,7 @@ void write_tune_json(const TuneReport& report, const std::string& path) {
         json.key("restored").begin_array();
         for (const std::string& name : report.restored) json.value(name);
         json.end_array();
-        write_settings_json(json, best.settings);
+        write_settings_json(json, best.settings, context);
         json.field("c_code", viewer::settings_to_c(best.settings));
         json.end_object();
     } else {
@@ -813,7 +813,7 @@ int run_tune(ArgumentList& arguments) {
         }
     }
     if (config.json_path) {
-        write_tune_json(report, *config.json_path);
+        write_tune_json(report, *config.json_path, session.get());
         std::printf("wrote %s\n", config.json_path->c_str());
     }
     if (!found) {

@@ -264,7 +264,7 @@ const EyePlaneCase kEyePlaneCases[] = {
     {"hbao_temporal", OBSCURA_METHOD_HBAO, nullptr, true},
     {"gtao_denoise", OBSCURA_METHOD_GTAO, nullptr, false},
     // The paper's fixed tangent: with the receiver's own (the default) the sweep's hull decisions on a plane are ties
-    // that rounding settles, and 18 texels by the box move by up to 0.066 when the eye is 1000 units back
+    // that rounding settles, and 18 texels by the box move by up to 0.069 when the eye is 1000 units back
     // (its depths lose about 12 bits): a sensitivity of that strategy, not of the eye plane.
     {"lsao_gather", OBSCURA_METHOD_LSAO, [](obscura_settings* s) { s->lsao.tangent_strategy = 3; }, false},
 };

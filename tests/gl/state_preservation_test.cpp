@@ -439,7 +439,7 @@ TEST_P(StatePreservation, PrepareAndRelease) {
 TEST_P(StatePreservation, CreateAndDestroy) {
     set_sentinel_state();
     Snapshot before = capture();
-    ContextPtr other = create_context();
+    ContextPtr other = create_context(context_flags_);
     ASSERT_NE(other, nullptr);
     obscura_output output = texture_output();
     ASSERT_EQ(obscura_render(other.get(), &input_, &settings_, &output), OBSCURA_OK);

@@ -198,8 +198,9 @@ enum {
     /* Run the code paths written for GPUs even where GL_RENDERER names a CPU rasteriser (llvmpipe, softpipe,
        SwiftShader), which otherwise get variants of their own: a pass per texel block or run, buffer textures
        instead of storage buffers, no shared-memory tiles, whole LSAO lines. For testing what GPUs run on a
-       machine without one (CI under llvmpipe); the images match the CPU paths' within rounding, slower there.
-       No effect on a GPU. */
+       machine without one (CI under llvmpipe); the images match the CPU paths' within rounding, except LSAO's,
+       whose segment_steps then derives the GPUs' 128-step segments (segment_steps = -1 gives the same image).
+       Slower there. No effect on a GPU. */
     OBSCURA_CONTEXT_FLAG_GPU_CODE_PATHS = 1u << 2
 };
 
@@ -809,7 +810,7 @@ OBSCURA_API obscura_status obscura_render(obscura_context* context, const obscur
    running total at sizes it splits into chunks, 4K on Mesa) take the last render's, or the depth's size. Optional. Returns OK, NULL_ARGUMENT,
    INVALID_STRUCT_SIZE, INVALID_SETTING, INVALID_ENUM, METHOD_NOT_AVAILABLE, INVALID_SIZE,
    WRONG_GL_CONTEXT, HOST_GL_ERROR, SHADER_COMPILE_FAILED (it builds the method's programs), OUT_OF_MEMORY,
-   CONTEXT_LOST. */
+   GL_ERROR (a GL error its calls raised, left for no later call to be blamed on), CONTEXT_LOST. */
 OBSCURA_API obscura_status obscura_prepare(obscura_context* context, int32_t depth_width, int32_t depth_height,
                                            const obscura_settings* settings);
 
