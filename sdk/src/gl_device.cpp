@@ -70,12 +70,7 @@ GlDevice::GlDevice(const obscura_context_desc& desc) {
 
 const char* GlDevice::error_name(GLenum error) { return error_name_of(error); }
 
-GLenum GlDevice::take_error() const {
-    GLenum first = gl_.GetError();
-    if (first == GL_NO_ERROR) return first;
-    for (int i = 0; i < 16 && gl_.GetError() != GL_NO_ERROR; ++i) {}
-    return first;
-}
+GLenum GlDevice::take_error() const { return gl::take_errors(gl_); }
 
 Error GlDevice::initialize() {
     // Probe for a current context before loading: glad would otherwise read a NULL version string.

@@ -12,7 +12,7 @@ namespace obscura {
 
 class GlDevice {
 public:
-    static constexpr GLenum kContextLost = 0x0507;  // GL_CONTEXT_LOST (GL 4.5; the loader is generated for 4.3)
+    static constexpr GLenum kContextLost = gl::kGlContextLostError;  // GL_CONTEXT_LOST (GL 4.5)
 
     explicit GlDevice(const obscura_context_desc& desc);
     GlDevice(const GlDevice&) = delete;
@@ -36,7 +36,8 @@ public:
     // check_context_lost, check_gl_context, then HOST_GL_ERROR if the host left an error pending (consumed and
     // reported, never blamed on a pass), or CONTEXT_LOST if that error is GL_CONTEXT_LOST.
     Error check_host_state(const char* call);
-    // Drains the GL error queue; returns the first error.
+    // Drains the GL error queue: gl::take_errors (GL_CONTEXT_LOST, else GL_OUT_OF_MEMORY if either was pending, else
+    // the first error).
     GLenum take_error() const;
     // A GL error raised inside the SDK as a status: CONTEXT_LOST for GL_CONTEXT_LOST (the device is then
     // lost), OUT_OF_MEMORY for GL_OUT_OF_MEMORY (which GL may raise from any call that needs memory, the per-frame

@@ -19,6 +19,17 @@ void Object::reset() {
     name_ = 0;
 }
 
+GLenum take_errors(const Table& gl) {
+    GLenum chosen = gl.GetError();
+    if (chosen == GL_NO_ERROR) return chosen;
+    for (int i = 0; i < 16; ++i) {
+        const GLenum next = gl.GetError();
+        if (next == GL_NO_ERROR) break;
+        if (next == kGlContextLostError || (next == GL_OUT_OF_MEMORY && chosen != kGlContextLostError)) chosen = next;
+    }
+    return chosen;
+}
+
 uint32_t bytes_per_texel(GLenum internal_format) {
     switch (internal_format) {
         case GL_R8: return 1;
@@ -43,7 +54,7 @@ Texture2D Texture2D::create(const Table& gl, GLenum internal_format, int width, 
     gl.BindTexture(GL_TEXTURE_2D, 0);
     Texture2D texture;
     texture.object_ = Object(&gl, ObjectKind::Texture, name);
-    if (gl.GetError() != GL_NO_ERROR) return Texture2D();
+    if (take_errors(gl) != GL_NO_ERROR) return Texture2D();
     texture.width_ = width;
     texture.height_ = height;
     texture.format_ = internal_format;
@@ -64,7 +75,7 @@ Buffer Buffer::create(const Table& gl, GLenum target, uint64_t size) {
     gl.BindBuffer(target, 0);
     Buffer buffer;
     buffer.object_ = Object(&gl, ObjectKind::Buffer, name);
-    if (gl.GetError() != GL_NO_ERROR) return Buffer();
+    if (take_errors(gl) != GL_NO_ERROR) return Buffer();
     buffer.bytes_ = size;
     return buffer;
 }
@@ -76,7 +87,7 @@ Object create_buffer_texture(const Table& gl, GLenum internal_format, GLuint buf
     gl.TexBuffer(GL_TEXTURE_BUFFER, internal_format, buffer);
     gl.BindTexture(GL_TEXTURE_BUFFER, 0);
     Object texture(&gl, ObjectKind::Texture, name);
-    if (gl.GetError() != GL_NO_ERROR) return Object();
+    if (take_errors(gl) != GL_NO_ERROR) return Object();
     return texture;
 }
 
@@ -99,7 +110,7 @@ Object create_texture_3d(const Table& gl, GLenum internal_format, int width, int
     gl.TexStorage3D(GL_TEXTURE_3D, 1, internal_format, width, height, depth);
     gl.BindTexture(GL_TEXTURE_3D, 0);
     Object texture(&gl, ObjectKind::Texture, name);
-    if (gl.GetError() != GL_NO_ERROR) return Object();
+    if (take_errors(gl) != GL_NO_ERROR) return Object();
     return texture;
 }
 

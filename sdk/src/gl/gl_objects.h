@@ -95,6 +95,13 @@ Object create_framebuffer(const Table& gl);
 // Bytes per texel of the internal formats the SDK allocates (0 for unknown).
 uint32_t bytes_per_texel(GLenum internal_format);
 
+constexpr GLenum kGlContextLostError = 0x0507;  // GL_CONTEXT_LOST (GL 4.5; the loader is generated for 4.3)
+// Drains the GL error queue (GL hands several pending errors back in no set order): GL_CONTEXT_LOST, else
+// GL_OUT_OF_MEMORY if either was pending (what failed, whatever an INVALID_* from a call that went on without the
+// memory says), else the first error; GL_NO_ERROR if none. The creators below use it, so that an allocation that
+// failed leaves nothing pending for the host.
+GLenum take_errors(const Table& gl);
+
 }  // namespace obscura::gl
 
 #endif  // OBSCURA_GL_OBJECTS_H

@@ -151,7 +151,7 @@ Error build_program(const Table& gl, const char* entry, const char* defines, con
     gl.GetShaderiv(shader.name(), GL_COMPILE_STATUS, &compiled);
     // A driver that ran out of memory compiling or linking fails the build with an empty log: that is what failed,
     // not the source (reported once, as OUT_OF_MEMORY, and not as a compile failure in the log).
-    if (!compiled && gl.GetError() == GL_OUT_OF_MEMORY) {
+    if (!compiled && take_errors(gl) == GL_OUT_OF_MEMORY) {
         return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "compiling %s ran out of memory (GL_OUT_OF_MEMORY)", entry);
     }
     if (!compiled) {
@@ -171,7 +171,7 @@ Error build_program(const Table& gl, const char* entry, const char* defines, con
     shader.reset();
     GLint linked = GL_FALSE;
     gl.GetProgramiv(program.name(), GL_LINK_STATUS, &linked);
-    if (!linked && gl.GetError() == GL_OUT_OF_MEMORY) {
+    if (!linked && take_errors(gl) == GL_OUT_OF_MEMORY) {
         return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "linking %s ran out of memory (GL_OUT_OF_MEMORY)", entry);
     }
     if (!linked) {
