@@ -5,7 +5,7 @@
 // Deviation: the paper takes the nearest sample of the two alone. Here both count, inversely to their squared
 // distance, so a direction's value moves smoothly from one line to the next instead of jumping where the nearer
 // line changes: that jump stippled every crease, each texel taking a sample from the wall or from the floor.
-// Against the geometry truth on 16 views: lower error on all 16 (atrium -3 %), for 1.2-1.3x the gather's time on
+// Against the geometry truth on 16 views: lower error on all 16 (atrium -3 %), for 1.15-1.2x the gather's time on
 // llvmpipe (two value loads a direction); docs/quality.md.
 // A sweep value is Algorithm 1's sin t + max(0, sin h - sin t) rho; the receiver's own tangent sine in that
 // direction is subtracted here, which leaves eq. 1 unchanged when every direction is kept (the tangents of
@@ -15,7 +15,7 @@
 // of a crease or an edge (the depth test keeps it there) added the difference of two surfaces' tangents, which
 // left the texels along every box edge dotted; the pixel's tangent is not needed at all then (measured on 16 views
 // with the nearest sample alone, docs/quality.md: lower error on 12, more texels within 5 % on all 16, the gather
-// 16 % faster on llvmpipe). With the fixed tangent in the hull (strategies 2 and 3) the pixel's is still
+// 17 % faster on llvmpipe). With the fixed tangent in the hull (strategies 2 and 3) the pixel's is still
 // subtracted: the sample's own measured slightly worse for strategy 2.
 #define OBSCURA_LSAO_PASS 1
 #include "common/shader_interface.h"
@@ -184,7 +184,7 @@ void main() {
         }
         for (int u = 0; u < kBatch; ++u) {
             int k = min(k0 + u, OBSCURA_LSAO_DIRECTIONS - 1);
-            // No earlier sample: the horizon is the sample's tangent (obscurance 0).
+            // No earlier sample: the horizon is the tangent the sweep used (obscurance 0).
             float tangent = OBSCURA_LSAO_TANGENT_STRATEGY == 1 ? 0.0
                                                                : lsao_receiver_sin_t_3d(normal, towards_eye, lsao.axes[k].xyz);
             float obscurance = value[u] < kNoOccluderBelow ? value[u] - tangent : 0.0;

@@ -311,6 +311,12 @@ Error Context::take_pending_error(Error error, const char* where) {
         (!error && gl_error != GL_NO_ERROR)) {
         return device_.error_status(gl_error, where);
     }
+    // An allocation or a build that failed may have drained a GL_CONTEXT_LOST with its own errors (gl::take_errors):
+    // the reset status tells a loss from memory that ran out.
+    if (error.status() == OBSCURA_STATUS_OUT_OF_MEMORY || error.status() == OBSCURA_STATUS_SHADER_COMPILE_FAILED) {
+        Error lost = device_.check_context_lost();
+        if (lost) return lost;
+    }
     return error;
 }
 

@@ -33,9 +33,11 @@ constexpr int kWidth = 64, kHeight = 48;
 struct FailingGL {
     static int allocations;  // GL and host allocations seen since reset()
     static int fail_at;      // the one that fails (-1: none)
-    static bool pending;     // GL_OUT_OF_MEMORY waiting for the SDK's next glGetError
-    static bool noisy;       // a GL_INVALID_OPERATION reported before it (GL returns pending errors in no set order)
-    static bool noise_sent;
+    static bool pending;     // GL_OUT_OF_MEMORY (and the noise) waiting for the SDK's next glGetError calls
+    // GL returns several pending errors in no set order: 0 GL_OUT_OF_MEMORY alone, 1 a GL_INVALID_OPERATION read
+    // before it, 2 one read after it.
+    static int noise;
+    static int answered;     // errors of the pending failure read so far
     static int live_blocks;  // host allocations not yet freed
 
     static GLenum (*real_get_error)();
@@ -49,7 +51,7 @@ struct FailingGL {
         allocations = 0;
         fail_at = failing;
         pending = false;
-        noise_sent = false;
+        answered = 0;
     }
     // Counts the call; true when this one is to fail (it is then not made, as GL makes no storage on
     // GL_OUT_OF_MEMORY).
@@ -60,13 +62,13 @@ struct FailingGL {
     }
     static GLenum get_error() {
         if (!pending) return real_get_error();
-        if (noisy && !noise_sent) {
-            noise_sent = true;
-            return GL_INVALID_OPERATION;
+        const int count = noise == 0 ? 1 : 2;
+        const bool out_of_memory = noise == 1 ? answered == 1 : answered == 0;
+        if (++answered == count) {
+            pending = false;
+            answered = 0;
         }
-        pending = false;
-        noise_sent = false;
-        return GL_OUT_OF_MEMORY;
+        return out_of_memory ? GLenum(GL_OUT_OF_MEMORY) : GLenum(GL_INVALID_OPERATION);
     }
     static void tex_storage_2d(GLenum target, GLsizei levels, GLenum format, GLsizei width, GLsizei height) {
         if (!fails()) real_tex_storage_2d(target, levels, format, width, height);
@@ -125,8 +127,8 @@ struct FailingGL {
 int FailingGL::allocations = 0;
 int FailingGL::fail_at = -1;
 bool FailingGL::pending = false;
-bool FailingGL::noisy = false;
-bool FailingGL::noise_sent = false;
+int FailingGL::noise = 0;
+int FailingGL::answered = 0;
 int FailingGL::live_blocks = 0;
 GLenum (*FailingGL::real_get_error)() = nullptr;
 void (*FailingGL::real_tex_storage_2d)(GLenum, GLsizei, GLenum, GLsizei, GLsizei) = nullptr;
@@ -144,7 +146,7 @@ struct FailureCase {
     bool bent_normals = false;  // GTAO's bent normals into a host texture
     bool framebuffer = false;   // the output into a host renderbuffer through a framebuffer (the SDK's blit)
     uint32_t context_flags = 0; // OBSCURA_CONTEXT_FLAG_GPU_CODE_PATHS: the GPUs' storage buffers instead of buffer textures
-    bool noisy = false;         // every GL_OUT_OF_MEMORY comes after a GL_INVALID_OPERATION from glGetError
+    int noise = 0;              // FailingGL::noise: another error read before (1) or after (2) each GL_OUT_OF_MEMORY
 };
 
 obscura_settings settings_for(const FailureCase& c) {
@@ -187,7 +189,8 @@ const FailureCase kCases[] = {
      false, false, false, OBSCURA_CONTEXT_FLAG_GPU_CODE_PATHS},
     // GL returns several pending errors in no set order: out of memory must still be what the call answers when
     // another error is read before it (GTAO with bent normals and temporal frames: most of the SDK's allocation kinds).
-    {"gtao_out_of_memory_read_second", OBSCURA_METHOD_GTAO, nullptr, true, true, false, 0, true},
+    {"gtao_out_of_memory_read_second", OBSCURA_METHOD_GTAO, nullptr, true, true, false, 0, 1},
+    {"gtao_out_of_memory_read_first", OBSCURA_METHOD_GTAO, nullptr, true, true, false, 0, 2},
 };
 
 std::string case_name(const ::testing::TestParamInfo<FailureCase>& info) { return info.param.name; }
@@ -208,7 +211,7 @@ protected:
         ASSERT_EQ(take_gl_error(), GLenum(GL_NO_ERROR));
         FailingGL::load_real_functions();
         FailingGL::reset(-1);
-        FailingGL::noisy = GetParam().noisy;
+        FailingGL::noise = GetParam().noise;
         const glm::dmat4 view = look_at(glm::dvec3(0.9, 2.4, 3.2), glm::dvec3(0.0, 0.3, 0.0));
         scene_ = std::make_unique<AoScene>(make_ao_scene(
             Projection::Perspective, view,
@@ -226,7 +229,7 @@ protected:
     }
     void TearDown() override {
         FailingGL::reset(-1);
-        FailingGL::noisy = false;
+        FailingGL::noise = 0;
         EXPECT_EQ(take_gl_error(), GLenum(GL_NO_ERROR));
     }
 
@@ -327,7 +330,7 @@ protected:
                 EXPECT_TRUE(again.bent == clean.bent) << "the bent normals after recovering differ";
                 EXPECT_EQ(again.memory, clean.memory);
             }
-            EXPECT_FALSE(FailingGL::pending) << "GL_OUT_OF_MEMORY was never read";
+            EXPECT_FALSE(FailingGL::pending) << "GL_OUT_OF_MEMORY (or the error beside it) was never read";
             FailingGL::reset(-1);
             EXPECT_EQ(take_gl_error(), GLenum(GL_NO_ERROR));
             EXPECT_EQ(diff(state_before, capture()), "");

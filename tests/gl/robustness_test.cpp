@@ -345,20 +345,40 @@ struct FakeRobustness {
     static GLenum reset_status;
     static bool error_is_context_lost;
     static GLenum (*real_get_error)();
+    // A reset during the n-th glTexStorage2D from now (0: none): the call does nothing, the reset status turns guilty
+    // and glGetError answers GL_INVALID_OPERATION, then GL_CONTEXT_LOST (in the order GL may give them).
+    static int reset_at_storage;
+    static int queued;  // errors still to answer: 2, 1, 0
+    static void (*real_tex_storage_2d)(GLenum, GLsizei, GLenum, GLsizei, GLsizei);
 
     static GLenum get_reset_status() { return reset_status; }
-    static GLenum get_error() { return error_is_context_lost ? kContextLost : real_get_error(); }
+    static GLenum get_error() {
+        if (queued > 0) return queued-- == 2 ? GLenum(GL_INVALID_OPERATION) : kContextLost;
+        return error_is_context_lost ? kContextLost : real_get_error();
+    }
+    static void tex_storage_2d(GLenum target, GLsizei levels, GLenum format, GLsizei width, GLsizei height) {
+        if (reset_at_storage > 0 && --reset_at_storage == 0) {
+            reset_status = kGuiltyReset;
+            queued = 2;
+            return;
+        }
+        real_tex_storage_2d(target, levels, format, width, height);
+    }
     static obscura_gl_function loader(void*, const char* name) {
         if (std::strncmp(name, "glGetGraphicsResetStatus", 24) == 0) {
             return reinterpret_cast<obscura_gl_function>(&get_reset_status);
         }
         if (std::strcmp(name, "glGetError") == 0) return reinterpret_cast<obscura_gl_function>(&get_error);
+        if (std::strcmp(name, "glTexStorage2D") == 0) return reinterpret_cast<obscura_gl_function>(&tex_storage_2d);
         return HeadlessGL::get_proc_address(name);
     }
 };
 GLenum FakeRobustness::reset_status = GL_NO_ERROR;
 bool FakeRobustness::error_is_context_lost = false;
 GLenum (*FakeRobustness::real_get_error)() = nullptr;
+int FakeRobustness::reset_at_storage = 0;
+int FakeRobustness::queued = 0;
+void (*FakeRobustness::real_tex_storage_2d)(GLenum, GLsizei, GLenum, GLsizei, GLsizei) = nullptr;
 
 // Each test runs on a GL context of its own: a "lost" obscura context leaves its GL objects to die with it.
 class ContextLoss : public ::testing::Test {
@@ -367,8 +387,12 @@ protected:
         gl_ = std::make_unique<HeadlessGL>();
         FakeRobustness::reset_status = GL_NO_ERROR;
         FakeRobustness::error_is_context_lost = false;
+        FakeRobustness::reset_at_storage = 0;
+        FakeRobustness::queued = 0;
         FakeRobustness::real_get_error =
             reinterpret_cast<GLenum (*)()>(HeadlessGL::get_proc_address("glGetError"));
+        FakeRobustness::real_tex_storage_2d = reinterpret_cast<void (*)(GLenum, GLsizei, GLenum, GLsizei, GLsizei)>(
+            HeadlessGL::get_proc_address("glTexStorage2D"));
         desc_ = make_desc();
         desc_.get_proc_address = nullptr;
         desc_.get_proc_address_with_user_data = &FakeRobustness::loader;
@@ -378,6 +402,8 @@ protected:
     void TearDown() override {
         FakeRobustness::reset_status = GL_NO_ERROR;
         FakeRobustness::error_is_context_lost = false;
+        FakeRobustness::reset_at_storage = 0;
+        FakeRobustness::queued = 0;
         gl_.reset();
         shared_gl().make_current();
     }
@@ -401,6 +427,20 @@ protected:
     HostTexture depth_, target_;
     obscura_input scene_input_{};
 };
+
+// A reset in the middle of an allocation, its GL_CONTEXT_LOST read after another error: the allocation fails and drains
+// both, and the call must still answer CONTEXT_LOST (from the reset status), not OUT_OF_MEMORY.
+TEST_F(ContextLoss, AResetDuringAnAllocationIsALoss) {
+    make_frame();
+    obscura_context* raw = nullptr;
+    ASSERT_EQ(obscura_create_context(&desc_, &raw), OBSCURA_OK);
+    ContextPtr context(raw);
+    FakeRobustness::reset_at_storage = 1;  // the frame's first texture
+    EXPECT_EQ(render(context.get()), OBSCURA_STATUS_CONTEXT_LOST) << obscura_get_last_error(context.get());
+    EXPECT_EQ(FakeRobustness::reset_at_storage, 0) << "no texture was allocated";
+    EXPECT_EQ(FakeRobustness::queued, 0) << "the errors were not read";
+    EXPECT_EQ(render(context.get()), OBSCURA_STATUS_CONTEXT_LOST);
+}
 
 TEST_F(ContextLoss, ResetIsReportedByEveryLaterCall) {
     make_frame();

@@ -151,8 +151,14 @@ Error build_program(const Table& gl, const char* entry, const char* defines, con
     gl.GetShaderiv(shader.name(), GL_COMPILE_STATUS, &compiled);
     // A driver that ran out of memory compiling or linking fails the build with an empty log: that is what failed,
     // not the source (reported once, as OUT_OF_MEMORY, and not as a compile failure in the log).
-    if (!compiled && take_errors(gl) == GL_OUT_OF_MEMORY) {
-        return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "compiling %s ran out of memory (GL_OUT_OF_MEMORY)", entry);
+    if (!compiled) {
+        const GLenum gl_error = take_errors(gl);
+        if (gl_error == GL_OUT_OF_MEMORY) {
+            return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "compiling %s ran out of memory (GL_OUT_OF_MEMORY)", entry);
+        }
+        if (gl_error == kGlContextLostError) {
+            return Error::make(OBSCURA_STATUS_CONTEXT_LOST, "the OpenGL context was lost while compiling %s", entry);
+        }
     }
     if (!compiled) {
         HostString message = read_log(gl, shader.name(), false, alloc);
@@ -171,8 +177,14 @@ Error build_program(const Table& gl, const char* entry, const char* defines, con
     shader.reset();
     GLint linked = GL_FALSE;
     gl.GetProgramiv(program.name(), GL_LINK_STATUS, &linked);
-    if (!linked && take_errors(gl) == GL_OUT_OF_MEMORY) {
-        return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "linking %s ran out of memory (GL_OUT_OF_MEMORY)", entry);
+    if (!linked) {
+        const GLenum gl_error = take_errors(gl);
+        if (gl_error == GL_OUT_OF_MEMORY) {
+            return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "linking %s ran out of memory (GL_OUT_OF_MEMORY)", entry);
+        }
+        if (gl_error == kGlContextLostError) {
+            return Error::make(OBSCURA_STATUS_CONTEXT_LOST, "the OpenGL context was lost while linking %s", entry);
+        }
     }
     if (!linked) {
         HostString message = read_log(gl, program.name(), true, alloc);

@@ -24,7 +24,7 @@ std::vector<float> LsaoPassInspection::read_values(const LsaoPass& pass, const g
     gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(halves.size() * 2), halves.data());
     std::vector<float> out(halves.size());
     for (size_t i = 0; i < halves.size(); ++i) {
-        // IEEE half -> float (values are finite: in [-1, 2) or OBSCURA_LSAO_NO_OCCLUDER).
+        // IEEE half -> float (values are finite: in [-1, 2] or OBSCURA_LSAO_NO_OCCLUDER).
         const uint32_t h = halves[i];
         const uint32_t sign = (h >> 15) & 1u, exponent = (h >> 10) & 31u, mantissa = h & 1023u;
         float magnitude = exponent == 0 ? std::ldexp(float(mantissa), -24)
