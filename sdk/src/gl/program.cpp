@@ -137,6 +137,20 @@ namespace {
 
 // build_compute_program without the catch: the shader and program are owned (deleted on every way out, an exception
 // from the host allocator included) until the linked program is handed over.
+// A driver that ran out of memory compiling or linking (or lost the context meanwhile) fails the build with an empty
+// log: that is what failed, not the source. The errors GL left for the step `doing` ("compiling", "linking") as that
+// status (reported once, not as a compile failure in the log), or no error if neither.
+Error driver_failure(const Table& gl, const char* doing, const char* entry) {
+    const GLenum gl_error = take_errors(gl);
+    if (gl_error == GL_OUT_OF_MEMORY) {
+        return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "%s %s ran out of memory (GL_OUT_OF_MEMORY)", doing, entry);
+    }
+    if (gl_error == kGlContextLostError) {
+        return Error::make(OBSCURA_STATUS_CONTEXT_LOST, "the OpenGL context was lost while %s %s", doing, entry);
+    }
+    return Error();
+}
+
 Error build_program(const Table& gl, const char* entry, const char* defines, const AllocatorCallbacks& alloc,
                     obscura_log_fn log, void* log_user_data, Object* out_program) {
     HostString source{HostAllocator<char>(&alloc)};
@@ -149,18 +163,9 @@ Error build_program(const Table& gl, const char* entry, const char* defines, con
     gl.CompileShader(shader.name());
     GLint compiled = GL_FALSE;
     gl.GetShaderiv(shader.name(), GL_COMPILE_STATUS, &compiled);
-    // A driver that ran out of memory compiling or linking fails the build with an empty log: that is what failed,
-    // not the source (reported once, as OUT_OF_MEMORY, and not as a compile failure in the log).
     if (!compiled) {
-        const GLenum gl_error = take_errors(gl);
-        if (gl_error == GL_OUT_OF_MEMORY) {
-            return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "compiling %s ran out of memory (GL_OUT_OF_MEMORY)", entry);
-        }
-        if (gl_error == kGlContextLostError) {
-            return Error::make(OBSCURA_STATUS_CONTEXT_LOST, "the OpenGL context was lost while compiling %s", entry);
-        }
-    }
-    if (!compiled) {
+        error = driver_failure(gl, "compiling", entry);
+        if (error) return error;
         HostString message = read_log(gl, shader.name(), false, alloc);
         if (log) {
             HostString full{HostAllocator<char>(&alloc)};
@@ -178,15 +183,8 @@ Error build_program(const Table& gl, const char* entry, const char* defines, con
     GLint linked = GL_FALSE;
     gl.GetProgramiv(program.name(), GL_LINK_STATUS, &linked);
     if (!linked) {
-        const GLenum gl_error = take_errors(gl);
-        if (gl_error == GL_OUT_OF_MEMORY) {
-            return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "linking %s ran out of memory (GL_OUT_OF_MEMORY)", entry);
-        }
-        if (gl_error == kGlContextLostError) {
-            return Error::make(OBSCURA_STATUS_CONTEXT_LOST, "the OpenGL context was lost while linking %s", entry);
-        }
-    }
-    if (!linked) {
+        error = driver_failure(gl, "linking", entry);
+        if (error) return error;
         HostString message = read_log(gl, program.name(), true, alloc);
         if (log) log(OBSCURA_LOG_ERROR, OBSCURA_STATUS_SHADER_COMPILE_FAILED, message.c_str(), log_user_data);
         return Error::make(OBSCURA_STATUS_SHADER_COMPILE_FAILED, "linking %s failed: %s", entry, message.c_str());
