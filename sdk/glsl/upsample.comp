@@ -10,6 +10,9 @@
 // Sky pixels get visibility 1. With bent normals (OBSCURA_UPSAMPLE_BENT_NORMALS) the RGBA16F bent normals
 // (visibility, unit view-space bent normal) are weighed alike and the normal renormalised. One invocation does a
 // 2x2 quad of pixels, which share their four texels.
+// With OBSCURA_UPSAMPLE_TARGET the visibility goes straight into the host's target (OUTPUT_FORMAT, OUTPUT_MULTIPLY:
+// composite.comp's write without a debug view) instead of a full-size R16F texture the composite would copy: at
+// reduced resolution the upsample and the composite were the frame's only full-size passes.
 #define OBSCURA_UPSAMPLE_PASS 1
 #include "common/shader_interface.h"
 #include "common/depth.glsl"
@@ -21,7 +24,11 @@ layout(local_size_x = OBSCURA_UPSAMPLE_GROUP_X, local_size_y = OBSCURA_UPSAMPLE_
 layout(binding = OBSCURA_UNIT_LINEAR_DEPTH) uniform sampler2D u_reduced_depth;
 layout(binding = OBSCURA_UNIT_NORMALS) uniform sampler2D u_reduced_normals;
 layout(binding = OBSCURA_UNIT_SOURCE) uniform sampler2D u_reduced_ao;
+#if OBSCURA_UPSAMPLE_TARGET
+layout(binding = OBSCURA_IMAGE_OUT0, OUTPUT_FORMAT) uniform image2D u_target;
+#else
 layout(binding = OBSCURA_IMAGE_OUT0, r16f) writeonly uniform image2D u_ao;
+#endif
 #if OBSCURA_UPSAMPLE_BENT_NORMALS
 layout(binding = OBSCURA_UNIT_BENT_SOURCE) uniform sampler2D u_reduced_bent;
 layout(binding = OBSCURA_IMAGE_OUT1, rgba16f) writeonly uniform image2D u_bent;
@@ -31,7 +38,20 @@ layout(binding = OBSCURA_IMAGE_OUT1, rgba16f) writeonly uniform image2D u_bent;
 const float kNoneOnPlane = 1e-4;
 
 void store(ivec2 p, float visibility, vec3 bent) {
+#if OBSCURA_UPSAMPLE_TARGET
+    // At the target's own precision (the composite's copy went through R16F, which drivers round or truncate), held
+    // to [0, 1]: the weighted mean of values up to 1 can round an ulp above it.
+    float v = clamp(visibility, 0.0, 1.0);
+    ivec2 destination = target_params.xy + (p - output_rect.xy);
+#if OUTPUT_MULTIPLY
+    vec4 previous = imageLoad(u_target, destination);
+    imageStore(u_target, destination, vec4(previous.rgb * v, previous.a));
+#else
+    imageStore(u_target, destination, vec4(v, v, v, 1.0));
+#endif
+#else
     imageStore(u_ao, p, vec4(visibility));
+#endif
 #if OBSCURA_UPSAMPLE_BENT_NORMALS
     imageStore(u_bent, p, vec4(visibility, bent));
 #endif

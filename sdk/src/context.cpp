@@ -332,9 +332,10 @@ Error Context::prepare_resources(int width, int height, const obscura_settings& 
     // Whether the last render asked for bent normals, read before ensure_resources, which may release the upsample
     // (GTAO keeps its own record of the request).
     const bool upsample_bent = upsample_.bent() != nullptr;
+    const bool upsample_result = upsample_.has_result();  // whose debug views read the upsampled AO
     error = ensure_resources(working_width, working_height, plan);
     if (!error) error = technique->prepare(env(), resolved, request, resources_);
-    if (!error && shift > 0) error = upsample_.allocate(env(), width, height, upsample_bent);
+    if (!error && shift > 0) error = upsample_.allocate(env(), width, height, upsample_bent, upsample_result);
     if (!error && shift == 0) upsample_.release();
     return error;
 }
@@ -424,8 +425,16 @@ Error Context::record_frame(const FrameInput& host_input, const obscura_settings
     error = ensure_resources(input.width, input.height, plan);
     if (!error) error = technique->prepare(pass_env, settings, request, resources_);
     if (!error) error = depth_prepare_.prepare(pass_env, input);
-    if (!error) error = output_.prepare(pass_env, target, host.output_rect);
-    if (!error && shift > 0) error = upsample_.prepare(pass_env, host, request.bent_normals);
+    // At reduced resolution the upsample writes the target itself (the composite would only copy its result there),
+    // unless a debug view needs the composite's other sources.
+    const bool upsample_writes_target = shift > 0 && target.debug_view == OBSCURA_DEBUG_NONE;
+    UpsampleDestination upsample_destination;
+    if (upsample_writes_target) {
+        upsample_destination.format = OutputWriter::image_format(target);
+        upsample_destination.multiply = target.blend == OBSCURA_BLEND_MULTIPLY;
+    }
+    if (!error) error = output_.prepare(pass_env, target, host.output_rect, !upsample_writes_target);
+    if (!error && shift > 0) error = upsample_.prepare(pass_env, host, request.bent_normals, upsample_destination);
     if (error) return error;
     if (shift == 0) upsample_.release();  // the context holds what its latest configuration needs
     // Temporal accumulation: the view's history continues when the frame can be reprojected and nothing it was
@@ -477,17 +486,22 @@ Error Context::record_frame(const FrameInput& host_input, const obscura_settings
         result.result = &view->history.next();
         if (result.bent) result.bent = &view->history.next_bent();
     }
+    // The upsample's write of the target, which the output writer runs in the composite's place.
+    const UpsampleImageWrite upsample_write(upsample_, host_output, upsample_pass, host, resources_, result.result,
+                                            result.bent);
     if (!error && shift > 0) {
         // The raw debug views show the reduced grid itself; bent normals are upsampled for every view.
-        upsample_.run(pass_env, host_output, upsample_pass, host, resources_, *result.result, result.bent);
-        error = recorder.end(PassId::Upsample);
-        if (!raw_view) result.result = &upsample_.result();
+        if (!upsample_writes_target) {
+            upsample_.run(pass_env, host_output, upsample_pass, host, resources_, *result.result, result.bent);
+            error = recorder.end(PassId::Upsample);
+            if (!raw_view) result.result = &upsample_.result();
+        }
         result.bent = upsample_.bent();
     }
     if (!error) {
         output_.write(pass_env, host_output, host, raw_view ? *result.raw : *result.result, resources_, target,
-                      result.bent, bent_pass);
-        error = recorder.end(PassId::Composite);
+                      result.bent, bent_pass, upsample_writes_target ? &upsample_write : nullptr);
+        error = recorder.end(upsample_writes_target ? PassId::Upsample : PassId::Composite);
     }
     // The frame's blend is the view's history from now on (a failed frame leaves it for the next to start anew).
     if (temporal) {

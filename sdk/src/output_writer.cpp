@@ -269,10 +269,10 @@ CompositeVariant composite_variant(const OutputTarget& target, GLenum format) {
 
 }  // namespace
 
-Error OutputWriter::prepare(const PassEnv& env, const OutputTarget& target, const obscura_rect& rect) {
+Error OutputWriter::prepare(const PassEnv& env, const OutputTarget& target, const obscura_rect& rect, bool composite) {
     const gl::Table& gl = env.gl;
     const GLenum format = staging_format(target);
-    Error error = composite_.prepare(env, composite_variant(target, target.kind == TargetKind::Image ? target.format : format));
+    Error error = composite ? composite_.prepare(env, composite_variant(target, image_format(target))) : Error();
     if (!error && target.bent_texture) error = bent_.prepare(env, target.bent_format);
     if (error) return error;
     if (target.kind != TargetKind::Blit) {
@@ -306,18 +306,36 @@ OutputTarget OutputWriter::composite_target(const OutputTarget& target) {
     return composite;
 }
 
+GLenum OutputWriter::image_format(const OutputTarget& target) {
+    return target.kind == TargetKind::Image ? target.format : staging_format(target);
+}
+
 BentNormalWriteConstants OutputWriter::bent_constants(const OutputTarget& target) {
     return BentNormalWritePass::constants(target.x, target.y);
 }
 
 void OutputWriter::write(const PassEnv& env, const UniformRange& frame, const FrameInput& input,
                          const gl::Texture2D& source, const FrameResources& resources, const OutputTarget& target,
-                         const gl::Texture2D* bent, const UniformRange& bent_pass) {
-    const gl::Table& gl = env.gl;
+                         const gl::Texture2D* bent, const UniformRange& bent_pass, const OutputImageWrite* image_write) {
     const obscura_rect& rect = input.output_rect;
+    // The image write first: the upsample writes the bent normals the bent-normal write reads.
+    write_image(env, frame, rect, source, resources, target, image_write);
     if (target.bent_texture && bent) bent_.run(env, frame, bent_pass, rect, *bent, target.bent_texture, target.bent_format);
+}
+
+void OutputWriter::compose(const PassEnv& env, const UniformRange& frame, const obscura_rect& rect,
+                           const gl::Texture2D& source, const FrameResources& resources, const OutputTarget& target,
+                           const OutputImageWrite* image_write, GLuint texture, GLenum format) {
+    if (image_write) image_write->write_image(env, texture, format);
+    else composite_.run(env, frame, rect, source, resources, texture, composite_variant(target, format));
+}
+
+void OutputWriter::write_image(const PassEnv& env, const UniformRange& frame, const obscura_rect& rect,
+                               const gl::Texture2D& source, const FrameResources& resources, const OutputTarget& target,
+                               const OutputImageWrite* image_write) {
+    const gl::Table& gl = env.gl;
     if (target.kind == TargetKind::Image) {
-        composite_.run(env, frame, rect, source, resources, target.texture, composite_variant(target, target.format));
+        compose(env, frame, rect, source, resources, target, image_write, target.texture, target.format);
         return;
     }
     gl::BlitStateGuard blit_state(gl);
@@ -331,8 +349,7 @@ void OutputWriter::write(const PassEnv& env, const UniformRange& frame, const Fr
         gl.BlitFramebuffer(target.x, target.y, target.x + rect.width, target.y + rect.height, 0, 0, rect.width,
                            rect.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
     }
-    composite_.run(env, frame, rect, source, resources, staging_.name(),
-                   composite_variant(target, staging_.internal_format()));
+    compose(env, frame, rect, source, resources, target, image_write, staging_.name(), staging_.internal_format());
     gl.MemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT);
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, staging_framebuffer_.name());
     gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, host);

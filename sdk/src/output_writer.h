@@ -55,25 +55,49 @@ Error check_bent_normal_target(const gl::Table& gl, const obscura_output& output
 // GLSL image format qualifier for a texture internal format the composite pass can write, or nullptr.
 const char* image_format_qualifier(GLenum internal_format, int* channels);
 
+// A pass that writes the output rectangle into the image the composite would write (the host's texture, or a blit's
+// staging texture), in the composite's place: the upsample at reduced resolution.
+class OutputImageWrite {
+public:
+    // Writes the image `texture` of `format` (OutputWriter::image_format's), the frame's target_params placing the
+    // rectangle in it.
+    virtual void write_image(const PassEnv& env, GLuint texture, GLenum format) const = 0;
+
+protected:
+    ~OutputImageWrite() = default;
+};
+
 class OutputWriter {
 public:
-    // Builds the composite variant for the target's format and, for a blit target, the staging texture of the
-    // output rectangle's size (freed again when the target is a texture).
-    Error prepare(const PassEnv& env, const OutputTarget& target, const obscura_rect& rect);
+    // Builds the composite variant for the target's format (unless another pass writes the image: `composite`
+    // false) and, for a blit target, the staging texture of the output rectangle's size (freed again when the
+    // target is a texture).
+    Error prepare(const PassEnv& env, const OutputTarget& target, const obscura_rect& rect, bool composite = true);
     // The target as the composite writes it: blit targets compose into the staging texture at (0, 0).
     static OutputTarget composite_target(const OutputTarget& target);
+    // The format of the image the composite writes: the host texture's, or a blit's staging texture's.
+    static GLenum image_format(const OutputTarget& target);
     // The uniform block of the bent-normal write (push it with the frame's other blocks).
     static BentNormalWriteConstants bent_constants(const OutputTarget& target);
-    // Writes `source` (or the target's debug view) for the output rectangle into the target, and `bent` (the
-    // technique's RGBA16F bent normals) into the target's bent-normal texture when it has one. `frame`: the
-    // frame's constants for the output rectangle (with composite_target's offset); `bent_pass`: bent_constants'.
+    // Writes `source` (or the target's debug view) for the output rectangle into the target, or has `image_write`
+    // write it there (`source` then unread), and then `bent` (the technique's RGBA16F bent normals) into the
+    // target's bent-normal texture when it has one. `frame`: the frame's constants for the output rectangle (with
+    // composite_target's offset); `bent_pass`: bent_constants'.
     void write(const PassEnv& env, const UniformRange& frame, const FrameInput& input, const gl::Texture2D& source,
                const FrameResources& resources, const OutputTarget& target, const gl::Texture2D* bent = nullptr,
-               const UniformRange& bent_pass = UniformRange());
+               const UniformRange& bent_pass = UniformRange(), const OutputImageWrite* image_write = nullptr);
     uint64_t bytes() const { return staging_.bytes(); }
     void release();
 
 private:
+    // The output rectangle into the target: composed in place, or into the staging texture and blitted.
+    void write_image(const PassEnv& env, const UniformRange& frame, const obscura_rect& rect,
+                     const gl::Texture2D& source, const FrameResources& resources, const OutputTarget& target,
+                     const OutputImageWrite* image_write);
+    // One image of the target's: `image_write`, or the composite of `source`.
+    void compose(const PassEnv& env, const UniformRange& frame, const obscura_rect& rect, const gl::Texture2D& source,
+                 const FrameResources& resources, const OutputTarget& target, const OutputImageWrite* image_write,
+                 GLuint texture, GLenum format);
     // The framebuffer a blit reaches the host's target through: 0 (default) or ours with the host's colour
     // attachment 0 attached, so only that attachment is read and written.
     GLuint blit_framebuffer(const gl::Table& gl, const OutputTarget& target);

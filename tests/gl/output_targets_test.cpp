@@ -583,6 +583,111 @@ TEST_F(OutputTargets, MultisampleRenderbufferLeavesNoError) {
     EXPECT_EQ(bad, 0);
 }
 
+// ---- Reduced resolution: the upsample writes the target ---------------------------------------------------
+
+// At reduced resolution the upsample writes the target's image in the composite's place (no debug view): every
+// format, the multiply blend, a blit target and a placement inside a larger texture must receive what an R32F
+// overwrite of the same frame holds, as the composite delivered it at full resolution; a debug view, which needs
+// the composite, and the plain output alternate in one context.
+TEST_F(OutputTargets, ReducedResolutionUpsampleWritesEveryTarget) {
+    Frame frame = corner_frame();
+    // An output rectangle inside the depth texture (a guard band): the upsample's destination is the target's
+    // position plus the pixel's place in the rectangle, not the pixel itself.
+    frame.input.output_rect = obscura_rect{7, 5, kWidth - 14, kHeight - 10};
+    const int width = kWidth - 14, height = kHeight - 10;
+    obscura_settings settings = make_settings(1.0f);
+    settings.resolution.scale = OBSCURA_RESOLUTION_HALF;
+    std::vector<float> expected = render_to_new_texture(ctx(), frame.input, settings, GL_R32F, 1);
+    ASSERT_EQ(expected.size(), size_t(width) * height);
+    auto [lo, hi] = std::minmax_element(expected.begin(), expected.end());
+    EXPECT_LT(*lo, 0.8f) << "the corner darkens: the comparisons below are not vacuous";
+    EXPECT_LE(*hi, 1.0f) << "the upsample holds the visibility to [0, 1]";
+
+    struct Format {
+        GLenum format;
+        // The red channel's storage precision near [0.5, 1]. Half floats: one ulp, since drivers may truncate
+        // (llvmpipe does); the composite's full-resolution copy is exact there, its source being R16F itself.
+        double tolerance;
+    };
+    const Format formats[] = {{GL_R8, 0.5 / 255 + 1e-6},         {GL_R16, 0.5 / 65535 + 1e-6},
+                              {GL_R16F, std::ldexp(1.0, -11)},  {GL_RG32F, 0.0},
+                              {GL_RGBA8, 0.5 / 255 + 1e-6},      {GL_RGBA16F, std::ldexp(1.0, -11)},
+                              {GL_RGB10_A2, 0.5 / 1023 + 1e-6}, {GL_R11F_G11F_B10F, std::ldexp(1.0, -7)}};
+    for (const Format& f : formats) {
+        std::vector<float> got = render_to_new_texture(ctx(), frame.input, settings, f.format, 4);
+        ASSERT_EQ(got.size(), expected.size() * 4);
+        double worst = 0.0;
+        for (size_t i = 0; i < expected.size(); ++i) worst = std::max(worst, std::fabs(double(got[4 * i]) - expected[i]));
+        EXPECT_LE(worst, f.tolerance) << "format 0x" << std::hex << f.format;
+    }
+
+    // Multiply: the target's colour times the visibility, alpha kept.
+    HostTexture multiplied = make_texture(GL_RGBA32F, width, height);
+    const float fill[4] = {0.5f, 0.25f, 1.0f, 0.7f};
+    fill_texture(multiplied.get(), width, height, fill[0], fill[1], fill[2], fill[3]);
+    obscura_output output = make_output(multiplied.get());
+    output.blend = OBSCURA_BLEND_MULTIPLY;
+    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    std::vector<float> got = read_texture(multiplied.get(), width, height, 4);
+    double worst = 0.0;
+    int alpha_changed = 0;
+    for (size_t i = 0; i < expected.size(); ++i) {
+        for (int c = 0; c < 3; ++c) worst = std::max(worst, std::fabs(double(got[4 * i + c]) - double(fill[c]) * expected[i]));
+        alpha_changed += got[4 * i + 3] != fill[3];
+    }
+    EXPECT_LT(worst, 1e-6);
+    EXPECT_EQ(alpha_changed, 0);
+
+    // Placed at (3, 2) in a larger texture: the rectangle lands there, the rest keeps its contents.
+    HostTexture larger = make_texture(GL_R32F, width + 5, height + 4);
+    fill_texture(larger.get(), width + 5, height + 4, -1.0f, 0, 0, 1);
+    output = make_output(larger.get());
+    output.x = 3;
+    output.y = 2;
+    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    got = read_texture(larger.get(), width + 5, height + 4, 1);
+    int misplaced = 0;
+    for (int y = 0; y < height + 4; ++y) {
+        for (int x = 0; x < width + 5; ++x) {
+            const bool inside = x >= 3 && x < 3 + width && y >= 2 && y < 2 + height;
+            const float want = inside ? expected[size_t(y - 2) * width + (x - 3)] : -1.0f;
+            misplaced += got[size_t(y) * (width + 5) + x] != want;
+        }
+    }
+    EXPECT_EQ(misplaced, 0);
+
+    // A renderbuffer, reached through the blit's staging texture, overwriting and multiplying.
+    HostTexture direct = make_texture(GL_RGBA8, width, height);
+    obscura_output direct_output = make_output(direct.get());
+    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &direct_output), OBSCURA_OK);
+    const std::vector<uint8_t> direct_bytes = read_texture_rgba8(direct.get(), width, height);
+    RenderbufferTarget target = make_renderbuffer_target(GL_RGBA8, width, height);
+    output = make_output(0);
+    output.framebuffer = target.framebuffer.get();
+    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    EXPECT_EQ(read_framebuffer_rgba8(target.framebuffer.get(), width, height), direct_bytes);
+    clear_framebuffer(target.framebuffer.get(), 1.0f, 1.0f, 1.0f, 0.6f);
+    output.blend = OBSCURA_BLEND_MULTIPLY;
+    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    const std::vector<uint8_t> blended = read_framebuffer_rgba8(target.framebuffer.get(), width, height);
+    int bad = 0;
+    for (size_t i = 0; i < expected.size(); ++i) {
+        bad += std::abs(blended[4 * i] - unorm8(expected[i])) > 1 || blended[4 * i + 3] != 153;
+    }
+    EXPECT_EQ(bad, 0);
+
+    // A debug view (the composite, reading the reduced depth), then the AO again, bit for bit.
+    HostTexture depth_view = make_texture(GL_R32F, width, height);
+    output = make_output(depth_view.get(), OBSCURA_DEBUG_LINEAR_DEPTH);
+    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    got = read_texture(depth_view.get(), width, height, 1);
+    EXPECT_NE(std::memcmp(got.data(), expected.data(), got.size() * sizeof(float)), 0) << "the view shows depth";
+    got = render_to_new_texture(ctx(), frame.input, settings, GL_R32F, 1);
+    ASSERT_EQ(got.size(), expected.size());
+    EXPECT_EQ(std::memcmp(got.data(), expected.data(), got.size() * sizeof(float)), 0);
+    EXPECT_EQ(take_gl_error(), GLenum(GL_NO_ERROR));
+}
+
 TEST_F(OutputTargets, IntegerRenderbufferIsRejected) {
     Frame frame = corner_frame();
     obscura_settings settings = make_settings(1.0f);

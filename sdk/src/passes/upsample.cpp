@@ -1,26 +1,40 @@
 #include "passes/upsample.h"
 
+#include "output_writer.h"          // image_format_qualifier
 #include "passes/depth_prepare.h"  // HostDepthBinding, host_depth_variant
 
 #include <cstdio>
 
 namespace obscura {
 
-Error UpsamplePass::prepare(const PassEnv& env, const FrameInput& host, bool bent_normals) {
-    gl::Object& program = programs_[host_depth_variant(host)][bent_normals ? 1 : 0];
-    if (!program) {
-        char defines[160];
-        std::snprintf(defines, sizeof defines, "DEPTH_LINEAR %d\nDEPTH_MULTISAMPLE %d\nOBSCURA_UPSAMPLE_BENT_NORMALS %d\n",
-                      host.depth_linear ? 1 : 0, host.depth_multisample ? 1 : 0, bent_normals ? 1 : 0);
-        Error error = env.build("upsample.comp", defines, &program);
-        if (error) return error;
+Error UpsamplePass::prepare(const PassEnv& env, const FrameInput& host, bool bent_normals,
+                            const UpsampleDestination& destination) {
+    gl::DefineLines defines;
+    int channels = 0;
+    const char* qualifier = destination.format != 0 ? image_format_qualifier(destination.format, &channels) : "r16f";
+    if (!qualifier) {
+        return Error::make(OBSCURA_STATUS_INTERNAL_ERROR, "no upsample variant for target format 0x%04X",
+                           unsigned(destination.format));
     }
-    return allocate(env, host.width, host.height, bent_normals);
+    std::snprintf(defines.text, sizeof defines.text,
+                  "DEPTH_LINEAR %d\nDEPTH_MULTISAMPLE %d\nOBSCURA_UPSAMPLE_BENT_NORMALS %d\nOBSCURA_UPSAMPLE_TARGET %d\n"
+                  "OUTPUT_FORMAT %s\nOUTPUT_MULTIPLY %d\n",
+                  host.depth_linear ? 1 : 0, host.depth_multisample ? 1 : 0, bent_normals ? 1 : 0,
+                  destination.format != 0 ? 1 : 0, qualifier, destination.multiply ? 1 : 0);
+    Error error = programs_.get(defines, [&](gl::Object* built) { return env.build("upsample.comp", defines.text, built); },
+                                &program_);
+    if (error) return error;
+    destination_ = destination;
+    return allocate(env, host.width, host.height, bent_normals, destination.format == 0);
 }
 
-Error UpsamplePass::allocate(const PassEnv& env, int width, int height, bool bent_normals) {
-    if (ao_.width() != width || ao_.height() != height || !ao_) {
-        release();
+Error UpsamplePass::allocate(const PassEnv& env, int width, int height, bool bent_normals, bool own_result) {
+    // Both results follow the host's size: a size change drops them together.
+    const gl::Texture2D& sized = ao_ ? ao_ : bent_;
+    if (sized && (sized.width() != width || sized.height() != height)) release();
+    if (!own_result) {
+        ao_ = gl::Texture2D();  // the context holds what its latest configuration needs
+    } else if (!ao_) {
         ao_ = env.create_texture(GL_R16F, width, height);
         if (!ao_) return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating the %dx%d upsampled AO failed", width, height);
     }
@@ -47,14 +61,20 @@ UpsampleConstants UpsamplePass::constants(const obscura_resolution_settings& set
 }
 
 void UpsamplePass::run(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const FrameInput& host,
-                       const FrameResources& resources, const gl::Texture2D& source, const gl::Texture2D* bent_source) {
+                       const FrameResources& resources, const gl::Texture2D& source, const gl::Texture2D* bent_source,
+                       GLuint target_texture) {
     const gl::Table& gl = env.gl;
     const bool bent = bent_source != nullptr && bent_;
-    gl.UseProgram(programs_[host_depth_variant(host)][bent ? 1 : 0].name());
+    gl.UseProgram(program_);
     env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
     env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
     env.bind_texture(OBSCURA_UNIT_SOURCE, GL_TEXTURE_2D, source.name());
-    gl.BindImageTexture(OBSCURA_IMAGE_OUT0, ao_.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
+    if (destination_.format != 0) {
+        gl.BindImageTexture(OBSCURA_IMAGE_OUT0, target_texture, 0, GL_FALSE, 0,
+                            destination_.multiply ? GL_READ_WRITE : GL_WRITE_ONLY, destination_.format);
+    } else {
+        gl.BindImageTexture(OBSCURA_IMAGE_OUT0, ao_.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
+    }
     if (bent) {
         env.bind_texture(OBSCURA_UNIT_BENT_SOURCE, GL_TEXTURE_2D, bent_source->name());
         gl.BindImageTexture(OBSCURA_IMAGE_OUT1, bent_.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
