@@ -107,10 +107,14 @@ void main() {
     g00 = mix(vec4(current), g00, inside00);
     g11 = mix(vec4(current), g11, inside11);
     vec3 c = vec3(g11.z, g11.x, g11.y);  // (1, 0), (0, 1), (1, 1); g11.w is the centre, g00.y again
-    float sum = dot(g00, vec4(1.0)) + dot(c, vec3(1.0));
-    float sum_sq = dot(g00, g00) + dot(c, c);
-    float mean = sum * (1.0 / 7.0);
-    float deviation = sqrt(max(0.0, sum_sq * (1.0 / 7.0) - mean * mean));
+    // The moments of the differences from the pixel's own value: E[v^2] - E[v]^2 of the values themselves cancels
+    // in 32-bit floats near 1 (a deviation of 3e-4 is 1e-7 of variance, one ulp of 1), and the clamp then pinned
+    // unoccluded surfaces' histories to the current frame.
+    vec4 d00 = g00 - current;
+    vec3 dc = c - current;
+    float offset = (dot(d00, vec4(1.0)) + dot(dc, vec3(1.0))) * (1.0 / 7.0);
+    float mean = current + offset;
+    float deviation = sqrt(max(0.0, (dot(d00, d00) + dot(dc, dc)) * (1.0 / 7.0) - offset * offset));
 
     // 1. Where the pixel's point was.
     vec3 position = obscura_view_position(p, depth);

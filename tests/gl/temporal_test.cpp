@@ -154,6 +154,52 @@ TEST_F(GLTest, TemporalIdentityReprojectionReproducesTheHistoryExactly) {
     std::vector<float> accumulated;
     for (int f = 0; f < 6; ++f) accumulated = render_visibility(ctx(), input, settings);
     EXPECT_EQ(max_abs_difference(accumulated, one_frame), 0.0);
+
+    // The noise moving with the frame index: the history is this view's earlier frames, reproduced exactly, so
+    // frame n is the mean of the n + 1 frames rendered alone (weight 1 / age), wherever the neighbourhood clamp
+    // leaves the history as it is. That is predicted here from the frames alone: the 7-texel window (the 3x3 less
+    // (+1, -1) and (-1, +1)), mean +- clamp deviations widened to the pixel's own value; a pixel is checked while the
+    // history has stayed inside it by a margin in every frame so far. An accumulation that ignored, resampled or
+    // blurred the history would miss the mean.
+    obscura_settings wide = settings;
+    wide.temporal.clamp = 64.0f;
+    obscura_view* view = nullptr;
+    ASSERT_EQ(obscura_create_view(ctx(), &view), OBSCURA_OK);
+    std::vector<double> sum(one_frame.size(), 0.0);
+    std::vector<bool> exact(one_frame.size(), true);
+    double worst = 0.0, moved = 0.0;
+    size_t checked = 0;
+    for (uint32_t f = 0; f < 4; ++f) {
+        const std::vector<float> alone = render_frames(ctx(), scene.input, noisy_hbao(false), f, 1);
+        for (size_t i = 0; f > 0 && i < sum.size(); ++i) {
+            const int x = int(i % kWidth), y = int(i / kWidth);
+            const int window[7][2] = {{-1, -1}, {0, -1}, {-1, 0}, {0, 0}, {1, 0}, {0, 1}, {1, 1}};
+            double s1 = 0.0, s2 = 0.0;
+            for (const auto& o : window) {
+                const int u = x + o[0], v = y + o[1];
+                const double value = u >= 0 && u < kWidth && v >= 0 && v < kHeight ? alone[size_t(v) * kWidth + u] : alone[i];
+                s1 += value;
+                s2 += value * value;
+            }
+            const double mean = s1 / 7.0, spread = 64.0 * std::sqrt(std::max(0.0, s2 / 7.0 - mean * mean));
+            const double history = sum[i] / f;
+            const double low = std::min(mean - spread, double(alone[i])), high = std::max(mean + spread, double(alone[i]));
+            const bool unchanged = std::fabs(history - alone[i]) < 1e-7;  // nothing for the clamp to move
+            if (!unchanged && !(history > low + 1e-4 && history < high - 1e-4)) exact[i] = false;
+        }
+        for (size_t i = 0; i < sum.size(); ++i) sum[i] += alone[i];
+        accumulated = render_frames(ctx(), scene.input, wide, f, 1, view);
+        for (size_t i = 0; i < sum.size(); ++i) {
+            if (!exact[i]) continue;
+            worst = std::max(worst, std::fabs(accumulated[i] - sum[i] / (f + 1)));
+            moved = std::max(moved, std::fabs(double(accumulated[i]) - alone[i]));
+            checked += f == 3;
+        }
+    }
+    EXPECT_LT(worst, 1e-6);
+    EXPECT_GT(moved, 0.01) << "the frames' noise differs, so the mean is not any one frame";
+    EXPECT_GT(checked, one_frame.size() / 2) << "the clamp left most pixels' histories alone";
+    EXPECT_EQ(obscura_destroy_view(ctx(), view), OBSCURA_OK);
 }
 
 TEST_F(GLTest, TemporalResetAndMissingMatricesDropTheHistory) {
@@ -199,6 +245,21 @@ TEST_F(GLTest, TemporalViewsKeepSeparateHistoriesAndAResizeInvalidatesOnlyItsVie
         interleaved = render_frames(ctx(), scene.input, settings, f, 1, a);
     }
     EXPECT_EQ(max_abs_difference(interleaved, alone), 0.0);
+    // A resize drops the resized view's history (and only its): b at another size starts anew, as its first frame
+    // alone; a goes on with its own.
+    AoScene resized = make_ao_scene(Projection::Perspective, scene.camera.view(),
+                                    {plane(1, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0))}, Lens(), 128, 72);
+    set_matrices(&resized.input, resized.camera);
+    const std::vector<float> resized_alone = render_frames(ctx(), resized.input, noisy_hbao(false), 106, 1);
+    EXPECT_EQ(max_abs_difference(render_frames(ctx(), resized.input, settings, 106, 1, b), resized_alone), 0.0);
+    obscura_view* c = nullptr;
+    ASSERT_EQ(obscura_create_view(ctx(), &c), OBSCURA_OK);
+    const std::vector<float> seventh_alone = render_frames(ctx(), scene.input, settings, 0, 7, c);
+    EXPECT_EQ(obscura_destroy_view(ctx(), c), OBSCURA_OK);
+    EXPECT_EQ(max_abs_difference(render_frames(ctx(), scene.input, settings, 6, 1, a), seventh_alone), 0.0);
+    EXPECT_GT(max_abs_difference(seventh_alone, render_frames(ctx(), scene.input, noisy_hbao(false), 6, 1)), 0.01)
+        << "a's seventh frame carries its history";
+    render_frames(ctx(), small.input, settings, 107, 1, b);  // back at 160x90 for the memory figure below
     uint64_t with_views = 0;
     ASSERT_EQ(obscura_get_memory_usage(ctx(), &with_views), OBSCURA_OK);
     EXPECT_EQ(obscura_destroy_view(ctx(), b), OBSCURA_OK);
