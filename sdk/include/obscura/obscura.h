@@ -755,7 +755,7 @@ typedef enum obscura_debug_view {
     OBSCURA_DEBUG_LINEAR_DEPTH = 1, /* view depth / (4 * radius), clamped: near = black */
     OBSCURA_DEBUG_NORMALS = 2,     /* view-space normal * 0.5 + 0.5 in rgb (single-channel targets get z) */
     OBSCURA_DEBUG_AO_BEFORE_BLUR = 3,
-    OBSCURA_DEBUG_TAP_COUNT = 4    /* depth texels the AO pass read for the pixel / 256 (HBAO, SAO; others 0);
+    OBSCURA_DEBUG_TAP_COUNT = 4    /* depth texels the AO pass read for the pixel / 256 (HBAO, SAO, GTAO; others 0);
                                       with a float target, round(value * 256) is the count (up to 127) */
 } obscura_debug_view;
 
