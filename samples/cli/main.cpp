@@ -30,6 +30,8 @@ const char* const kUsage = R"(usage:
   obscura tune --method SPEC --scenes NAME[@VIEWPOINT],... [--size 320x180] [--budget RATIOx:SPEC]
                [--keys KEY,KEY,...] [--evaluations 60] [--truth-rays 256] [--seed 1] [--json TUNE.json]
                [--sync-timing] [SCENE options but --scene, --viewpoint, --eye/--target and --depth]
+  obscura tune --method SPEC --captures DEPTH.pfm,... --truths TRUTH.pfm,... [--depth-kind, --near, --far,
+               --reversed-z, --fovy, --guard-band as for --depth] [--budget, --keys, ... as above]
   obscura demo [--out-dir demo-output] [other compare options]
   obscura diff IMAGE.png|pfm REFERENCE.png|pfm [--tolerance mean=0.005,pixels=0.005,threshold=4]
                [--out DIFF.png] [--json REPORT.json]
@@ -119,7 +121,10 @@ tune searches SPEC's settings, starting from them, for the lowest mean_abs again
   it (alternately) before it is reported; settings of the best that leave its pictures unchanged are put back.
   Progress on stderr; prints the start's and the best's error (per scene) and cost, the budget, and the best
   settings as a spec (for --method) and as C code; --json writes them with every evaluation. Exit 1 when no
-  candidate is within the budget.
+  candidate is within the budget. On a studio's own captures instead of scenes: --captures names depth files
+  (read as render --depth reads them, with one set of depth options) and --truths the geometry truth of each
+  one's visible image, traced with SPEC's falloff (obscura truth --falloff SPEC --out TRUTH.pfm --depth-out
+  DEPTH.pfm); the error counts the depth's non-sky pixels, and keys that change the falloff are refused.
 demo runs compare on the atrium at 640x360 with every available method against the geometry truth
   into demo-output/.
 --sync-timing times passes with glFinish (automatic on llvmpipe/softpipe, whose timer queries read 0).

@@ -1,5 +1,6 @@
 // obscura tune: searches a method's settings for the lowest error against the geometry truth on a set of scene
-// views, under a time budget measured in the same run.
+// views and captures (a depth buffer and its geometry truth, as `obscura truth --depth-out` writes them), under a
+// time budget measured in the same run.
 //
 // The searched settings are the method's metadata rows (obscura_get_setting_infos): by default every number,
 // enum and toggle that is neither derived nor only a scheduling or noise choice, and that leaves the falloff
@@ -7,7 +8,8 @@
 // changing them changes the target rather than the match); --keys names the ones to search instead. The
 // objective is the mean over the scenes of mean_abs against the geometry truth weighed with the candidate's own
 // falloff (obscura_reference_settings_for), over the geometry pixels; one truth is traced per distinct falloff
-// and kept. The cost is the sum over the scenes of the SDK's total time (obscura_get_timings: GL timer queries,
+// and kept. A capture's truth is its file, traced with the start's falloff: on captures no key that changes the
+// falloff is searched. The cost is the sum over the scenes of the SDK's total time (obscura_get_timings: GL timer queries,
 // or glFinish + CPU clock per pass on software renderers, as bench measures), median of warm frames; with
 // --budget RATIOx:SPEC a candidate whose cost exceeds RATIO times SPEC's cost on the same scenes is rejected, and
 // the best is timed again against SPEC before it is reported. Settings of the best that leave its pictures bit for
@@ -27,7 +29,10 @@
 #include "ao_render.h"
 #include "cli_errors.h"
 #include "commands.h"
+#include "demo_scene.h"
+#include "depth_file.h"
 #include "headless_gl.h"
+#include "image_io.h"
 #include "json_writer.h"
 #include "method_spec.h"
 #include "method_spec_parser.h"
@@ -69,9 +74,18 @@ struct Budget {
     MethodSpec spec;
 };
 
+// A studio's capture: its depth buffer (render --depth reads it with the config's depth options) and the geometry
+// truth of the visible image, traced with the tuned method's falloff (obscura truth --falloff).
+struct Capture {
+    std::string depth_path;
+    std::string truth_path;
+};
+
 struct TuneConfig {
     MethodSpec start;
     std::vector<SceneChoice> scenes;
+    std::vector<Capture> captures;
+    samples::DepthFileOptions capture_depth;  // the captures' depth options (each its own path)
     SceneSourceOptions scene;  // everything but the scene and its camera
     std::optional<Budget> budget;
     std::optional<std::vector<std::string>> keys;
@@ -119,16 +133,43 @@ TuneConfig take_tune_config(ArgumentList& arguments) {
         }
     }
     if (arguments.contains("--depth")) {
-        throw UsageError("tune needs the scenes' triangles (--scenes), not a depth file");
+        throw UsageError("tune takes depth buffers as --captures DEPTH.pfm,... with --truths TRUTH.pfm,... (not --depth)");
     }
     TuneConfig config;
     const std::optional<std::string> method = arguments.take_value("--method");
     if (!method) throw UsageError("tune needs --method SPEC, the settings the search starts from");
     config.start = parse_method_spec(*method);
     const std::optional<std::string> scenes = arguments.take_value("--scenes");
-    if (!scenes) throw UsageError("tune needs --scenes NAME[@VIEWPOINT],... (e.g. --scenes atrium,objects)");
-    for (const std::string& text : split_list("--scenes", *scenes)) config.scenes.push_back(parse_scene_choice(text));
+    const std::optional<std::string> captures = arguments.take_value("--captures");
+    const std::optional<std::string> truths = arguments.take_value("--truths");
+    if (!scenes && !captures) {
+        throw UsageError("tune needs --scenes NAME[@VIEWPOINT],... (e.g. --scenes atrium,objects) or --captures");
+    }
+    if (scenes && captures) throw UsageError("--scenes and --captures are alternatives: give one");
+    if (scenes) {
+        for (const std::string& text : split_list("--scenes", *scenes)) config.scenes.push_back(parse_scene_choice(text));
+    }
+    if (captures.has_value() != truths.has_value()) {
+        throw UsageError("--captures DEPTH.pfm,... and --truths TRUTH.pfm,... go together (one truth per capture)");
+    }
     const std::optional<std::string> size = arguments.take_value("--size");
+    if (captures) {
+        const std::vector<std::string> depths = split_list("--captures", *captures);
+        const std::vector<std::string> truth_files = split_list("--truths", *truths);
+        if (depths.size() != truth_files.size()) {
+            throw UsageError("--captures names " + std::to_string(depths.size()) + " depth files and --truths " +
+                             std::to_string(truth_files.size()) + " truths: one truth per capture");
+        }
+        for (size_t i = 0; i < depths.size(); ++i) config.captures.push_back(Capture{depths[i], truth_files[i]});
+        // The depth options as render --depth takes them (--depth-kind, --near, --far, --reversed-z, --fovy,
+        // --guard-band), one set for every capture.
+        if (size) throw UsageError("--size does not apply to --captures (a capture's size is its file's)");
+        std::vector<std::string> rest = arguments.take_rest();
+        rest.insert(rest.end(), {"--depth", depths.front()});
+        ArgumentList depth_arguments(std::move(rest));
+        config.capture_depth = *take_scene_source_options(depth_arguments, /*takes_size=*/false).depth_file;
+        arguments = ArgumentList(depth_arguments.take_rest());
+    }
     config.scene = take_scene_source_options(arguments, /*takes_size=*/false);
     const ImageSize visible = size ? parse_size("--size", *size) : kDefaultTuneSize;
     config.scene.raster.width = visible.width;
@@ -181,12 +222,15 @@ struct Candidate {
     std::string falloff;  // the truth's falloff, described
 };
 
-// One scene view as the search measures it: its depth, its geometry pixels, the AO target.
+// One scene view or capture as the search measures it: its depth, its geometry pixels, the AO target; a scene's
+// tracer, or a capture's truth.
 struct TuneScene {
-    SceneChoice choice;
+    SceneChoice choice;  // a capture: its depth file as the name
     std::unique_ptr<SceneSource> source;
     std::optional<samples::RenderedScene> rendered;
     std::unique_ptr<TruthTracer> tracer;
+    std::optional<samples::FloatImage> capture_truth;
+    std::string capture_truth_path;
     std::vector<uint8_t> mask;
     std::unique_ptr<AoTarget> target;
 };
@@ -364,7 +408,8 @@ private:
         return samples::Evaluation{candidate.error, violation};
     }
 
-    // The truth weighed with the falloff of `settings`: traced the first time that falloff is asked for.
+    // The truth weighed with the falloff of `settings`: traced the first time that falloff is asked for; a
+    // capture's is its file, which holds the start's falloff only.
     const TruthSet& truth_for(const obscura_settings& settings) {
         const std::optional<obscura_settings> falloff = geometry_falloff(settings, config_.truth_rays);
         if (!falloff) {
@@ -376,6 +421,13 @@ private:
         TruthSet truth;
         truth.falloff = *falloff;
         truth.description = describe_reference(*falloff);
+        if (!config_.captures.empty()) {
+            // (take_tune_config refuses the keys that change the falloff on captures.)
+            if (!truths_.empty()) throw ApiError("a capture's truth holds the start's falloff only, not " + truth.description);
+            for (TuneScene& scene : scenes_) truth.images.push_back(*scene.capture_truth);
+            truths_.push_back(std::move(truth));
+            return truths_.back();
+        }
         const auto start = std::chrono::steady_clock::now();
         for (TuneScene& scene : scenes_) {
             const std::string label = "geometry truth " + std::to_string(truths_.size() + 1) + " (" +
@@ -453,12 +505,16 @@ void write_tune_json(const TuneReport& report, const std::string& path, obscura_
     json.key("scenes").begin_array();
     for (const TuneScene& scene : *report.scenes) {
         json.begin_object().field("name", scene.choice.name);
-        json.field("viewpoint", scene.choice.viewpoint.value_or("default"));
+        if (scene.capture_truth) json.field("truth", scene.capture_truth_path);
+        else json.field("viewpoint", scene.choice.viewpoint.value_or("default"));
+        const obscura_rect& rect = scene.rendered->frame().output_rect;
+        json.field("width", rect.width).field("height", rect.height);
         json.field("geometry_pixels", size_t(std::count(scene.mask.begin(), scene.mask.end(), uint8_t(1))));
         json.end_object();
     }
     json.end_array();
     json.key("truth").begin_object().field("rays", config.truth_rays).field("seed", config.seed);
+    json.field("from_files", !config.captures.empty());
     json.field("falloffs", report.tuner->truths().size()).field("seconds", report.tuner->truth_seconds()).end_object();
     size_t counts[3] = {0, 0, 0};
     for (const Candidate& candidate : candidates) ++counts[int(candidate.status)];
@@ -530,12 +586,18 @@ void print_summary(const TuneReport& report) {
     const std::vector<TuneScene>& scenes = *report.scenes;
     size_t counts[3] = {0, 0, 0};
     for (const Candidate& candidate : candidates) ++counts[int(candidate.status)];
+    char truths[96];
+    if (report.config->captures.empty()) {
+        std::snprintf(truths, sizeof truths, "%zu geometry truth(s) traced in %.1f s", report.tuner->truths().size(),
+                      report.tuner->truth_seconds());
+    } else {
+        std::snprintf(truths, sizeof truths, "the captures' truths read from their files");
+    }
     std::printf("\nevaluations: %zu of %d (%zu measured within the budget, %zu over it, %zu refused), %d restart(s), "
-                "%s; %zu geometry truth(s) traced in %.1f s; %.1f s in all\n",
+                "%s; %s; %.1f s in all\n",
                 candidates.size(), report.config->evaluations, counts[int(Status::Measured)],
                 counts[int(Status::OverBudget)], counts[int(Status::Refused)], report.search->restarts,
-                report.search->converged ? "converged" : "stopped at the evaluation limit",
-                report.tuner->truths().size(), report.tuner->truth_seconds(), report.seconds);
+                report.search->converged ? "converged" : "stopped at the evaluation limit", truths, report.seconds);
     std::printf("times: the SDK's total summed over the scenes, median of warm frames (%s)\n\n",
                 report.sync_timing ? "glFinish + CPU clock per pass" : "GL timer queries");
 
@@ -656,13 +718,27 @@ Candidate without_idle_changes(const Tuner& tuner, const TuneConfig& config, con
 int run_tune(ArgumentList& arguments) {
     const TuneConfig config = take_tune_config(arguments);
     const SearchSpace space = make_search_space(config.start, config.keys);
+    for (const TunedKey& key : space.keys) {
+        if (key.changes_falloff && !config.captures.empty()) {
+            throw UsageError(std::string("--keys ") + key.info.name + ": a capture's truth was traced with one falloff, "
+                             "and " + key.info.name + " changes it");
+        }
+    }
     // The scenes' meshes and cameras before any GL: an unknown scene or viewpoint is a usage error.
     std::vector<std::unique_ptr<SceneSource>> sources;
+    std::vector<SceneChoice> choices = config.scenes;
     for (const SceneChoice& choice : config.scenes) {
         SceneSourceOptions options = config.scene;
         options.scene = choice.name;
         options.viewpoint = choice.viewpoint;
         sources.push_back(std::make_unique<SceneSource>(options));
+    }
+    for (const Capture& capture : config.captures) {
+        SceneSourceOptions options;
+        options.depth_file = config.capture_depth;
+        options.depth_file->path = capture.depth_path;
+        sources.push_back(std::make_unique<SceneSource>(options));
+        choices.push_back(SceneChoice{capture.depth_path, std::nullopt});
     }
     const auto begin = std::chrono::steady_clock::now();
 
@@ -670,21 +746,43 @@ int run_tune(ArgumentList& arguments) {
     std::printf("GL: %s\n", gl.describe().c_str());
     const ObscuraSession session(timing_flags(gl, config.sync_timing));
     const bool sync = session.flags() & OBSCURA_CONTEXT_FLAG_SYNC_TIMING;
-    std::printf("tune %s: %d evaluations, geometry truth %d rays per pixel, seed %u\n", config.start.text.c_str(),
-                config.evaluations, config.truth_rays, config.seed);
+    if (config.captures.empty()) {
+        std::printf("tune %s: %d evaluations, geometry truth %d rays per pixel, seed %u\n", config.start.text.c_str(),
+                    config.evaluations, config.truth_rays, config.seed);
+    } else {
+        std::printf("tune %s: %d evaluations, %zu captures, each against its truth file (traced with %s's falloff: "
+                    "obscura truth --falloff)\n",
+                    config.start.text.c_str(), config.evaluations, config.captures.size(), config.start.text.c_str());
+    }
     // Declared after the GL context and the session: their textures go first.
     std::vector<TuneScene> scenes(sources.size());
     for (size_t i = 0; i < scenes.size(); ++i) {
         TuneScene& scene = scenes[i];
-        scene.choice = config.scenes[i];
+        scene.choice = choices[i];
         scene.source = std::move(sources[i]);
         scene.rendered.emplace(scene.source->render());
-        scene.tracer = std::make_unique<TruthTracer>(*scene.source->scene());
         const obscura_rect& rect = scene.rendered->frame().output_rect;
         scene.target = std::make_unique<AoTarget>(rect.width, rect.height, GL_R32F);
-        // The geometry pixels, from the truth's primary rays (the same for every falloff).
-        scene.mask = scene.tracer->trace(scene.rendered->frame(), {config.start.settings}, 0, config.seed,
-                                         "primary rays").geometry_mask;
+        if (i >= config.scenes.size()) {
+            // A capture: the geometry pixels are the depth's non-sky texels; the truth is read at the visible size.
+            const Capture& capture = config.captures[i - config.scenes.size()];
+            scene.mask = samples::read_geometry_mask(scene.rendered->frame());
+            scene.capture_truth = samples::read_pfm(capture.truth_path);
+            scene.capture_truth_path = capture.truth_path;
+            const samples::FloatImage& truth = *scene.capture_truth;
+            if (truth.channels != 1 || truth.width != rect.width || truth.height != rect.height) {
+                throw std::runtime_error(capture.truth_path + ": a " + std::to_string(truth.width) + "x" +
+                                         std::to_string(truth.height) + "x" + std::to_string(truth.channels) +
+                                         " image, not the 1-channel truth of " + capture.depth_path + "'s visible " +
+                                         std::to_string(rect.width) + "x" + std::to_string(rect.height) +
+                                         " (check --guard-band)");
+            }
+        } else {
+            scene.tracer = std::make_unique<TruthTracer>(*scene.source->scene());
+            // The geometry pixels, from the truth's primary rays (the same for every falloff).
+            scene.mask = scene.tracer->trace(scene.rendered->frame(), {config.start.settings}, 0, config.seed,
+                                             "primary rays").geometry_mask;
+        }
         const size_t pixels = size_t(std::count(scene.mask.begin(), scene.mask.end(), uint8_t(1)));
         if (pixels == 0) {
             throw std::runtime_error("scene " + scene.choice.label() + " shows no geometry (every pixel is sky): "

@@ -154,6 +154,12 @@ obscura_cli_command_test(tune_small 0
   "tune|--method|hbao:power=3|--scenes|analytic|--size|64x36|--keys|power|--evaluations|4|--truth-rays|16|--budget|100x:hbao|--json|tune.json"
   GL CHECK tune EXPECT_FILES "tune.json"
   EXPECT_STDOUT "searched [(]1[)]: power [[]0.001, 16[]] log\n.*\n +start +[0-9.]+ +[0-9.]+ +[0-9.]+ +[0-9.]+x\n +best [(]#[2-4][)] .*best spec: hbao:power=[0-9.]+\n.*obscura_default_settings[(]OBSCURA_METHOD_HBAO, &settings[)];\n +settings.hbao.power = [0-9.]+f;\n")
+# tune on a studio's captures: the capture written by truth (64x36, 16 rays, HBAO's falloff), then tune from HBAO at
+# power 3 on it (check tune_capture: the objective is the capture's own error, render --depth against its truth
+# over the non-sky pixels).
+obscura_cli_command_test(tune_capture 0
+  "truth|--scene|analytic|--size|64x36|--rays|16|--falloff|hbao|--out|truth.pfm|--depth-out|depth.pfm"
+  GL CHECK tune_capture EXPECT_FILES "truth.pfm|depth.pfm")
 # truth: a capture (linear depth + truth) that render --depth reads back as the scene itself.
 obscura_cli_command_test(truth_capture 0
   "truth|${scene}|--rays|16|--falloff|hbao|--out|truth.pfm|--depth-out|depth.pfm|--png|truth.png"
@@ -238,6 +244,16 @@ obscura_cli_command_test(tune_bad_budget 2 "tune|--method|hbao|--scenes|analytic
 obscura_cli_command_test(tune_key_not_searched 2 "tune|--method|gtao|--scenes|analytic|--keys|power,frame_index"
   EXPECT_STDERR "^obscura: --keys: frame_index is not searched: it moves the noise pattern only[^\n]*\n$")
 obscura_cli_command_test(tune_without_scenes 2 "tune|--method|hbao" EXPECT_STDERR "^obscura: tune needs --scenes ")
+obscura_cli_command_test(tune_captures_without_truths 2 "tune|--method|hbao|--captures|d.pfm"
+  EXPECT_STDERR "^obscura: --captures DEPTH.pfm,... and --truths TRUTH.pfm,... go together")
+obscura_cli_command_test(tune_captures_and_truths_differ 2 "tune|--method|hbao|--captures|a.pfm,b.pfm|--truths|t.pfm"
+  EXPECT_STDERR "^obscura: --captures names 2 depth files and --truths 1 truths")
+obscura_cli_command_test(tune_scenes_and_captures 2 "tune|--method|hbao|--scenes|analytic|--captures|d.pfm|--truths|t.pfm"
+  EXPECT_STDERR "^obscura: --scenes and --captures are alternatives")
+obscura_cli_command_test(tune_captures_falloff_key 2 "tune|--method|hbao|--captures|d.pfm|--truths|t.pfm|--keys|power,radius"
+  EXPECT_STDERR "^obscura: --keys radius: a capture's truth was traced with one falloff")
+obscura_cli_command_test(tune_captures_with_depth 2 "tune|--method|hbao|--depth|d.pfm"
+  EXPECT_STDERR "^obscura: tune takes depth buffers as --captures")
 # Motion vectors are rasterised single-sample only: with --msaa a usage error before any GL, whether asked for or the
 # animated scene's default.
 obscura_cli_command_test(compare_motion_vectors_msaa 2 "compare|--scene|analytic|--motion-vectors|on|--frames|3|--msaa|2"
