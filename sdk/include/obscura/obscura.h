@@ -807,7 +807,7 @@ OBSCURA_API obscura_status obscura_render(obscura_context* context, const obscur
    Shader variants that depend on the input and output (MSAA or linear depth, the target's format) are
    still compiled on the first render that needs them; outputs beyond the AO (GTAO's bent normals) are
    allocated when the context's last render asked for them, and textures sized to the output rectangle (FFAO's
-   running total at sizes it splits into chunks, 4K on Mesa) take the last render's, or the depth's size. Optional. Returns OK, NULL_ARGUMENT,
+   running total at sizes it splits into chunks, 4K) take the last render's, or the depth's size. Optional. Returns OK, NULL_ARGUMENT,
    INVALID_STRUCT_SIZE, INVALID_SETTING, INVALID_ENUM, METHOD_NOT_AVAILABLE, INVALID_SIZE,
    WRONG_GL_CONTEXT, HOST_GL_ERROR, SHADER_COMPILE_FAILED (it builds the method's programs), OUT_OF_MEMORY,
    GL_ERROR (a GL error its calls raised, left for no later call to be blamed on), CONTEXT_LOST. */

@@ -154,6 +154,7 @@ Error FfaoPass::build_grid(const PassEnv& env, const obscura_ffao_settings& sett
     const gl::Table& gl = env.gl;
     GLint64 max_block_bytes = 0;
     gl.GetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block_bytes);
+    max_block_bytes = std::min<GLint64>(max_block_bytes, OBSCURA_FFAO_MAX_BLOCK_BYTES);
     if (storage_block_limit_ > 0) max_block_bytes = std::min<GLint64>(max_block_bytes, storage_block_limit_);
     // CPU rasterisers' obscurance pass reads the peaks buffer as a buffer texture, which GL bounds in texels.
     GLint max_texels = 0;
