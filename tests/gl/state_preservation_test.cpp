@@ -380,8 +380,10 @@ TEST_P(StatePreservation, ReducedResolution) {
 }
 
 // Temporal accumulation binds the history, the bent-normal history, the motion vectors (unit 0) and two image
-// units; every frame of a sequence (the first starts the history, the second reads it), with and without
-// matrices and motion vectors, in a view of its own.
+// units. A view's sequence that runs every variant of the pass: the first frame starts the history, the camera
+// then slides back and forth (the matrices' reprojection reads it), motion vectors replace the matrices (the
+// motion variant reads it), bent normals start their own history and the next frame reads both; the context's
+// own view renders in between (its own history).
 TEST_P(StatePreservation, TemporalAccumulation) {
     HostTexture motion = make_texture(GL_RG16F, input_.depth_width, input_.depth_height);
     fill_texture(motion.get(), input_.depth_width, input_.depth_height, 0.25f, -0.5f, 0.0f, 0.0f);
@@ -393,16 +395,25 @@ TEST_P(StatePreservation, TemporalAccumulation) {
     obscura_settings settings;
     ASSERT_EQ(obscura_default_settings(OBSCURA_METHOD_GTAO, &settings), OBSCURA_OK);
     settings.temporal.enabled = OBSCURA_TOGGLE_ON;
-    obscura_input input = input_;
-    std::memcpy(input.view_projection, input_.projection, sizeof input.view_projection);
-    std::memcpy(input.previous_view_projection, input_.projection, sizeof input.previous_view_projection);
-    for (uint32_t frame = 0; frame < 4; ++frame) {
+    float slid[16];
+    std::memcpy(slid, input_.projection, sizeof slid);
+    slid[12] += 0.02f;  // the camera a little to the side: clip x moves by 0.02 w
+    const float* cameras[2] = {input_.projection, slid};
+    for (uint32_t frame = 0; frame < 6; ++frame) {
+        obscura_input input = input_;
         input.frame_index = frame;
-        input.view = frame % 2 ? view : nullptr;
-        input.motion_vector_texture = frame >= 2 ? motion.get() : 0;
+        input.view = view;
+        std::memcpy(input.view_projection, cameras[frame % 2], sizeof input.view_projection);
+        std::memcpy(input.previous_view_projection, cameras[(frame + 1) % 2], sizeof input.previous_view_projection);
+        input.motion_vector_texture = frame == 2 ? motion.get() : 0;
         obscura_output output = texture_output();
-        output.bent_normal_texture = frame == 3 ? bent.get() : 0;
-        ASSERT_EQ(obscura_render(ctx(), &input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+        output.bent_normal_texture = frame >= 4 ? bent.get() : 0;
+        ASSERT_EQ(obscura_render(ctx(), &input, &settings, &output), OBSCURA_OK)
+            << "frame " << frame << ": " << obscura_get_last_error(ctx());
+        if (frame == 2) {
+            input.view = nullptr;  // the context's own view, between two of the view's frames
+            ASSERT_EQ(obscura_render(ctx(), &input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+        }
     }
     ASSERT_EQ(obscura_destroy_view(ctx(), view), OBSCURA_OK);
     expect_unchanged(before, "temporal frames");
