@@ -345,6 +345,92 @@ TEST_F(GeometryTruthTest, ReferenceAgreesWhereEveryOccluderIsVisible) {
     EXPECT_LT(mean_of(all), 0.01);
 }
 
+// ---- 2b. GTAO where the truth darkens --------------------------------------------------------------------
+// Issue 23: a corner and a box on a floor darken where the geometry truth does, within a stated tolerance. GTAO
+// High at its defaults, in both thickness modes, on the analytic scene at 320x180 against the truth with GTAO's
+// falloff (256 rays), in the regions of the test above: the floor by the wall (a corner), the floor in front of
+// the box, the wall near the floor, the open floor. The tolerances, with what was measured (horizon / bitmask):
+//   - occluded regions: mean |GTAO - truth| < 0.07 (corner 0.054 / 0.042, box 0.027 / 0.017, wall 0.026 / 0.034)
+//     and |mean (GTAO - truth)| < 0.05 (-0.029 / +0.005, -0.021 / +0.003, +0.023 / +0.033);
+//   - open floor: mean |GTAO - truth| < 0.005 (0.0005 / 0.0003): no occlusion where the truth has none;
+//   - the pixels the truth darkens below 0.9 (1941 of them): GTAO's mean within 0.05 of the truth's (0.7668 and
+//     0.7879 against 0.7600); a GTAO that did not darken there would be 0.24 off.
+TEST_F(GeometryTruthTest, GtaoDarkensWhereTheTruthDoes) {
+    const os::Scene scene = os::load_scene("analytic");
+    const os::RenderedScene rendered =
+        render(scene, os::ProjectionKind::Perspective, glm::vec3(0.0f), 2 * kWidth, 2 * kHeight);
+    const os::SceneFrame& frame = rendered.frame();
+    obscura_settings gtao{};
+    ASSERT_EQ(obscura_default_settings(OBSCURA_METHOD_GTAO, &gtao), OBSCURA_OK);
+    const os::TruthScene truth_scene(scene.mesh);
+    os::GeometryTruth truth(truth_scene, os::TruthView::of(frame), {gtao});
+    ASSERT_TRUE(truth.trace(256));
+    const os::FloatImage visibility = truth.visibility(0);
+    const os::FloatImage depth = truth.view_depth();
+    const std::vector<Receiver> receivers = cast_analytic(frame);
+    const double r = kRadius;
+    auto on_floor = [](const Receiver& p) { return p.normal.y > 0.99 && std::fabs(p.position.y) < 1e-6; };
+    auto box_distance = [](const Receiver& p) {
+        const double dx = std::max({layout::kBoxMinX - p.position.x, 0.0, p.position.x - layout::kBoxMaxX});
+        const double dz = std::max({layout::kBoxMinZ - p.position.z, 0.0, p.position.z - layout::kBoxMaxZ});
+        return std::sqrt(dx * dx + dz * dz);
+    };
+    struct Region {
+        const char* name;
+        std::function<bool(const Receiver&)> member;
+    };
+    const Region regions[] = {
+        {"floor by the wall (corner)",
+         [&](const Receiver& p) {
+             return on_floor(p) && p.position.z < layout::kWallZ + 0.5 * r && box_distance(p) > r + 0.05;
+         }},
+        {"floor in front of the box",
+         [&](const Receiver& p) {
+             return on_floor(p) && p.position.z > layout::kBoxMaxZ && p.position.z < layout::kBoxMaxZ + 0.5 * r &&
+                    p.position.x > layout::kBoxMinX + 0.05 && p.position.x < layout::kBoxMaxX - 0.05;
+         }},
+        {"wall near the floor",
+         [&](const Receiver& p) {
+             return p.normal.z > 0.99 && std::fabs(p.position.z - layout::kWallZ) < 1e-6 && p.position.y < 0.5 * r;
+         }},
+        {"open floor",
+         [&](const Receiver& p) {
+             return on_floor(p) && p.position.z > layout::kWallZ + r + 0.05 && box_distance(p) > r + 0.05;
+         }},
+    };
+    for (int mode : {1, 2}) {
+        obscura_settings settings = gtao;
+        settings.gtao.thickness_mode = mode;
+        const std::vector<float> method = render_to_new_texture(ctx(), frame.make_input(false), settings, GL_R32F, 1);
+        ASSERT_EQ(method.size(), visibility.pixels.size());
+        std::vector<double> dark_truth, dark_method;
+        for (const Region& region : regions) {
+            std::vector<double> errors;
+            double signed_sum = 0.0;
+            for (size_t i = 0; i < receivers.size(); ++i) {
+                if (!same_surface(receivers[i], depth.pixels[i]) || !region.member(receivers[i])) continue;
+                errors.push_back(std::fabs(double(method[i]) - double(visibility.pixels[i])));
+                signed_sum += double(method[i]) - double(visibility.pixels[i]);
+                if (visibility.pixels[i] < 0.9f) {
+                    dark_truth.push_back(visibility.pixels[i]);
+                    dark_method.push_back(method[i]);
+                }
+            }
+            const double bias = signed_sum / double(std::max<size_t>(1, errors.size()));
+            std::printf("gtao %s, %-28s %5zu pixels: mean |GTAO - truth| %.5f, mean (GTAO - truth) %+.5f\n",
+                        mode == 1 ? "horizon" : "bitmask", region.name, errors.size(), mean_of(errors), bias);
+            const bool open = &region == &regions[3];
+            EXPECT_GT(errors.size(), 50u) << region.name;
+            EXPECT_LT(mean_of(errors), open ? 0.005 : 0.07) << region.name;
+            EXPECT_LT(std::fabs(bias), 0.05) << region.name;
+        }
+        std::printf("gtao %s, where the truth is below 0.9: %zu pixels, truth %.4f, GTAO %.4f\n",
+                    mode == 1 ? "horizon" : "bitmask", dark_truth.size(), mean_of(dark_truth), mean_of(dark_method));
+        EXPECT_GT(dark_truth.size(), 1000u);
+        EXPECT_LT(std::fabs(mean_of(dark_method) - mean_of(dark_truth)), 0.05);
+    }
+}
+
 // ---- 3. Convergence and determinism ----------------------------------------------------------------------
 // On the atrium (columns, arches, stairs: occluded almost everywhere). Measured at 160x90: the mean visibility
 // over geometry pixels moves by 1e-5 from 256 to 1024 rays; another seed moves it by 2e-5.
