@@ -270,6 +270,72 @@ TEST_F(GLTest, TemporalViewsKeepSeparateHistoriesAndAResizeInvalidatesOnlyItsVie
     EXPECT_EQ(obscura_destroy_view(ctx(), a), OBSCURA_OK);
 }
 
+// GTAO's bent normals accumulate with the visibility, and the history's (in the previous view's space) is rotated
+// into the current view. The camera drops 0.5 m between two frames (its pitch changes by 6.6 degrees, and with it the
+// floor's normal in view space); on the open floor GTAO's bent normal is the floor's normal, so the accumulated
+// bent normal there is the second view's one-frame bent normal when the history was rotated, and half the pitch
+// change away from it when not. Also: the accumulated bent normals stay unit length. Measured on llvmpipe: 0.013
+// degrees on average over 32168 open-floor pixels; 3.28 with the history left in the previous view's space.
+TEST_F(GLTest, TemporalBentNormalsAccumulateInTheCurrentView) {
+    const std::vector<Primitive> primitives = {
+        plane(1, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0)),
+        box(2, glm::dvec3(-kBoxHalf, 0.0, -kBoxHalf), glm::dvec3(kBoxHalf, kBoxHeight, kBoxHalf))};
+    AoScene before = make_ao_scene(Projection::Perspective,
+                                   look_at(glm::dvec3(0.9, 2.4, 3.2), glm::dvec3(0.0, 0.3, 0.0)), primitives);
+    AoScene after = make_ao_scene(Projection::Perspective,
+                                  look_at(glm::dvec3(0.9, 1.9, 3.2), glm::dvec3(0.0, 0.3, 0.0)), primitives);
+    set_matrices(&before.input, before.camera);
+    set_matrices(&after.input, after.camera, &before.camera);
+    obscura_settings settings;
+    ASSERT_EQ(obscura_default_settings(OBSCURA_METHOD_GTAO, &settings), OBSCURA_OK);
+    settings.temporal.enabled = OBSCURA_TOGGLE_ON;
+    settings.temporal.max_frames = 2;  // the second frame: the history and the frame, half each
+    obscura_settings alone = settings;
+    alone.temporal.enabled = OBSCURA_TOGGLE_OFF;
+    const auto render_bent = [&](const obscura_input& input, const obscura_settings& s) {
+        HostTexture ao = make_texture(GL_R32F, kWidth, kHeight);
+        HostTexture bent = make_texture(GL_RGBA32F, kWidth, kHeight);
+        obscura_output output = make_output(ao.get());
+        output.bent_normal_texture = bent.get();
+        EXPECT_EQ(obscura_render(ctx(), &input, &s, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+        return read_texture(bent.get(), kWidth, kHeight, 4);
+    };
+    obscura_view* view = nullptr;
+    ASSERT_EQ(obscura_create_view(ctx(), &view), OBSCURA_OK);
+    obscura_input first = before.input, second = after.input;
+    first.view = second.view = view;
+    render_bent(first, settings);
+    const std::vector<float> accumulated = render_bent(second, settings);
+    const std::vector<float> second_alone = render_bent(after.input, alone);
+    const std::vector<float> first_alone = render_bent(before.input, alone);
+    ASSERT_EQ(obscura_destroy_view(ctx(), view), OBSCURA_OK);
+    const auto at = [](const std::vector<float>& b, size_t i) { return glm::dvec3(b[4 * i], b[4 * i + 1], b[4 * i + 2]); };
+    const auto angle = [](glm::dvec3 a, glm::dvec3 b) {
+        return std::acos(std::clamp(glm::dot(glm::normalize(a), glm::normalize(b)), -1.0, 1.0)) * 57.29577951308232;
+    };
+    const auto open_floor = [](const Hit& h) {
+        return h.hit && h.id == 1 && footprint_distance(h) > 1.2 && h.view_depth() < 12.0;
+    };
+    double sum = 0.0, worst_length = 0.0;
+    size_t count = 0, first_open = 0, second_open = 0;
+    for (size_t i = 0; i < after.hits.size(); ++i) {
+        if (!open_floor(after.hits[i])) continue;
+        sum += angle(at(accumulated, i), at(second_alone, i));
+        worst_length = std::max(worst_length, std::fabs(glm::length(at(accumulated, i)) - 1.0));
+        second_open = i;
+        ++count;
+    }
+    for (size_t i = 0; i < before.hits.size(); ++i) first_open = open_floor(before.hits[i]) ? i : first_open;
+    // The floor's normal in each view (the same at every open-floor pixel of a view).
+    const double pitch = angle(at(first_alone, first_open), at(second_alone, second_open));
+    ASSERT_GT(count, 1000u);
+    std::printf("open floor: %zu pixels, accumulated against the second view's own %.4f degrees; the views' floor "
+                "normals %.2f degrees apart\n", count, sum / double(count), pitch);
+    EXPECT_GT(pitch, 5.0) << "the camera's pitch changed: the history must be rotated";
+    EXPECT_LT(sum / double(count), 0.2);
+    EXPECT_LT(worst_length, 1e-3);
+}
+
 TEST_F(GLTest, TemporalMotionVectorsAndMatricesReprojectAlike) {
     // The camera turns and moves a little between two frames; the motion vectors are the exact screen motion of
     // each pixel's surface point (the CPU ray cast's hit projected through the previous camera).
