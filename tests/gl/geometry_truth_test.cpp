@@ -124,6 +124,38 @@ bool same_surface(const Receiver& r, float truth_depth) {
     return r.hit && truth_depth > 0.0f && std::fabs(double(truth_depth) - r.view_depth) < 1e-3 * r.view_depth;
 }
 
+// The analytic scene's surfaces and distances (analytic_layout), at a receiver.
+bool on_floor(const Receiver& p) { return p.normal.y > 0.99 && std::fabs(p.position.y) < 1e-6; }
+bool on_wall(const Receiver& p) { return p.normal.z > 0.99 && std::fabs(p.position.z - layout::kWallZ) < 1e-6; }
+bool inside_x(const Receiver& p, double lo, double hi) { return p.position.x > lo && p.position.x < hi; }
+double box_distance(const Receiver& p) {  // horizontal distance from the box's footprint
+    const double dx = std::max({layout::kBoxMinX - p.position.x, 0.0, p.position.x - layout::kBoxMaxX});
+    const double dz = std::max({layout::kBoxMinZ - p.position.z, 0.0, p.position.z - layout::kBoxMaxZ});
+    return std::sqrt(dx * dx + dz * dz);
+}
+
+// The analytic scene rendered at 320x180 and its truth (256 rays) for one falloff, with the analytic receivers of
+// its pixels.
+struct AnalyticTruth {
+    explicit AnalyticTruth(const obscura_settings& falloff)
+        : scene(os::load_scene("analytic")),
+          rendered(render(scene, os::ProjectionKind::Perspective, glm::vec3(0.0f), 2 * kWidth, 2 * kHeight)),
+          truth_scene(scene.mesh),
+          truth(truth_scene, os::TruthView::of(rendered.frame()), {falloff}) {
+        traced = truth.trace(256);
+        visibility = truth.visibility(0);
+        depth = truth.view_depth();
+        receivers = cast_analytic(rendered.frame());
+    }
+    const os::Scene scene;
+    const os::RenderedScene rendered;
+    const os::TruthScene truth_scene;
+    os::GeometryTruth truth;
+    bool traced = false;
+    os::FloatImage visibility, depth;
+    std::vector<Receiver> receivers;
+};
+
 double mean_of(const std::vector<double>& values) {
     double sum = 0.0;
     for (double v : values) sum += v;
@@ -263,32 +295,17 @@ TEST_F(GeometryTruthTest, BentNormalIsTheNormalInTheOpenAndLeansAwayFromAWall) {
 // by the wall), 0.0046 (floor in front of the box), 0.0039 (wall by the floor), 0.0005 (open floor), mostly
 // REFERENCE's noise at 64 rays.
 TEST_F(GeometryTruthTest, ReferenceAgreesWhereEveryOccluderIsVisible) {
-    const os::Scene scene = os::load_scene("analytic");
-    const os::RenderedScene rendered =
-        render(scene, os::ProjectionKind::Perspective, glm::vec3(0.0f), 2 * kWidth, 2 * kHeight);
-    const os::SceneFrame& frame = rendered.frame();
     const obscura_settings settings = reference_settings(64);
+    const AnalyticTruth analytic(settings);
+    ASSERT_TRUE(analytic.traced);
     const std::vector<float> reference =
-        render_to_new_texture(ctx(), frame.make_input(false), settings, GL_R32F, 1);
+        render_to_new_texture(ctx(), analytic.rendered.frame().make_input(false), settings, GL_R32F, 1);
     ASSERT_EQ(reference.size(), size_t(4 * kWidth) * kHeight);
-    const os::TruthScene truth_scene(scene.mesh);
-    os::GeometryTruth truth(truth_scene, os::TruthView::of(frame), {settings});
-    ASSERT_TRUE(truth.trace(256));
-    const os::FloatImage visibility = truth.visibility(0);
-    const os::FloatImage depth = truth.view_depth();
-    const std::vector<Receiver> receivers = cast_analytic(frame);
+    const os::FloatImage& visibility = analytic.visibility;
+    const os::FloatImage& depth = analytic.depth;
+    const std::vector<Receiver>& receivers = analytic.receivers;
 
     const double r = kRadius;
-    auto on_floor = [](const Receiver& p) { return p.normal.y > 0.99 && std::fabs(p.position.y) < 1e-6; };
-    auto on_wall = [](const Receiver& p) {
-        return p.normal.z > 0.99 && std::fabs(p.position.z - layout::kWallZ) < 1e-6;
-    };
-    auto inside_x = [](const Receiver& p, double lo, double hi) { return p.position.x > lo && p.position.x < hi; };
-    auto box_distance = [](const Receiver& p) {
-        const double dx = std::max({layout::kBoxMinX - p.position.x, 0.0, p.position.x - layout::kBoxMaxX});
-        const double dz = std::max({layout::kBoxMinZ - p.position.z, 0.0, p.position.z - layout::kBoxMaxZ});
-        return std::sqrt(dx * dx + dz * dz);
-    };
     struct Region {
         const char* name;
         std::function<bool(const Receiver&)> member;
@@ -356,25 +373,15 @@ TEST_F(GeometryTruthTest, ReferenceAgreesWhereEveryOccluderIsVisible) {
 //   - the pixels the truth darkens below 0.9 (1941 of them): GTAO's mean within 0.05 of the truth's (0.7668 and
 //     0.7879 against 0.7600); a GTAO that did not darken there would be 0.24 off.
 TEST_F(GeometryTruthTest, GtaoDarkensWhereTheTruthDoes) {
-    const os::Scene scene = os::load_scene("analytic");
-    const os::RenderedScene rendered =
-        render(scene, os::ProjectionKind::Perspective, glm::vec3(0.0f), 2 * kWidth, 2 * kHeight);
-    const os::SceneFrame& frame = rendered.frame();
     obscura_settings gtao{};
     ASSERT_EQ(obscura_default_settings(OBSCURA_METHOD_GTAO, &gtao), OBSCURA_OK);
-    const os::TruthScene truth_scene(scene.mesh);
-    os::GeometryTruth truth(truth_scene, os::TruthView::of(frame), {gtao});
-    ASSERT_TRUE(truth.trace(256));
-    const os::FloatImage visibility = truth.visibility(0);
-    const os::FloatImage depth = truth.view_depth();
-    const std::vector<Receiver> receivers = cast_analytic(frame);
+    const AnalyticTruth analytic(gtao);
+    ASSERT_TRUE(analytic.traced);
+    const os::SceneFrame& frame = analytic.rendered.frame();
+    const os::FloatImage& visibility = analytic.visibility;
+    const os::FloatImage& depth = analytic.depth;
+    const std::vector<Receiver>& receivers = analytic.receivers;
     const double r = kRadius;
-    auto on_floor = [](const Receiver& p) { return p.normal.y > 0.99 && std::fabs(p.position.y) < 1e-6; };
-    auto box_distance = [](const Receiver& p) {
-        const double dx = std::max({layout::kBoxMinX - p.position.x, 0.0, p.position.x - layout::kBoxMaxX});
-        const double dz = std::max({layout::kBoxMinZ - p.position.z, 0.0, p.position.z - layout::kBoxMaxZ});
-        return std::sqrt(dx * dx + dz * dz);
-    };
     struct Region {
         const char* name;
         std::function<bool(const Receiver&)> member;
@@ -389,10 +396,7 @@ TEST_F(GeometryTruthTest, GtaoDarkensWhereTheTruthDoes) {
              return on_floor(p) && p.position.z > layout::kBoxMaxZ && p.position.z < layout::kBoxMaxZ + 0.5 * r &&
                     p.position.x > layout::kBoxMinX + 0.05 && p.position.x < layout::kBoxMaxX - 0.05;
          }},
-        {"wall near the floor",
-         [&](const Receiver& p) {
-             return p.normal.z > 0.99 && std::fabs(p.position.z - layout::kWallZ) < 1e-6 && p.position.y < 0.5 * r;
-         }},
+        {"wall near the floor", [&](const Receiver& p) { return on_wall(p) && p.position.y < 0.5 * r; }},
         {"open floor",
          [&](const Receiver& p) {
              return on_floor(p) && p.position.z > layout::kWallZ + r + 0.05 && box_distance(p) > r + 0.05;

@@ -41,6 +41,13 @@ void set_matrices(obscura_input* input, const Camera& camera, const Camera* prev
     store(projection_of(before) * before.view(), input->previous_view_projection);
 }
 
+// The box on its floor (ao_test_scene.h) through a camera at `eye` looking at `target`.
+AoScene box_seen_from(glm::dvec3 eye, glm::dvec3 target) {
+    return make_ao_scene(Projection::Perspective, look_at(eye, target),
+                         {plane(1, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0)),
+                          box(2, glm::dvec3(-kBoxHalf, 0.0, -kBoxHalf), glm::dvec3(kBoxHalf, kBoxHeight, kBoxHalf))});
+}
+
 // HBAO with few directions: noisy enough that accumulation shows.
 obscura_settings noisy_hbao(bool temporal) {
     obscura_settings settings;
@@ -277,13 +284,8 @@ TEST_F(GLTest, TemporalViewsKeepSeparateHistoriesAndAResizeInvalidatesOnlyItsVie
 // change away from it when not. Also: the accumulated bent normals stay unit length. Measured on llvmpipe: 0.013
 // degrees on average over 32168 open-floor pixels; 3.28 with the history left in the previous view's space.
 TEST_F(GLTest, TemporalBentNormalsAccumulateInTheCurrentView) {
-    const std::vector<Primitive> primitives = {
-        plane(1, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0)),
-        box(2, glm::dvec3(-kBoxHalf, 0.0, -kBoxHalf), glm::dvec3(kBoxHalf, kBoxHeight, kBoxHalf))};
-    AoScene before = make_ao_scene(Projection::Perspective,
-                                   look_at(glm::dvec3(0.9, 2.4, 3.2), glm::dvec3(0.0, 0.3, 0.0)), primitives);
-    AoScene after = make_ao_scene(Projection::Perspective,
-                                  look_at(glm::dvec3(0.9, 1.9, 3.2), glm::dvec3(0.0, 0.3, 0.0)), primitives);
+    AoScene before = box_seen_from(glm::dvec3(0.9, 2.4, 3.2), glm::dvec3(0.0, 0.3, 0.0));
+    AoScene after = box_seen_from(glm::dvec3(0.9, 1.9, 3.2), glm::dvec3(0.0, 0.3, 0.0));
     set_matrices(&before.input, before.camera);
     set_matrices(&after.input, after.camera, &before.camera);
     obscura_settings settings;
@@ -339,13 +341,8 @@ TEST_F(GLTest, TemporalBentNormalsAccumulateInTheCurrentView) {
 TEST_F(GLTest, TemporalMotionVectorsAndMatricesReprojectAlike) {
     // The camera turns and moves a little between two frames; the motion vectors are the exact screen motion of
     // each pixel's surface point (the CPU ray cast's hit projected through the previous camera).
-    const std::vector<Primitive> primitives = {
-        plane(1, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0)),
-        box(2, glm::dvec3(-kBoxHalf, 0.0, -kBoxHalf), glm::dvec3(kBoxHalf, kBoxHeight, kBoxHalf))};
-    AoScene before = make_ao_scene(Projection::Perspective,
-                                   look_at(glm::dvec3(0.9, 2.4, 3.2), glm::dvec3(0.0, 0.3, 0.0)), primitives);
-    AoScene after = make_ao_scene(Projection::Perspective,
-                                  look_at(glm::dvec3(0.95, 2.38, 3.18), glm::dvec3(0.02, 0.3, 0.0)), primitives);
+    AoScene before = box_seen_from(glm::dvec3(0.9, 2.4, 3.2), glm::dvec3(0.0, 0.3, 0.0));
+    AoScene after = box_seen_from(glm::dvec3(0.95, 2.38, 3.18), glm::dvec3(0.02, 0.3, 0.0));
     std::vector<float> motion(size_t(kWidth) * kHeight * 2, 0.0f);
     for (int y = 0; y < kHeight; ++y) {
         for (int x = 0; x < kWidth; ++x) {
