@@ -164,6 +164,14 @@ TuneConfig take_tune_config(ArgumentList& arguments) {
         // The depth options as render --depth takes them (--depth-kind, --near, --far, --reversed-z, --fovy,
         // --guard-band), one set for every capture.
         if (size) throw UsageError("--size does not apply to --captures (a capture's size is its file's)");
+        for (const char* option : {"--projection", "--depth-format", "--msaa", "--no-clip-control", "--normals"}) {
+            if (arguments.contains(option)) {
+                throw UsageError(std::string(option) + " does not apply to --captures (they are depth files)");
+            }
+        }
+        if (arguments.contains("--truth-rays")) {
+            throw UsageError("--truth-rays does not apply to --captures (each truth is its file)");
+        }
         std::vector<std::string> rest = arguments.take_rest();
         rest.insert(rest.end(), {"--depth", depths.front()});
         ArgumentList depth_arguments(std::move(rest));

@@ -252,6 +252,10 @@ obscura_cli_command_test(tune_scenes_and_captures 2 "tune|--method|hbao|--scenes
   EXPECT_STDERR "^obscura: --scenes and --captures are alternatives")
 obscura_cli_command_test(tune_captures_falloff_key 2 "tune|--method|hbao|--captures|d.pfm|--truths|t.pfm|--keys|power,radius"
   EXPECT_STDERR "^obscura: --keys radius: a capture's truth was traced with one falloff")
+obscura_cli_command_test(tune_captures_with_normals 2 "tune|--method|hbao|--captures|d.pfm|--truths|t.pfm|--normals"
+  EXPECT_STDERR "^obscura: --normals does not apply to --captures")
+obscura_cli_command_test(tune_captures_with_truth_rays 2 "tune|--method|hbao|--captures|d.pfm|--truths|t.pfm|--truth-rays|16"
+  EXPECT_STDERR "^obscura: --truth-rays does not apply to --captures")
 obscura_cli_command_test(tune_captures_with_depth 2 "tune|--method|hbao|--depth|d.pfm"
   EXPECT_STDERR "^obscura: tune takes depth buffers as --captures")
 # Motion vectors are rasterised single-sample only: with --msaa a usage error before any GL, whether asked for or the

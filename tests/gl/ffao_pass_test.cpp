@@ -432,6 +432,30 @@ TEST_F(FfaoPasses, ChunkedPeaksAndAoAreBitIdenticalAt1080p) {
     EXPECT_EQ(size_t(compared) * 4, whole.size());  // the chunks cover every entry
 }
 
+// Issue 25's memory target at 4K (3840x2160 and a 10 % guard band), on every driver: no storage block of the
+// peaks over 128 MiB (GPUs allow gigabytes: one block of 296 MiB took FFAO to 457 MiB) and the pass's memory, the
+// running total included, within what keeps the frame under 200 MiB with the shared textures (linear depth R32F,
+// normals RG16, AO R16F: 114 MiB). The layout and allocations only: nothing is rendered. (Mesa's own limit is
+// 128 MiB; on a GPU the SDK's cap, OBSCURA_FFAO_MAX_BLOCK_BYTES, is what holds it. Measured here: 8 chunks, the
+// pass 70 MiB, 184 MiB with the shared textures.)
+TEST_F(FfaoPasses, FourKKeepsEveryPeaksBlockWithin128MiB) {
+    constexpr int kW = 4608, kH = 2592;
+    const obscura_ffao_settings settings = resolved(defaults());
+    obscura::FfaoPass pass;
+    ASSERT_FALSE(pass.prepare(env(), settings));
+    ASSERT_FALSE(pass.ensure_layout(env(), settings, kW, kH, 0, obscura::Region{192, 108, 3840, 2160}));
+    ASSERT_GT(pass.chunk_count(), 1) << "296 MiB of entries cannot be one block";
+    int64_t entries = 0;
+    for (int c = 0; c < pass.chunk_count(); ++c) {
+        const int64_t chunk = obscura::FfaoPassInspection::chunk_entries(pass, c);
+        EXPECT_LE(chunk * 16, int64_t(128) << 20) << "chunk " << c;
+        entries += chunk;
+    }
+    EXPECT_GT(entries * 16, int64_t(256) << 20) << "the whole layout is 296 MiB";
+    const uint64_t shared = uint64_t(kW) * kH * (4 + 4 + 2);
+    EXPECT_LE(pass.bytes() + shared, uint64_t(200) << 20) << "pass " << (pass.bytes() >> 20) << " MiB";
+}
+
 // A wall facing the camera: every peak of every line lies in the receiver's own tangent plane, so nothing
 // rises above it.
 TEST_F(FfaoPasses, WallFacingTheCameraIsUnoccluded) {

@@ -587,8 +587,8 @@ TEST_F(OutputTargets, MultisampleRenderbufferLeavesNoError) {
 
 // At reduced resolution the upsample writes the target's image in the composite's place (no debug view): every
 // format, the multiply blend, a blit target and a placement inside a larger texture must receive what an R32F
-// overwrite of the same frame holds, as the composite delivered it at full resolution; a debug view, which needs
-// the composite, and the plain output alternate in one context.
+// overwrite of the same frame holds (to the format's precision), as the composite's targets do at full
+// resolution; a debug view, which needs the composite, and the plain output alternate in one context.
 TEST_F(OutputTargets, ReducedResolutionUpsampleWritesEveryTarget) {
     Frame frame = corner_frame();
     // An output rectangle inside the depth texture (a guard band): the upsample's destination is the target's

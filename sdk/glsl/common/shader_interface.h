@@ -47,8 +47,8 @@
 #define OBSCURA_SSBO_COUNT 3
 // FFAO's peaks come in chunks, runs of whole orientations. One chunk when all of them fit one storage block
 // (GL_MAX_SHADER_STORAGE_BLOCK_SIZE, 128 MiB on Mesa, and at most OBSCURA_FFAO_MAX_BLOCK_BYTES on any driver: GPUs
-// allow gigabytes, and at 4K one block of 296 MiB took FFAO to 457 MiB); past that, chunks of at most
-// OBSCURA_FFAO_CHUNK_BYTES each:
+// allow gigabytes, and at 4K one block of 296 MiB took FFAO to 457 MiB); past that, chunks of OBSCURA_FFAO_CHUNK_BYTES
+// (doubled up to the driver's block where 8 would not hold them):
 // the scan, the prefix sums and the obscurance then run chunk by chunk through a buffer that holds one, and the
 // obscurance carries its running sums from chunk to chunk in a texture (FfaoPass::ensure_layout).
 #define OBSCURA_FFAO_PEAK_CHUNKS 8 // at most (the chunk size doubles from OBSCURA_FFAO_CHUNK_BYTES until they do)

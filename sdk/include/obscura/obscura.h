@@ -525,9 +525,11 @@ typedef struct obscura_temporal_settings {
    exp(-(d / (upsample_tolerance * z))^2), d the pixel's distance from each texel's tangent plane and z its own
    distance, so AO does not cross depth edges or creases; where all four are off the pixel's plane, the nearest
    plane's texel alone. The raw debug views (ao-before-blur, tap-count) and the depth and normal views show the
-   reduced grid, each texel covering its 2^k x 2^k pixels. Timing label "upsample" (before "composite"). Memory:
-   the working textures at the reduced size, plus a full-size R16F result (and with bent normals a full-size
-   RGBA16F one beside it).
+   reduced grid, each texel covering its 2^k x 2^k pixels. Without a debug view the upsample writes the output
+   itself (timing label "upsample", which then holds the whole output write, and no "composite"); with one it writes
+   a full-size R16F result that "composite" then shows. Memory: the working textures at the reduced size, plus with
+   bent normals a full-size RGBA16F result, and once a debug view has run the full-size R16F one (kept until the
+   size changes or obscura_release_resources).
    Every field: 0 selects the default given after it. */
 typedef enum obscura_resolution {
     OBSCURA_RESOLUTION_DEFAULT = 0, /* full */
@@ -805,8 +807,8 @@ OBSCURA_API obscura_status obscura_render(obscura_context* context, const obscur
 
 /* Allocates the textures a render of this size and these settings needs, so the first frame does not.
    Shader variants that depend on the input and output (MSAA or linear depth, the target's format) are
-   still compiled on the first render that needs them; outputs beyond the AO (GTAO's bent normals) are
-   allocated when the context's last render asked for them, and textures sized to the output rectangle (FFAO's
+   still compiled on the first render that needs them; outputs beyond the AO (GTAO's bent normals, reduced
+   resolution's full-size result for debug views) are allocated when the context's renders asked for them, and textures sized to the output rectangle (FFAO's
    running total at sizes it splits into chunks, 4K) take the last render's, or the depth's size. Optional. Returns OK, NULL_ARGUMENT,
    INVALID_STRUCT_SIZE, INVALID_SETTING, INVALID_ENUM, METHOD_NOT_AVAILABLE, INVALID_SIZE,
    WRONG_GL_CONTEXT, HOST_GL_ERROR, SHADER_COMPILE_FAILED (it builds the method's programs), OUT_OF_MEMORY,
@@ -827,7 +829,8 @@ typedef struct obscura_timing {
                           instead, before ["ffao_box_average"]), "ffao_obscurance" ["ffao_gather" "blur"] (saao); at sizes whose scan runs in
                           chunks (4K) each of these three entries is the sum over the chunks;
                           GTAO ["z_pyramid"] "gtao" ["gtao_denoise"]; then ["temporal"] (settings.temporal on),
-                          ["upsample"] (settings.resolution below full), then "composite". Static strings */
+                          ["upsample"] (settings.resolution below full), then "composite" (not at reduced
+                          resolution without a debug view: "upsample" writes the output there). Static strings */
     double milliseconds;
 } obscura_timing;
 

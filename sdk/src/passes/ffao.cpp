@@ -154,7 +154,6 @@ Error FfaoPass::build_grid(const PassEnv& env, const obscura_ffao_settings& sett
     const gl::Table& gl = env.gl;
     GLint64 max_block_bytes = 0;
     gl.GetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block_bytes);
-    max_block_bytes = std::min<GLint64>(max_block_bytes, OBSCURA_FFAO_MAX_BLOCK_BYTES);
     if (storage_block_limit_ > 0) max_block_bytes = std::min<GLint64>(max_block_bytes, storage_block_limit_);
     // CPU rasterisers' obscurance pass reads the peaks buffer as a buffer texture, which GL bounds in texels.
     GLint max_texels = 0;
@@ -181,10 +180,12 @@ Error FfaoPass::build_grid(const PassEnv& env, const obscura_ffao_settings& sett
         }
         return true;
     };
-    // All of them in one chunk when they fit one storage block (one obscurance dispatch, as fast as it gets);
-    // otherwise chunks of OBSCURA_FFAO_CHUNK_BYTES, for memory (FFAO at 4K: 8 chunks of 37 MiB instead of 296 MiB),
-    // doubled until they are at most OBSCURA_FFAO_PEAK_CHUNKS.
-    bool fits = layout.entries <= most_entries && split(most_entries);
+    // All of them in one chunk when they fit one storage block of at most OBSCURA_FFAO_MAX_BLOCK_BYTES (one obscurance
+    // dispatch, as fast as it gets); otherwise chunks of OBSCURA_FFAO_CHUNK_BYTES, for memory (FFAO at 4K: 8 chunks
+    // of 37 MiB instead of 296 MiB), doubled until they are at most OBSCURA_FFAO_PEAK_CHUNKS, up to the driver's
+    // block (sizes past 8 x 128 MiB still render where the driver allows larger blocks).
+    const int64_t one_block = std::min<int64_t>(most_entries, OBSCURA_FFAO_MAX_BLOCK_BYTES / 16);
+    bool fits = layout.entries <= one_block && split(one_block);
     if (!fits) {
         int64_t limit = std::min<int64_t>(most_entries, OBSCURA_FFAO_CHUNK_BYTES / 16);
         while (!(fits = split(limit)) && limit < most_entries) limit = std::min(most_entries, 2 * limit);

@@ -22,10 +22,10 @@ struct UpsampleDestination {
 class UpsamplePass {
 public:
     // Builds the variant for the host's depth kind, the outputs and the destination, and (re)creates the results
-    // for the host's size (the R16F result only for destination format 0).
+    // for the host's size (the R16F result for destination format 0; once made, it is kept while the size stays).
     Error prepare(const PassEnv& env, const FrameInput& host, bool bent_normals, const UpsampleDestination& destination);
     // The results alone, for a host texture of width x height (obscura_prepare, which knows no depth kind and no
-    // target): the R16F result if `own_result`.
+    // target): the R16F result if `own_result` (or if it exists already).
     Error allocate(const PassEnv& env, int width, int height, bool bent_normals, bool own_result);
     // `reduced`: the frame the method ran on (reduced_frame_input).
     static UpsampleConstants constants(const obscura_resolution_settings& settings, const FrameInput& reduced);
