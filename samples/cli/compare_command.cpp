@@ -633,6 +633,16 @@ int run_compare(ArgumentList& arguments) {
             geometry.depth_height = frame.depth_height;
             geometry.rect_x = frame.output_rect.x;
             geometry.rect_y = frame.output_rect.y;
+            if (animated && f > 0) {
+                // The moving part's pixels (their primary rays' triangles), one frame's motion since the last.
+                const uint32_t first_moving = uint32_t(source.scene()->first_moving_triangle());
+                geometry.moving.resize(primary_triangles[f].size());
+                for (size_t i = 0; i < geometry.moving.size(); ++i) {
+                    const uint32_t triangle = primary_triangles[f][i];
+                    geometry.moving[i] = triangle != samples::GeometryTruth::kSky && triangle >= first_moving;
+                }
+                geometry.motion = glm::dvec3(source.scene()->motion.velocity);
+            }
             result.geometry.push_back(std::move(geometry));
         }
         for (const ComparedTruth& truth : result.truths) {

@@ -313,6 +313,9 @@ double surface_flicker(const std::vector<FloatImage>& frames, const std::vector<
         if (geometry[f].view_depth.width != width || geometry[f].view_depth.height != height) {
             throw std::invalid_argument("surface_flicker: a depth image of another size than the frames");
         }
+        if (!geometry[f].moving.empty() && geometry[f].moving.size() != size_t(width) * size_t(height)) {
+            throw std::invalid_argument("surface_flicker: a moving mask of another size than the frames");
+        }
     }
     double sum = 0.0;
     size_t counted = 0;
@@ -326,7 +329,8 @@ double surface_flicker(const std::vector<FloatImage>& frames, const std::vector<
             for (int x = 0; x < width; ++x) {
                 const float depth = now.view_depth.at(x, y);
                 if (!sees_surface(depth)) continue;
-                const glm::dvec3 world = pixel_to_world(now, x, y, double(depth));
+                glm::dvec3 world = pixel_to_world(now, x, y, double(depth));
+                if (!now.moving.empty() && now.moving[size_t(y) * size_t(width) + size_t(x)]) world -= now.motion;
                 const glm::dvec4 clip = to_before * glm::dvec4(world, 1.0);
                 if (!(clip.w > 0.0)) continue;
                 const double expected_depth = -(before.view * glm::dvec4(world, 1.0)).z;

@@ -88,10 +88,16 @@ struct FrameGeometry {
     int depth_height = 0;
     int rect_x = 0;
     int rect_y = 0;
+    // The pixels that see a part of the scene that moved since the previous frame (one byte per pixel, as
+    // view_depth; empty: none), and how far that part moved (world space): surface_flicker follows such a point
+    // back to where it was.
+    std::vector<uint8_t> moving;
+    glm::dvec3 motion{0.0};
 };
 
 // Flicker as a viewer sees it: how much the AO of a surface point changes from one frame to the next. Each geometry
-// pixel of frame f is taken to the world through its view depth, projected into frame f - 1 and compared with frame
+// pixel of frame f is taken to the world through its view depth (on a moving part, moved back by its motion),
+// projected into frame f - 1 and compared with frame
 // f - 1's image there (bilinear), where all four texels around that point see the same surface (their view depth
 // within depth_tolerance of the point's, relative); other pixels (disoccluded, off screen, sky) do not count. The
 // mean of |difference| over the counted pixels and frame pairs (first channels), 0 when none counts. A still camera
