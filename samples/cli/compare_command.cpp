@@ -355,11 +355,24 @@ GhostErrors measure_ghosting(const CompareResult& result, const ComparedMethod& 
         }
     }
     GhostErrors ghosting;
-    ghosting.uncovered = samples::error_by_age(method.frames, method.converged_frames, reference.frames,
-                                               samples::frames_since_event(uncovered, result.still_geometry),
-                                               kGhostMaxAge);
-    ghosting.changed = samples::error_by_age(method.frames, method.converged_frames, reference.frames,
-                                             samples::frames_since_event(changed, result.still_geometry), kGhostMaxAge);
+    ghosting.curves.push_back(GhostCurve{"uncovered", samples::error_by_age(method.frames, method.converged_frames,
+                                                                           reference.frames,
+                                                                           samples::frames_since_event(uncovered, result.still_geometry),
+                                                                           kGhostMaxAge)});
+    ghosting.curves.push_back(GhostCurve{"changed", samples::error_by_age(method.frames, method.converged_frames,
+                                                                         reference.frames,
+                                                                         samples::frames_since_event(changed, result.still_geometry),
+                                                                         kGhostMaxAge)});
+    return ghosting;
+}
+
+// The ghosting of a moving camera: the method's error by the frames since each pixel's surface point came into view.
+GhostErrors measure_orbit_ghosting(const CompareResult& result, const ComparedMethod& method,
+                                   const ComparedReference& reference) {
+    GhostErrors ghosting;
+    ghosting.curves.push_back(GhostCurve{"disoccluded", samples::error_by_age(method.frames, method.converged_frames,
+                                                                             reference.frames, result.disocclusion_ages,
+                                                                             kGhostMaxAge)});
     return ghosting;
 }
 
@@ -476,6 +489,9 @@ void measure_method(const ObscuraSession& session, const std::vector<samples::Re
         }
         if (!result.still_geometry.empty() && !method.converged_frames.empty()) {
             errors.ghosting = measure_ghosting(result, method, reference);
+        }
+        if (!result.disocclusion_ages.empty() && !method.converged_frames.empty()) {
+            errors.ghosting = measure_orbit_ghosting(result, method, reference);
         }
         if (result.classes) errors.classes = measure_classes(method, reference, *result.classes);
         method.errors.push_back(errors);
@@ -649,7 +665,11 @@ int run_compare(ArgumentList& arguments) {
             result.truth_surface_flicker.push_back(samples::surface_flicker(truth.references.front().frames, result.geometry));
         }
     }
-    // The ghosting needs the pixels to stay where they are: an animated scene through a still camera.
+    // An orbit's ghosting follows the surface points (and the moving part) from frame to frame.
+    if (config.orbit_degrees && !result.geometry.empty() && result.converged_frames > 0) {
+        result.disocclusion_ages = samples::frames_since_disocclusion(result.geometry);
+    }
+    // The ghosting of the moving object needs the pixels to stay where they are: an animated scene, a still camera.
     if (animated && !config.orbit_degrees && config.frames > 1 && result.converged_frames > 0) {
         mark_still_geometry(primary_triangles, source.scene()->first_moving_triangle(), result);
     }

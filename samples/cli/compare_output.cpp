@@ -80,10 +80,17 @@ int settles_at(const std::vector<samples::AgeErrors>& curve, double tolerance) {
 
 // Each method's ghosting against truth t: per curve the pixels, then per age the error above the converged one.
 void print_ghosting_table(const CompareResult& result, size_t t) {
-    std::printf("\nghosting (the moving object, a still camera): error - converged error (%d still frames) of the pixels "
-                "it uncovered and of those whose converged AO it changed by > %g, by frames since; within 0.02 from: "
-                "the first age after which it stays within\n",
-                result.converged_frames, kGhostChangedThreshold);
+    if (result.disocclusion_ages.empty()) {
+        std::printf("\nghosting (the moving object, a still camera): error - converged error (%d still frames) of the "
+                    "pixels it uncovered and of those whose converged AO it changed by > %g, by frames since; within "
+                    "0.02 from: the first age after which it stays within\n",
+                    result.converged_frames, kGhostChangedThreshold);
+    } else {
+        std::printf("\nghosting (the moving camera): error - converged error (%d still frames) of the pixels whose "
+                    "surface came into view (off the previous frame or hidden there), by frames since; within 0.02 "
+                    "from: the first age after which it stays within\n",
+                    result.converged_frames);
+    }
     std::vector<std::string> header = {"method", "pixels", "within 0.02 from"};
     for (int age = 0; age < kGhostMaxAge; ++age) header.push_back(std::to_string(age));
     header.push_back(">=" + std::to_string(kGhostMaxAge));
@@ -91,13 +98,13 @@ void print_ghosting_table(const CompareResult& result, size_t t) {
     for (const ComparedMethod& method : result.methods) {
         const std::optional<GhostErrors>& ghosting = method.errors[t].ghosting;
         if (!ghosting) continue;
-        for (int curve = 0; curve < 2; ++curve) {
-            const std::vector<samples::AgeErrors>& buckets = curve == 0 ? ghosting->uncovered : ghosting->changed;
+        for (const GhostCurve& curve : ghosting->curves) {
+            const std::vector<samples::AgeErrors>& buckets = curve.buckets;
             size_t pixels = 0;
             for (const samples::AgeErrors& bucket : buckets) pixels += bucket.pixels;
             const int settled = settles_at(buckets, kGhostTolerance);
-            std::vector<std::string> row = {method.spec.text + (curve == 0 ? " uncovered" : " changed"),
-                                            std::to_string(pixels), settled < 0 ? "never" : std::to_string(settled)};
+            std::vector<std::string> row = {method.spec.text + " " + curve.name, std::to_string(pixels),
+                                            settled < 0 ? "never" : std::to_string(settled)};
             for (const samples::AgeErrors& bucket : buckets) {
                 row.push_back(bucket.pixels > 0 ? format_signed(bucket.mean_abs - bucket.converged_mean_abs, 4) : "-");
             }
@@ -295,7 +302,7 @@ void print_compare_table(const CompareResult& result) {
             }
         }
         if (result.classes) print_class_table(result, t);
-        if (!result.still_geometry.empty()) print_ghosting_table(result, t);
+        if (!result.still_geometry.empty() || !result.disocclusion_ages.empty()) print_ghosting_table(result, t);
     }
     std::printf("signed = mean of method - truth: > 0 brighter (less occlusion) than the truth, < 0 darker\n");
 }
@@ -361,10 +368,9 @@ void write_compare_json(const CompareResult& result, const std::string& path, ob
             if (errors.converged_mean_abs) json.field("converged_mean_abs", *errors.converged_mean_abs);
             if (errors.ghosting) {
                 json.key("ghosting").begin_object();
-                for (int curve = 0; curve < 2; ++curve) {
-                    const std::vector<samples::AgeErrors>& buckets =
-                        curve == 0 ? errors.ghosting->uncovered : errors.ghosting->changed;
-                    json.key(curve == 0 ? "uncovered" : "changed").begin_object();
+                for (const GhostCurve& curve : errors.ghosting->curves) {
+                    const std::vector<samples::AgeErrors>& buckets = curve.buckets;
+                    json.key(curve.name).begin_object();
                     const int settled = settles_at(buckets, kGhostTolerance);
                     json.key("within_0_02_from");  // null: never
                     if (settled < 0) json.null(); else json.value(settled);

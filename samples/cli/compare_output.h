@@ -75,16 +75,21 @@ struct ClassErrors {
     std::optional<double> noise_flicker;  // with --converged: against the converged frames, over the class's pixels
 };
 
-// The ghosting of a temporal accumulation, on an animated scene seen by a still camera: the method's error in the
-// pixels the moving object uncovered, and in those whose converged image it changed by more than 0.02 (its contact
-// shadow passing; uncovered pixels included), by the frames since (samples::error_by_age: ages 0 .. kGhostMaxAge - 1,
-// then every older one pooled), beside the error of the method's converged images in the same pixels and frames.
+// The ghosting of a temporal accumulation: the method's error by the frames since an event (samples::error_by_age:
+// ages 0 .. kGhostMaxAge - 1, then every older one pooled), beside the error of the method's converged images in the
+// same pixels and frames. An animated scene seen by a still camera has two curves: "uncovered" (the pixels the moving
+// object uncovered) and "changed" (those whose converged image it changed by more than 0.02: its contact shadow
+// passing; uncovered pixels included). An orbit has one, "disoccluded": the pixels whose surface point came into
+// view (samples::frames_since_disocclusion: off the previous image or hidden there).
 constexpr int kGhostMaxAge = 8;
 constexpr double kGhostChangedThreshold = 0.02;
 constexpr double kGhostTolerance = 0.02;  // the "back within 0.02 of the converged error"
+struct GhostCurve {
+    const char* name = "";
+    std::vector<samples::AgeErrors> buckets;  // kGhostMaxAge + 1
+};
 struct GhostErrors {
-    std::vector<samples::AgeErrors> uncovered;  // kGhostMaxAge + 1 buckets
-    std::vector<samples::AgeErrors> changed;
+    std::vector<GhostCurve> curves;
 };
 
 // A method's error against one truth, averaged over the frames.
@@ -100,7 +105,7 @@ struct MethodErrors {
     // from frame to frame, what a viewer sees flicker), and of its converged frames with --converged.
     std::optional<double> surface_flicker;
     std::optional<double> converged_surface_flicker;
-    std::optional<GhostErrors> ghosting;  // an animated scene seen still, with --converged
+    std::optional<GhostErrors> ghosting;  // an animated scene seen still, or an orbit, with --converged
     std::optional<double> bent_degrees;  // geometry truth, methods that write bent normals: mean angle to the truth's
     std::optional<double> normal_degrees;  // the same for the surface normals the method used (the baseline)
     std::vector<ClassErrors> classes;      // with --classes: one per kMeasuredClasses
@@ -133,6 +138,9 @@ struct CompareResult {
     std::vector<samples::FrameGeometry> geometry;
     std::vector<double> truth_surface_flicker;  // per truth, its first reference's: the floor its own noise sets
     std::vector<std::vector<uint8_t>> uncovered;
+    // With --orbit and --converged: each frame's per-pixel frames since the pixel's surface point came into view
+    // (samples::frames_since_disocclusion). Empty: no orbit ghosting.
+    std::vector<std::vector<int>> disocclusion_ages;
     // Metrics cover the geometry pixels (sky left out: a view of much sky would otherwise score better than
     // its geometry deserves) unless all_pixels (--metrics-pixels all).
     bool all_pixels = false;

@@ -85,7 +85,8 @@ compare renders each method and measures it against its truth with the same fall
   frame's many-sample image (N still frames accumulated): noise flicker is the flicker against those (the
   sampling noise's, apart from what the view itself changes) and converged their mean_abs; on an animated
   scene seen still a ghosting table follows: the error above the converged one of the pixels the moving object
-  uncovered and of those whose converged AO it changed by > 0.02, by the frames since. --motion-vectors and
+  uncovered and of those whose converged AO it changed by > 0.02, by the frames since; with --orbit, of the
+  pixels whose surface came into view (off the previous frame or hidden there), by the frames since. --motion-vectors and
   --converged need --frames; motion vectors need a single-sample depth buffer (no --msaa).
   --strip writes one sheet of the methods' AO labelled with their settings, then the first truth's
   images if there are several (falloffs differ).

@@ -298,6 +298,59 @@ glm::dvec3 pixel_to_world(const FrameGeometry& frame, int x, int y, double depth
     return glm::dvec3(world) / world.w;
 }
 
+// Where pixel (x, y) of `now` was in the previous frame `before`.
+enum class Previously { NoSurface, Elsewhere, Seen };
+struct Reprojection {
+    // NoSurface: sky now; Elsewhere: off the image, or not every texel around it sees its surface; Seen: every one does.
+    Previously what = Previously::NoSurface;
+    double u = 0.0, v = 0.0;              // on the image: texel coordinates in the previous image (centres at integers)
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;   // on the image: the four texels around it
+    bool matches[4] = {false, false, false, false};  // which of (x0, y0), (x1, y0), (x0, y1), (x1, y1) see it
+};
+
+// The pixel's surface point (on a moving part, moved back by its motion) projected into `before`: seen there when all
+// four texels around it see the same surface (their view depth within depth_tolerance of the point's, relative).
+Reprojection reproject(const FrameGeometry& now, const FrameGeometry& before, int x, int y, double depth_tolerance) {
+    Reprojection r;
+    const int width = now.view_depth.width, height = now.view_depth.height;
+    const float depth = now.view_depth.at(x, y);
+    if (!sees_surface(depth)) return r;
+    r.what = Previously::Elsewhere;
+    glm::dvec3 world = pixel_to_world(now, x, y, double(depth));
+    if (!now.moving.empty() && now.moving[size_t(y) * size_t(width) + size_t(x)]) world -= now.motion;
+    const glm::dvec4 clip = before.projection * before.view * glm::dvec4(world, 1.0);
+    if (!(clip.w > 0.0)) return r;
+    const double expected_depth = -(before.view * glm::dvec4(world, 1.0)).z;
+    r.u = (clip.x / clip.w * 0.5 + 0.5) * before.depth_width - before.rect_x - 0.5;
+    r.v = (clip.y / clip.w * 0.5 + 0.5) * before.depth_height - before.rect_y - 0.5;
+    if (!(r.u >= 0.0 && r.v >= 0.0 && r.u <= width - 1 && r.v <= height - 1)) return r;
+    r.x0 = std::clamp(int(r.u), 0, std::max(width - 2, 0));
+    r.y0 = std::clamp(int(r.v), 0, std::max(height - 2, 0));
+    r.x1 = std::min(r.x0 + 1, width - 1);
+    r.y1 = std::min(r.y0 + 1, height - 1);
+    const std::pair<int, int> texels[4] = {{r.x0, r.y0}, {r.x1, r.y0}, {r.x0, r.y1}, {r.x1, r.y1}};
+    bool all = true;
+    for (int k = 0; k < 4; ++k) {
+        const float texel_depth = before.view_depth.at(texels[k].first, texels[k].second);
+        r.matches[k] = sees_surface(texel_depth) &&
+                       std::fabs(double(texel_depth) - expected_depth) <= depth_tolerance * expected_depth;
+        all = all && r.matches[k];
+    }
+    if (all) r.what = Previously::Seen;
+    return r;
+}
+
+void check_geometry(const char* what, const std::vector<FrameGeometry>& geometry, int width, int height) {
+    for (const FrameGeometry& frame : geometry) {
+        if (frame.view_depth.width != width || frame.view_depth.height != height) {
+            throw std::invalid_argument(std::string(what) + ": a depth image of another size than the frames");
+        }
+        if (!frame.moving.empty() && frame.moving.size() != size_t(width) * size_t(height)) {
+            throw std::invalid_argument(std::string(what) + ": a moving mask of another size than the frames");
+        }
+    }
+}
+
 }  // namespace
 
 double surface_flicker(const std::vector<FloatImage>& frames, const std::vector<FrameGeometry>& geometry,
@@ -307,49 +360,20 @@ double surface_flicker(const std::vector<FloatImage>& frames, const std::vector<
                                     std::to_string(geometry.size()) + " geometries (two or more of each)");
     }
     const int width = frames[0].width, height = frames[0].height;
-    for (size_t f = 0; f < frames.size(); ++f) {
-        check_same_size(frames[f], frames[0]);
-        check_same_size(geometry[f].view_depth, geometry[0].view_depth);
-        if (geometry[f].view_depth.width != width || geometry[f].view_depth.height != height) {
-            throw std::invalid_argument("surface_flicker: a depth image of another size than the frames");
-        }
-        if (!geometry[f].moving.empty() && geometry[f].moving.size() != size_t(width) * size_t(height)) {
-            throw std::invalid_argument("surface_flicker: a moving mask of another size than the frames");
-        }
-    }
+    for (const FloatImage& frame : frames) check_same_size(frame, frames[0]);
+    check_geometry("surface_flicker", geometry, width, height);
     double sum = 0.0;
     size_t counted = 0;
     for (size_t f = 1; f < frames.size(); ++f) {
-        const FrameGeometry& now = geometry[f];
-        const FrameGeometry& before = geometry[f - 1];
-        const glm::dmat4 to_before = before.projection * before.view;
         const FloatImage& image = frames[f];
         const FloatImage& previous = frames[f - 1];
         for (int y = 0; y < height; ++y) {
             for (int x = 0; x < width; ++x) {
-                const float depth = now.view_depth.at(x, y);
-                if (!sees_surface(depth)) continue;
-                glm::dvec3 world = pixel_to_world(now, x, y, double(depth));
-                if (!now.moving.empty() && now.moving[size_t(y) * size_t(width) + size_t(x)]) world -= now.motion;
-                const glm::dvec4 clip = to_before * glm::dvec4(world, 1.0);
-                if (!(clip.w > 0.0)) continue;
-                const double expected_depth = -(before.view * glm::dvec4(world, 1.0)).z;
-                // Texel coordinates of the point in the previous output image (texel centres at integers).
-                const double u = (clip.x / clip.w * 0.5 + 0.5) * before.depth_width - before.rect_x - 0.5;
-                const double v = (clip.y / clip.w * 0.5 + 0.5) * before.depth_height - before.rect_y - 0.5;
-                if (!(u >= 0.0 && v >= 0.0 && u <= width - 1 && v <= height - 1)) continue;
-                const int x0 = std::clamp(int(u), 0, std::max(width - 2, 0)), y0 = std::clamp(int(v), 0, std::max(height - 2, 0));
-                const int x1 = std::min(x0 + 1, width - 1), y1 = std::min(y0 + 1, height - 1);
-                bool same_surface = true;
-                for (const auto& [tx, ty] : {std::pair{x0, y0}, std::pair{x1, y0}, std::pair{x0, y1}, std::pair{x1, y1}}) {
-                    const float texel_depth = before.view_depth.at(tx, ty);
-                    same_surface = same_surface && sees_surface(texel_depth) &&
-                                   std::fabs(double(texel_depth) - expected_depth) <= depth_tolerance * expected_depth;
-                }
-                if (!same_surface) continue;
-                const double fx = u - x0, fy = v - y0;
-                const double value = (1.0 - fy) * ((1.0 - fx) * previous.at(x0, y0) + fx * previous.at(x1, y0)) +
-                                     fy * ((1.0 - fx) * previous.at(x0, y1) + fx * previous.at(x1, y1));
+                const Reprojection r = reproject(geometry[f], geometry[f - 1], x, y, depth_tolerance);
+                if (r.what != Previously::Seen) continue;
+                const double fx = r.u - r.x0, fy = r.v - r.y0;
+                const double value = (1.0 - fy) * ((1.0 - fx) * previous.at(r.x0, r.y0) + fx * previous.at(r.x1, r.y0)) +
+                                     fy * ((1.0 - fx) * previous.at(r.x0, r.y1) + fx * previous.at(r.x1, r.y1));
                 const double change = double(image.at(x, y)) - value;
                 sum += std::isfinite(change) ? std::fabs(change) : 1.0;
                 ++counted;
@@ -357,6 +381,42 @@ double surface_flicker(const std::vector<FloatImage>& frames, const std::vector<
         }
     }
     return counted > 0 ? sum / double(counted) : 0.0;
+}
+
+std::vector<std::vector<int>> frames_since_disocclusion(const std::vector<FrameGeometry>& geometry,
+                                                        double depth_tolerance) {
+    if (geometry.empty()) return {};
+    const int width = geometry[0].view_depth.width, height = geometry[0].view_depth.height;
+    check_geometry("frames_since_disocclusion", geometry, width, height);
+    std::vector<std::vector<int>> ages(geometry.size(), std::vector<int>(size_t(width) * size_t(height), -1));
+    for (size_t f = 1; f < geometry.size(); ++f) {
+        for (int y = 0; y < height; ++y) {
+            for (int x = 0; x < width; ++x) {
+                const Reprojection r = reproject(geometry[f], geometry[f - 1], x, y, depth_tolerance);
+                if (r.what == Previously::NoSurface) continue;
+                // Seen where any texel around the point saw its surface (on a slanted surface the four texels'
+                // depths spread wider than the tolerance): the nearest such texel's age, plus one.
+                const int xs[4] = {r.x0, r.x1, r.x0, r.x1}, ys[4] = {r.y0, r.y0, r.y1, r.y1};
+                int nearest = -1;
+                double nearest_distance = 1e30;
+                for (int k = 0; k < 4; ++k) {
+                    const double distance = std::hypot(xs[k] - r.u, ys[k] - r.v);
+                    if (r.matches[k] && distance < nearest_distance) {
+                        nearest = k;
+                        nearest_distance = distance;
+                    }
+                }
+                int& age = ages[f][size_t(y) * size_t(width) + size_t(x)];
+                if (nearest < 0) {
+                    age = 0;  // off the previous image, or hidden there
+                } else {
+                    const int before = ages[f - 1][size_t(ys[nearest]) * size_t(width) + size_t(xs[nearest])];
+                    age = before >= 0 ? before + 1 : -1;
+                }
+            }
+        }
+    }
+    return ages;
 }
 
 std::vector<std::vector<int>> frames_since_event(const std::vector<std::vector<uint8_t>>& event,

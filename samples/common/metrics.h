@@ -106,6 +106,14 @@ struct FrameGeometry {
 double surface_flicker(const std::vector<FloatImage>& frames, const std::vector<FrameGeometry>& geometry,
                        double depth_tolerance = 0.02);
 
+// Frames since each pixel's surface point came into view, following the point from frame to frame as
+// surface_flicker does: 0 where the previous frame did not see it (off the image, or none of the four texels around
+// it within depth_tolerance of its depth: hidden, disoccluded now), the age of the nearest texel that saw it plus one
+// where one did, -1 where that was -1, on sky and everywhere in frame 0 (no event seen yet). What the ghosting measure of a moving camera counts from (samples::error_by_age).
+// std::invalid_argument for images of different sizes.
+std::vector<std::vector<int>> frames_since_disocclusion(const std::vector<FrameGeometry>& geometry,
+                                                        double depth_tolerance = 0.02);
+
 // ---- Ghosting: how far a temporal accumulation lags behind a change -------------------------------------
 //
 // Frames since each pixel's last event, per frame: ages[f][i] = 0 where alive[f][i] and event[f][i]; ages[f-1][i] + 1

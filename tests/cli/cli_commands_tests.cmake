@@ -84,6 +84,14 @@ obscura_cli_command_test(compare_sliding_ghosting 0
   "compare|--scene|sliding|--size|96x54|--methods|hbao:temporal.enabled=on|--truth-rays|8|--frames|3|--converged|2|--json|report.json"
   GL EXPECT_FILES "report.json"
   EXPECT_STDOUT "3 frames of a still camera, the scene moving, motion vectors handed over\n.*noise flicker +converged.*\nghosting [^\n]*\nmethod +pixels +within 0.02 from +0 +1[^\n]*\nhbao:temporal.enabled=on uncovered +[0-9]+ [^\n]*\nhbao:temporal.enabled=on changed ")
+# An orbit with --converged: the ghosting table of the pixels whose surface came into view (samples::
+# frames_since_disocclusion), its one curve; the sliding scene orbited too (its moving part followed back).
+obscura_cli_command_test(compare_orbit_ghosting 0
+  "compare|${scene}|--orbit|4|--frames|3|--converged|2|--truth-rays|4|--methods|hbao:temporal.enabled=on"
+  GL EXPECT_STDOUT "ghosting [(]the moving camera[)][^\n]*\nmethod +pixels +within 0.02 from +0 +1[^\n]*\nhbao:temporal.enabled=on disoccluded +[1-9][0-9]* ")
+obscura_cli_command_test(compare_sliding_orbit_ghosting 0
+  "compare|--scene|sliding|--size|96x54|--orbit|4|--frames|3|--converged|2|--truth-rays|4|--methods|hbao:temporal.enabled=on"
+  GL EXPECT_STDOUT "ghosting [(]the moving camera[)][^\n]*\nmethod +pixels +within 0.02 from +0 +1[^\n]*\nhbao:temporal.enabled=on disoccluded +[1-9][0-9]* ")
 obscura_cli_command_test(compare_converged_without_frames 2 "compare|--converged|4" EXPECT_STDERR "--converged needs --frames N")
 obscura_cli_command_test(compare_motion_vectors_bad_value 2 "compare|--motion-vectors|yes" EXPECT_STDERR "--motion-vectors takes on or off")
 # bench --motion: the temporal pass's moving path is timed and reported.

@@ -386,6 +386,37 @@ TEST(SurfaceFlicker, FollowsAMovingPartToWhereItWas) {
     EXPECT_THROW(surface_flicker(frames, {wall_frame(0.0), moved}), std::invalid_argument);
 }
 
+// ---- frames_since_disocclusion ---------------------------------------------------------------------------
+
+TEST(FramesSinceDisocclusion, CountsFromWhereAPointCameIntoView) {
+    using obscura::samples::frames_since_disocclusion;
+    // The camera moves one metre (one pixel) to the right per frame: a new column of the wall enters on the right
+    // each frame (age 0), and the one that entered a frame before is one frame old; what frame 0 saw has no event.
+    const std::vector<std::vector<int>> ages =
+        frames_since_disocclusion({wall_frame(0.0), wall_frame(1.0), wall_frame(2.0)});
+    ASSERT_EQ(ages.size(), 3u);
+    for (int y = 0; y < 8; ++y) {
+        for (int x = 0; x < 8; ++x) {
+            const size_t i = size_t(y * 8 + x);
+            EXPECT_EQ(ages[0][i], -1);
+            EXPECT_EQ(ages[1][i], x == 7 ? 0 : -1) << x << ", " << y;
+            EXPECT_EQ(ages[2][i], x == 7 ? 0 : x == 6 ? 1 : -1) << x << ", " << y;
+        }
+    }
+    // A point the previous frame saw at another depth (something in front of it there) came into view: 0; sky
+    // has no age.
+    obscura::samples::FrameGeometry nearer = wall_frame(0.0);
+    nearer.view_depth = constant_image(8, 8, 3.0f);
+    obscura::samples::FrameGeometry sky = wall_frame(0.0);
+    sky.view_depth = constant_image(8, 8, 0.0f);
+    const std::vector<std::vector<int>> uncovered = frames_since_disocclusion({nearer, wall_frame(0.0), sky});
+    for (size_t i = 0; i < 64; ++i) {
+        EXPECT_EQ(uncovered[1][i], 0);
+        EXPECT_EQ(uncovered[2][i], -1);
+    }
+    EXPECT_TRUE(frames_since_disocclusion({}).empty());
+}
+
 // ---- contact_sheet -----------------------------------------------------------------------------------
 
 TEST(ContactSheet, GridSize) {
