@@ -489,8 +489,7 @@ void measure_method(const ObscuraSession& session, const std::vector<samples::Re
         }
         if (!result.still_geometry.empty() && !method.converged_frames.empty()) {
             errors.ghosting = measure_ghosting(result, method, reference);
-        }
-        if (!result.disocclusion_ages.empty() && !method.converged_frames.empty()) {
+        } else if (!result.disocclusion_ages.empty() && !method.converged_frames.empty()) {
             errors.ghosting = measure_orbit_ghosting(result, method, reference);
         }
         if (result.classes) errors.classes = measure_classes(method, reference, *result.classes);
@@ -520,11 +519,14 @@ void split_into_classes(const std::vector<samples::RenderedScene>& frames,
 
 // Per frame and pixel: whether the camera sees the still part of the scene there, and whether the moving part was
 // there the frame before (it has just uncovered the pixel).
+// Whether a primary ray's triangle belongs to an animated scene's moving part (Scene::first_moving_triangle on).
+bool on_moving_part(uint32_t triangle, int first_moving_triangle) {
+    return triangle != samples::GeometryTruth::kSky && triangle >= uint32_t(first_moving_triangle);
+}
+
 void mark_still_geometry(const std::vector<std::vector<uint32_t>>& primary_triangles, int first_moving_triangle,
                          CompareResult& result) {
-    const auto moving = [&](uint32_t triangle) {
-        return triangle != samples::GeometryTruth::kSky && triangle >= uint32_t(first_moving_triangle);
-    };
+    const auto moving = [&](uint32_t triangle) { return on_moving_part(triangle, first_moving_triangle); };
     for (size_t f = 0; f < primary_triangles.size(); ++f) {
         const std::vector<uint32_t>& now = primary_triangles[f];
         std::vector<uint8_t> still(now.size()), uncovered(now.size(), 0);
@@ -651,11 +653,9 @@ int run_compare(ArgumentList& arguments) {
             geometry.rect_y = frame.output_rect.y;
             if (animated && f > 0) {
                 // The moving part's pixels (their primary rays' triangles), one frame's motion since the last.
-                const uint32_t first_moving = uint32_t(source.scene()->first_moving_triangle());
                 geometry.moving.resize(primary_triangles[f].size());
                 for (size_t i = 0; i < geometry.moving.size(); ++i) {
-                    const uint32_t triangle = primary_triangles[f][i];
-                    geometry.moving[i] = triangle != samples::GeometryTruth::kSky && triangle >= first_moving;
+                    geometry.moving[i] = on_moving_part(primary_triangles[f][i], source.scene()->first_moving_triangle());
                 }
                 geometry.motion = glm::dvec3(source.scene()->motion.velocity);
             }

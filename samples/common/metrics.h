@@ -97,9 +97,9 @@ struct FrameGeometry {
 
 // Flicker as a viewer sees it: how much the AO of a surface point changes from one frame to the next. Each geometry
 // pixel of frame f is taken to the world through its view depth (on a moving part, moved back by its motion),
-// projected into frame f - 1 and compared with frame
-// f - 1's image there (bilinear), where all four texels around that point see the same surface (their view depth
-// within depth_tolerance of the point's, relative); other pixels (disoccluded, off screen, sky) do not count. The
+// projected into frame f - 1 and compared with frame f - 1's image there (bilinear), where all four texels around
+// that point see the same surface (their view depth within depth_tolerance of the point's, relative); other pixels
+// (disoccluded, off screen, sky) do not count. The
 // mean of |difference| over the counted pixels and frame pairs (first channels), 0 when none counts. A still camera
 // and scene make it the plain mean change per pixel. `frames` and `geometry` of one count, >= 2, and one size
 // (std::invalid_argument otherwise).
@@ -109,8 +109,8 @@ double surface_flicker(const std::vector<FloatImage>& frames, const std::vector<
 // Frames since each pixel's surface point came into view, following the point from frame to frame as
 // surface_flicker does: 0 where the previous frame did not see it (off the image, or none of the four texels around
 // it within depth_tolerance of its depth: hidden, disoccluded now), the age of the nearest texel that saw it plus one
-// where one did, -1 where that was -1, on sky and everywhere in frame 0 (no event seen yet). What the ghosting measure of a moving camera counts from (samples::error_by_age).
-// std::invalid_argument for images of different sizes.
+// where one did, -1 where that was -1, on sky and everywhere in frame 0 (no event seen yet). What the ghosting
+// measure of a moving camera counts from (samples::error_by_age). std::invalid_argument for images of different sizes.
 std::vector<std::vector<int>> frames_since_disocclusion(const std::vector<FrameGeometry>& geometry,
                                                         double depth_tolerance = 0.02);
 

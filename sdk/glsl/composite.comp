@@ -5,13 +5,13 @@
 #include "common/shader_interface.h"
 #include "common/depth.glsl"
 #include "common/normal_encoding.glsl"
+#include "common/output_target.glsl"
 
 layout(local_size_x = OBSCURA_COMPOSITE_GROUP_X, local_size_y = OBSCURA_COMPOSITE_GROUP_Y) in;
 
 layout(binding = OBSCURA_UNIT_SOURCE) uniform sampler2D u_ao;
 layout(binding = OBSCURA_UNIT_LINEAR_DEPTH) uniform sampler2D u_linear_depth;
 layout(binding = OBSCURA_UNIT_NORMALS) uniform sampler2D u_normals;
-layout(binding = OBSCURA_IMAGE_OUT0, OUTPUT_FORMAT) uniform image2D u_target;
 
 void main() {
     ivec2 i = ivec2(gl_GlobalInvocationID.xy);
@@ -39,9 +39,5 @@ void main() {
         float v = texelFetch(u_ao, ao_source, 0).r;
         value = vec4(v, v, v, 1.0);
     }
-#if OUTPUT_MULTIPLY
-    vec4 previous = imageLoad(u_target, destination);
-    value = vec4(previous.rgb * value.r, previous.a);
-#endif
-    imageStore(u_target, destination, value);
+    obscura_write_output(destination, value);
 }

@@ -25,7 +25,7 @@ layout(binding = OBSCURA_UNIT_LINEAR_DEPTH) uniform sampler2D u_reduced_depth;
 layout(binding = OBSCURA_UNIT_NORMALS) uniform sampler2D u_reduced_normals;
 layout(binding = OBSCURA_UNIT_SOURCE) uniform sampler2D u_reduced_ao;
 #if OBSCURA_UPSAMPLE_TARGET
-layout(binding = OBSCURA_IMAGE_OUT0, OUTPUT_FORMAT) uniform image2D u_target;
+#include "common/output_target.glsl"
 #else
 layout(binding = OBSCURA_IMAGE_OUT0, r16f) writeonly uniform image2D u_ao;
 #endif
@@ -42,13 +42,7 @@ void store(ivec2 p, float visibility, vec3 bent) {
     // At the target's own precision (the composite's copy went through R16F, which drivers round or truncate), held
     // to [0, 1]: the weighted mean of values up to 1 can round an ulp above it.
     float v = clamp(visibility, 0.0, 1.0);
-    ivec2 destination = target_params.xy + (p - output_rect.xy);
-#if OUTPUT_MULTIPLY
-    vec4 previous = imageLoad(u_target, destination);
-    imageStore(u_target, destination, vec4(previous.rgb * v, previous.a));
-#else
-    imageStore(u_target, destination, vec4(v, v, v, 1.0));
-#endif
+    obscura_write_output(target_params.xy + (p - output_rect.xy), vec4(v, v, v, 1.0));
 #else
     imageStore(u_ao, p, vec4(visibility));
 #endif
