@@ -255,11 +255,19 @@ const obscura_setting_info* infos_of(int32_t method, uint32_t* count) {
     return infos;
 }
 
+// The row `name` names for `method`: its own, or one every method shares (temporal.*, resolution.*), as
+// obscura_set_setting and obscura_get_setting look names up.
 const obscura_setting_info* find_info(int32_t method, const char* name) {
     uint32_t count = 0;
     const obscura_setting_info* infos = infos_of(method, &count);
     for (uint32_t i = 0; i < count; ++i) {
         if (std::strcmp(infos[i].name, name) == 0) return &infos[i];
+    }
+    const obscura_setting_info* shared = nullptr;
+    uint32_t shared_count = 0;
+    FUZZ_CHECK(obscura_get_shared_setting_infos(&shared, &shared_count) == kOk, "obscura_get_shared_setting_infos failed");
+    for (uint32_t i = 0; i < shared_count; ++i) {
+        if (std::strcmp(shared[i].name, name) == 0) return &shared[i];
     }
     return nullptr;
 }
