@@ -112,9 +112,9 @@ tune searches SPEC's settings, starting from them, for the lowest mean_abs again
   truth weighed with each candidate's own falloff (obscura_reference_settings_for; one truth traced per
   falloff, --truth-rays per pixel, --seed). Searched: every number, enum and toggle of the method's metadata
   (--list-settings) that is not derived, not scheduling or noise (frame_index, first_ray, rays_per_dispatch),
-  not temporal accumulation (temporal.*: tune weighs one frame) and does not define the falloff (radius,
-  falloff_c, falloff, GTAO's falloff_range: they move the target); --keys names the settings to search instead
-  (derived and falloff ones too; it refuses the scheduling, noise and temporal.* ones). Ranges are the
+  not temporal accumulation (temporal.*, FFAO's frame_split: tune weighs one frame) and does not define the
+  falloff (radius, falloff_c, falloff, GTAO's falloff_range: they move the target); --keys names the settings to
+  search instead (derived and falloff ones too; it refuses the scheduling, noise and temporal.* ones). Ranges are the
   metadata's, on a log scale where they span more than 2 decades. The search (seeded, deterministic): compass
   steps with halving, pattern moves, random directions and restarts, --evaluations renders in all. Cost: the
   SDK's total summed over the scenes, median of warm frames, timed in the same run; --budget 1.0x:hbao rejects

@@ -40,6 +40,7 @@ constexpr NeverSearched kNeverSearched[] = {
     {"frame_index", "moves the noise pattern only"},
     {"first_ray", "picks which rays of the sequence are traced, not how many"},
     {"rays_per_dispatch", "batches the rays into dispatches: scheduling only"},
+    {"frame_split", "spreads FFAO's orientations over frames; tune weighs one frame"},
     {"temporal.enabled", "accumulates over frames; tune weighs one frame"},
     {"temporal.max_frames", "accumulates over frames; tune weighs one frame"},
     {"temporal.clamp", "accumulates over frames; tune weighs one frame"},

@@ -54,6 +54,10 @@ inline constexpr ViewerPreset kViewerPresets[] = {
     // LSAO's free directions turn with the layout phase: 4 of them a frame cover 32 over 8 frames.
     {OBSCURA_METHOD_LSAO, "temporal: 4 free directions, 16 frames",
      "lsao:pattern=free:directions=4:step_length=1.41:line_spacing=1.41:temporal.enabled=on:temporal.max_frames=16"},
+    // FFAO's orientations spread over 4 frames (each 2x2 pixel block evaluates all of them in every frame): a still
+    // view converges to its defaults' image at about 0.35x of their cost (docs/quality.md, "Temporal presets").
+    {OBSCURA_METHOD_FFAO, "temporal: 1/4 of the orientations a frame, 16 frames",
+     "ffao:frame_split=4:temporal.enabled=on:temporal.max_frames=16"},
     // Reduced resolution: half costs 0.25-0.34x of full on llvmpipe, within +0.01 of its error at 640x360 for these
     // (docs/performance.md, docs/quality.md, "Reduced resolution").
     {OBSCURA_METHOD_HBAO, "half resolution", "hbao:resolution.scale=half"},

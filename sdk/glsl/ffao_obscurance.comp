@@ -451,10 +451,19 @@ void main() {
     ivec2 running_texel = ivec2(gl_GlobalInvocationID.xy);
     if (!first_chunk()) total = imageLoad(u_running, running_texel).x;
 #endif
-    for (int k = k_begin; k < k_end; ++k) {
+    // Frame split N (ffao.options.y): every Nth orientation from the pixel's share s, weighted N times, so that the
+    // mean over N frames is the sum over all of them. s follows a 2x2 pattern (a checkerboard for N = 2) turned by
+    // the frame: each 2x2 block, and the 7 texels the temporal pass's clamp reads around a pixel, hold every share.
+    // The loop's stride is per pixel rather than a test per orientation: CPU rasterisers run every lane through
+    // both sides of a branch, and would pay for every orientation.
+    int split = ffao.options.y;
+    int pattern = ((pixel.x ^ pixel.y) & 1) | ((pixel.y & 1) << 1);
+    int share = (pattern + ffao.options.w) % split;
+    float weight = float(split);
+    for (int k = k_begin + (share - k_begin % split + split) % split; k < k_end; k += split) {
         float near_sum = 0.0, far_sum = 0.0;
         evaluate_orientation(k, pixel, p, n, depth, true, near_sum, far_sum);
-        total += near_sum + far_sum;
+        total += weight * (near_sum + far_sum);
     }
 #if OBSCURA_FFAO_CHUNKED
     if (!last_chunk()) {

@@ -189,6 +189,9 @@ obscura_status setting_infos_of_size(const obscura_method& method, const obscura
     if (info_size == sizeof(obscura::SettingInfo03)) {
         // The caller's obscura_setting_info is the 0.3 struct, which is what this table holds.
         *out_infos = reinterpret_cast<const obscura_setting_info*>(obscura::setting_infos_03(method, out_count));
+    } else if (info_size == sizeof(obscura::SettingInfo04)) {
+        // A 0.4 caller: its layout, and the rows its obscura_settings has fields for.
+        *out_infos = reinterpret_cast<const obscura_setting_info*>(obscura::setting_infos_04(method, out_count));
     } else if (info_size == sizeof(obscura_setting_info)) {
         *out_infos = obscura::setting_infos(method, out_count);
     } else {

@@ -37,7 +37,7 @@ private:
     Error error_;
 };
 
-// What a history was computed with: the method and its settings block (FNV-1a over the bytes). GTAO's own
+// What a history was computed with: the method and its settings blocks (FNV-1a over the bytes). GTAO's own
 // frame_index only moves its noise, as obscura_input.frame_index does, so it is left out. A change starts anew.
 uint64_t history_signature(const obscura_settings& settings, bool bent_normals) {
     const MethodDescriptor* row = find_method(settings.method);
@@ -47,6 +47,8 @@ uint64_t history_signature(const obscura_settings& settings, bool bent_normals) 
     uint64_t hash = 1469598103934665603ull;
     auto mix = [&](unsigned char b) { hash = (hash ^ b) * 1099511628211ull; };
     for (size_t i = 0; i < row->settings_size; ++i) mix(bytes[i]);
+    const unsigned char* added = reinterpret_cast<const unsigned char*>(&copy) + row->added_offset;
+    for (size_t i = 0; i < row->added_size; ++i) mix(added[i]);
     mix(static_cast<unsigned char>(settings.method));
     mix(bent_normals ? 1 : 0);
     mix(static_cast<unsigned char>(settings.resolution.scale));  // a 1x1 frame is 1x1 at every resolution

@@ -37,6 +37,10 @@ struct MethodDescriptor {
     // Derives what depends on the GL renderer (zero fields the context settles when it renders), for
     // obscura_resolve_settings with a context; null if nothing does.
     void (*derive_for_renderer)(bool cpu_renderer, obscura_settings* resolved) = nullptr;
+    // Fields added after the block's layout was released (obscura_ffao_added_settings): a second block at the end of
+    // obscura_settings, where hosts built against older headers have none. Its rows are among `settings`.
+    size_t added_offset = 0;
+    size_t added_size = 0;
 };
 
 // Every method, in obscura_method order (OBSCURA_METHOD_DEFAULT excluded).

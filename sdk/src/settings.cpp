@@ -161,14 +161,18 @@ const obscura_setting_info* setting_infos(const obscura_method& method, uint32_t
     return row ? row->settings : nullptr;
 }
 
-const SettingInfo03* setting_infos_03(const obscura_method& method, uint32_t* count) {
-    // Built once from the rows (C++11 initialises a local static once, thread-safely); no heap.
+namespace {
+
+// A method's table in an older header's layout, built once from the rows (C++11 initialises a local static once,
+// thread-safely; no heap): `convert` gives a row in that layout, or false for a row that header does not have.
+template <class Row, class Convert>
+const Row* older_table(const obscura_method& method, uint32_t* count, Convert convert) {
     constexpr uint32_t kMaxRows = 48;
     struct Tables {
-        SettingInfo03 rows[OBSCURA_METHOD_COUNT_][kMaxRows] = {};
+        Row rows[OBSCURA_METHOD_COUNT_][kMaxRows] = {};
         uint32_t counts[OBSCURA_METHOD_COUNT_] = {};
     };
-    static const Tables tables = [] {
+    static const Tables tables = [&] {
         Tables t;
         uint32_t method_count = 0;
         const MethodDescriptor* const* methods = method_descriptors(&method_count);
@@ -176,12 +180,7 @@ const SettingInfo03* setting_infos_03(const obscura_method& method, uint32_t* co
             const MethodDescriptor& row = *methods[m];
             uint32_t& n = t.counts[row.method];
             for (uint32_t i = 0; i < row.setting_count && n < kMaxRows; ++i) {
-                const obscura_setting_info& info = row.settings[i];
-                if (info.type == OBSCURA_SETTING_FLOAT_ARRAY) continue;
-                const obscura_setting_type type = info.type == OBSCURA_SETTING_ENUM ? OBSCURA_SETTING_INT : info.type;
-                t.rows[row.method][n++] = SettingInfo03{info.name,      type,      info.default_value,
-                                                        info.min_value, info.max_value, info.unit,
-                                                        info.description, info.offset};
+                if (convert(row.settings[i], &t.rows[row.method][n])) ++n;
             }
         }
         return t;
@@ -189,6 +188,34 @@ const SettingInfo03* setting_infos_03(const obscura_method& method, uint32_t* co
     const MethodDescriptor* row = find_method(method);
     *count = row ? tables.counts[row->method] : 0;
     return row ? tables.rows[row->method] : nullptr;
+}
+
+// The 0.3 fields of a row, its ENUM type read as INT (0.3 had no ENUM).
+SettingInfo03 as_03(const obscura_setting_info& info) {
+    const obscura_setting_type type = info.type == OBSCURA_SETTING_ENUM ? OBSCURA_SETTING_INT : info.type;
+    return SettingInfo03{info.name,      type,           info.default_value, info.min_value,
+                         info.max_value, info.unit,      info.description,   info.offset};
+}
+
+}  // namespace
+
+const SettingInfo04* setting_infos_04(const obscura_method& method, uint32_t* count) {
+    return older_table<SettingInfo04>(method, count, [](const obscura_setting_info& info, SettingInfo04* out) {
+        if (info.added_in > 400) return false;  // a 0.4 struct has no field for it
+        SettingInfo03 first = as_03(info);
+        first.type = info.type;  // 0.4 has ENUM
+        *out = SettingInfo04{first, info.flags, info.value_count, info.value_names};
+        return true;
+    });
+}
+
+const SettingInfo03* setting_infos_03(const obscura_method& method, uint32_t* count) {
+    return older_table<SettingInfo03>(method, count, [](const obscura_setting_info& info, SettingInfo03* out) {
+        // Rows a 0.3 struct has no field for: arrays (0.4) and the rows added since.
+        if (info.type == OBSCURA_SETTING_FLOAT_ARRAY || info.added_in > 300) return false;
+        *out = as_03(info);
+        return true;
+    });
 }
 
 bool is_known_settings_size(uint32_t struct_size) {

@@ -21,7 +21,13 @@ constexpr obscura_setting_info setting_row(const char* name, obscura_setting_typ
                                            const char* description, size_t offset, uint32_t flags = 0) {
     return obscura_setting_info{name, type, default_value, min_value, max_value, unit, description, offset, flags,
                                 type == OBSCURA_SETTING_TOGGLE ? 2u : 0u,
-                                type == OBSCURA_SETTING_TOGGLE ? kToggleNames : nullptr};
+                                type == OBSCURA_SETTING_TOGGLE ? kToggleNames : nullptr, 0u};
+}
+// A row added to a released method's table in header version `version` (OBSCURA_VERSION's packing): older callers'
+// tables leave it out (setting_infos_04, setting_infos_03).
+constexpr obscura_setting_info added_row(obscura_setting_info row, uint32_t version) {
+    row.added_in = version;
+    return row;
 }
 // An ENUM row: `names` name the values min_value, min_value + 1, ... (N of them). A derived one (`flags`
 // OBSCURA_SETTING_FLAG_DERIVED) has default 0: the method's derive step picks its value.
@@ -31,13 +37,13 @@ constexpr obscura_setting_info enum_row(const char* name, double default_value, 
                                         uint32_t flags = 0) {
     return obscura_setting_info{name,        OBSCURA_SETTING_ENUM, default_value, min_value, min_value + count - 1,
                                 "",          description,          offset,        flags,     count,
-                                names};
+                                names,       0u};
 }
 // A FLOAT_ARRAY row of N floats in [min, max]. Arrays have no default: 0 everywhere.
 constexpr obscura_setting_info array_row(const char* name, uint32_t length, double min_value, double max_value,
                                          const char* description, size_t offset) {
     return obscura_setting_info{name, OBSCURA_SETTING_FLOAT_ARRAY, 0.0, min_value, max_value, "", description,
-                                offset, 0, length, nullptr};
+                                offset, 0, length, nullptr, 0u};
 }
 
 // The names of obscura_falloff's values from OBSCURA_FALLOFF_RHO0 on.
@@ -56,8 +62,21 @@ struct SettingInfo03 {
     size_t offset;
 };
 static_assert(sizeof(SettingInfo03) == offsetof(obscura_setting_info, flags), "0.4 appended to the 0.3 layout");
-// The method's table in the 0.3 layout: ENUM rows read as INT, array rows (new in 0.4) left out.
+// The method's table in the 0.3 layout: ENUM rows read as INT, array rows (new in 0.4) and rows added since left out.
 const SettingInfo03* setting_infos_03(const obscura_method& method, uint32_t* count);
+
+// obscura_setting_info as the 0.4 header declared it: 0.4 appended three fields to the 0.3 layout, 0.5 added_in.
+struct SettingInfo04 {
+    SettingInfo03 first;  // the 0.3 fields
+    uint32_t flags;
+    uint32_t value_count;
+    const char* const* value_names;
+};
+static_assert(offsetof(SettingInfo04, flags) == offsetof(obscura_setting_info, flags), "the 0.3 fields first");
+static_assert(sizeof(SettingInfo04) == offsetof(obscura_setting_info, added_in), "0.5 appended to the 0.4 layout");
+static_assert(sizeof(SettingInfo04) != sizeof(obscura_setting_info), "the sizes tell the layouts apart");
+// The method's table in the 0.4 layout: the rows added in 0.5 (added_in > 400) left out.
+const SettingInfo04* setting_infos_04(const obscura_method& method, uint32_t* count);
 
 // Resolved method (DEFAULT -> HBAO); OBSCURA_METHOD_COUNT_ for unknown values.
 obscura_method resolve_method(const obscura_method& method);

@@ -143,6 +143,14 @@ struct SettingInfo03 {
     size_t offset;
 };
 static_assert(sizeof(SettingInfo03) == offsetof(obscura_setting_info, flags), "0.4 appended to the 0.3 layout");
+// ... and as the 0.4 header declared it: three more fields; today's adds added_in (0.5).
+struct SettingInfo04 {
+    SettingInfo03 first;  // the 0.3 fields
+    uint32_t flags;
+    uint32_t value_count;
+    const char* const* value_names;
+};
+static_assert(sizeof(SettingInfo04) == offsetof(obscura_setting_info, added_in), "0.5 appended to the 0.4 layout");
 
 // A host's obscura_settings of exactly `size` bytes on the heap (never less than the struct_size field), so that
 // AddressSanitizer reports any read or write of the library past the caller's struct. The settings functions take

@@ -37,6 +37,7 @@
 using obscura_fuzz::Reader;
 using obscura_fuzz::SettingsBuffer;
 using obscura_fuzz::SettingInfo03;
+using obscura_fuzz::SettingInfo04;
 using obscura_fuzz::is_released_settings_size;
 using obscura_fuzz::kReleasedSettingsSizes;
 using obscura_fuzz::kSettingsSize01;
@@ -153,16 +154,19 @@ SettingsBuffer host_copy(const obscura_settings& settings) {
 
 // ---- Metadata ----------------------------------------------------------------------------------------------
 
+// A method's block, and the block of the fields added to it after its release (rows with added_in > 400).
 struct Block {
     int32_t method;
     size_t offset, size;
+    size_t added_offset = 0, added_size = 0;
 };
 const Block kBlocks[] = {
     {OBSCURA_METHOD_HBAO, offsetof(obscura_settings, hbao), sizeof(obscura_hbao_settings)},
     {OBSCURA_METHOD_REFERENCE, offsetof(obscura_settings, reference), sizeof(obscura_reference_settings)},
     {OBSCURA_METHOD_SAO, offsetof(obscura_settings, sao), sizeof(obscura_sao_settings)},
     {OBSCURA_METHOD_LSAO, offsetof(obscura_settings, lsao), sizeof(obscura_lsao_settings)},
-    {OBSCURA_METHOD_FFAO, offsetof(obscura_settings, ffao), sizeof(obscura_ffao_settings)},
+    {OBSCURA_METHOD_FFAO, offsetof(obscura_settings, ffao), sizeof(obscura_ffao_settings),
+     offsetof(obscura_settings, ffao_added), sizeof(obscura_ffao_added_settings)},
     {OBSCURA_METHOD_GTAO, offsetof(obscura_settings, gtao), sizeof(obscura_gtao_settings)},
 };
 
@@ -329,10 +333,15 @@ void check_metadata(int32_t method) {
                    info.name, info.flags);
         FUZZ_CHECK(info.min_value <= info.max_value, "%s.%s has min %g > max %g", label, info.name, info.min_value,
                    info.max_value);
-        FUZZ_CHECK(info.offset % 4 == 0 && info.offset >= block->offset &&
-                       info.offset + field_bytes(info) <= block->offset + block->size,
-                   "%s.%s has offset %zu (%zu bytes), outside its block [%zu, +%zu]", label, info.name, info.offset,
-                   field_bytes(info), block->offset, block->size);
+        const bool in_block = info.offset >= block->offset && info.offset + field_bytes(info) <= block->offset + block->size;
+        const bool in_added = info.offset >= block->added_offset &&
+                              info.offset + field_bytes(info) <= block->added_offset + block->added_size;
+        FUZZ_CHECK(info.offset % 4 == 0 && (in_block || in_added),
+                   "%s.%s has offset %zu (%zu bytes), outside its block [%zu, +%zu] and its added block [%zu, +%zu]",
+                   label, info.name, info.offset, field_bytes(info), block->offset, block->size, block->added_offset,
+                   block->added_size);
+        FUZZ_CHECK(in_added == (info.added_in > 400), "%s.%s lies %s its added block but was added in %u", label,
+                   info.name, in_added ? "in" : "outside", info.added_in);
         switch (type) {
             case OBSCURA_SETTING_TOGGLE:
                 FUZZ_CHECK(info.min_value == 0 && info.max_value == 1, "toggle %s.%s has range [%g, %g]", label,
@@ -397,10 +406,33 @@ void check_metadata(int32_t method) {
     FUZZ_CHECK(status == kOk && sized_table == old_table && sized_count == old_count,
                "obscura_get_setting_infos_sized(%s, 0.3 size) returned %d, another table than the 0.3 symbol", label,
                status);
+    // The 0.4 layout (the sized entry point with the 0.4 struct's size): every field of today's rows but added_in,
+    // for the rows not added after 0.4 (their fields lie beyond a 0.4 host's struct).
+    const obscura_setting_info* table_04 = nullptr;
+    uint32_t count_04 = 0;
+    status = fuzz_get_setting_infos_sized(method, &table_04, &count_04, uint32_t(sizeof(SettingInfo04)));
+    FUZZ_CHECK(status == kOk && table_04 != nullptr, "obscura_get_setting_infos_sized(%s, 0.4 size) returned %d", label,
+               status);
+    uint32_t k4 = 0;
+    for (uint32_t i = 0; i < count; ++i) {
+        const obscura_setting_info& info = infos[i];
+        if (info.added_in > 400) continue;
+        FUZZ_CHECK(k4 < count_04, "the 0.4 table of %s has %u rows; %s is missing", label, count_04, info.name);
+        SettingInfo04 row;
+        std::memcpy(&row, reinterpret_cast<const unsigned char*>(table_04) + k4 * sizeof(SettingInfo04), sizeof row);
+        ++k4;
+        FUZZ_CHECK(row.first.name == info.name && row.first.offset == info.offset && row.flags == info.flags &&
+                       row.value_count == info.value_count && row.value_names == info.value_names &&
+                       row.first.default_value == info.default_value,
+                   "row %u of the 0.4 table of %s (%s) is not %s", k4 - 1, label,
+                   row.first.name ? row.first.name : "NULL", info.name);
+    }
+    FUZZ_CHECK(k4 == count_04, "the 0.4 table of %s has %u rows, %u expected", label, count_04, k4);
+
     uint32_t k = 0;
     for (uint32_t i = 0; i < count; ++i) {
         const obscura_setting_info& info = infos[i];
-        if (is_array(info)) continue;
+        if (is_array(info) || info.added_in > 300) continue;
         FUZZ_CHECK(k < old_count, "the 0.3 table of %s has %u rows; %s is missing", label, old_count, info.name);
         SettingInfo03 row;
         std::memcpy(&row, reinterpret_cast<const unsigned char*>(old_table) + k * sizeof(SettingInfo03), sizeof row);
@@ -928,7 +960,8 @@ void check_method_functions(int32_t raw_method, uint32_t raw_size) {
     uint32_t raw_count = 0;
     const int32_t raw_status = fuzz_get_setting_infos_sized(method, &raw_infos, &raw_count, raw_size);
     check_message("obscura_get_setting_infos_sized", raw_status, false);
-    const bool known_layout = raw_size == sizeof(obscura_setting_info) || raw_size == sizeof(SettingInfo03);
+    const bool known_layout = raw_size == sizeof(obscura_setting_info) || raw_size == sizeof(SettingInfo03) ||
+                              raw_size == sizeof(SettingInfo04);
     if (!valid_method(method)) {
         FUZZ_CHECK(status == OBSCURA_STATUS_INVALID_ENUM && old_status == OBSCURA_STATUS_INVALID_ENUM,
                    "obscura_get_setting_infos(%d) returned %d, the 0.3 symbol %d", method, status, old_status);
@@ -941,6 +974,10 @@ void check_method_functions(int32_t raw_method, uint32_t raw_size) {
     uint32_t want_count = 0;
     if (raw_size == sizeof(obscura_setting_info)) want = infos, want_count = count;
     if (raw_size == sizeof(SettingInfo03)) want = old_infos, want_count = old_count;
+    if (raw_size == sizeof(SettingInfo04)) {  // checked row by row in check_tables: here only that it is the one
+        const int32_t again = fuzz_get_setting_infos_sized(method, &want, &want_count, raw_size);
+        FUZZ_CHECK(again == kOk, "obscura_get_setting_infos_sized(%s, 0.4 size) returned %d", method_label(method), again);
+    }
     FUZZ_CHECK(status == kOk && old_status == kOk && count > 0 && old_count > 0,
                "obscura_get_setting_infos(%s) returned %d, the 0.3 symbol %d", method_label(method), status, old_status);
     uint32_t hbao_count = 0;

@@ -33,9 +33,16 @@ TEST(MethodRegistry, OneCompleteRowPerMethodInEnumOrder) {
         EXPECT_TRUE(row.settings_offset + row.settings_size <= flags_begin || row.settings_offset >= flags_end);
         ASSERT_NE(row.settings, nullptr);
         ASSERT_GT(row.setting_count, 0u);
+        // A block of added fields (if any) lies after the 0.4 layout, clear of every other block.
+        if (row.added_size != 0) {
+            EXPECT_GE(row.added_offset, offsetof(obscura_settings, gtao) + sizeof(obscura_gtao_settings));
+        }
+        EXPECT_LE(row.added_offset + row.added_size, sizeof(obscura_settings));
         for (uint32_t s = 0; s < row.setting_count; ++s) {
-            EXPECT_GE(row.settings[s].offset, row.settings_offset) << row.settings[s].name;
-            EXPECT_LT(row.settings[s].offset, row.settings_offset + row.settings_size) << row.settings[s].name;
+            const size_t offset = row.settings[s].offset;
+            const bool in_block = offset >= row.settings_offset && offset < row.settings_offset + row.settings_size;
+            const bool in_added = offset >= row.added_offset && offset < row.added_offset + row.added_size;
+            EXPECT_TRUE(in_block || in_added) << row.settings[s].name;
         }
         EXPECT_NE(row.derive, nullptr);
         ASSERT_NE(row.passes, nullptr);

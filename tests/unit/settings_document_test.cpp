@@ -608,6 +608,8 @@ TEST(SettingsDocument, MetadataKeysAreTheCFieldNames) {
         OBSCURA_TEST_FIELD(ffao, thickness), OBSCURA_TEST_FIELD(ffao, jitter), OBSCURA_TEST_FIELD(ffao, saao),
         OBSCURA_TEST_FIELD(ffao, saao_blur), OBSCURA_TEST_FIELD(ffao, intensity), OBSCURA_TEST_FIELD(ffao, power),
         OBSCURA_TEST_FIELD(ffao, falloff_table),
+        // FFAO's 0.5 fields, in their own block after the 0.4 layout.
+        {"ffao", "frame_split", offsetof(obscura_settings, ffao_added.frame_split)},
         OBSCURA_TEST_FIELD(gtao, radius), OBSCURA_TEST_FIELD(gtao, preset), OBSCURA_TEST_FIELD(gtao, slices),
         OBSCURA_TEST_FIELD(gtao, steps), OBSCURA_TEST_FIELD(gtao, thickness_mode),
         OBSCURA_TEST_FIELD(gtao, thickness), OBSCURA_TEST_FIELD(gtao, thickness_blend),

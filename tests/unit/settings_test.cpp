@@ -302,13 +302,46 @@ TEST(SettingsDefaults, TheZeroThreeSymbolsKeepTheZeroThreeLayout) {
     const obscura_setting_info* infos = nullptr;
     uint32_t current = 0;
     ASSERT_EQ(obscura_get_setting_infos(OBSCURA_METHOD_FFAO, &infos, &current), OBSCURA_OK);
-    EXPECT_EQ(count, current - 1);  // falloff_table is new in 0.4
+    EXPECT_EQ(count, current - 2);  // falloff_table is new in 0.4, frame_split (the last row) in 0.5
     for (uint32_t i = 0; i < count; ++i) {
         EXPECT_STREQ(rows[i].name, infos[i].name);
         EXPECT_EQ(rows[i].offset, infos[i].offset);
         EXPECT_EQ(rows[i].type, infos[i].type == OBSCURA_SETTING_ENUM ? OBSCURA_SETTING_INT : infos[i].type);
     }
     EXPECT_EQ(obscura_get_setting_infos_sized(OBSCURA_METHOD_FFAO, &infos, &current, 12), OBSCURA_STATUS_INVALID_STRUCT_SIZE);
+}
+
+// A caller built against 0.4 passes its (smaller) obscura_setting_info size and gets the 0.4 layout without the rows
+// added in 0.5, whose fields its obscura_settings does not have (a host writing rows by offset would overrun it).
+TEST(SettingsDefaults, TheZeroFourInfoSizeKeepsTheZeroFourRows) {
+    const uint32_t size_04 = uint32_t(offsetof(obscura_setting_info, added_in));
+    const uint32_t settings_04 = uint32_t(offsetof(obscura_settings, gtao));
+    for (obscura_method method : {OBSCURA_METHOD_HBAO, OBSCURA_METHOD_FFAO, OBSCURA_METHOD_LSAO}) {
+        const obscura_setting_info* table = nullptr;
+        uint32_t count = 0;
+        ASSERT_EQ(obscura_get_setting_infos_sized(method, &table, &count, size_04), OBSCURA_OK);
+        const obscura_setting_info* infos = nullptr;
+        uint32_t current = 0;
+        ASSERT_EQ(obscura_get_setting_infos(method, &infos, &current), OBSCURA_OK);
+        uint32_t k = 0;
+        for (uint32_t i = 0; i < current; ++i) {
+            if (infos[i].added_in > 400) {
+                EXPECT_GE(infos[i].offset, settings_04) << infos[i].name << ": a 0.5 row inside the 0.4 struct";
+                continue;
+            }
+            ASSERT_LT(k, count);
+            obscura_setting_info row = {};
+            std::memcpy(&row, reinterpret_cast<const unsigned char*>(table) + size_t(k) * size_04, size_04);
+            ++k;
+            EXPECT_STREQ(row.name, infos[i].name);
+            EXPECT_EQ(row.offset, infos[i].offset);
+            EXPECT_EQ(row.flags, infos[i].flags);
+            EXPECT_EQ(row.value_count, infos[i].value_count);
+            EXPECT_LE(row.offset, settings_04 - 4) << row.name << " lies beyond a 0.4 struct";
+        }
+        EXPECT_EQ(k, count);
+        EXPECT_EQ(count, method == OBSCURA_METHOD_FFAO ? current - 1 : current);  // frame_split is 0.5's
+    }
 }
 
 TEST(SettingsDefaults, DefaultSettingsForDefaultMethodIsHbao) {

@@ -367,8 +367,9 @@ OBSCURA_PASS_BLOCK_BEGIN(FfaoConstants)
                            // thickness (view units; 0: infinite)
   OBSCURA_VEC4(view);      // view units per texel at depth 1 along x and y (2 / (m0 W), 2 / (m5 H)), unused x2
   OBSCURA_IVEC4(config);   // K sectors, segments per sector, B0, pyramid levels
-  OBSCURA_IVEC4(options);  // jitter, unused (single lines, a finite thickness, are compiled in:
-                           // OBSCURA_FFAO_FINITE_THICKNESS), deepest depth MIP level (mipmap method), unused
+  OBSCURA_IVEC4(options);  // jitter, frame split N (1: every orientation), deepest depth MIP level (mipmap method),
+                           // the frame's turn of the split's pattern (frame_index mod N). (Single lines, a finite
+                           // thickness, are compiled in: OBSCURA_FFAO_FINITE_THICKNESS.)
   OBSCURA_VEC4(orientation[OBSCURA_FFAO_MAX_ORIENTATIONS]); // scan direction xy (texels), u and v of the grid origin
   OBSCURA_IVEC4(lines[OBSCURA_FFAO_MAX_ORIENTATIONS]);      // first line record, line count, grid steps U, unused
   OBSCURA_VEC4(axes[OBSCURA_FFAO_MAX_ORIENTATIONS]);        // view-space unit vector of the direction (z = 0): x, y

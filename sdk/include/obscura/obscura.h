@@ -442,6 +442,19 @@ typedef struct obscura_ffao_settings {
     float falloff_table[OBSCURA_FALLOFF_TABLE_SIZE]; /* TABLE only: rho at i/(N-1) * radius, values in [0, 1] */
 } obscura_ffao_settings;
 
+/* FFAO's fields added in 0.5. They are a block of their own at the end of obscura_settings (ffao_added), since
+   obscura_settings.ffao keeps the layout that hosts built against 0.3 and 0.4 hold; their metadata rows are FFAO's
+   like the others ("frame_split"). Every field: 0 selects the default given after it. */
+typedef struct obscura_ffao_added_settings {
+    int32_t frame_split;  /* N: spread the K/2 orientations over N frames for temporal accumulation. In each 2x2 pixel
+                             block the pixels evaluate different Nths of them (every Nth orientation, all segments,
+                             near and far field), a pattern that obscura_input.frame_index turns, and weigh their
+                             sum N times: a frame costs about 1/N of the obscurance pass, and a still view
+                             accumulated over a multiple of N frames (temporal.enabled) converges to the estimate
+                             of all K sectors. Without accumulation the image shows the 2x2 pattern. [1, 4], at
+                             most K/2; not with saao. Default 1 */
+} obscura_ffao_added_settings;
+
 /* GTAO: Jimenez, Wu, Pesce, Jarabo, "Practical Realtime Strategies for Accurate Indirect Occlusion" (2016).
    Per pixel, S slices (planes through the eye and a screen direction, rotated per pixel over a 4x4 pattern that
    frame_index moves) are searched N steps to each side along the projected radius, the steps reading a z pyramid
@@ -575,6 +588,7 @@ typedef struct obscura_settings {
     obscura_gtao_settings gtao; /* 0.5 */
     obscura_temporal_settings temporal; /* 0.5: every method's (the shared metadata rows, below) */
     obscura_resolution_settings resolution; /* 0.5: every method's (the shared metadata rows, below) */
+    obscura_ffao_added_settings ffao_added; /* 0.5: FFAO's fields added after its block's layout was released */
 } obscura_settings;
 
 /* Fills `out` with the editable form of `method`'s defaults (see SETTINGS above; struct_size set). Writes
@@ -640,10 +654,16 @@ typedef struct obscura_setting_info {
     uint32_t flags;          /* OBSCURA_SETTING_FLAG_* */
     uint32_t value_count;    /* ENUM, TOGGLE: the named values; FLOAT_ARRAY: the array's length; else 0 */
     const char* const* value_names; /* ENUM, TOGGLE: value_names[i] names the value min_value + i ("exponential") */
+    /* 0.5: */
+    uint32_t added_in;       /* OBSCURA_VERSION of the header that added the row to its method's table (500: 0.5.0);
+                                0 for the rows the method has had since its first release. A caller built against
+                                an older header gets the table without the rows added after it (their fields lie
+                                beyond its obscura_settings) */
 } obscura_setting_info;
 
 /* Sets *out_infos to the method's static table of settings and *out_count to its length. `info_size` is the
-   caller's sizeof(obscura_setting_info) (the macro below passes the header's): the table has that layout. A
+   caller's sizeof(obscura_setting_info) (the macro below passes the header's): the table has that layout and the
+   rows that header's obscura_settings has fields for (0.4's size: no `added_in` and no row added in 0.5). A
    binary built against 0.3 calls the plain symbol, which returns the 0.3 layout (ENUM rows as INT, no array
    rows). Returns OK, NULL_ARGUMENT, INVALID_STRUCT_SIZE, INVALID_ENUM. */
 OBSCURA_API obscura_status obscura_get_setting_infos_sized(obscura_method method,

@@ -58,6 +58,11 @@ const obscura_setting_info kFfaoSettings[] = {
     array_row("falloff_table", OBSCURA_FALLOFF_TABLE_SIZE, 0.0, 1.0,
               "falloff = table: rho at i/15 * radius (i = 0..15), linear in between, 0 beyond; not all 0",
               OBSCURA_SETTING_OFFSET(ffao, falloff_table)),
+    added_row(setting_row("frame_split", OBSCURA_SETTING_INT, 1, 1, 4, "frames",
+                          "spread the orientations over N frames (a 2x2 pixel pattern turning with frame_index), for "
+                          "temporal accumulation: about 1/N of the obscurance's cost a frame; at most K/2, not with saao",
+                          OBSCURA_SETTING_OFFSET(ffao_added, frame_split)),
+              500),
 };
 
 // FFAO's derived values: the decay rate follows the radius; a line orientation serves two opposite sectors;
@@ -80,6 +85,19 @@ Error derive_ffao(const obscura_settings&, obscura_settings* resolved) {
                            "ffao.sectors = %d: K must be even (each scanned line orientation serves two opposite "
                            "sectors)",
                            int(ffao->sectors));
+    }
+    const int32_t split = resolved->ffao_added.frame_split;
+    if (split > 1 && ffao->saao == OBSCURA_TOGGLE_ON) {
+        return Error::make(OBSCURA_STATUS_INVALID_SETTING,
+                           "ffao.frame_split = %d with saao: SAAO already spreads the far field over 3x3 pixels; use "
+                           "one or the other",
+                           int(split));
+    }
+    if (split > ffao->sectors / 2) {
+        return Error::make(OBSCURA_STATUS_INVALID_SETTING,
+                           "ffao.frame_split = %d with K = %d sectors: a frame would have no orientation to evaluate "
+                           "(at most K/2 = %d)",
+                           int(split), int(ffao->sectors), int(ffao->sectors / 2));
     }
     return check_falloff_table("ffao", ffao->falloff, ffao->falloff_table);
 }
@@ -137,7 +155,7 @@ public:
         for (int d = 0; d < pyramid_dispatches_ && d < kMaxPyramidDispatches; ++d) {
             pyramid_[d] = uniforms.push(ZPyramidPass::constants(d, levels_));
         }
-        pass_ = uniforms.push(ffao_.constants(ffao, frame.input, levels_));
+        pass_ = uniforms.push(ffao_.constants(ffao, frame.input, levels_, frame.settings.ffao_added.frame_split));
         ffao_.push_chunk_constants(uniforms);
         table_ = uniforms.push(FfaoPass::table_constants(ffao));
     }
@@ -220,6 +238,10 @@ extern const MethodDescriptor kFfaoMethod = {
     kFfaoPasses,
     uint32_t(sizeof kFfaoPasses / sizeof kFfaoPasses[0]),
     create_technique<FfaoTechnique>,
+    false,
+    nullptr,
+    offsetof(obscura_settings, ffao_added),
+    sizeof(obscura_ffao_added_settings),
 };
 
 }  // namespace obscura

@@ -271,7 +271,7 @@ FfaoTableConstants FfaoPass::table_constants(const obscura_ffao_settings& settin
 }
 
 FfaoConstants FfaoPass::constants(const obscura_ffao_settings& settings, const FrameInput& input,
-                                  int mipmap_levels) const {
+                                  int mipmap_levels, int frame_split) const {
     const Grid& grid = grids_[current_];
     FfaoConstants c = {};
     c.shape[0] = float(ffao_falloff_scale(settings) * input.meters_to_view_units);
@@ -279,7 +279,9 @@ FfaoConstants FfaoPass::constants(const obscura_ffao_settings& settings, const F
     c.shape[2] = settings.power;
     c.shape[3] = settings.thickness * input.meters_to_view_units;
     c.options[0] = settings.jitter == OBSCURA_TOGGLE_ON ? 1 : 0;
+    c.options[1] = std::max(frame_split, 1);
     c.options[2] = mipmap_levels - 1;
+    c.options[3] = int(input.frame_index % uint32_t(c.options[1]));
     // View-space displacement per texel at depth 1 (its direction is what the passes use).
     c.view[0] = float(2.0 / (double(input.projection.m[0]) * input.width));
     c.view[1] = float(2.0 / (double(input.projection.m[5]) * input.height));

@@ -39,8 +39,10 @@ public:
     // Whether the table must be (re)built for these settings' falloff shape.
     bool table_stale(const obscura_ffao_settings& settings) const { return !table_valid_ || !(shape_ == ffao_falloff_shape(settings)); }
     static FfaoTableConstants table_constants(const obscura_ffao_settings& settings);
-    // `mipmap_levels`: the depth pyramid's levels for the mipmap method (1 otherwise).
-    FfaoConstants constants(const obscura_ffao_settings& settings, const FrameInput& input, int mipmap_levels = 1) const;
+    // `mipmap_levels`: the depth pyramid's levels for the mipmap method (1 otherwise); `frame_split`: the orientations
+    // spread over that many frames (obscura_ffao_added_settings), the pattern turned by input.frame_index.
+    FfaoConstants constants(const obscura_ffao_settings& settings, const FrameInput& input, int mipmap_levels = 1,
+                            int frame_split = 1) const;
     // The per-chunk constants of the scan, the prefix sums and the obscurance, pushed with the frame's other blocks
     // (a UniformWriter or a UniformArena) before them.
     template <class Writer>
