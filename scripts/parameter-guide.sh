@@ -14,6 +14,7 @@
 #   GUIDE_SIZE      image size (default 320x180)      GUIDE_RAYS   screen-space reference rays per pixel (default 64)
 #   GUIDE_TRUTH_RAYS  geometry truth rays per pixel (default 256)
 #   GUIDE_METHODS   space-separated subset of the methods, for a quick look (default: every available one)
+#   GUIDE_ONLY      one setting's name: only its section (and the method's defaults), to splice into the guide
 # Needs jq and awk. Without a GPU: EGL_PLATFORM=surfaceless LIBGL_ALWAYS_SOFTWARE=1 (Mesa llvmpipe), where
 # the whole guide takes 17-19 minutes on 2 cores (with other work beside it). The documents are replaced
 # only when every run succeeded.
@@ -80,6 +81,7 @@ declare -A text_only=(
 declare -A notes=(
   [ffao.falloff]="Not shown: 4 (table), the falloff \`falloff_table[i]\` = rho(i/(N-1) radius) given in \`obscura_settings.ffao.falloff_table\` (linear in between, 0 beyond the radius); a spec gives it as \`ffao:falloff=table:falloff_table=V0/V1/.../V15\` or \`falloff_table=@FILE\` (\`falloff=table\` without it is refused). It costs what the other falloffs cost."
   [reference.falloff]="Not shown: 4 (table), \`obscura_settings.reference.falloff_table\`, given as FFAO's is (see FFAO's \`falloff\`)."
+  [ffao.frame_split]="One frame each, without accumulation: the pictures show the 2x2 pattern of the orientations' shares. With \`temporal.enabled\` a still view converges to the image of every orientation (below the default's error after 16 frames at 4, for 0.33-0.36x of its cost at 1280x720: docs/quality.md, \"Temporal presets\")."
 )
 
 # ---- Metadata ---------------------------------------------------------------------------------------
@@ -225,6 +227,7 @@ for method in "${methods[@]}"; do
   } >>"$body"
 
   while IFS=$'\x1f' read -r name type default min max unit description; do
+    [[ -z "${GUIDE_ONLY:-}" || "$name" == "$GUIDE_ONLY" ]] || continue
     key="$method.$name"
     effective="$(jq -r --arg name "$name" '.methods[0].settings[$name] | if . == true then "on" elif . == false then "off" elif . == null then "" else tostring end' "$work/$method.defaults.json")"
     [[ -n "$effective" ]] || effective="$default"
