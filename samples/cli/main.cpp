@@ -114,12 +114,13 @@ tune searches SPEC's settings, starting from them, for the lowest mean_abs again
   (--list-settings) that is not derived, not scheduling or noise (frame_index, first_ray, rays_per_dispatch),
   not temporal accumulation (temporal.*, FFAO's frame_split: tune weighs one frame) and does not define the
   falloff (radius, falloff_c, falloff, GTAO's falloff_range: they move the target); --keys names the settings to
-  search instead (derived and falloff ones too; it refuses the scheduling, noise and temporal.* ones). Ranges are the
-  metadata's, on a log scale where they span more than 2 decades. The search (seeded, deterministic): compass
-  steps with halving, pattern moves, random directions and restarts, --evaluations renders in all. Cost: the
-  SDK's total summed over the scenes, median of warm frames, timed in the same run; --budget 1.0x:hbao rejects
-  candidates costing more than 1.0 times the spec hbao on the same scenes, and the best is timed again against
-  it (alternately) before it is reported; settings of the best that leave its pictures unchanged are put back.
+  search instead (derived and falloff ones too; it refuses the scheduling, noise, temporal.* and frame_split ones).
+  Ranges are the metadata's, on a log scale where they span more than 2 decades. The search (seeded,
+  deterministic): compass steps with halving, pattern moves, random directions and restarts, --evaluations
+  renders in all. Cost: the SDK's total summed over the scenes, median of warm frames, timed in the same run;
+  --budget 1.0x:hbao rejects candidates costing more than 1.0 times the spec hbao on the same scenes, and the best
+  is timed again against it (alternately) before it is reported; settings of the best that leave its pictures
+  unchanged are put back.
   Progress on stderr; prints the start's and the best's error (per scene) and cost, the budget, and the best
   settings as a spec (for --method) and as C code; --json writes them with every evaluation. Exit 1 when no
   candidate is within the budget. On a studio's own captures instead of scenes: --captures names depth files

@@ -172,6 +172,24 @@ bool is_derived(const obscura_setting_info& info) { return (info.flags & OBSCURA
 
 bool is_array(const obscura_setting_info& info) { return info.type == OBSCURA_SETTING_FLOAT_ARRAY; }
 
+std::string c_field_path(obscura_method method, const obscura_setting_info& info) {
+    if (std::strchr(info.name, '.') != nullptr) return info.name;  // a shared row names its block
+    // The blocks of fields added to a released method after its own block's layout (obscura.h).
+    struct AddedBlock {
+        size_t offset, size;
+        const char* member;
+    };
+    constexpr AddedBlock kAddedBlocks[] = {
+        {offsetof(obscura_settings, ffao_added), sizeof(obscura_ffao_added_settings), "ffao_added"},
+    };
+    for (const AddedBlock& block : kAddedBlocks) {
+        if (info.offset >= block.offset && info.offset < block.offset + block.size) {
+            return std::string(block.member) + "." + info.name;
+        }
+    }
+    return std::string(obscura_method_name(method)) + "." + info.name;
+}
+
 std::string value_name(const obscura_setting_info& info, double value) {
     if ((info.type != OBSCURA_SETTING_ENUM && info.type != OBSCURA_SETTING_TOGGLE) || !info.value_names) return "";
     const double index = value - info.min_value;

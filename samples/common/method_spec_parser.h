@@ -60,6 +60,9 @@ const obscura_setting_info* find_setting(const std::vector<obscura_setting_info>
 // ---- Rows --------------------------------------------------------------------------------------------
 bool is_derived(const obscura_setting_info& info);  // OBSCURA_SETTING_FLAG_DERIVED
 bool is_array(const obscura_setting_info& info);    // OBSCURA_SETTING_FLOAT_ARRAY
+// The row's field as C names it inside obscura_settings: "<method>.<key>" ("ffao.sectors"), a shared row's key
+// ("temporal.enabled"), or for a field added to a released method later its own block's ("ffao_added.frame_split").
+std::string c_field_path(obscura_method method, const obscura_setting_info& info);
 // The name of `value` of an ENUM or TOGGLE row ("exponential", "on"); "" when the value has none.
 std::string value_name(const obscura_setting_info& info, double value);
 // Every value name of the row, ", "-separated ("rho0, inverse_quadratic, exponential, table"); "" for none.

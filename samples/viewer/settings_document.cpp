@@ -380,13 +380,12 @@ std::string settings_to_c(const obscura_settings& settings) {
     }
 
     std::string code = "obscura_settings settings;\nobscura_default_settings(" + constant + ", &settings);\n";
-    // Every metadata key is the name of its C field (sdk/src/settings.cpp declares each entry with the field
-    // its offset is taken from, under the same name; settings_document_test checks all of them against
-    // offsetof), so the assignment is settings.<method>.<key>; a shared row's key names its own block
-    // ("temporal.enabled"): settings.<key>.
+    // Every metadata key is the name of its C field (each method's file declares each entry with the field its
+    // offset is taken from, under the same name; settings_document_test checks all of them against offsetof), so
+    // the assignment is settings.<method>.<key>, settings.<key> for a shared row ("temporal.enabled"), or the added
+    // block's for a field added later (samples::c_field_path).
     for (const obscura_setting_info& info : setting_table(method)) {
-        const bool shared = std::strchr(info.name, '.') != nullptr;
-        const std::string field = shared ? "settings." + std::string(info.name) : "settings." + name + "." + info.name;
+        const std::string field = "settings." + samples::c_field_path(method, info);
         if (samples::is_array(info)) {
             // Every element, where any differs: the table reads as one.
             const float* values = samples::array_values(settings, info);

@@ -202,7 +202,7 @@ obscura_cli_command_test(help 0 "--help" EXPECT_STDOUT "obscura compare[^\n]*--m
 obscura_cli_command_test(help_compare_frames 0 "--help"
   EXPECT_STDOUT "by the frames since[.] --motion-vectors and\n  --converged need --frames; [^\n]*\n  --strip writes ")
 obscura_cli_command_test(help_tune_never_searched 0 "--help"
-  EXPECT_STDOUT "not temporal accumulation [(]temporal[.][*], FFAO's frame_split: tune weighs one frame[)].*--keys [^.]*it refuses the scheduling, noise and temporal[.][*] ones[)]")
+  EXPECT_STDOUT "not temporal accumulation [(]temporal[.][*], FFAO's frame_split: tune weighs one frame[)].*--keys [^.]*it refuses the scheduling, noise, temporal[.][*] and frame_split ones[)]")
 
 # ---- Bad arguments: exit 2 and one line on stderr, before any GL -----------------------------------------
 obscura_cli_command_test(unknown_option 2 "render|--out|ao.png|--no-such-option")

@@ -204,8 +204,8 @@ TEST(MethodSpecParser, SettingsThatDoNotGoTogetherNameTheKey) {
     expect_spec_error("ffao:sectors=9", {"'ffao:sectors=9'", "refused", "ffao.sectors = 9", "even"});
     expect_spec_error("lsao:directions=12", {"'lsao:directions=12'", "lsao.directions = 12", "K = 8n", "free"});
     expect_spec_error("ffao:saao=on:sectors=8", {"ffao.sectors = 8 with saao", "multiple of 18"});
-    expect_spec_error("ffao:saao=on:frame_split=2", {"ffao.frame_split = 2 with saao", "one or the other"});
-    expect_spec_error("ffao:sectors=4:frame_split=4", {"ffao.frame_split = 4 with K = 4", "at most K/2 = 2"});
+    expect_spec_error("ffao:saao=on:frame_split=2", {"ffao_added.frame_split = 2 with saao", "one or the other"});
+    expect_spec_error("ffao:sectors=4:frame_split=4", {"ffao_added.frame_split = 4 with K = 4", "at most K/2 = 2"});
     EXPECT_EQ(get(parse_method_spec("ffao:sectors=8:frame_split=4"), "frame_split"), 4.0);
     EXPECT_EQ(get(parse_method_spec("ffao"), "frame_split"), 1.0);
     // With the free pattern K = 12 is fine.

@@ -465,6 +465,16 @@ TEST(SettingsDocument, CListsExactlyTheChangedSettings) {
               "settings.lsao.tangent = -1.0f;\n"
               "settings.lsao.segment_steps = -1;\n"
               "settings.lsao.normal_test = OBSCURA_TOGGLE_ON;\n");
+
+    // A field added to FFAO after its block's release lives in its own block (obscura_ffao_added_settings).
+    obscura_settings ffao = defaults_of(OBSCURA_METHOD_FFAO);
+    ASSERT_EQ(obscura_set_setting(&ffao, "frame_split", 4), OBSCURA_OK);
+    ASSERT_EQ(obscura_set_setting(&ffao, "segments", 1), OBSCURA_OK);
+    EXPECT_EQ(settings_to_c(ffao),
+              "obscura_settings settings;\n"
+              "obscura_default_settings(OBSCURA_METHOD_FFAO, &settings);\n"
+              "settings.ffao.segments = 1;\n"
+              "settings.ffao_added.frame_split = 4;\n");
 }
 
 // Reads the C back as a compiler would (literal by literal; enums' comments and arrays' elements too) and
@@ -493,16 +503,20 @@ TEST(SettingsDocument, CRebuildsTheSettingsOfEveryMethod) {
                 ASSERT_EQ(line.compare(line.size() - 3, 3, " */"), 0) << line;
                 line.erase(comment);
             }
-            // A shared row (temporal accumulation, resolution) is settings.<block>.<field>, its key "<block>.<field>".
+            // A shared row (temporal accumulation, resolution) is settings.<block>.<field>, its key "<block>.<field>";
+            // a field added to a released method later is settings.<method>_added.<key> (obscura_ffao_added_settings).
             const bool shared = line.compare(0, 18, "settings.temporal.") == 0 ||
                                 line.compare(0, 20, "settings.resolution.") == 0;
-            if (!shared) {
+            const std::string added_prefix = std::string("settings.") + obscura_method_name(method) + "_added.";
+            const bool added = line.compare(0, added_prefix.size(), added_prefix) == 0;
+            if (!shared && !added) {
                 ASSERT_EQ(line.compare(0, prefix.size(), prefix), 0) << line;
             }
             const size_t equals = line.find(" = ");
             ASSERT_NE(equals, std::string::npos) << line;
             ASSERT_EQ(line.back(), ';') << line;
-            const size_t key_start = shared ? std::string("settings.").size() : prefix.size();
+            const size_t key_start =
+                shared ? std::string("settings.").size() : added ? added_prefix.size() : prefix.size();
             const std::string key = line.substr(key_start, equals - key_start);
             EXPECT_EQ(key, expected_keys[i - 2]);
             const std::string literal = line.substr(equals + 3, line.size() - equals - 4);
@@ -572,8 +586,9 @@ TEST(SettingsDocument, MetadataKeysAreTheCFieldNames) {
         const char* method;
         const char* name;
         size_t offset;
+        const char* c_path;  // as the generated C writes it (samples::c_field_path)
     };
-#define OBSCURA_TEST_FIELD(method, field) {#method, #field, offsetof(obscura_settings, method.field)}
+#define OBSCURA_TEST_FIELD(method, field) {#method, #field, offsetof(obscura_settings, method.field), #method "." #field}
     const Field fields[] = {
         OBSCURA_TEST_FIELD(hbao, radius), OBSCURA_TEST_FIELD(hbao, falloff_c), OBSCURA_TEST_FIELD(hbao, decay_rate),
         OBSCURA_TEST_FIELD(hbao, directions), OBSCURA_TEST_FIELD(hbao, steps), OBSCURA_TEST_FIELD(hbao, estimator),
@@ -608,8 +623,8 @@ TEST(SettingsDocument, MetadataKeysAreTheCFieldNames) {
         OBSCURA_TEST_FIELD(ffao, thickness), OBSCURA_TEST_FIELD(ffao, jitter), OBSCURA_TEST_FIELD(ffao, saao),
         OBSCURA_TEST_FIELD(ffao, saao_blur), OBSCURA_TEST_FIELD(ffao, intensity), OBSCURA_TEST_FIELD(ffao, power),
         OBSCURA_TEST_FIELD(ffao, falloff_table),
-        // FFAO's 0.5 fields, in their own block after the 0.4 layout.
-        {"ffao", "frame_split", offsetof(obscura_settings, ffao_added.frame_split)},
+        // FFAO's 0.5 fields, in their own block after the 0.4 layout (the C path below checks the block's name).
+        {"ffao", "frame_split", offsetof(obscura_settings, ffao_added.frame_split), "ffao_added.frame_split"},
         OBSCURA_TEST_FIELD(gtao, radius), OBSCURA_TEST_FIELD(gtao, preset), OBSCURA_TEST_FIELD(gtao, slices),
         OBSCURA_TEST_FIELD(gtao, steps), OBSCURA_TEST_FIELD(gtao, thickness_mode),
         OBSCURA_TEST_FIELD(gtao, thickness), OBSCURA_TEST_FIELD(gtao, thickness_blend),
@@ -652,6 +667,7 @@ TEST(SettingsDocument, MetadataKeysAreTheCFieldNames) {
             ASSERT_NE(match, nullptr) << obscura_method_name(method) << "." << info.name
                                       << ": not a field of this table; check its C name and add it";
             EXPECT_EQ(info.offset, match->offset) << obscura_method_name(method) << "." << info.name;
+            EXPECT_EQ(obscura::samples::c_field_path(method, info), match->c_path);
         }
     }
 }

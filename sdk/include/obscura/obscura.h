@@ -446,13 +446,16 @@ typedef struct obscura_ffao_settings {
    obscura_settings.ffao keeps the layout that hosts built against 0.3 and 0.4 hold; their metadata rows are FFAO's
    like the others ("frame_split"). Every field: 0 selects the default given after it. */
 typedef struct obscura_ffao_added_settings {
-    int32_t frame_split;  /* N: spread the K/2 orientations over N frames for temporal accumulation. In each 2x2 pixel
-                             block the pixels evaluate different Nths of them (every Nth orientation, all segments,
-                             near and far field), a pattern that obscura_input.frame_index turns, and weigh their
-                             sum N times: a frame costs about 1/N of the obscurance pass, and a still view
-                             accumulated over a multiple of N frames (temporal.enabled) converges to the estimate
-                             of all K sectors. Without accumulation the image shows the 2x2 pattern. [1, 4], at
-                             most K/2; not with saao. Default 1 */
+    int32_t frame_split;  /* N: spread the K/2 orientations over N frames for temporal accumulation. A pixel evaluates
+                             every Nth orientation (all segments, near and far field) from its share, (its place in
+                             a 2x2 pattern + frame_index) mod N, and weighs their sum N times; the layout phase
+                             moves once per N frames. A frame costs about 1/N of the obscurance pass, and the mean
+                             of N consecutive frames (from a multiple of N) is the image of every orientation, with
+                             power 1 (power applies per frame) and where no share's N-fold sum reaches full
+                             obscurance. The host must advance obscura_input.frame_index each frame and accumulate
+                             (temporal.enabled): a still view's running mean then converges to it; past
+                             temporal.max_frames the exponential blend keeps a small ripple of the N shares. A
+                             single frame shows the 2x2 pattern. [1, 4], at most K/2; not with saao. Default 1 */
 } obscura_ffao_added_settings;
 
 /* GTAO: Jimenez, Wu, Pesce, Jarabo, "Practical Realtime Strategies for Accurate Indirect Occlusion" (2016).
@@ -662,8 +665,9 @@ typedef struct obscura_setting_info {
 } obscura_setting_info;
 
 /* Sets *out_infos to the method's static table of settings and *out_count to its length. `info_size` is the
-   caller's sizeof(obscura_setting_info) (the macro below passes the header's): the table has that layout and the
-   rows that header's obscura_settings has fields for (0.4's size: no `added_in` and no row added in 0.5). A
+   caller's sizeof(obscura_setting_info) (the macro below passes the header's): the table has that layout, less the
+   rows added to the method after that header (0.4's size: no `added_in`, and no FFAO frame_split, whose field lies
+   beyond a 0.4 obscura_settings; a method newer than the header, which its caller cannot name, keeps its rows). A
    binary built against 0.3 calls the plain symbol, which returns the 0.3 layout (ENUM rows as INT, no array
    rows). Returns OK, NULL_ARGUMENT, INVALID_STRUCT_SIZE, INVALID_ENUM. */
 OBSCURA_API obscura_status obscura_get_setting_infos_sized(obscura_method method,

@@ -2,6 +2,7 @@
 // technique (the estimator table when the falloff's shape changed, the scan and prefix sums or the mipmap
 // baseline's z pyramid, the obscurance, and with SAAO the box average, the gather and the blur) and its
 // registry row.
+#include <algorithm>
 #include <cstring>
 
 #include "falloff.h"
@@ -89,13 +90,13 @@ Error derive_ffao(const obscura_settings&, obscura_settings* resolved) {
     const int32_t split = resolved->ffao_added.frame_split;
     if (split > 1 && ffao->saao == OBSCURA_TOGGLE_ON) {
         return Error::make(OBSCURA_STATUS_INVALID_SETTING,
-                           "ffao.frame_split = %d with saao: SAAO already spreads the far field over 3x3 pixels; use "
+                           "ffao_added.frame_split = %d with saao: SAAO already spreads the far field over 3x3 pixels; use "
                            "one or the other",
                            int(split));
     }
     if (split > ffao->sectors / 2) {
         return Error::make(OBSCURA_STATUS_INVALID_SETTING,
-                           "ffao.frame_split = %d with K = %d sectors: a frame would have no orientation to evaluate "
+                           "ffao_added.frame_split = %d with K = %d sectors: a frame would have no orientation to evaluate "
                            "(at most K/2 = %d)",
                            int(split), int(ffao->sectors), int(ffao->sectors / 2));
     }
@@ -137,9 +138,13 @@ public:
             error = pyramid_pass_.prepare(env, ffao_mipmap_filter(settings.ffao));
         }
         // The obscurance covers the AO region (SAAO's a pixel more, but its running sums are its whole-size terms).
+        // With the orientations split over N frames the layout phase moves every N frames: the N shares of a window
+        // see the same lines, so the window's mean is the image of every orientation at that phase (a phase moving
+        // every frame would pair each share with the same two of the eight phases, pixel by pixel).
         if (!error) {
-            error = ffao_.ensure_layout(env, settings.ffao, resources.width, resources.height, request.frame_index,
-                                        request.ao_region);
+            const uint32_t split = uint32_t(std::max(settings.ffao_added.frame_split, 1));
+            error = ffao_.ensure_layout(env, settings.ffao, resources.width, resources.height,
+                                        request.frame_index / split, request.ao_region);
         }
         return error;
     }

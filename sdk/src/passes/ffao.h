@@ -29,7 +29,8 @@ class FfaoPass {
 public:
     // Builds the programs these settings run and the table's texture and sampler on first use.
     Error prepare(const PassEnv& env, const obscura_ffao_settings& settings);
-    // Selects the layout of the frame's phase (layout_phase(frame_index)): drops every phase's layout and buffers
+    // Selects the layout of the frame's phase (layout_phase(frame_index); with a frame split the technique passes
+    // frame_index / N, so the phase moves once per N frames): drops every phase's layout and buffers
     // when the size, K or B0 changed, and builds the phase's on its first use (the mipmap method keeps only the
     // orientations: it allocates no scan buffers). Chunked without SAAO, it sizes the running total to
     // `obscurance`, the region run_obscurance will cover (a frame's AO region, inside the guard band); an empty
