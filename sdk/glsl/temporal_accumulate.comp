@@ -14,6 +14,9 @@
 // the depth's 6 lowest mantissa bits: one gather reads age and depth for the 2x2 block, and 32-bit floats need no
 // conversion on CPU rasterisers. With bent normals (OBSCURA_TEMPORAL_BENT_NORMALS) a second history (rgba16f) holds
 // visibility and the bent normal, rotated from the previous view into this one.
+// With OBSCURA_TEMPORAL_TARGET (full resolution, no debug view) the pass also writes the visibility into the host's
+// target (OUTPUT_FORMAT, OUTPUT_MULTIPLY: composite.comp's write) at image unit OUT2, in the composite's place: the
+// composite would only copy the history's visibility there.
 #define OBSCURA_TEMPORAL_PASS 1
 #include "common/shader_interface.h"
 #include "common/depth.glsl"
@@ -27,6 +30,10 @@ layout(binding = OBSCURA_UNIT_SOURCE) uniform sampler2D u_source;
 layout(binding = OBSCURA_UNIT_HISTORY) uniform sampler2D u_history;
 layout(binding = OBSCURA_UNIT_MOTION) uniform sampler2D u_motion;
 layout(binding = OBSCURA_IMAGE_OUT0, rg32f) writeonly uniform image2D u_next;
+#if OBSCURA_TEMPORAL_TARGET
+#define OBSCURA_OUTPUT_IMAGE OBSCURA_IMAGE_OUT2
+#include "common/output_target.glsl"
+#endif
 #if OBSCURA_TEMPORAL_BENT_NORMALS
 layout(binding = OBSCURA_UNIT_BENT_SOURCE) uniform sampler2D u_bent_source;
 layout(binding = OBSCURA_UNIT_BENT_HISTORY) uniform sampler2D u_bent_history;
@@ -34,6 +41,13 @@ layout(binding = OBSCURA_IMAGE_OUT1, rgba16f) writeonly uniform image2D u_bent_n
 #endif
 
 mat4 columns(vec4 c[4]) { return mat4(c[0], c[1], c[2], c[3]); }
+
+// The frame's visibility, as the composite would write it from the history into the host's target.
+void write_target(ivec2 p, float visibility) {
+#if OBSCURA_TEMPORAL_TARGET
+    obscura_write_output(target_params.xy + (p - output_rect.xy), vec4(visibility, visibility, visibility, 1.0));
+#endif
+}
 
 // The history's second channel: the linear depth with its 6 lowest mantissa bits replaced by age - 1 (ages 1 to 64
 // frames; the depth keeps a relative precision of 8e-6). Sky keeps its depth as it is (and no age: it is sky).
@@ -86,6 +100,7 @@ void main() {
 #if !OBSCURA_CPU_RASTERISER
     if (sky) {
         imageStore(u_next, p, vec4(current, depth, 0.0, 0.0));
+        write_target(p, current);
 #if OBSCURA_TEMPORAL_BENT_NORMALS
         imageStore(u_bent_next, p, vec4(current, current_bent));
 #endif
@@ -270,6 +285,7 @@ void main() {
 #endif
     }
     imageStore(u_next, p, sky ? vec4(current, depth, 0.0, 0.0) : vec4(result, pack_depth_age(depth, new_age), 0.0, 0.0));
+    write_target(p, sky ? current : result);
 #if OBSCURA_TEMPORAL_BENT_NORMALS
     imageStore(u_bent_next, p, sky ? vec4(current, current_bent) : vec4(result, result_bent));
 #endif

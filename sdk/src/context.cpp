@@ -430,12 +430,13 @@ Error Context::record_frame(const FrameInput& host_input, const obscura_settings
     // At reduced resolution the upsample writes the target itself (the composite would only copy its result there),
     // unless a debug view needs the composite's other sources.
     const bool upsample_writes_target = shift > 0 && target.debug_view == OBSCURA_DEBUG_NONE;
-    UpsampleDestination upsample_destination;
-    if (upsample_writes_target) {
-        upsample_destination.format = OutputWriter::image_format(target);
-        upsample_destination.multiply = target.blend == OBSCURA_BLEND_MULTIPLY;
+    // So does the temporal pass at full resolution (`temporal` excludes debug views): it is the frame's last pass.
+    const bool temporal_writes_target = temporal && shift == 0;
+    const TargetWrite upsample_destination = upsample_writes_target ? target_write(target) : TargetWrite();
+    const TargetWrite temporal_destination = temporal_writes_target ? target_write(target) : TargetWrite();
+    if (!error) {
+        error = output_.prepare(pass_env, target, host.output_rect, !upsample_writes_target && !temporal_writes_target);
     }
-    if (!error) error = output_.prepare(pass_env, target, host.output_rect, !upsample_writes_target);
     if (!error && shift > 0) error = upsample_.prepare(pass_env, host, request.bent_normals, upsample_destination);
     if (error) return error;
     if (shift == 0) upsample_.release();  // the context holds what its latest configuration needs
@@ -447,7 +448,10 @@ Error Context::record_frame(const FrameInput& host_input, const obscura_settings
         error = view->history.prepare(pass_env, input, request.bent_normals,
                                       history_signature(settings, request.bent_normals), reproject,
                                       &history_continues);
-        if (!error) error = temporal_.prepare(pass_env, request.bent_normals, TemporalPass::reprojection(input));
+        if (!error) {
+            error = temporal_.prepare(pass_env, request.bent_normals, TemporalPass::reprojection(input),
+                                      temporal_destination);
+        }
         if (error) return error;
     } else if (!debug_view) {
         view->history.release();  // the context holds what its latest configuration needs
@@ -481,10 +485,18 @@ Error Context::record_frame(const FrameInput& host_input, const obscura_settings
     error = recorder.end(PassId::DepthPrepare);
     TechniqueOutput result;
     if (!error) error = technique->record(frame, recorder, &result);
+    // The temporal pass's write of the target (full resolution), which the output writer runs in the composite's
+    // place; otherwise it runs here, before the upsample.
+    const gl::Texture2D* method_result = result.result;
+    const gl::Texture2D* method_bent = result.bent;
+    const TemporalImageWrite temporal_write(temporal_, uniforms.output, temporal_pass, regions.output, input,
+                                            resources_, method_result, method_bent, view->history);
     if (!error && temporal) {
-        temporal_.run(pass_env, uniforms.output, temporal_pass, regions.output, input, resources_, *result.result,
-                      result.bent, view->history);
-        error = recorder.end(PassId::Temporal);
+        if (!temporal_writes_target) {
+            temporal_.run(pass_env, uniforms.output, temporal_pass, regions.output, input, resources_, *method_result,
+                          method_bent, view->history);
+            error = recorder.end(PassId::Temporal);
+        }
         result.result = &view->history.next();
         if (result.bent) result.bent = &view->history.next_bent();
     }
@@ -501,9 +513,14 @@ Error Context::record_frame(const FrameInput& host_input, const obscura_settings
         result.bent = upsample_.bent();
     }
     if (!error) {
+        const OutputImageWrite* image_write = upsample_writes_target   ? static_cast<const OutputImageWrite*>(&upsample_write)
+                                              : temporal_writes_target ? &temporal_write
+                                                                       : nullptr;
         output_.write(pass_env, host_output, host, raw_view ? *result.raw : *result.result, resources_, target,
-                      result.bent, bent_pass, upsample_writes_target ? &upsample_write : nullptr);
-        error = recorder.end(upsample_writes_target ? PassId::Upsample : PassId::Composite);
+                      result.bent, bent_pass, image_write);
+        error = recorder.end(upsample_writes_target   ? PassId::Upsample
+                             : temporal_writes_target ? PassId::Temporal
+                                                      : PassId::Composite);
     }
     // The frame's blend is the view's history from now on (a failed frame leaves it for the next to start anew).
     if (temporal) {

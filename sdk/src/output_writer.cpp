@@ -310,6 +310,13 @@ GLenum OutputWriter::image_format(const OutputTarget& target) {
     return target.kind == TargetKind::Image ? target.format : staging_format(target);
 }
 
+TargetWrite target_write(const OutputTarget& target) {
+    TargetWrite write;
+    write.format = OutputWriter::image_format(target);
+    write.multiply = target.blend == OBSCURA_BLEND_MULTIPLY;
+    return write;
+}
+
 BentNormalWriteConstants OutputWriter::bent_constants(const OutputTarget& target) {
     return BentNormalWritePass::constants(target.x, target.y);
 }

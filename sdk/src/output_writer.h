@@ -55,8 +55,18 @@ Error check_bent_normal_target(const gl::Table& gl, const obscura_output& output
 // GLSL image format qualifier for a texture internal format the composite pass can write, or nullptr.
 const char* image_format_qualifier(GLenum internal_format, int* channels);
 
+// How a pass that can write the host's target image in the composite's place is built: the image's format (one of
+// image_format_qualifier's) and the blend; format 0: it writes its own result, and the composite the target.
+struct TargetWrite {
+    GLenum format = 0;
+    bool multiply = false;
+};
+// The write for `target` (its image's format and blend).
+TargetWrite target_write(const OutputTarget& target);
+
 // A pass that writes the output rectangle into the image the composite would write (the host's texture, or a blit's
-// staging texture), in the composite's place: the upsample at reduced resolution.
+// staging texture), in the composite's place: the upsample at reduced resolution, the temporal pass at full
+// resolution.
 class OutputImageWrite {
 public:
     // Writes the image `texture` of `format` (OutputWriter::image_format's), the frame's target_params placing the

@@ -585,24 +585,12 @@ TEST_F(OutputTargets, MultisampleRenderbufferLeavesNoError) {
 
 // ---- Reduced resolution: the upsample writes the target ---------------------------------------------------
 
-// At reduced resolution the upsample writes the target's image in the composite's place (no debug view): every
-// format, the multiply blend, a blit target and a placement inside a larger texture must receive what an R32F
-// overwrite of the same frame holds (to the format's precision), as the composite's targets do at full
-// resolution; a debug view, which needs the composite, and the plain output alternate in one context.
-TEST_F(OutputTargets, ReducedResolutionUpsampleWritesEveryTarget) {
-    Frame frame = corner_frame();
-    // An output rectangle inside the depth texture (a guard band): the upsample's destination is the target's
-    // position plus the pixel's place in the rectangle, not the pixel itself.
-    frame.input.output_rect = obscura_rect{7, 5, kWidth - 14, kHeight - 10};
-    const int width = kWidth - 14, height = kHeight - 10;
-    obscura_settings settings = make_settings(1.0f);
-    settings.resolution.scale = OBSCURA_RESOLUTION_HALF;
-    std::vector<float> expected = render_to_new_texture(ctx(), frame.input, settings, GL_R32F, 1);
-    ASSERT_EQ(expected.size(), size_t(width) * height);
-    auto [lo, hi] = std::minmax_element(expected.begin(), expected.end());
-    EXPECT_LT(*lo, 0.8f) << "the corner darkens: the comparisons below are not vacuous";
-    EXPECT_LE(*hi, 1.0f) << "the upsample holds the visibility to [0, 1]";
-
+// What a pass that writes the target's image in the composite's place (no debug view) must give: every format, the
+// multiply blend, a blit target and a placement inside a larger texture receive what an R32F overwrite of the same
+// frame holds (`expected`, width x height, to the format's precision), as the composite's targets do; a debug view,
+// which needs the composite, and the plain output alternate in one context. Each render must give the same frame.
+void expect_every_target_receives(obscura_context* context, Frame& frame, const obscura_settings& settings,
+                                  const std::vector<float>& expected, int width, int height) {
     struct Format {
         GLenum format;
         // The red channel's storage precision near [0.5, 1]. Half floats: one ulp, since drivers may truncate
@@ -614,7 +602,7 @@ TEST_F(OutputTargets, ReducedResolutionUpsampleWritesEveryTarget) {
                               {GL_RGBA8, 0.5 / 255 + 1e-6},      {GL_RGBA16F, std::ldexp(1.0, -11)},
                               {GL_RGB10_A2, 0.5 / 1023 + 1e-6}, {GL_R11F_G11F_B10F, std::ldexp(1.0, -7)}};
     for (const Format& f : formats) {
-        std::vector<float> got = render_to_new_texture(ctx(), frame.input, settings, f.format, 4);
+        std::vector<float> got = render_to_new_texture(context, frame.input, settings, f.format, 4);
         ASSERT_EQ(got.size(), expected.size() * 4);
         double worst = 0.0;
         for (size_t i = 0; i < expected.size(); ++i) worst = std::max(worst, std::fabs(double(got[4 * i]) - expected[i]));
@@ -627,7 +615,7 @@ TEST_F(OutputTargets, ReducedResolutionUpsampleWritesEveryTarget) {
     fill_texture(multiplied.get(), width, height, fill[0], fill[1], fill[2], fill[3]);
     obscura_output output = make_output(multiplied.get());
     output.blend = OBSCURA_BLEND_MULTIPLY;
-    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    ASSERT_EQ(obscura_render(context, &frame.input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(context);
     std::vector<float> got = read_texture(multiplied.get(), width, height, 4);
     double worst = 0.0;
     int alpha_changed = 0;
@@ -644,7 +632,7 @@ TEST_F(OutputTargets, ReducedResolutionUpsampleWritesEveryTarget) {
     output = make_output(larger.get());
     output.x = 3;
     output.y = 2;
-    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    ASSERT_EQ(obscura_render(context, &frame.input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(context);
     got = read_texture(larger.get(), width + 5, height + 4, 1);
     int misplaced = 0;
     for (int y = 0; y < height + 4; ++y) {
@@ -659,16 +647,16 @@ TEST_F(OutputTargets, ReducedResolutionUpsampleWritesEveryTarget) {
     // A renderbuffer, reached through the blit's staging texture, overwriting and multiplying.
     HostTexture direct = make_texture(GL_RGBA8, width, height);
     obscura_output direct_output = make_output(direct.get());
-    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &direct_output), OBSCURA_OK);
+    ASSERT_EQ(obscura_render(context, &frame.input, &settings, &direct_output), OBSCURA_OK);
     const std::vector<uint8_t> direct_bytes = read_texture_rgba8(direct.get(), width, height);
     RenderbufferTarget target = make_renderbuffer_target(GL_RGBA8, width, height);
     output = make_output(0);
     output.framebuffer = target.framebuffer.get();
-    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    ASSERT_EQ(obscura_render(context, &frame.input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(context);
     EXPECT_EQ(read_framebuffer_rgba8(target.framebuffer.get(), width, height), direct_bytes);
     clear_framebuffer(target.framebuffer.get(), 1.0f, 1.0f, 1.0f, 0.6f);
     output.blend = OBSCURA_BLEND_MULTIPLY;
-    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    ASSERT_EQ(obscura_render(context, &frame.input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(context);
     const std::vector<uint8_t> blended = read_framebuffer_rgba8(target.framebuffer.get(), width, height);
     int bad = 0;
     for (size_t i = 0; i < expected.size(); ++i) {
@@ -676,15 +664,84 @@ TEST_F(OutputTargets, ReducedResolutionUpsampleWritesEveryTarget) {
     }
     EXPECT_EQ(bad, 0);
 
-    // A debug view (the composite, reading the reduced depth), then the AO again, bit for bit.
+    // A debug view (the composite, reading the depth), then the AO again, bit for bit.
     HostTexture depth_view = make_texture(GL_R32F, width, height);
     output = make_output(depth_view.get(), OBSCURA_DEBUG_LINEAR_DEPTH);
-    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    ASSERT_EQ(obscura_render(context, &frame.input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(context);
     got = read_texture(depth_view.get(), width, height, 1);
     EXPECT_NE(std::memcmp(got.data(), expected.data(), got.size() * sizeof(float)), 0) << "the view shows depth";
-    got = render_to_new_texture(ctx(), frame.input, settings, GL_R32F, 1);
+    got = render_to_new_texture(context, frame.input, settings, GL_R32F, 1);
     ASSERT_EQ(got.size(), expected.size());
     EXPECT_EQ(std::memcmp(got.data(), expected.data(), got.size() * sizeof(float)), 0);
+    EXPECT_EQ(take_gl_error(), GLenum(GL_NO_ERROR));
+}
+
+// At reduced resolution the upsample writes the target's image in the composite's place (no debug view).
+TEST_F(OutputTargets, ReducedResolutionUpsampleWritesEveryTarget) {
+    Frame frame = corner_frame();
+    // An output rectangle inside the depth texture (a guard band): the upsample's destination is the target's
+    // position plus the pixel's place in the rectangle, not the pixel itself.
+    frame.input.output_rect = obscura_rect{7, 5, kWidth - 14, kHeight - 10};
+    const int width = kWidth - 14, height = kHeight - 10;
+    obscura_settings settings = make_settings(1.0f);
+    settings.resolution.scale = OBSCURA_RESOLUTION_HALF;
+    std::vector<float> expected = render_to_new_texture(ctx(), frame.input, settings, GL_R32F, 1);
+    ASSERT_EQ(expected.size(), size_t(width) * height);
+    auto [lo, hi] = std::minmax_element(expected.begin(), expected.end());
+    EXPECT_LT(*lo, 0.8f) << "the corner darkens: the comparisons below are not vacuous";
+    EXPECT_LE(*hi, 1.0f) << "the upsample holds the visibility to [0, 1]";
+    expect_every_target_receives(ctx(), frame, settings, expected, width, height);
+}
+
+// At full resolution the temporal pass writes the target's image in the composite's place (no debug view). Without
+// the frame's matrices every frame starts a new history, whose value is the method's own: exactly what the composite
+// writes without accumulation. With a history, two views given the same frames write the same values into an R32F
+// and an RGBA32F target.
+TEST_F(OutputTargets, TemporalPassWritesEveryTarget) {
+    Frame frame = corner_frame();
+    frame.input.output_rect = obscura_rect{7, 5, kWidth - 14, kHeight - 10};
+    const int width = kWidth - 14, height = kHeight - 10;
+    obscura_settings settings = make_settings(1.0f);
+    const std::vector<float> expected = render_to_new_texture(ctx(), frame.input, settings, GL_R32F, 1);
+    ASSERT_EQ(expected.size(), size_t(width) * height);
+    EXPECT_LT(*std::min_element(expected.begin(), expected.end()), 0.8f) << "the corner darkens";
+    settings.temporal.enabled = OBSCURA_TOGGLE_ON;
+    const std::vector<float> fused = render_to_new_texture(ctx(), frame.input, settings, GL_R32F, 1);
+    ASSERT_EQ(fused.size(), expected.size());
+    EXPECT_EQ(std::memcmp(fused.data(), expected.data(), fused.size() * sizeof(float)), 0);
+    expect_every_target_receives(ctx(), frame, settings, expected, width, height);
+
+    // A history: the same still camera's matrices, the noise moving with the frame index (few directions, so frames
+    // differ), accumulated in two views.
+    settings.hbao.directions = 2;
+    const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    std::memcpy(frame.input.view_projection, identity, sizeof identity);
+    std::memcpy(frame.input.previous_view_projection, identity, sizeof identity);
+    obscura_view* views[2] = {};
+    ASSERT_EQ(obscura_create_view(ctx(), &views[0]), OBSCURA_OK);
+    ASSERT_EQ(obscura_create_view(ctx(), &views[1]), OBSCURA_OK);
+    HostTexture r32f = make_texture(GL_R32F, width, height), rgba32f = make_texture(GL_RGBA32F, width, height);
+    obscura_output outputs[2] = {make_output(r32f.get()), make_output(rgba32f.get())};
+    std::vector<float> first;
+    for (uint32_t f = 0; f < 3; ++f) {
+        frame.input.frame_index = f;
+        for (int v = 0; v < 2; ++v) {
+            frame.input.view = views[v];
+            ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &outputs[v]), OBSCURA_OK)
+                << obscura_get_last_error(ctx());
+        }
+        if (f == 0) first = read_texture(r32f.get(), width, height, 1);
+    }
+    const std::vector<float> one = read_texture(r32f.get(), width, height, 1);
+    const std::vector<float> four = read_texture(rgba32f.get(), width, height, 4);
+    int differ = 0, moved = 0;
+    for (size_t i = 0; i < one.size(); ++i) {
+        differ += one[i] != four[4 * i];
+        moved += std::fabs(one[i] - first[i]) > 1e-4f;
+    }
+    EXPECT_EQ(differ, 0);
+    EXPECT_GT(moved, 0) << "the frames differ: the two views are compared on more than one image";
+    for (obscura_view* view : views) EXPECT_EQ(obscura_destroy_view(ctx(), view), OBSCURA_OK);
     EXPECT_EQ(take_gl_error(), GLenum(GL_NO_ERROR));
 }
 

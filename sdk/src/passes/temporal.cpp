@@ -64,14 +64,23 @@ void TemporalHistory::release() {
     current_ = 0;
 }
 
-Error TemporalPass::prepare(const PassEnv& env, bool bent_normals, int reprojection) {
-    gl::Object& program = programs_[bent_normals ? 1 : 0][reprojection];
-    if (program) return Error();
-    char defines[128];
-    std::snprintf(defines, sizeof defines,
-                  "OBSCURA_TEMPORAL_BENT_NORMALS %d\nOBSCURA_TEMPORAL_REPROJECT %d\nOBSCURA_CPU_RASTERISER %d\n",
-                  bent_normals ? 1 : 0, reprojection, env.cpu_renderer ? 1 : 0);
-    return env.build("temporal_accumulate.comp", defines, &program);
+Error TemporalPass::prepare(const PassEnv& env, bool bent_normals, int reprojection, const TargetWrite& target) {
+    int channels = 0;
+    const char* qualifier = target.format != 0 ? image_format_qualifier(target.format, &channels) : "r8";
+    if (!qualifier) {
+        return Error::make(OBSCURA_STATUS_INTERNAL_ERROR, "no temporal variant for target format 0x%04X",
+                           unsigned(target.format));
+    }
+    gl::DefineLines defines;
+    std::snprintf(defines.text, sizeof defines.text,
+                  "OBSCURA_TEMPORAL_BENT_NORMALS %d\nOBSCURA_TEMPORAL_REPROJECT %d\nOBSCURA_CPU_RASTERISER %d\n"
+                  "OBSCURA_TEMPORAL_TARGET %d\nOUTPUT_FORMAT %s\nOUTPUT_MULTIPLY %d\n",
+                  bent_normals ? 1 : 0, reprojection, env.cpu_renderer ? 1 : 0, target.format != 0 ? 1 : 0, qualifier,
+                  target.multiply ? 1 : 0);
+    Error error = programs_.get(
+        defines, [&](gl::Object* built) { return env.build("temporal_accumulate.comp", defines.text, built); }, &program_);
+    if (!error) target_ = target;
+    return error;
 }
 
 TemporalConstants TemporalPass::constants(const obscura_temporal_settings& settings, const FrameInput& input,
@@ -99,10 +108,10 @@ TemporalConstants TemporalPass::constants(const obscura_temporal_settings& setti
 
 void TemporalPass::run(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
                        const FrameInput& input, const FrameResources& resources, const gl::Texture2D& source,
-                       const gl::Texture2D* bent_source, const TemporalHistory& history) {
+                       const gl::Texture2D* bent_source, const TemporalHistory& history, GLuint target_texture) {
     const gl::Table& gl = env.gl;
     const bool bent = bent_source != nullptr;
-    gl.UseProgram(programs_[bent ? 1 : 0][reprojection(input)].name());
+    gl.UseProgram(program_);
     env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
     env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
     env.bind_texture(OBSCURA_UNIT_SOURCE, GL_TEXTURE_2D, source.name());
@@ -111,6 +120,10 @@ void TemporalPass::run(const PassEnv& env, const UniformRange& frame, const Unif
     env.bind_texture(OBSCURA_UNIT_MOTION, GL_TEXTURE_2D,
                      input.motion_vector_texture ? input.motion_vector_texture : history.previous().name());
     gl.BindImageTexture(OBSCURA_IMAGE_OUT0, history.next().name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+    if (target_.format != 0) {
+        gl.BindImageTexture(OBSCURA_IMAGE_OUT2, target_texture, 0, GL_FALSE, 0,
+                            target_.multiply ? GL_READ_WRITE : GL_WRITE_ONLY, target_.format);
+    }
     if (bent) {
         env.bind_texture(OBSCURA_UNIT_BENT_SOURCE, GL_TEXTURE_2D, bent_source->name());
         env.bind_texture(OBSCURA_UNIT_BENT_HISTORY, GL_TEXTURE_2D, history.previous_bent().name());

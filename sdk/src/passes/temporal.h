@@ -5,6 +5,8 @@
 #define OBSCURA_TEMPORAL_H
 
 #include "frame_input.h"
+#include "gl/program_cache.h"
+#include "output_writer.h"
 #include "passes/pass_common.h"
 
 namespace obscura {
@@ -54,18 +56,49 @@ public:
         if (input.motion_vector_texture != 0) return OBSCURA_TEMPORAL_REPROJECT_MOTION;
         return input.identity_reprojection ? OBSCURA_TEMPORAL_REPROJECT_IDENTITY : OBSCURA_TEMPORAL_REPROJECT_MATRICES;
     }
-    Error prepare(const PassEnv& env, bool bent_normals, int reprojection);
+    // Builds the frame's variant: bent normals, the reprojection and whether it also writes the host's target image
+    // (`target`, at full resolution without a debug view: the composite would only copy the history's visibility
+    // there; format 0: it does not).
+    Error prepare(const PassEnv& env, bool bent_normals, int reprojection, const TargetWrite& target = TargetWrite());
     static TemporalConstants constants(const obscura_temporal_settings& settings, const FrameInput& input,
                                        bool continues);
     // Blends `source` (R16F visibility; `bent_source`, RGBA16F, with bent normals) over `region` into the history's
-    // next textures; the caller swaps the history after the frame.
+    // next textures, and with a target write the visibility into `target_texture` too; the caller swaps the history
+    // after the frame.
     void run(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
              const FrameInput& input, const FrameResources& resources, const gl::Texture2D& source,
-             const gl::Texture2D* bent_source, const TemporalHistory& history);
+             const gl::Texture2D* bent_source, const TemporalHistory& history, GLuint target_texture = 0);
 
 private:
-    // [bent normals][reprojection]: a static camera's variant reads one history texel and does no matrix work.
-    gl::Object programs_[2][3];
+    // The variants by their defines (a static camera's reads one history texel and does no matrix work).
+    gl::ProgramCache<gl::DefineLines> programs_;
+    GLuint program_ = 0;  // prepare's variant
+    TargetWrite target_;
+};
+
+// The temporal pass as the output writer's image write (full resolution, no debug view): the frame's run, into the
+// image the writer names. Holds references: it lives for the frame's output write.
+class TemporalImageWrite final : public OutputImageWrite {
+public:
+    TemporalImageWrite(TemporalPass& pass, const UniformRange& frame, const UniformRange& constants,
+                       const Region& region, const FrameInput& input, const FrameResources& resources,
+                       const gl::Texture2D* source, const gl::Texture2D* bent_source, const TemporalHistory& history)
+        : pass_(pass), frame_(frame), constants_(constants), region_(region), input_(input), resources_(resources),
+          source_(source), bent_source_(bent_source), history_(history) {}
+    void write_image(const PassEnv& env, GLuint texture, GLenum) const override {
+        pass_.run(env, frame_, constants_, region_, input_, resources_, *source_, bent_source_, history_, texture);
+    }
+
+private:
+    TemporalPass& pass_;
+    const UniformRange& frame_;
+    const UniformRange& constants_;
+    const Region& region_;
+    const FrameInput& input_;
+    const FrameResources& resources_;
+    const gl::Texture2D* source_;
+    const gl::Texture2D* bent_source_;
+    const TemporalHistory& history_;
 };
 
 }  // namespace obscura

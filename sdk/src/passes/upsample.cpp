@@ -8,7 +8,7 @@
 namespace obscura {
 
 Error UpsamplePass::prepare(const PassEnv& env, const FrameInput& host, bool bent_normals,
-                            const UpsampleDestination& destination) {
+                            const TargetWrite& destination) {
     gl::DefineLines defines;
     int channels = 0;
     const char* qualifier = destination.format != 0 ? image_format_qualifier(destination.format, &channels) : "r16f";

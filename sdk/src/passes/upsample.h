@@ -12,18 +12,12 @@
 
 namespace obscura {
 
-// Where the visibility goes: the host's target image (`format` one of image_format_qualifier's, `multiply` its
-// blend), or with format 0 the pass's own R16F result.
-struct UpsampleDestination {
-    GLenum format = 0;
-    bool multiply = false;
-};
-
 class UpsamplePass {
 public:
-    // Builds the variant for the host's depth kind, the outputs and the destination, and (re)creates the results
-    // for the host's size (the R16F result for destination format 0; once made, it is kept while the size stays).
-    Error prepare(const PassEnv& env, const FrameInput& host, bool bent_normals, const UpsampleDestination& destination);
+    // Builds the variant for the host's depth kind, the outputs and the destination (the host's target image, or with
+    // format 0 the pass's own R16F result), and (re)creates the results for the host's size (the R16F result for
+    // destination format 0; once made, it is kept while the size stays).
+    Error prepare(const PassEnv& env, const FrameInput& host, bool bent_normals, const TargetWrite& destination);
     // The results alone, for a host texture of width x height (obscura_prepare, which knows no depth kind and no
     // target): the R16F result if `own_result` (or if it exists already).
     Error allocate(const PassEnv& env, int width, int height, bool bent_normals, bool own_result);
@@ -44,7 +38,7 @@ public:
 private:
     gl::ProgramCache<gl::DefineLines> programs_;
     GLuint program_ = 0;  // prepare's variant
-    UpsampleDestination destination_;
+    TargetWrite destination_;
     gl::Texture2D ao_, bent_;
 };
 
