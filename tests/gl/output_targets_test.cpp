@@ -710,6 +710,7 @@ TEST_F(OutputTargets, TemporalPassWritesEveryTarget) {
     ASSERT_EQ(fused.size(), expected.size());
     EXPECT_EQ(std::memcmp(fused.data(), expected.data(), fused.size() * sizeof(float)), 0);
     expect_every_target_receives(ctx(), frame, settings, expected, width, height);
+    if (HasFatalFailure()) return;
 
     // A history: the same still camera's matrices, the noise moving with the frame index (few directions, so frames
     // differ), accumulated in two views.
@@ -742,6 +743,38 @@ TEST_F(OutputTargets, TemporalPassWritesEveryTarget) {
     EXPECT_EQ(differ, 0);
     EXPECT_GT(moved, 0) << "the frames differ: the two views are compared on more than one image";
     for (obscura_view* view : views) EXPECT_EQ(obscura_destroy_view(ctx(), view), OBSCURA_OK);
+
+    // The target holds the blend, the history's visibility: GTAO's bent-normal texture carries it in alpha (written
+    // from the bent history, RGBA16F), and it is not the frame's own value.
+    obscura_settings gtao;
+    obscura_default_settings(OBSCURA_METHOD_GTAO, &gtao);
+    gtao.temporal.enabled = OBSCURA_TOGGLE_ON;
+    obscura_view* view = nullptr;
+    ASSERT_EQ(obscura_create_view(ctx(), &view), OBSCURA_OK);
+    HostTexture bent = make_texture(GL_RGBA32F, width, height);
+    obscura_output with_bent = make_output(r32f.get());
+    with_bent.bent_normal_texture = bent.get();
+    frame.input.view = view;
+    for (uint32_t f = 0; f < 3; ++f) {
+        frame.input.frame_index = f;
+        ASSERT_EQ(obscura_render(ctx(), &frame.input, &gtao, &with_bent), OBSCURA_OK) << obscura_get_last_error(ctx());
+    }
+    const std::vector<float> blended = read_texture(r32f.get(), width, height, 1);
+    const std::vector<float> bent_values = read_texture(bent.get(), width, height, 4);
+    obscura_settings alone = gtao;
+    alone.temporal.enabled = OBSCURA_TOGGLE_OFF;
+    frame.input.view = nullptr;
+    const std::vector<float> last_alone = render_to_new_texture(ctx(), frame.input, alone, GL_R32F, 1);
+    ASSERT_EQ(last_alone.size(), blended.size());
+    double worst = 0.0;
+    int blend_differs = 0;
+    for (size_t i = 0; i < blended.size(); ++i) {
+        worst = std::max(worst, std::fabs(double(blended[i]) - bent_values[4 * i + 3]));
+        blend_differs += std::fabs(blended[i] - last_alone[i]) > 1e-3f;
+    }
+    EXPECT_LE(worst, std::ldexp(1.0, -11)) << "the target is the history's visibility (to the f16 history's rounding)";
+    EXPECT_GT(blend_differs, 0) << "the blend differs from the frame alone: the check above is not vacuous";
+    EXPECT_EQ(obscura_destroy_view(ctx(), view), OBSCURA_OK);
     EXPECT_EQ(take_gl_error(), GLenum(GL_NO_ERROR));
 }
 

@@ -519,7 +519,8 @@ typedef struct obscura_gtao_settings {
    continues only when frame_index is the history's + 1 (or equal, for a host that keeps it constant). A frame that
    fails while rendering (GL_ERROR, OUT_OF_MEMORY, SHADER_COMPILE_FAILED ...) leaves no history, the next starts
    anew; one refused before rendering (an invalid input or output) leaves the history as it was.
-   Timing label "temporal" (after the method's passes). Memory: 16 bytes per depth texel per view, 32 with bent
+   Timing label "temporal" (after the method's passes; at full resolution it also writes the output, the bent-normal
+   texture and a blit target's blit included, and the frame has no "composite"). Memory: 16 bytes per depth texel per view, 32 with bent
    normals (per texel of the reduced grid at half or quarter resolution), allocated by the first temporal render
    of the view (obscura_prepare does not know the views).
    Every field: 0 selects the default given after it. */
@@ -853,8 +854,9 @@ typedef struct obscura_timing {
                           instead, before ["ffao_box_average"]), "ffao_obscurance" ["ffao_gather" "blur"] (saao); at sizes whose scan runs in
                           chunks (4K) each of these three entries is the sum over the chunks;
                           GTAO ["z_pyramid"] "gtao" ["gtao_denoise"]; then ["temporal"] (settings.temporal on),
-                          ["upsample"] (settings.resolution below full), then "composite" (not at reduced
-                          resolution without a debug view: "upsample" writes the output there). Static strings */
+                          ["upsample"] (settings.resolution below full), then "composite", unless the last pass
+                          writes the output itself (no debug view): "upsample" at reduced resolution, else
+                          "temporal" with settings.temporal on. Static strings */
     double milliseconds;
 } obscura_timing;
 

@@ -70,7 +70,9 @@ public:
              const gl::Texture2D* bent_source, const TemporalHistory& history, GLuint target_texture = 0);
 
 private:
-    // The variants by their defines (a static camera's reads one history texel and does no matrix work).
+    // The variants by their defines (a static camera's reads one history texel and does no matrix work), the last
+    // gl::kProgramVariantsKept used: a host whose frames need more (views with their own target formats, blends,
+    // bent outputs and cameras) compiles one again each time it comes back.
     gl::ProgramCache<gl::DefineLines> programs_;
     GLuint program_ = 0;  // prepare's variant
     TargetWrite target_;
