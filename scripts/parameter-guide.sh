@@ -81,7 +81,7 @@ declare -A text_only=(
 declare -A notes=(
   [ffao.falloff]="Not shown: 4 (table), the falloff \`falloff_table[i]\` = rho(i/(N-1) radius) given in \`obscura_settings.ffao.falloff_table\` (linear in between, 0 beyond the radius); a spec gives it as \`ffao:falloff=table:falloff_table=V0/V1/.../V15\` or \`falloff_table=@FILE\` (\`falloff=table\` without it is refused). It costs what the other falloffs cost."
   [reference.falloff]="Not shown: 4 (table), \`obscura_settings.reference.falloff_table\`, given as FFAO's is (see FFAO's \`falloff\`)."
-  [ffao.frame_split]="One frame each, without accumulation: the pictures show the 2x2 pattern of the orientations' shares. With \`temporal.enabled\` a still view converges to the image of every orientation (below the default's error after 16 frames at 4, for 0.33-0.36x of its cost at 1280x720: docs/quality.md, \"Temporal presets\")."
+  [ffao.frame_split]="One frame each, without accumulation: the pictures show the 2x2 pattern of the orientations' shares. With \`temporal.enabled\` a still view converges to the image of every orientation (below the default's error after 16 frames at 4, for 0.29-0.36x of its cost at 1280x720: docs/quality.md, \"Temporal presets\")."
 )
 
 # ---- Metadata ---------------------------------------------------------------------------------------

@@ -48,27 +48,30 @@ void main() {
     ivec2 size = depth_size.xy;
     for (int n = 0; n < levels; ++n) g_level[n] = vec4(0.0);
     int last = first + steps - 1;
-    for (int j = first; j <= last; ++j) {
-        // Steps outside the texture (a few, where a column's run of lines needs them) read as sky.
-        ivec2 texel = ivec2(floor(origin + float(j) * dir));
-        bool inside = all(greaterThanEqual(texel, ivec2(0))) && all(lessThan(texel, size));
-        float depth = inside ? texelFetch(u_depth, texel, 0).r : OBSCURA_SKY_DEPTH;
-        if (!obscura_is_sky(depth)) {
-            vec3 q = obscura_view_position(texel, depth);
-            float x = dot(q.xy, axis);
-            g_level[0] = merged(g_level[0], vec4(q.z, q.z - x, q.z + x, 1.0));
-        }
-        // The level-0 interval ends here (or the line does): write it and every level it completes (interval
-        // i completes its parent when i is odd, so as many levels as i has trailing ones, plus one; all at the
-        // line's end).
-        if ((j + 1) % b0 == 0 || j == last) {
-            int i = j / b0;
-            int completed = j == last ? levels : min(levels, findLSB(~i) + 1);
-            for (int n = 0; n < completed; ++n) {
-                write_interval(k, n, i >> n, l, g_level[n]);
-                if (n + 1 < levels) g_level[n + 1] = merged(g_level[n + 1], g_level[n]);
-                g_level[n] = vec4(0.0);
+    // Interval by interval: the steps of level-0 interval i, then its writes. (A test at every step for the interval's
+    // end would make CPU rasterisers, which run every lane through both sides of a branch, do the writes' work at
+    // every step.)
+    for (int i = first / b0; i <= last / b0; ++i) {
+        int end = min(last, i * b0 + b0 - 1);
+        for (int j = max(first, i * b0); j <= end; ++j) {
+            // Steps outside the texture (a few, where a column's run of lines needs them) read as sky.
+            ivec2 texel = ivec2(floor(origin + float(j) * dir));
+            bool inside = all(greaterThanEqual(texel, ivec2(0))) && all(lessThan(texel, size));
+            float depth = inside ? texelFetch(u_depth, texel, 0).r : OBSCURA_SKY_DEPTH;
+            if (!obscura_is_sky(depth)) {
+                vec3 q = obscura_view_position(texel, depth);
+                float x = dot(q.xy, axis);
+                g_level[0] = merged(g_level[0], vec4(q.z, q.z - x, q.z + x, 1.0));
             }
+        }
+        // The level-0 interval ends here (or the line does): write it and every level it completes (interval i
+        // completes its parent when i is odd, so as many levels as i has trailing ones, plus one; all at the line's
+        // end).
+        int completed = end == last ? levels : min(levels, findLSB(~i) + 1);
+        for (int n = 0; n < completed; ++n) {
+            write_interval(k, n, i >> n, l, g_level[n]);
+            if (n + 1 < levels) g_level[n + 1] = merged(g_level[n + 1], g_level[n]);
+            g_level[n] = vec4(0.0);
         }
     }
 }
