@@ -1,5 +1,6 @@
 #include "output_writer.h"
 
+#include <cstdio>
 #include <optional>
 
 #include "gl/state_guard.h"
@@ -315,6 +316,17 @@ TargetWrite target_write(const OutputTarget& target) {
     write.format = OutputWriter::image_format(target);
     write.multiply = target.blend == OBSCURA_BLEND_MULTIPLY;
     return write;
+}
+
+Error output_target_defines(const TargetWrite& write, const char* pass, char (&out)[64]) {
+    int channels = 0;
+    const char* qualifier = write.format != 0 ? image_format_qualifier(write.format, &channels) : "r8";
+    if (!qualifier) {
+        return Error::make(OBSCURA_STATUS_INTERNAL_ERROR, "no %s variant for target format 0x%04X", pass,
+                           unsigned(write.format));
+    }
+    std::snprintf(out, sizeof out, "OUTPUT_FORMAT %s\nOUTPUT_MULTIPLY %d\n", qualifier, write.multiply ? 1 : 0);
+    return Error();
 }
 
 BentNormalWriteConstants OutputWriter::bent_constants(const OutputTarget& target) {

@@ -63,6 +63,10 @@ struct TargetWrite {
 };
 // The write for `target` (its image's format and blend).
 TargetWrite target_write(const OutputTarget& target);
+// The #define lines common/output_target.glsl reads for `write` into `out`: "OUTPUT_FORMAT <qualifier>\nOUTPUT_MULTIPLY
+// <0|1>\n" (a placeholder format where the pass writes no target). INTERNAL_ERROR, naming `pass`, for a format without a
+// qualifier.
+Error output_target_defines(const TargetWrite& write, const char* pass, char (&out)[64]);
 
 // A pass that writes the output rectangle into the image the composite would write (the host's texture, or a blit's
 // staging texture), in the composite's place: the upsample at reduced resolution, the temporal pass at full

@@ -65,19 +65,16 @@ void TemporalHistory::release() {
 }
 
 Error TemporalPass::prepare(const PassEnv& env, bool bent_normals, int reprojection, const TargetWrite& target) {
-    int channels = 0;
-    const char* qualifier = target.format != 0 ? image_format_qualifier(target.format, &channels) : "r8";
-    if (!qualifier) {
-        return Error::make(OBSCURA_STATUS_INTERNAL_ERROR, "no temporal variant for target format 0x%04X",
-                           unsigned(target.format));
-    }
+    char target_defines[64];
+    Error error = output_target_defines(target, "temporal", target_defines);
+    if (error) return error;
     gl::DefineLines defines;
     std::snprintf(defines.text, sizeof defines.text,
                   "OBSCURA_TEMPORAL_BENT_NORMALS %d\nOBSCURA_TEMPORAL_REPROJECT %d\nOBSCURA_CPU_RASTERISER %d\n"
-                  "OBSCURA_TEMPORAL_TARGET %d\nOUTPUT_FORMAT %s\nOUTPUT_MULTIPLY %d\n",
-                  bent_normals ? 1 : 0, reprojection, env.cpu_renderer ? 1 : 0, target.format != 0 ? 1 : 0, qualifier,
-                  target.multiply ? 1 : 0);
-    Error error = programs_.get(
+                  "OBSCURA_TEMPORAL_TARGET %d\n%s",
+                  bent_normals ? 1 : 0, reprojection, env.cpu_renderer ? 1 : 0, target.format != 0 ? 1 : 0,
+                  target_defines);
+    error = programs_.get(
         defines, [&](gl::Object* built) { return env.build("temporal_accumulate.comp", defines.text, built); }, &program_);
     if (!error) target_ = target;
     return error;

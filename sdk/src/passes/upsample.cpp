@@ -9,19 +9,15 @@ namespace obscura {
 
 Error UpsamplePass::prepare(const PassEnv& env, const FrameInput& host, bool bent_normals,
                             const TargetWrite& destination) {
+    char target_defines[64];
+    Error error = output_target_defines(destination, "upsample", target_defines);
+    if (error) return error;
     gl::DefineLines defines;
-    int channels = 0;
-    const char* qualifier = destination.format != 0 ? image_format_qualifier(destination.format, &channels) : "r16f";
-    if (!qualifier) {
-        return Error::make(OBSCURA_STATUS_INTERNAL_ERROR, "no upsample variant for target format 0x%04X",
-                           unsigned(destination.format));
-    }
     std::snprintf(defines.text, sizeof defines.text,
-                  "DEPTH_LINEAR %d\nDEPTH_MULTISAMPLE %d\nOBSCURA_UPSAMPLE_BENT_NORMALS %d\nOBSCURA_UPSAMPLE_TARGET %d\n"
-                  "OUTPUT_FORMAT %s\nOUTPUT_MULTIPLY %d\n",
+                  "DEPTH_LINEAR %d\nDEPTH_MULTISAMPLE %d\nOBSCURA_UPSAMPLE_BENT_NORMALS %d\nOBSCURA_UPSAMPLE_TARGET %d\n%s",
                   host.depth_linear ? 1 : 0, host.depth_multisample ? 1 : 0, bent_normals ? 1 : 0,
-                  destination.format != 0 ? 1 : 0, qualifier, destination.multiply ? 1 : 0);
-    Error error = programs_.get(defines, [&](gl::Object* built) { return env.build("upsample.comp", defines.text, built); },
+                  destination.format != 0 ? 1 : 0, target_defines);
+    error = programs_.get(defines, [&](gl::Object* built) { return env.build("upsample.comp", defines.text, built); },
                                 &program_);
     if (error) return error;
     destination_ = destination;
