@@ -90,15 +90,17 @@ vec2 signed_direction(float sin_h, float cos_h, float sin_n, float cos_n) {
 }
 
 // The per-pixel noise: a 4x4 ordered pattern (every 4x4 window holds each of its 16 values once, so the 5x5
-// denoise averages 16 rotations), and a permutation of it for the step jitter; the frame's offsets move both
-// inside their 1/16 strata.
-vec2 pixel_noise(ivec2 p) {
+// denoise averages 16 rotations), and a permutation of it for the step jitter, at the strata's centres, moved by the
+// frame's offsets (mod 1: GtaoPass::constants says how). z: the base of the bitmask's occupancy draws, 7 times the
+// jitter's stratum centre plus the frame's offset.
+vec3 pixel_noise(ivec2 p) {
     ivec2 q = p & 3;
     int low = ((q.x & 1) ^ (q.y & 1)) << 1 | (q.y & 1);
     int high = (((q.x >> 1) ^ (q.y >> 1)) << 1) | (q.y >> 1);
     int index = (low << 2) | high;
     int jitter = (index * 5 + 3) & 15;
-    return (vec2(float(index), float(jitter)) + gtao.noise.xy) * (1.0 / 16.0);
+    vec2 strata = (vec2(float(index), float(jitter)) + 0.5) * (1.0 / 16.0);
+    return vec3(fract(strata + gtao.noise.xy), strata.y * 7.0 + gtao.noise.z);
 }
 
 // The mask of sectors [0, n) for n in [0, 32], per lane: 32 is every sector (1u << 32 is undefined; clamping the
@@ -154,7 +156,7 @@ void main() {
     // Slices and steps are compiled in (GtaoPass::prepare): constant trip counts let compilers unroll the loops.
     const int slices = OBSCURA_GTAO_SLICES, steps = OBSCURA_GTAO_STEPS;
     int deepest = gtao.config.w;
-    vec2 noise = pixel_noise(p);
+    vec3 noise = pixel_noise(p);
     vec2 pixel_center = vec2(p) + 0.5;
     // Screen directions map to view-space directions through the projection's x/y scales.
     vec2 view_per_pixel = vec2(1.0) / (proj_scale.xy * vec2(depth_size.xy));
@@ -219,7 +221,7 @@ void main() {
         // A sector is occupied when the ray through it meets a slab at a falloff weight above one threshold drawn
         // per slice: with the probability of its nearest hit's weight, as the REFERENCE weighs a ray (the denoise
         // averages the draws).
-        float chance = fract(noise.y * 7.0 + float(s) * 0.6180339887);
+        float chance = fract(noise.z + float(s) * 0.6180339887);
         // The distance at which the falloff weight equals the chance: a ray is blocked by a sample's slab when it
         // hits the slab nearer than that.
         float reach = (chance - gtao.falloff.z) / gtao.falloff.y;

@@ -222,6 +222,59 @@ TEST_P(GtaoModes, FrameIndexMovesTheNoiseDeterministically) {
     EXPECT_GT(differing, a.size() / 20) << "frame 1 should move the noise of the occluded texels";
 }
 
+// Accumulating frames without the denoise (what a temporal preset can do): each pixel's frames must run through
+// the whole range of slice rotations and step jitters, so that 16 frames of 1 slice approach 16 slices in one frame
+// at every pixel. With the frame moving the pattern only inside its 1/16 strata (as it still does with the denoise), a
+// pixel kept its sixteenth of the rotations, and the bitmask's draws stayed tied to the step jitter. Occluded floor
+// texels of the corner (power 1), mean |difference| from 16 frames of 16 slices, measured on llvmpipe (horizon /
+// bitmask): one frame 0.0545 / 0.0875; 16 frames inside the strata 0.0539 / 0.0655, turning whole strata 0.0103 /
+// 0.0152.
+TEST_P(GtaoModes, FramesWithoutTheDenoiseConvergeAtEveryPixel) {
+    AoScene scene = corner_scene();
+    obscura_settings settings = gtao_settings(GetParam());
+    settings.gtao.denoise = OBSCURA_TOGGLE_OFF;
+    settings.gtao.steps = 8;
+    constexpr int kFrames = 16;
+    // Per pixel: the first frame's value and the mean of kFrames frames, with `slices` slices each.
+    auto frames = [&](int slices, std::vector<float>* first, std::vector<float>* mean) {
+        settings.gtao.slices = slices;
+        for (int frame = 0; frame < kFrames; ++frame) {
+            settings.gtao.frame_index = frame;
+            std::vector<float> v = render_visibility(ctx(), scene.input, settings);
+            ASSERT_FALSE(v.empty());
+            if (frame == 0) {
+                *first = v;
+                mean->assign(v.size(), 0.0f);
+            }
+            ASSERT_EQ(v.size(), mean->size());
+            for (size_t i = 0; i < v.size(); ++i) (*mean)[i] += v[i] / float(kFrames);
+        }
+    };
+    // The reference: 16 frames of 16 slices (the bitmask's sectors are drawn per slice: one frame of 16 slices is
+    // itself noisy).
+    std::vector<float> first, mean, unused, many_slices;
+    frames(16, &unused, &many_slices);
+    frames(1, &first, &mean);
+    ASSERT_EQ(mean.size(), many_slices.size());
+    const std::vector<bool> occluded_floor = select(scene.hits, kWidth, kHeight, 8, [](const Hit& h) {
+        return h.id == 1 && crease_distance(h) > 0.05 && crease_distance(h) < 0.8;
+    });
+    double first_sum = 0.0, mean_sum = 0.0;
+    size_t count = 0;
+    for (size_t i = 0; i < mean.size(); ++i) {
+        if (!occluded_floor[i]) continue;
+        first_sum += std::fabs(double(first[i]) - double(many_slices[i]));
+        mean_sum += std::fabs(double(mean[i]) - double(many_slices[i]));
+        ++count;
+    }
+    ASSERT_GT(count, 1000u);
+    const double first_error = first_sum / double(count), mean_error = mean_sum / double(count);
+    std::printf("[ gtao %s ] 1 slice against 16 slices (%d frames each): one frame %.4f, %d frames %.4f\n", mode_name(GetParam()), kFrames,
+                first_error, kFrames, mean_error);
+    EXPECT_GT(first_error, 0.03) << "one slice is noisy on the corner";
+    EXPECT_LT(mean_error, 0.3 * first_error);
+}
+
 // The step distributions 1.5 (the default) and 2 (XeGTAO's) are compiled in without pow: each must place the steps
 // where pow places them. The exponent's next float takes the pow path; the two renders differ only where pow's
 // rounding moves a step across a texel boundary (measured on llvmpipe: mean 0, max 0 for both; u^2 in place of

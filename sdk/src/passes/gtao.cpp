@@ -1,6 +1,7 @@
 #include "passes/gtao.h"
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 
 #include "math_constants.h"
@@ -49,6 +50,16 @@ int GtaoPass::wanted_levels(const obscura_gtao_settings& settings) {
     return deepest > 0.0 ? int(deepest) + 1 : 1;
 }
 
+namespace {
+
+// Frame n's turn of a 4x4 pattern in whole strata: n mod 16 with its 4 bits reversed.
+uint32_t stratum_turn(uint64_t n) {
+    const uint32_t f = uint32_t(n & 15u);
+    return ((f & 1u) << 3) | ((f & 2u) << 1) | ((f & 4u) >> 1) | ((f & 8u) >> 3);
+}
+
+}  // namespace
+
 GtaoConstants GtaoPass::constants(const obscura_gtao_settings& settings, const FrameInput& input, int deepest_level) {
     const float m2v = input.meters_to_view_units;
     const float radius = settings.radius * m2v;
@@ -68,11 +79,26 @@ GtaoConstants GtaoPass::constants(const obscura_gtao_settings& settings, const F
     c.shaping[2] = settings.albedo;
     c.config[2] = settings.sectors;  // (slices and steps are compiled in: GtaoPass::prepare)
     c.config[3] = deepest_level;
-    // The frame moves the pattern inside its 1/16 strata along an R2 sequence (frame 0: the strata's centres).
-    const double frame = double(settings.frame_index) + double(input.frame_index);
-    const double rotation = 0.5 + frame * 0.7548776662466927, jitter = 0.5 + frame * 0.5698402909980532;
-    c.noise[0] = float(rotation - std::floor(rotation));
-    c.noise[1] = float(jitter - std::floor(jitter));
+    // The frame moves the 4x4 patterns (frame 0 leaves them). With the denoise, whose window holds all 16 strata, it
+    // moves each pixel's values inside their strata along an R2 sequence (and the bitmask's draws with the jitter):
+    // every pixel keeps its stratum, so edges, where the denoise's window is cut, keep their values from frame to
+    // frame. Without it the frames alone must cover the strata: the patterns turn as a whole, by whole strata in
+    // bit-reversed order (any 2^k consecutive frames spread over the 16) plus the same R2 step inside them, and the
+    // draws by an offset of their own. Every window still holds 16 evenly spaced values. (Turning whole strata with
+    // the denoise as well flickered 8-17 % more on a moving camera: docs/quality.md.)
+    const uint64_t frame = uint64_t(uint32_t(settings.frame_index)) + uint64_t(input.frame_index);
+    const double rotation = 0.5 + double(frame) * 0.7548776662466927, jitter = 0.5 + double(frame) * 0.5698402909980532;
+    const double inside_rotation = rotation - std::floor(rotation) - 0.5, inside_jitter = jitter - std::floor(jitter) - 0.5;
+    if (settings.denoise == OBSCURA_TOGGLE_ON) {
+        c.noise[0] = float(inside_rotation / 16.0);
+        c.noise[1] = float(inside_jitter / 16.0);
+        c.noise[2] = float(7.0 * inside_jitter / 16.0);
+    } else {
+        const double draws = double(frame) * 0.5497004779019703;
+        c.noise[0] = float((double(stratum_turn(frame)) + 0.5 + inside_rotation) / 16.0);
+        c.noise[1] = float((double(stratum_turn(frame * 7u)) + 0.5 + inside_jitter) / 16.0);
+        c.noise[2] = float(draws - std::floor(draws));
+    }
     c.rotation[0] = float(std::cos(kPi / settings.slices));
     c.rotation[1] = float(std::sin(kPi / settings.slices));
     c.rotation[2] = float(std::exp2(-double(settings.mip_offset)));
