@@ -5,6 +5,9 @@
 // shader_interface.h): the run's windows overlap, so it reads RUN + 2 radius values and depths instead of
 // 2 radius + 1 per pixel. The radius is compiled in (OBSCURA_BLUR_RADIUS): the window is an array with constant
 // indices once the loops unroll.
+// With OBSCURA_BLUR_TARGET (the y pass as the frame's last: full resolution, no accumulation, no debug view) it
+// writes the visibility into the host's target (OUTPUT_FORMAT, OUTPUT_MULTIPLY: composite.comp's write) at the
+// target's own precision, in the composite's place: the composite would only copy it there.
 #define OBSCURA_BLUR_PASS 1
 #include "common/shader_interface.h"
 #include "common/depth.glsl"
@@ -13,11 +16,22 @@ layout(local_size_x = OBSCURA_BLUR_GROUP_X, local_size_y = OBSCURA_BLUR_GROUP_Y)
 
 layout(binding = OBSCURA_UNIT_LINEAR_DEPTH) uniform sampler2D u_linear_depth;
 layout(binding = OBSCURA_UNIT_SOURCE) uniform sampler2D u_source;
-layout(binding = OBSCURA_IMAGE_OUT0, r16f) writeonly uniform image2D u_destination;
-
-#if !defined(OBSCURA_BLUR_RADIUS) || !defined(OBSCURA_BLUR_RUN)
-#error "OBSCURA_BLUR_RADIUS and OBSCURA_BLUR_RUN must be defined"
+#if !defined(OBSCURA_BLUR_RADIUS) || !defined(OBSCURA_BLUR_RUN) || !defined(OBSCURA_BLUR_TARGET)
+#error "OBSCURA_BLUR_RADIUS, OBSCURA_BLUR_RUN and OBSCURA_BLUR_TARGET must be defined"
 #endif
+#if OBSCURA_BLUR_TARGET
+#include "common/output_target.glsl"
+#else
+layout(binding = OBSCURA_IMAGE_OUT0, r16f) writeonly uniform image2D u_destination;
+#endif
+
+void store(ivec2 p, float visibility) {
+#if OBSCURA_BLUR_TARGET
+    obscura_write_final_output(p, visibility);
+#else
+    imageStore(u_destination, p, vec4(visibility));
+#endif
+}
 const int kRadius = OBSCURA_BLUR_RADIUS;
 const int kRun = OBSCURA_BLUR_RUN;
 const int kTaps = kRun + 2 * kRadius;  // the run and `radius` neighbours on each side
@@ -64,6 +78,6 @@ void main() {
             weight_sum += counts ? w : 0.0;
         }
         // Sky is passed through.
-        imageStore(u_destination, p, vec4(obscura_is_sky(center_depth) ? center_ao : center_ao + delta_sum / weight_sum));
+        store(p, obscura_is_sky(center_depth) ? center_ao : center_ao + delta_sum / weight_sum);
     }
 }

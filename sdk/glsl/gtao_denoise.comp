@@ -5,6 +5,9 @@
 // edges, and slanted surfaces keep their whole window. With bent normals (OBSCURA_GTAO_BENT_NORMALS) the values
 // are rgba16f (visibility, bent xyz) and the final pass (OBSCURA_GTAO_DENOISE_FINAL) writes the visibility (r16f)
 // and the same rgba16f with the bent normal renormalised.
+// With OBSCURA_GTAO_DENOISE_TARGET (the final pass as the frame's last: full resolution, no accumulation, no debug
+// view) the visibility goes into the host's target (OUTPUT_FORMAT, OUTPUT_MULTIPLY: composite.comp's write) at the
+// target's own precision, in the composite's place; the bent normals still go to OUT1.
 // Each invocation filters a run of OBSCURA_GTAO_DENOISE_RUN pixels along the pass's axis (4 on GPUs, 16 on CPU
 // rasterisers: shader_interface.h): the run's windows overlap, so it reads RUN + 4 values and depths instead of 5 per
 // pixel (the pass is bound by its reads: texel fetches on CPU rasterisers, memory transactions on GPUs).
@@ -18,7 +21,12 @@ layout(local_size_x = OBSCURA_GTAO_DENOISE_GROUP_X, local_size_y = OBSCURA_GTAO_
 layout(binding = OBSCURA_UNIT_LINEAR_DEPTH) uniform sampler2D u_linear_depth;
 layout(binding = OBSCURA_UNIT_NORMALS) uniform sampler2D u_normals;
 layout(binding = OBSCURA_UNIT_SOURCE) uniform sampler2D u_source;
-#if OBSCURA_GTAO_BENT_NORMALS && !OBSCURA_GTAO_DENOISE_FINAL
+#ifndef OBSCURA_GTAO_DENOISE_TARGET
+#error "OBSCURA_GTAO_DENOISE_TARGET must be defined"
+#endif
+#if OBSCURA_GTAO_DENOISE_TARGET
+#include "common/output_target.glsl"
+#elif OBSCURA_GTAO_BENT_NORMALS && !OBSCURA_GTAO_DENOISE_FINAL
 layout(binding = OBSCURA_IMAGE_OUT0, rgba16f) writeonly uniform image2D u_destination;
 #else
 layout(binding = OBSCURA_IMAGE_OUT0, r16f) writeonly uniform image2D u_destination;
@@ -36,11 +44,22 @@ Value read_value(ivec2 q) { return texelFetch(u_source, q, 0); }
 Value read_value(ivec2 q) { return texelFetch(u_source, q, 0).r; }
 #endif
 
+// The final pass's visibility: into the host's target, or the result texture.
+void store_visibility(ivec2 p, float visibility) {
+#if OBSCURA_GTAO_DENOISE_TARGET
+    obscura_write_final_output(p, visibility);
+#else
+    imageStore(u_destination, p, vec4(visibility));
+#endif
+}
+
 void store(ivec2 p, Value value, vec3 normal) {
 #if OBSCURA_GTAO_BENT_NORMALS && OBSCURA_GTAO_DENOISE_FINAL
-    imageStore(u_destination, p, vec4(value.r));
+    store_visibility(p, value.r);
     float bent_length = length(value.gba);
     imageStore(u_bent, p, vec4(value.r, bent_length > 0.0 ? value.gba / bent_length : normal));
+#elif OBSCURA_GTAO_DENOISE_FINAL
+    store_visibility(p, value);
 #else
     imageStore(u_destination, p, vec4(value));
 #endif

@@ -34,7 +34,25 @@ layout(local_size_x = GATHER_GROUP_X, local_size_y = GATHER_GROUP_Y) in;
 
 layout(binding = OBSCURA_UNIT_LINEAR_DEPTH) uniform sampler2D u_depth;
 layout(binding = OBSCURA_UNIT_NORMALS) uniform sampler2D u_normals;
+// With OBSCURA_LSAO_GATHER_TARGET (full resolution, no accumulation, no debug view: the gather is the frame's last
+// pass) the visibility goes into the host's target (OUTPUT_FORMAT, OUTPUT_MULTIPLY: composite.comp's write) at its
+// own precision, in the composite's place.
+#ifndef OBSCURA_LSAO_GATHER_TARGET
+#error "OBSCURA_LSAO_GATHER_TARGET must be defined"
+#endif
+#if OBSCURA_LSAO_GATHER_TARGET
+#include "common/output_target.glsl"
+#else
 layout(binding = OBSCURA_IMAGE_OUT0, r16f) writeonly uniform image2D u_ao;
+#endif
+
+void store(ivec2 p, float visibility) {
+#if OBSCURA_LSAO_GATHER_TARGET
+    obscura_write_final_output(p, visibility);
+#else
+    imageStore(u_ao, p, vec4(visibility));
+#endif
+}
 
 // K compiled in (LsaoPass::prepare), so the loop over directions unrolls and every direction's line record
 // loads can be in flight together.
@@ -125,7 +143,7 @@ void main() {
     float depth = candidate_depth(p);
     bool count_taps = target_params.w == OBSCURA_DEBUG_VIEW_TAP_COUNT;
     if (obscura_is_sky(depth) || count_taps) {
-        imageStore(u_ao, p, vec4(count_taps ? 0.0 : 1.0));
+        store(p, count_taps ? 0.0 : 1.0);
         return;
     }
     vec2 center = vec2(p) + 0.5;
@@ -195,5 +213,5 @@ void main() {
     }
     float ao = weight_sum > 0.0 ? sum / weight_sum : 0.0;
     float visibility = pow(clamp(1.0 - lsao.gather.z * ao, 0.0, 1.0), lsao.gather.w);
-    imageStore(u_ao, p, vec4(visibility));
+    store(p, visibility);
 }

@@ -2,7 +2,9 @@
 // axis, 2R+1 taps `stride` pixels apart (the paper: 7 taps, stride 3, after the 2x2 step), Gaussian weights
 // times max(0, 1 - sharpness * |key difference|) on the 16-bit z key packed beside the AO, so one RGBA8
 // fetch gives both. Sky texels (alpha 0) are neither read nor changed. FINAL_OUTPUT 0: RGBA8 with the key
-// kept (the horizontal pass); 1: plain visibility into R16F (the vertical pass, read by the composite).
+// kept (the horizontal pass); 1: plain visibility into R16F (the vertical pass, read by the composite), or with
+// OBSCURA_SAO_BLUR_TARGET (the frame's last pass: full resolution, no accumulation, no debug view) into the host's
+// target (OUTPUT_FORMAT, OUTPUT_MULTIPLY: composite.comp's write) at its own precision, in the composite's place.
 // Each invocation filters a run of OBSCURA_SAO_BLUR_RUN pixels `stride` apart along the pass's axis (1 on GPUs, 16 on
 // CPU rasterisers: shader_interface.h), whose taps are then every `stride`-th texel of one window: it reads RUN + 2R
 // texels instead of 2R + 1 per pixel. R is compiled in (OBSCURA_SAO_BLUR_RADIUS): the window is an array with
@@ -13,7 +15,12 @@
 layout(local_size_x = OBSCURA_BLUR_GROUP_X, local_size_y = OBSCURA_BLUR_GROUP_Y) in;
 
 layout(binding = OBSCURA_UNIT_SOURCE) uniform sampler2D u_source;  // RGBA8: A, key high, key low, geometry
-#if FINAL_OUTPUT
+#ifndef OBSCURA_SAO_BLUR_TARGET
+#error "OBSCURA_SAO_BLUR_TARGET must be defined"
+#endif
+#if OBSCURA_SAO_BLUR_TARGET
+#include "common/output_target.glsl"
+#elif FINAL_OUTPUT
 layout(binding = OBSCURA_IMAGE_OUT0, r16f) writeonly uniform image2D u_destination;
 #else
 layout(binding = OBSCURA_IMAGE_OUT0, rgba8) writeonly uniform image2D u_destination;
@@ -77,6 +84,11 @@ void main() {
             weight_sum += counts[k] ? w : 0.0;
         }
         // Sky (alpha 0) is neither read nor changed.
-        imageStore(u_destination, p, center.w == 0.0 ? center : vec4(center.x + delta_sum / weight_sum, center.yzw));
+        vec4 blurred = center.w == 0.0 ? center : vec4(center.x + delta_sum / weight_sum, center.yzw);
+#if OBSCURA_SAO_BLUR_TARGET
+        obscura_write_final_output(p, blurred.x);
+#else
+        imageStore(u_destination, p, blurred);
+#endif
     }
 }

@@ -45,7 +45,7 @@ mat4 columns(vec4 c[4]) { return mat4(c[0], c[1], c[2], c[3]); }
 // The frame's visibility, as the composite would write it from the history into the host's target.
 void write_target(ivec2 p, float visibility) {
 #if OBSCURA_TEMPORAL_TARGET
-    obscura_write_output(target_params.xy + (p - output_rect.xy), vec4(visibility, visibility, visibility, 1.0));
+    obscura_write_final_output(p, visibility);
 #endif
 }
 

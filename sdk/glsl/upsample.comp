@@ -39,10 +39,8 @@ const float kNoneOnPlane = 1e-4;
 
 void store(ivec2 p, float visibility, vec3 bent) {
 #if OBSCURA_UPSAMPLE_TARGET
-    // At the target's own precision (the composite's copy went through R16F, which drivers round or truncate), held
-    // to [0, 1]: the weighted mean of values up to 1 can round an ulp above it.
-    float v = clamp(visibility, 0.0, 1.0);
-    obscura_write_output(target_params.xy + (p - output_rect.xy), vec4(v, v, v, 1.0));
+    // At the target's own precision (the composite's copy went through R16F, which drivers round or truncate).
+    obscura_write_final_output(p, visibility);
 #else
     imageStore(u_ao, p, vec4(visibility));
 #endif

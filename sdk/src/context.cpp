@@ -424,6 +424,10 @@ Error Context::record_frame(const FrameInput& host_input, const obscura_settings
     const bool raw_view = request.raw_view;
     const FrameRegions regions = FramePlanner::regions(input, plan);
     request.ao_region = regions.ao;
+    // At full resolution without accumulation the method's last reconstruction pass writes the target itself where it
+    // can (the composite would only copy its result there), unless a debug view needs the composite's other sources.
+    const bool technique_writes_target = plan.writes_target && shift == 0 && !temporal && !debug_view;
+    if (technique_writes_target) request.target = target_write(target);
     error = ensure_resources(input.width, input.height, plan);
     if (!error) error = technique->prepare(pass_env, settings, request, resources_);
     if (!error) error = depth_prepare_.prepare(pass_env, input);
@@ -435,7 +439,8 @@ Error Context::record_frame(const FrameInput& host_input, const obscura_settings
     const TargetWrite upsample_destination = upsample_writes_target ? target_write(target) : TargetWrite();
     const TargetWrite temporal_destination = temporal_writes_target ? target_write(target) : TargetWrite();
     if (!error) {
-        error = output_.prepare(pass_env, target, host.output_rect, !upsample_writes_target && !temporal_writes_target);
+        error = output_.prepare(pass_env, target, host.output_rect,
+                                !upsample_writes_target && !temporal_writes_target && !technique_writes_target);
     }
     if (!error && shift > 0) error = upsample_.prepare(pass_env, host, request.bent_normals, upsample_destination);
     if (error) return error;
@@ -458,7 +463,8 @@ Error Context::record_frame(const FrameInput& host_input, const obscura_settings
     }
 
     const FrameUniforms uniforms = planner_.begin(input, OutputWriter::composite_target(target), regions, plan);
-    const Frame frame{pass_env, input, settings, regions, uniforms, resources_, raw_view, request.bent_normals};
+    const Frame frame{pass_env, input, settings, regions, uniforms, resources_, raw_view, request.bent_normals,
+                      request.target};
     // Depth preparation's rectangles: the normals where the method reads them, the linear depth alone around them.
     const DepthPrepareRects depth_rects =
         depth_prepare_rects(regions.whole, regions.normals, DepthPreparePass::block(pass_env));
@@ -512,15 +518,21 @@ Error Context::record_frame(const FrameInput& host_input, const obscura_settings
         }
         result.bent = upsample_.bent();
     }
+    if (!error && technique_writes_target && !result.target_write) {
+        error = Error::make(OBSCURA_STATUS_INTERNAL_ERROR, "%s planned to write the target but left no pass for it",
+                            find_method(settings.method)->name);
+    }
     if (!error) {
-        const OutputImageWrite* image_write = upsample_writes_target   ? static_cast<const OutputImageWrite*>(&upsample_write)
-                                              : temporal_writes_target ? &temporal_write
-                                                                       : nullptr;
+        const OutputImageWrite* image_write = upsample_writes_target    ? static_cast<const OutputImageWrite*>(&upsample_write)
+                                              : temporal_writes_target  ? &temporal_write
+                                              : technique_writes_target ? result.target_write
+                                                                        : nullptr;
         output_.write(pass_env, host_output, host, raw_view ? *result.raw : *result.result, resources_, target,
                       result.bent, bent_pass, image_write);
-        error = recorder.end(upsample_writes_target   ? PassId::Upsample
-                             : temporal_writes_target ? PassId::Temporal
-                                                      : PassId::Composite);
+        error = recorder.end(upsample_writes_target    ? PassId::Upsample
+                             : temporal_writes_target  ? PassId::Temporal
+                             : technique_writes_target ? result.target_pass
+                                                       : PassId::Composite);
     }
     // The frame's blend is the view's history from now on (a failed frame leaves it for the next to start anew).
     if (temporal) {

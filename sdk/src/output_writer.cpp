@@ -329,6 +329,10 @@ Error output_target_defines(const TargetWrite& write, const char* pass, char (&o
     return Error();
 }
 
+void bind_target_image(const gl::Table& gl, GLuint unit, GLuint texture, const TargetWrite& write) {
+    gl.BindImageTexture(unit, texture, 0, GL_FALSE, 0, write.multiply ? GL_READ_WRITE : GL_WRITE_ONLY, write.format);
+}
+
 BentNormalWriteConstants OutputWriter::bent_constants(const OutputTarget& target) {
     return BentNormalWritePass::constants(target.x, target.y);
 }

@@ -67,10 +67,13 @@ TargetWrite target_write(const OutputTarget& target);
 // <0|1>\n" (a placeholder format where the pass writes no target). INTERNAL_ERROR, naming `pass`, for a format without a
 // qualifier.
 Error output_target_defines(const TargetWrite& write, const char* pass, char (&out)[64]);
+// Binds the target image `texture` (of `write`'s format) to image `unit` for common/output_target.glsl: read and
+// written for the multiply blend, written otherwise.
+void bind_target_image(const gl::Table& gl, GLuint unit, GLuint texture, const TargetWrite& write);
 
 // A pass that writes the output rectangle into the image the composite would write (the host's texture, or a blit's
 // staging texture), in the composite's place: the upsample at reduced resolution, the temporal pass at full
-// resolution.
+// resolution, and without either a method's last reconstruction pass (TechniqueOutput::target_write).
 class OutputImageWrite {
 public:
     // Writes the image `texture` of `format` (OutputWriter::image_format's), the frame's target_params placing the

@@ -9,6 +9,7 @@
 #include "error.h"
 #include "frame_input.h"
 #include "host_allocator.h"
+#include "output_writer.h"
 #include "pass_id.h"
 #include "passes/pass_common.h"
 
@@ -27,6 +28,10 @@ struct FrameRequest {
     // Where the AO pass will compute (FrameRegions::ao), for resources sized to it rather than to the guard band.
     // Set after plan(), which decides it; empty in obscura_prepare.
     Region ao_region;
+    // The host's target image the technique's last pass writes in the composite's place (format 0: it writes its
+    // own result). Set after plan(), where the plan says it can (TechniquePlan::writes_target) and the frame ends with
+    // that pass: full resolution, no accumulation, no debug view.
+    TargetWrite target;
 };
 
 // What a technique needs of a frame before anything is allocated or recorded.
@@ -42,6 +47,9 @@ struct TechniquePlan {
     // Texels beyond the AO region where its passes read the normals (depth preparation reconstructs them there
     // only; the guard band around gets the linear depth alone); kNormalsEverywhere: the whole texture.
     int normals_margin = 0;
+    // Its last reconstruction pass can write the host's target image itself (FrameRequest::target): the composite
+    // would only copy its result there.
+    bool writes_target = false;
     static constexpr int kNormalsEverywhere = -1;
 };
 
@@ -69,6 +77,7 @@ struct Frame {
     FrameResources& resources;         // the shared per-size textures (depth, normals, AO, blur targets)
     bool raw_view;                     // the debug view shows the AO pass's own output: no reconstruction
     bool bent_normals;                 // requested, and the technique's plan writes them
+    TargetWrite target;                // FrameRequest::target: the last pass writes the host's target image
 };
 
 // Collects the frame's uniform blocks (one upload for the whole frame).
@@ -100,6 +109,11 @@ struct TechniqueOutput {
     const gl::Texture2D* raw = nullptr;     // the AO pass's own output (the raw debug views)
     const gl::Texture2D* result = nullptr;  // after the reconstruction: what the composite shows
     const gl::Texture2D* bent = nullptr;    // with bent normals: RGBA16F visibility, unit view-space bent normal xyz
+    // With Frame::target: the last pass, not yet run, which the output writer runs into the target's image (it lives
+    // in the technique and holds the frame's references until the frame's output is written; `result` is then not
+    // written), and the label its time is reported under.
+    const OutputImageWrite* target_write = nullptr;
+    PassId target_pass = PassId::Composite;
 };
 
 class Technique {

@@ -137,7 +137,7 @@ protected:
         EXPECT_FALSE(pass.prepare(env(), radius));
         const auto [frame, constants] =
             uniforms(region, obscura::BilateralBlurPass::constants(radius, kSharpness, along_x ? 1 : 0, along_x ? 0 : 1));
-        pass.run(env(), radius, along_x, frame, constants, region, resources_.linear_depth, source_texture,
+        pass.run(env(), along_x, frame, constants, region, resources_.linear_depth, source_texture,
                  destination);
         return read_red(destination);
     }

@@ -223,12 +223,13 @@ TEST_P(GtaoModes, FrameIndexMovesTheNoiseDeterministically) {
 }
 
 // Accumulating frames without the denoise (what a temporal preset can do): each pixel's frames must run through
-// the whole range of slice rotations and step jitters, so that 16 frames of 1 slice approach 16 slices in one frame
-// at every pixel. With the frame moving the pattern only inside its 1/16 strata (as it still does with the denoise), a
+// the whole range of slice rotations and step jitters, so that 16 frames of 1 slice approach 16 frames of 16 slices
+// at every pixel (the reference's own jitter runs through the same sequence: what this measures is the rotations'
+// and the bitmask draws' coverage). With the frame moving the pattern only inside its 1/16 strata (as it still does with the denoise), a
 // pixel kept its sixteenth of the rotations, and the bitmask's draws stayed tied to the step jitter. Occluded floor
 // texels of the corner (power 1), mean |difference| from 16 frames of 16 slices, measured on llvmpipe (horizon /
-// bitmask): one frame 0.0545 / 0.0875; 16 frames inside the strata 0.0539 / 0.0655, turning whole strata 0.0103 /
-// 0.0152.
+// bitmask): one frame 0.0547 / 0.0872; 16 frames inside the strata 0.0539 / 0.0655, turning whole strata 0.0104 /
+// 0.0154.
 TEST_P(GtaoModes, FramesWithoutTheDenoiseConvergeAtEveryPixel) {
     AoScene scene = corner_scene();
     obscura_settings settings = gtao_settings(GetParam());
@@ -256,6 +257,13 @@ TEST_P(GtaoModes, FramesWithoutTheDenoiseConvergeAtEveryPixel) {
     frames(16, &unused, &many_slices);
     frames(1, &first, &mean);
     ASSERT_EQ(mean.size(), many_slices.size());
+    // Frame 0 keeps the pattern the denoise sees (its raw view: the AO before it), to the bit.
+    obscura_settings denoised = settings;
+    denoised.gtao.denoise = OBSCURA_TOGGLE_ON;
+    denoised.gtao.frame_index = 0;
+    const std::vector<float> before_denoise = render_visibility(ctx(), scene.input, denoised, OBSCURA_DEBUG_AO_BEFORE_BLUR);
+    ASSERT_EQ(before_denoise.size(), first.size());
+    EXPECT_EQ(std::memcmp(before_denoise.data(), first.data(), first.size() * sizeof(float)), 0);
     const std::vector<bool> occluded_floor = select(scene.hits, kWidth, kHeight, 8, [](const Hit& h) {
         return h.id == 1 && crease_distance(h) > 0.05 && crease_distance(h) < 0.8;
     });

@@ -74,6 +74,11 @@ double mean_abs_difference(const std::vector<float>& a, const std::vector<float>
     return count > 0 ? sum / count : 0.0;
 }
 
+// A frame rendered alone ends with its method's last pass writing the target at the target's own precision; an
+// accumulated one blends the method's R16F result, which drivers round or truncate (llvmpipe truncates). A frame
+// that keeps no history, and a history of frames, match frames rendered alone to one R16F step below 1.
+constexpr double kAloneRounding = 1.0 / 2048.0;
+
 double max_abs_difference(const std::vector<float>& a, const std::vector<float>& b) {
     double m = 0.0;
     for (size_t i = 0; i < a.size(); ++i) m = std::max(m, std::fabs(double(a[i]) - double(b[i])));
@@ -226,7 +231,7 @@ TEST_F(GLTest, TemporalIdentityReprojectionReproducesTheHistoryExactly) {
     obscura_input input = scene.input;
     std::vector<float> accumulated;
     for (int f = 0; f < 6; ++f) accumulated = render_visibility(ctx(), input, settings);
-    EXPECT_EQ(max_abs_difference(accumulated, one_frame), 0.0);
+    EXPECT_LE(max_abs_difference(accumulated, one_frame), kAloneRounding);
 
     // The noise moving with the frame index: the history is this view's earlier frames, reproduced exactly, so
     // frame n is the mean of the n + 1 frames rendered alone (weight 1 / age), wherever the neighbourhood clamp
@@ -242,8 +247,12 @@ TEST_F(GLTest, TemporalIdentityReprojectionReproducesTheHistoryExactly) {
     std::vector<bool> exact(one_frame.size(), true);
     double worst = 0.0, moved = 0.0;
     size_t checked = 0;
+    // The frames alone as the pass reads them (the method's R16F result): a frame that starts a new history.
+    obscura_input reset = scene.input;
+    reset.flags |= OBSCURA_INPUT_FLAG_RESET_HISTORY;
     for (uint32_t f = 0; f < 4; ++f) {
-        const std::vector<float> alone = render_frames(ctx(), scene.input, noisy_hbao(false), f, 1);
+        const std::vector<float> alone = render_frames(ctx(), reset, settings, f, 1);
+        EXPECT_LE(max_abs_difference(alone, render_frames(ctx(), scene.input, noisy_hbao(false), f, 1)), kAloneRounding);
         for (size_t i = 0; f > 0 && i < sum.size(); ++i) {
             const int x = int(i % kWidth), y = int(i / kWidth);
             const int window[7][2] = {{-1, -1}, {0, -1}, {-1, 0}, {0, 0}, {1, 0}, {0, 1}, {1, 1}};
@@ -287,13 +296,13 @@ TEST_F(GLTest, TemporalResetAndMissingMatricesDropTheHistory) {
     obscura_input cut = scene.input;
     cut.frame_index = 5;
     cut.flags = OBSCURA_INPUT_FLAG_RESET_HISTORY;
-    EXPECT_EQ(max_abs_difference(render_visibility(ctx(), cut, settings), frame5_alone), 0.0);
+    EXPECT_LE(max_abs_difference(render_visibility(ctx(), cut, settings), frame5_alone), kAloneRounding);
 
     render_frames(ctx(), scene.input, settings, 0, 5);
     obscura_input no_matrices = scene.input;
     no_matrices.frame_index = 5;
     std::memset(no_matrices.previous_view_projection, 0, sizeof no_matrices.previous_view_projection);
-    EXPECT_EQ(max_abs_difference(render_visibility(ctx(), no_matrices, settings), frame5_alone), 0.0);
+    EXPECT_LE(max_abs_difference(render_visibility(ctx(), no_matrices, settings), frame5_alone), kAloneRounding);
 }
 
 TEST_F(GLTest, TemporalViewsKeepSeparateHistoriesAndAResizeInvalidatesOnlyItsView) {
@@ -324,7 +333,7 @@ TEST_F(GLTest, TemporalViewsKeepSeparateHistoriesAndAResizeInvalidatesOnlyItsVie
                                     {plane(1, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0))}, Lens(), 128, 72);
     set_matrices(&resized.input, resized.camera);
     const std::vector<float> resized_alone = render_frames(ctx(), resized.input, noisy_hbao(false), 106, 1);
-    EXPECT_EQ(max_abs_difference(render_frames(ctx(), resized.input, settings, 106, 1, b), resized_alone), 0.0);
+    EXPECT_LE(max_abs_difference(render_frames(ctx(), resized.input, settings, 106, 1, b), resized_alone), kAloneRounding);
     obscura_view* c = nullptr;
     ASSERT_EQ(obscura_create_view(ctx(), &c), OBSCURA_OK);
     const std::vector<float> seventh_alone = render_frames(ctx(), scene.input, settings, 0, 7, c);
@@ -534,7 +543,7 @@ TEST_F(GLTest, TemporalDebugViewFramesLeaveTheHistoryAndTheCameraItWasMadeWith) 
     render_visibility(ctx(), first, settings);
     debug.flags = OBSCURA_INPUT_FLAG_RESET_HISTORY;
     render_visibility(ctx(), debug, settings, OBSCURA_DEBUG_AO_BEFORE_BLUR);
-    EXPECT_EQ(max_abs_difference(render_visibility(ctx(), after_debug, settings), last_alone), 0.0);
+    EXPECT_LE(max_abs_difference(render_visibility(ctx(), after_debug, settings), last_alone), kAloneRounding);
 }
 
 // Motion vectors give the offsets to the host's previous frame, so the history must be that frame's: it continues
@@ -556,7 +565,7 @@ TEST_F(GLTest, TemporalMotionVectorsContinueOnlyFromThePreviousFrameIndex) {
     EXPECT_GT(max_abs_difference(render_frames(ctx(), input, settings, 0, 6), frame5_alone), 0.01)
         << "frames 0-4, then 5: the history continues";
     render_frames(ctx(), input, settings, 0, 5);
-    EXPECT_EQ(max_abs_difference(render_frames(ctx(), input, settings, 6, 1), frame6_alone), 0.0)
+    EXPECT_LE(max_abs_difference(render_frames(ctx(), input, settings, 6, 1), frame6_alone), kAloneRounding)
         << "frames 0-4, then 6: a frame missing, the history dropped";
 }
 

@@ -282,7 +282,7 @@ OBSCURA_PASS_BLOCK_BEGIN(GtaoConstants)
   OBSCURA_VEC4(thickness); // bitmask thickness (view units), horizon blend, step power, MIP offset (log2 px)
   OBSCURA_VEC4(shaping);   // intensity, power, albedo (0: no multi-bounce), unused
   OBSCURA_IVEC4(config);   // unused x2 (slices and steps are compiled in), sectors, deepest z-pyramid level (0: level 0)
-  OBSCURA_VEC4(noise);     // the frame's turns of the slice rotations, step jitters and bitmask draws in [0, 1), unused
+  OBSCURA_VEC4(noise);     // the frame's turns of the slice rotations, step jitters and bitmask draws (mod 1), unused
   OBSCURA_VEC4(rotation);  // cos and sin of pi / S (from one slice to the next), 2^-mip_offset, unused
 OBSCURA_PASS_BLOCK_END(GtaoConstants, gtao)
 #endif

@@ -856,7 +856,9 @@ typedef struct obscura_timing {
                           GTAO ["z_pyramid"] "gtao" ["gtao_denoise"]; then ["temporal"] (settings.temporal on),
                           ["upsample"] (settings.resolution below full), then "composite", unless the last pass
                           writes the output itself (no debug view): "upsample" at reduced resolution, else
-                          "temporal" with settings.temporal on. Static strings */
+                          "temporal" with settings.temporal on, else the method's last reconstruction pass (HBAO's
+                          and SAO's "blur", GTAO's "gtao_denoise", LSAO's "gather"; REFERENCE, FFAO and a method with
+                          its blur or denoise off keep "composite"). Static strings */
     double milliseconds;
 } obscura_timing;
 

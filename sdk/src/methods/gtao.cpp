@@ -122,6 +122,7 @@ public:
         plan.radius = gtao.radius;
         plan.bent_normals = kGtaoMethodWritesBentNormals;
         plan.blur_targets = gtao_denoises(gtao, false);
+        plan.writes_target = gtao_denoises(gtao, request.raw_view);  // the denoise's final pass
         return plan;
     }
 
@@ -132,7 +133,7 @@ public:
         const bool bent = request.output_known ? request.bent_normals : bent_requested_;
         Error error = pyramid_pass_.prepare(env, kGtaoPyramidFilter);
         if (!error) error = gtao_.prepare(env, settings.gtao, bent);
-        if (!error) error = denoise_.prepare(env, bent);
+        if (!error) error = denoise_.prepare(env, bent, request.target);
         if (error) return error;
         if (!bent) {  // the shared R16F textures suffice
             release();
@@ -180,10 +181,17 @@ public:
         if (error || !gtao_denoises(frame.settings.gtao, frame.raw_view)) return error;
         denoise_.run(frame.env, bent, false, frame.uniforms.blur_x, denoise_x_, frame.regions.blur_x, r, raw,
                      bent ? bent_temp_ : r.blur_temp, nullptr);
-        denoise_.run(frame.env, bent, true, frame.uniforms.output, denoise_y_, frame.regions.output, r,
-                     bent ? bent_temp_ : r.blur_temp, r.ao_blurred, bent ? &bent_ : nullptr);
         out->result = &r.ao_blurred;
         out->bent = bent ? &bent_ : nullptr;
+        if (frame.target.format != 0) {
+            // The final pass runs as the output's write, its time under "gtao_denoise" with the first pass's.
+            target_write_.frame = &frame;
+            out->target_write = &target_write_;
+            out->target_pass = PassId::GtaoDenoise;
+            return Error();
+        }
+        denoise_.run(frame.env, bent, true, frame.uniforms.output, denoise_y_, frame.regions.output, r,
+                     bent ? bent_temp_ : r.blur_temp, r.ao_blurred, bent ? &bent_ : nullptr);
         return recorder.end(PassId::GtaoDenoise);
     }
 
@@ -195,6 +203,18 @@ public:
     }
 
 private:
+    // The denoise's final pass into the host's target image, run by the output writer during the frame `frame`.
+    struct DenoiseTargetWrite final : OutputImageWrite {
+        explicit DenoiseTargetWrite(const GtaoTechnique& owner) : t(owner) {}
+        const GtaoTechnique& t;
+        const Frame* frame = nullptr;
+        void write_image(const PassEnv& env, GLuint texture, GLenum) const override {
+            const bool bent = frame->bent_normals;
+            t.denoise_.run_into_target(env, bent, frame->uniforms.output, t.denoise_y_, frame->regions.output,
+                                       frame->resources, bent ? t.bent_temp_ : frame->resources.blur_temp, texture,
+                                       bent ? &t.bent_ : nullptr);
+        }
+    };
     static constexpr int kMaxPyramidDispatches = 4;
     ZPyramidPass pyramid_pass_;
     GtaoPass gtao_;
@@ -205,6 +225,7 @@ private:
     int levels_ = 1, pyramid_dispatches_ = 0;
     bool bent_requested_ = false;  // the last render's output had a bent-normal texture
     UniformRange pyramid_[kMaxPyramidDispatches], pass_, denoise_x_, denoise_y_;
+    DenoiseTargetWrite target_write_{*this};
 };
 
 const PassId kGtaoPasses[] = {PassId::ZPyramid, PassId::Gtao, PassId::GtaoDenoise};

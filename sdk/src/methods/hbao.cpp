@@ -69,13 +69,16 @@ public:
         plan.apron = hbao_blurs(settings.hbao, request.raw_view) ? settings.hbao.blur_radius : 0;
         plan.radius = settings.hbao.radius;
         plan.blur_targets = hbao_blurs(settings.hbao, false);
+        plan.writes_target = hbao_blurs(settings.hbao, request.raw_view);  // the blur's y pass
         return plan;
     }
 
     Error prepare(const PassEnv& env, const obscura_settings& settings, const FrameRequest& request,
                   FrameResources&) override {
         Error error = hbao_.prepare(env);
-        if (!error && hbao_blurs(settings.hbao, request.raw_view)) error = blur_.prepare(env, settings.hbao.blur_radius);
+        if (!error && hbao_blurs(settings.hbao, request.raw_view)) {
+            error = blur_.prepare(env, settings.hbao.blur_radius, request.target);
+        }
         return error;
     }
 
@@ -93,12 +96,18 @@ public:
         out->raw = out->result = &r.ao;
         Error error = recorder.end(PassId::Hbao);
         if (error || !hbao_blurs(frame.settings.hbao, frame.raw_view)) return error;
-        const int radius = frame.settings.hbao.blur_radius;
-        blur_.run(frame.env, radius, true, frame.uniforms.blur_x, blur_x_, frame.regions.blur_x, r.linear_depth, r.ao,
+        blur_.run(frame.env, true, frame.uniforms.blur_x, blur_x_, frame.regions.blur_x, r.linear_depth, r.ao,
                   r.blur_temp);
-        blur_.run(frame.env, radius, false, frame.uniforms.output, blur_y_, frame.regions.output, r.linear_depth,
-                  r.blur_temp, r.ao_blurred);
         out->result = &r.ao_blurred;
+        if (frame.target.format != 0) {
+            // The y pass runs as the output's write, its time under "blur" with the x pass's.
+            target_write_.frame = &frame;
+            out->target_write = &target_write_;
+            out->target_pass = PassId::Blur;
+            return Error();
+        }
+        blur_.run(frame.env, false, frame.uniforms.output, blur_y_, frame.regions.output, r.linear_depth, r.blur_temp,
+                  r.ao_blurred);
         return recorder.end(PassId::Blur);
     }
 
@@ -106,9 +115,20 @@ public:
     void release() override {}
 
 private:
+    // The blur's y pass into the host's target image, run by the output writer during the frame `frame`.
+    struct BlurTargetWrite final : OutputImageWrite {
+        explicit BlurTargetWrite(const HbaoTechnique& owner) : t(owner) {}
+        const HbaoTechnique& t;
+        const Frame* frame = nullptr;
+        void write_image(const PassEnv& env, GLuint texture, GLenum) const override {
+            t.blur_.run_into_target(env, frame->uniforms.output, t.blur_y_, frame->regions.output,
+                                    frame->resources.linear_depth, frame->resources.blur_temp, texture);
+        }
+    };
     HbaoPass hbao_;
     BilateralBlurPass blur_;
     UniformRange pass_, blur_x_, blur_y_;
+    BlurTargetWrite target_write_{*this};
 };
 
 const PassId kHbaoPasses[] = {PassId::Hbao, PassId::Blur};

@@ -124,12 +124,13 @@ public:
         // gather's nearest samples, which lie beyond a lattice step of the pixel where a line ends short of it.
         const bool receiver_only = lsao.tangent_strategy == kLsaoFixedTangent && lsao.normal_test != OBSCURA_TOGGLE_ON;
         plan.normals_margin = receiver_only ? 0 : TechniquePlan::kNormalsEverywhere;
+        plan.writes_target = true;  // the gather, over the output rectangle (no apron)
         return plan;
     }
 
     Error prepare(const PassEnv& env, const obscura_settings& settings, const FrameRequest& request,
                   FrameResources& resources) override {
-        Error error = pass_.prepare(env, settings.lsao);
+        Error error = pass_.prepare(env, settings.lsao, request.target);
         if (!error) error = pass_.ensure_layout(env, settings.lsao, resources.width, resources.height, request.frame_index);
         return error;
     }
@@ -143,6 +144,12 @@ public:
         pass_.run_sweeps(frame.env, frame.settings.lsao, frame.uniforms.whole, constants_, frame.resources);
         Error error = recorder.end(PassId::LineSweep);
         if (error) return error;
+        if (frame.target.format != 0) {  // the gather runs as the output's write
+            target_write_.frame = &frame;
+            out->target_write = &target_write_;
+            out->target_pass = PassId::Gather;
+            return Error();
+        }
         pass_.run_gather(frame.env, frame.uniforms.ao, constants_, frame.regions.ao, frame.resources);
         return recorder.end(PassId::Gather);
     }
@@ -151,8 +158,20 @@ public:
     void release() override { pass_.release(); }
 
 private:
+    // The gather into the host's target image, run by the output writer during the frame `frame` (the AO region is the
+    // output rectangle: LSAO has no apron).
+    struct GatherTargetWrite final : OutputImageWrite {
+        explicit GatherTargetWrite(const LsaoTechnique& owner) : t(owner) {}
+        const LsaoTechnique& t;
+        const Frame* frame = nullptr;
+        void write_image(const PassEnv& env, GLuint texture, GLenum) const override {
+            t.pass_.run_gather_into_target(env, frame->uniforms.ao, t.constants_, frame->regions.ao, frame->resources,
+                                           texture);
+        }
+    };
     LsaoPass pass_;
     UniformRange constants_;
+    GatherTargetWrite target_write_{*this};
 };
 
 const PassId kLsaoPasses[] = {PassId::LineSweep, PassId::Gather};

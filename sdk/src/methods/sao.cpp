@@ -77,6 +77,7 @@ public:
         plan.depth_levels = ZPyramidPass::level_count(width, height, SaoPass::wanted_levels(sao));
         plan.radius = sao.radius;
         plan.blur_targets = sao_blurs(sao, false);
+        plan.writes_target = sao_blurs(sao, request.raw_view);  // the blur's vertical pass
         return plan;
     }
 
@@ -84,7 +85,9 @@ public:
                   FrameResources& resources) override {
         Error error = pyramid_pass_.prepare(env, settings.sao.mip_filter);
         if (!error) error = sao_.prepare(env, settings.sao);
-        if (!error && sao_blurs(settings.sao, request.raw_view)) error = blur_.prepare(env, settings.sao.blur_radius);
+        if (!error && sao_blurs(settings.sao, request.raw_view)) {
+            error = blur_.prepare(env, settings.sao.blur_radius, request.target);
+        }
         if (error || (packed_ao_.width() == resources.width && packed_ao_.height() == resources.height)) return error;
         packed_ao_ = env.create_texture(GL_RGBA8, resources.width, resources.height);
         packed_temp_ = env.create_texture(GL_RGBA8, resources.width, resources.height);
@@ -123,9 +126,16 @@ public:
         if (error || !sao_blurs(frame.settings.sao, frame.raw_view)) return error;
         const obscura_sao_settings& sao = frame.settings.sao;
         blur_.run(frame.env, sao, frame.uniforms.blur_x, blur_x_, frame.regions.blur_x, packed_ao_, packed_temp_, false);
+        out->result = &frame.resources.ao_blurred;
+        if (frame.target.format != 0) {
+            // The vertical pass runs as the output's write, its time under "blur" with the horizontal one's.
+            target_write_.frame = &frame;
+            out->target_write = &target_write_;
+            out->target_pass = PassId::Blur;
+            return Error();
+        }
         blur_.run(frame.env, sao, frame.uniforms.output, blur_y_, frame.regions.output, packed_temp_,
                   frame.resources.ao_blurred, true);
-        out->result = &frame.resources.ao_blurred;
         return recorder.end(PassId::Blur);
     }
 
@@ -136,6 +146,16 @@ public:
     }
 
 private:
+    // The blur's vertical pass into the host's target image, run by the output writer during the frame `frame`.
+    struct BlurTargetWrite final : OutputImageWrite {
+        explicit BlurTargetWrite(const SaoTechnique& owner) : t(owner) {}
+        const SaoTechnique& t;
+        const Frame* frame = nullptr;
+        void write_image(const PassEnv& env, GLuint texture, GLenum) const override {
+            t.blur_.run_into_target(env, frame->settings.sao, frame->uniforms.output, t.blur_y_,
+                                    frame->regions.output, t.packed_temp_, texture);
+        }
+    };
     static constexpr int kMaxPyramidDispatches = 4;
     ZPyramidPass pyramid_pass_;
     SaoPass sao_;
@@ -144,6 +164,7 @@ private:
     gl::Texture2D packed_temp_;  // ... and the same after the horizontal blur
     int levels_ = 1, pyramid_dispatches_ = 0;
     UniformRange pyramid_[kMaxPyramidDispatches], pass_, blur_x_, blur_y_;
+    BlurTargetWrite target_write_{*this};
 };
 
 const PassId kSaoPasses[] = {PassId::ZPyramid, PassId::Sao, PassId::Blur};

@@ -8,15 +8,24 @@ int BilateralBlurPass::run_length(const PassEnv& env) {
     return env.cpu_renderer ? OBSCURA_BLUR_RUN_CPU : OBSCURA_BLUR_RUN_GPU;
 }
 
-Error BilateralBlurPass::prepare(const PassEnv& env, int radius) {
+Error BilateralBlurPass::prepare(const PassEnv& env, int radius, const TargetWrite& target) {
     if (radius < 1 || radius > kMaxRadius) {
         return Error::make(OBSCURA_STATUS_INVALID_SETTING, "blur radius %d is outside [1, %d]", radius, kMaxRadius);
     }
-    gl::Object& program = programs_[radius];
-    if (program) return Error();
-    char defines[96];
-    std::snprintf(defines, sizeof defines, "OBSCURA_BLUR_RADIUS %d\nOBSCURA_BLUR_RUN %d\n", radius, run_length(env));
-    return env.build("bilateral_blur.comp", defines, &program);
+    for (const bool into_target : {false, true}) {
+        if (into_target && target.format == 0) break;
+        char target_defines[64];
+        Error error = output_target_defines(into_target ? target : TargetWrite(), "blur", target_defines);
+        if (error) return error;
+        gl::DefineLines defines;
+        std::snprintf(defines.text, sizeof defines.text, "OBSCURA_BLUR_RADIUS %d\nOBSCURA_BLUR_RUN %d\nOBSCURA_BLUR_TARGET %d\n%s",
+                      radius, run_length(env), into_target ? 1 : 0, into_target ? target_defines : "");
+        error = programs_.get(defines, [&](gl::Object* built) { return env.build("bilateral_blur.comp", defines.text, built); },
+                              into_target ? &target_program_ : &program_);
+        if (error) return error;
+    }
+    target_ = target;
+    return Error();
 }
 
 BlurConstants BilateralBlurPass::constants(int radius, float sharpness, int axis_x, int axis_y) {
@@ -30,14 +39,26 @@ BlurConstants BilateralBlurPass::constants(int radius, float sharpness, int axis
     return c;
 }
 
-void BilateralBlurPass::run(const PassEnv& env, int radius, bool along_x, const UniformRange& frame,
-                            const UniformRange& pass, const Region& region, const gl::Texture2D& linear_depth,
-                            const gl::Texture2D& source, const gl::Texture2D& destination) {
-    const gl::Table& gl = env.gl;
-    gl.UseProgram(programs_[radius].name());
+void BilateralBlurPass::run(const PassEnv& env, bool along_x, const UniformRange& frame, const UniformRange& pass,
+                            const Region& region, const gl::Texture2D& linear_depth, const gl::Texture2D& source,
+                            const gl::Texture2D& destination) const {
+    env.gl.UseProgram(program_);
+    env.gl.BindImageTexture(OBSCURA_IMAGE_OUT0, destination.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
+    dispatch(env, along_x, frame, pass, region, linear_depth, source);
+}
+
+void BilateralBlurPass::run_into_target(const PassEnv& env, const UniformRange& frame, const UniformRange& pass,
+                                        const Region& region, const gl::Texture2D& linear_depth,
+                                        const gl::Texture2D& source, GLuint target_texture) const {
+    env.gl.UseProgram(target_program_);
+    bind_target_image(env.gl, OBSCURA_IMAGE_OUT0, target_texture, target_);
+    dispatch(env, false, frame, pass, region, linear_depth, source);
+}
+
+void BilateralBlurPass::dispatch(const PassEnv& env, bool along_x, const UniformRange& frame, const UniformRange& pass,
+                                 const Region& region, const gl::Texture2D& linear_depth, const gl::Texture2D& source) const {
     env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, linear_depth.name());
     env.bind_texture(OBSCURA_UNIT_SOURCE, GL_TEXTURE_2D, source.name());
-    gl.BindImageTexture(OBSCURA_IMAGE_OUT0, destination.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
     env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
     env.bind_uniforms(OBSCURA_UBO_PASS, pass);
     // One invocation per run of pixels along the axis.
@@ -45,7 +66,7 @@ void BilateralBlurPass::run(const PassEnv& env, int radius, bool along_x, const 
     const int width = along_x ? (region.width + run - 1) / run : region.width;
     const int height = along_x ? region.height : (region.height + run - 1) / run;
     env.dispatch(width, height, OBSCURA_BLUR_GROUP_X, OBSCURA_BLUR_GROUP_Y);
-    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    env.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
 }  // namespace obscura

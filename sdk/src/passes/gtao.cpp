@@ -83,7 +83,7 @@ GtaoConstants GtaoPass::constants(const obscura_gtao_settings& settings, const F
     // moves each pixel's values inside their strata along an R2 sequence (and the bitmask's draws with the jitter):
     // every pixel keeps its stratum, so edges, where the denoise's window is cut, keep their values from frame to
     // frame. Without it the frames alone must cover the strata: the patterns turn as a whole, by whole strata in
-    // bit-reversed order (any 2^k consecutive frames spread over the 16) plus the same R2 step inside them, and the
+    // bit-reversed order (each aligned run of 2^k frames spreads over the 16) plus the same R2 step inside them, and the
     // draws by an offset of their own. Every window still holds 16 evenly spaced values. (Turning whole strata with
     // the denoise as well flickered 8-17 % more on a moving camera: docs/quality.md.)
     const uint64_t frame = uint64_t(uint32_t(settings.frame_index)) + uint64_t(input.frame_index);
@@ -95,8 +95,8 @@ GtaoConstants GtaoPass::constants(const obscura_gtao_settings& settings, const F
         c.noise[2] = float(7.0 * inside_jitter / 16.0);
     } else {
         const double draws = double(frame) * 0.5497004779019703;
-        c.noise[0] = float((double(stratum_turn(frame)) + 0.5 + inside_rotation) / 16.0);
-        c.noise[1] = float((double(stratum_turn(frame * 7u)) + 0.5 + inside_jitter) / 16.0);
+        c.noise[0] = float((double(stratum_turn(frame)) + inside_rotation) / 16.0);
+        c.noise[1] = float((double(stratum_turn(frame * 7u)) + inside_jitter) / 16.0);
         c.noise[2] = float(draws - std::floor(draws));
     }
     c.rotation[0] = float(std::cos(kPi / settings.slices));
@@ -124,18 +124,30 @@ int GtaoDenoisePass::run_length(const PassEnv& env) {
     return env.cpu_renderer ? OBSCURA_GTAO_DENOISE_RUN_CPU : OBSCURA_GTAO_DENOISE_RUN_GPU;
 }
 
-Error GtaoDenoisePass::prepare(const PassEnv& env, bool bent_normals) {
+Error GtaoDenoisePass::prepare(const PassEnv& env, bool bent_normals, const TargetWrite& target) {
     for (int final = 0; final < 2; ++final) {
         gl::Object& program = programs_[bent_normals ? 1 : 0][final];
         if (program) continue;
-        char defines[128];
+        char defines[160];
         std::snprintf(defines, sizeof defines,
-                      "OBSCURA_GTAO_BENT_NORMALS %d\nOBSCURA_GTAO_DENOISE_FINAL %d\nOBSCURA_GTAO_DENOISE_RUN %d\n",
+                      "OBSCURA_GTAO_BENT_NORMALS %d\nOBSCURA_GTAO_DENOISE_FINAL %d\nOBSCURA_GTAO_DENOISE_RUN %d\n"
+                      "OBSCURA_GTAO_DENOISE_TARGET 0\n",
                       bent_normals ? 1 : 0, final, run_length(env));
         Error error = env.build("gtao_denoise.comp", defines, &program);
         if (error) return error;
     }
-    return Error();
+    target_ = target;
+    if (target.format == 0) return Error();
+    char target_defines[64];
+    Error error = output_target_defines(target, "GTAO denoise", target_defines);
+    if (error) return error;
+    gl::DefineLines defines;
+    std::snprintf(defines.text, sizeof defines.text,
+                  "OBSCURA_GTAO_BENT_NORMALS %d\nOBSCURA_GTAO_DENOISE_FINAL 1\nOBSCURA_GTAO_DENOISE_RUN %d\n"
+                  "OBSCURA_GTAO_DENOISE_TARGET 1\n%s",
+                  bent_normals ? 1 : 0, run_length(env), target_defines);
+    return target_programs_.get(
+        defines, [&](gl::Object* built) { return env.build("gtao_denoise.comp", defines.text, built); }, &target_program_);
 }
 
 GtaoDenoiseConstants GtaoDenoisePass::constants(const obscura_gtao_settings& settings, bool final) {
@@ -148,15 +160,30 @@ GtaoDenoiseConstants GtaoDenoisePass::constants(const obscura_gtao_settings& set
 
 void GtaoDenoisePass::run(const PassEnv& env, bool bent_normals, bool final, const UniformRange& frame,
                           const UniformRange& pass, const Region& region, const FrameResources& resources,
-                          const gl::Texture2D& source, const gl::Texture2D& destination, const gl::Texture2D* bent) {
+                          const gl::Texture2D& source, const gl::Texture2D& destination, const gl::Texture2D* bent) const {
+    env.gl.UseProgram(programs_[bent_normals ? 1 : 0][final ? 1 : 0].name());
+    const bool rgba = bent_normals && !final;
+    env.gl.BindImageTexture(OBSCURA_IMAGE_OUT0, destination.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
+                            rgba ? GL_RGBA16F : GL_R16F);
+    dispatch(env, bent_normals, final, frame, pass, region, resources, source, bent);
+}
+
+void GtaoDenoisePass::run_into_target(const PassEnv& env, bool bent_normals, const UniformRange& frame,
+                                      const UniformRange& pass, const Region& region, const FrameResources& resources,
+                                      const gl::Texture2D& source, GLuint target_texture,
+                                      const gl::Texture2D* bent) const {
+    env.gl.UseProgram(target_program_);
+    bind_target_image(env.gl, OBSCURA_IMAGE_OUT0, target_texture, target_);
+    dispatch(env, bent_normals, true, frame, pass, region, resources, source, bent);
+}
+
+void GtaoDenoisePass::dispatch(const PassEnv& env, bool bent_normals, bool final, const UniformRange& frame,
+                               const UniformRange& pass, const Region& region, const FrameResources& resources,
+                               const gl::Texture2D& source, const gl::Texture2D* bent) const {
     const gl::Table& gl = env.gl;
-    gl.UseProgram(programs_[bent_normals ? 1 : 0][final ? 1 : 0].name());
     env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
     env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
     env.bind_texture(OBSCURA_UNIT_SOURCE, GL_TEXTURE_2D, source.name());
-    const bool rgba = bent_normals && !final;
-    gl.BindImageTexture(OBSCURA_IMAGE_OUT0, destination.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
-                        rgba ? GL_RGBA16F : GL_R16F);
     if (bent_normals && final && bent) {
         gl.BindImageTexture(OBSCURA_IMAGE_OUT1, bent->name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     }

@@ -7,6 +7,7 @@
 
 #include "frame_input.h"
 #include "gl/program_cache.h"
+#include "output_writer.h"
 #include "passes/pass_common.h"
 
 namespace obscura {
@@ -46,18 +47,32 @@ private:
 // invocation filters a run of OBSCURA_GTAO_DENOISE_RUN pixels along its pass's axis.
 class GtaoDenoisePass {
 public:
-    Error prepare(const PassEnv& env, bool bent_normals);
+    // Builds both passes' programs and, with a `target` (format != 0), the final pass's variant that writes the host's
+    // target image (its format and blend compiled in).
+    Error prepare(const PassEnv& env, bool bent_normals, const TargetWrite& target = TargetWrite());
     static GtaoDenoiseConstants constants(const obscura_gtao_settings& settings, bool final);
     // Denoises `source` over `region` along the pass's axis into `destination`: with `final` the visibility (R16F)
     // and, with bent normals, `bent` (RGBA16F: visibility, unit bent normal xyz); else the same values as `source`
     // (R16F, or RGBA16F with bent normals).
     void run(const PassEnv& env, bool bent_normals, bool final, const UniformRange& frame, const UniformRange& pass,
              const Region& region, const FrameResources& resources, const gl::Texture2D& source,
-             const gl::Texture2D& destination, const gl::Texture2D* bent);
+             const gl::Texture2D& destination, const gl::Texture2D* bent) const;
+    // The final pass with the visibility into the host's target image `target_texture` (prepare's `target`) instead
+    // of a texture; the bent normals, if any, still into `bent`.
+    void run_into_target(const PassEnv& env, bool bent_normals, const UniformRange& frame, const UniformRange& pass,
+                         const Region& region, const FrameResources& resources, const gl::Texture2D& source,
+                         GLuint target_texture, const gl::Texture2D* bent) const;
 
 private:
+    void dispatch(const PassEnv& env, bool bent_normals, bool final, const UniformRange& frame, const UniformRange& pass,
+                  const Region& region, const FrameResources& resources, const gl::Texture2D& source,
+                  const gl::Texture2D* bent) const;
     static int run_length(const PassEnv& env);  // pixels per invocation (OBSCURA_GTAO_DENOISE_RUN_CPU / _GPU)
     gl::Object programs_[2][2];  // [bent normals][final]
+    // The final pass's target variants by their defines, the last gl::kProgramVariantsKept used.
+    gl::ProgramCache<gl::DefineLines> target_programs_;
+    GLuint target_program_ = 0;  // prepare's
+    TargetWrite target_;
 };
 
 }  // namespace obscura

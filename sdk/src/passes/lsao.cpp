@@ -56,7 +56,7 @@ int lsao_gather_margin(const obscura_lsao_settings& settings) {
     return std::clamp(int(std::ceil(reach)), 1, kLsaoMaxGatherMargin);
 }
 
-Error LsaoPass::prepare(const PassEnv& env, const obscura_lsao_settings& settings) {
+Error LsaoPass::prepare(const PassEnv& env, const obscura_lsao_settings& settings, const TargetWrite& target) {
     const int aligned = settings.pattern == 1 ? 1 : 0;
     const int cpu = env.cpu_renderer ? 1 : 0;
     gl::DefineLines defines;
@@ -67,17 +67,27 @@ Error LsaoPass::prepare(const PassEnv& env, const obscura_lsao_settings& setting
                   settings.tangent_strategy, cpu, lsao_segment_steps(settings, env.cpu_renderer) > 0 ? 1 : 0);
     Error error = program_for(env, "line_sweep.comp", defines, &sweep_variants_, &sweep_program_);
     if (error) return error;
-    defines = gl::DefineLines();
-    std::snprintf(defines.text, sizeof defines.text,
-                  "OBSCURA_LSAO_ALIGNED %d\nOBSCURA_LSAO_NORMAL_TEST %d\nOBSCURA_CPU_RASTERISER %d\n"
-                  "OBSCURA_LSAO_DIRECTIONS %d\nOBSCURA_LSAO_GATHER_MARGIN %d\nOBSCURA_LSAO_GATHER_BATCH %d\n"
-                  "OBSCURA_LSAO_TANGENT_STRATEGY %d\n",
-                  aligned, settings.normal_test == OBSCURA_TOGGLE_ON ? 1 : 0, cpu, settings.directions,
-                  lsao_gather_margin(settings), cpu ? 1 : std::min(settings.directions, kLsaoGatherBatch),
-                  settings.tangent_strategy);
     gather_group_[0] = cpu ? OBSCURA_LSAO_GATHER_GROUP_X : OBSCURA_LSAO_GPU_GATHER_GROUP;
     gather_group_[1] = cpu ? OBSCURA_LSAO_GATHER_GROUP_Y : OBSCURA_LSAO_GPU_GATHER_GROUP;
-    return program_for(env, "lsao_gather.comp", defines, &gather_variants_, &gather_program_);
+    target_ = target;
+    for (const bool into_target : {false, true}) {
+        if (into_target && target.format == 0) break;
+        char target_defines[64];
+        error = output_target_defines(into_target ? target : TargetWrite(), "LSAO gather", target_defines);
+        if (error) return error;
+        defines = gl::DefineLines();
+        std::snprintf(defines.text, sizeof defines.text,
+                      "OBSCURA_LSAO_ALIGNED %d\nOBSCURA_LSAO_NORMAL_TEST %d\nOBSCURA_CPU_RASTERISER %d\n"
+                      "OBSCURA_LSAO_DIRECTIONS %d\nOBSCURA_LSAO_GATHER_MARGIN %d\nOBSCURA_LSAO_GATHER_BATCH %d\n"
+                      "OBSCURA_LSAO_TANGENT_STRATEGY %d\nOBSCURA_LSAO_GATHER_TARGET %d\n%s",
+                      aligned, settings.normal_test == OBSCURA_TOGGLE_ON ? 1 : 0, cpu, settings.directions,
+                      lsao_gather_margin(settings), cpu ? 1 : std::min(settings.directions, kLsaoGatherBatch),
+                      settings.tangent_strategy, into_target ? 1 : 0, into_target ? target_defines : "");
+        error = program_for(env, "lsao_gather.comp", defines, &gather_variants_,
+                            into_target ? &gather_target_program_ : &gather_program_);
+        if (error) return error;
+    }
+    return Error();
 }
 
 Error LsaoPass::ensure_layout(const PassEnv& env, const obscura_lsao_settings& settings, int width, int height,
@@ -253,10 +263,24 @@ void LsaoPass::run_sweeps(const PassEnv& env, const obscura_lsao_settings& setti
 }
 
 void LsaoPass::run_gather(const PassEnv& env, const UniformRange& frame, const UniformRange& pass,
-                          const Region& region, FrameResources& resources) {
+                          const Region& region, const FrameResources& resources) const {
+    env.gl.UseProgram(gather_program_);
+    env.gl.BindImageTexture(OBSCURA_IMAGE_OUT0, resources.ao.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
+    dispatch_gather(env, frame, pass, region, resources);
+}
+
+void LsaoPass::run_gather_into_target(const PassEnv& env, const UniformRange& frame, const UniformRange& pass,
+                                      const Region& region, const FrameResources& resources,
+                                      GLuint target_texture) const {
+    env.gl.UseProgram(gather_target_program_);
+    bind_target_image(env.gl, OBSCURA_IMAGE_OUT0, target_texture, target_);
+    dispatch_gather(env, frame, pass, region, resources);
+}
+
+void LsaoPass::dispatch_gather(const PassEnv& env, const UniformRange& frame, const UniformRange& pass,
+                               const Region& region, const FrameResources& resources) const {
     const gl::Table& gl = env.gl;
     const Phase& phase = phases_[current_];
-    gl.UseProgram(gather_program_);
     env.bind_texture(OBSCURA_UNIT_LINEAR_DEPTH, GL_TEXTURE_2D, resources.linear_depth.name());
     env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
     if (phase.lines_texture) {  // CPU rasterisers
@@ -265,7 +289,6 @@ void LsaoPass::run_gather(const PassEnv& env, const UniformRange& frame, const U
     }
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_LSAO_LINES, phase.lines.name());
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, OBSCURA_SSBO_LSAO_VALUES, values_.name());
-    gl.BindImageTexture(OBSCURA_IMAGE_OUT0, resources.ao.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
     env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
     env.bind_uniforms(OBSCURA_UBO_PASS, pass);
     env.dispatch(region.width, region.height, gather_group_[0], gather_group_[1]);

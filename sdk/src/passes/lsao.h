@@ -8,6 +8,7 @@
 #include "gl/program_cache.h"
 #include "layout_phase.h"
 #include "passes/lsao_pattern.h"
+#include "output_writer.h"
 #include "passes/pass_common.h"
 
 namespace obscura {
@@ -43,8 +44,9 @@ int lsao_gather_margin(const obscura_lsao_settings& settings);
 
 class LsaoPass {
 public:
-    // Selects the programs for the settings, building them if no kept variant matches.
-    Error prepare(const PassEnv& env, const obscura_lsao_settings& settings);
+    // Selects the programs for the settings, building them if no kept variant matches; with a `target` (format != 0)
+    // also the gather's variant that writes the host's target image (its format and blend compiled in).
+    Error prepare(const PassEnv& env, const obscura_lsao_settings& settings, const TargetWrite& target = TargetWrite());
     // Selects the layout of the frame's phase (layout_phase(frame_index)): drops every phase's layout when the
     // size, the pattern, K, D_S or D_L changed, and builds the phase's on its first use.
     Error ensure_layout(const PassEnv& env, const obscura_lsao_settings& settings, int width, int height,
@@ -55,7 +57,10 @@ public:
     void run_sweeps(const PassEnv& env, const obscura_lsao_settings& settings, const UniformRange& frame,
                     const UniformRange& pass, FrameResources& resources);
     void run_gather(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
-                    FrameResources& resources);
+                    const FrameResources& resources) const;
+    // The gather into the host's target image `target_texture` (prepare's `target`) instead of resources.ao.
+    void run_gather_into_target(const PassEnv& env, const UniformRange& frame, const UniformRange& pass,
+                                const Region& region, const FrameResources& resources, GLuint target_texture) const;
     // The current phase's layout.
     const LsaoLayout& layout() const { return phases_[current_].layout; }
     uint64_t bytes() const;
@@ -67,8 +72,12 @@ private:
     using VariantCache = gl::ProgramCache<gl::DefineLines>;
     static Error program_for(const PassEnv& env, const char* shader, const gl::DefineLines& defines,
                              VariantCache* cache, GLuint* program);
+    void dispatch_gather(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
+                         const FrameResources& resources) const;
     VariantCache sweep_variants_, gather_variants_;
     GLuint sweep_program_ = 0, gather_program_ = 0;  // the current settings' variants
+    GLuint gather_target_program_ = 0;               // with prepare's target
+    TargetWrite target_;
     int gather_group_[2] = {OBSCURA_LSAO_GATHER_GROUP_X, OBSCURA_LSAO_GATHER_GROUP_Y};
     bool collect_stats_ = false;
     // What the layout was built for (D_S matters only for the free pattern, but is compared anyway).

@@ -112,20 +112,31 @@ int SaoBlurPass::run_length(const PassEnv& env) {
     return env.cpu_renderer ? OBSCURA_SAO_BLUR_RUN_CPU : OBSCURA_SAO_BLUR_RUN_GPU;
 }
 
-Error SaoBlurPass::prepare(const PassEnv& env, int radius) {
+Error SaoBlurPass::prepare(const PassEnv& env, int radius, const TargetWrite& target) {
     if (radius < 1 || radius > kMaxRadius) {
         return Error::make(OBSCURA_STATUS_INVALID_SETTING, "SAO blur radius %d is outside [1, %d]", radius, kMaxRadius);
     }
     for (int final = 0; final < 2; ++final) {
         gl::Object& program = programs_[radius][final];
         if (program) continue;
-        char defines[128];
-        std::snprintf(defines, sizeof defines, "FINAL_OUTPUT %d\nOBSCURA_SAO_BLUR_RADIUS %d\nOBSCURA_SAO_BLUR_RUN %d\n",
+        char defines[160];
+        std::snprintf(defines, sizeof defines,
+                      "FINAL_OUTPUT %d\nOBSCURA_SAO_BLUR_RADIUS %d\nOBSCURA_SAO_BLUR_RUN %d\nOBSCURA_SAO_BLUR_TARGET 0\n",
                       final, radius, run_length(env));
         Error error = env.build("sao_blur.comp", defines, &program);
         if (error) return error;
     }
-    return Error();
+    target_ = target;
+    if (target.format == 0) return Error();
+    char target_defines[64];
+    Error error = output_target_defines(target, "SAO blur", target_defines);
+    if (error) return error;
+    gl::DefineLines defines;
+    std::snprintf(defines.text, sizeof defines.text,
+                  "FINAL_OUTPUT 1\nOBSCURA_SAO_BLUR_RADIUS %d\nOBSCURA_SAO_BLUR_RUN %d\nOBSCURA_SAO_BLUR_TARGET 1\n%s",
+                  radius, run_length(env), target_defines);
+    return target_programs_.get(
+        defines, [&](gl::Object* built) { return env.build("sao_blur.comp", defines.text, built); }, &target_program_);
 }
 
 SaoBlurConstants SaoBlurPass::constants(const obscura_sao_settings& settings, int axis_x, int axis_y) {
@@ -142,12 +153,26 @@ SaoBlurConstants SaoBlurPass::constants(const obscura_sao_settings& settings, in
 
 void SaoBlurPass::run(const PassEnv& env, const obscura_sao_settings& settings, const UniformRange& frame,
                       const UniformRange& pass, const Region& region, const gl::Texture2D& source,
-                      const gl::Texture2D& destination, bool final) {
+                      const gl::Texture2D& destination, bool final) const {
+    env.gl.UseProgram(programs_[settings.blur_radius][final ? 1 : 0].name());
+    env.gl.BindImageTexture(OBSCURA_IMAGE_OUT0, destination.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
+                            final ? GL_R16F : GL_RGBA8);
+    dispatch(env, settings, frame, pass, region, source, final);
+}
+
+void SaoBlurPass::run_into_target(const PassEnv& env, const obscura_sao_settings& settings, const UniformRange& frame,
+                                  const UniformRange& pass, const Region& region, const gl::Texture2D& source,
+                                  GLuint target_texture) const {
+    env.gl.UseProgram(target_program_);
+    bind_target_image(env.gl, OBSCURA_IMAGE_OUT0, target_texture, target_);
+    dispatch(env, settings, frame, pass, region, source, true);
+}
+
+void SaoBlurPass::dispatch(const PassEnv& env, const obscura_sao_settings& settings, const UniformRange& frame,
+                           const UniformRange& pass, const Region& region, const gl::Texture2D& source,
+                           bool final) const {
     const gl::Table& gl = env.gl;
-    gl.UseProgram(programs_[settings.blur_radius][final ? 1 : 0].name());
     env.bind_texture(OBSCURA_UNIT_SOURCE, GL_TEXTURE_2D, source.name());
-    gl.BindImageTexture(OBSCURA_IMAGE_OUT0, destination.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
-                        final ? GL_R16F : GL_RGBA8);
     env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
     env.bind_uniforms(OBSCURA_UBO_PASS, pass);
     // Along the axis, one invocation per residue (mod the stride) of each block of run x stride pixels.

@@ -4,6 +4,8 @@
 #define OBSCURA_SAO_H
 
 #include "frame_input.h"
+#include "gl/program_cache.h"
+#include "output_writer.h"
 #include "passes/pass_common.h"
 
 namespace obscura {
@@ -48,18 +50,29 @@ private:
 class SaoBlurPass {
 public:
     static constexpr int kMaxRadius = 8;  // the top of SAO's blur_radius setting (sao.cpp)
-    // Builds both programs for `radius` (1 ... kMaxRadius, compiled in) on first use.
-    Error prepare(const PassEnv& env, int radius);
+    // Builds both programs for `radius` (1 ... kMaxRadius, compiled in) on first use and, with a `target` (format
+    // != 0), the vertical pass's variant that writes the host's target image (its format and blend compiled in).
+    Error prepare(const PassEnv& env, int radius, const TargetWrite& target = TargetWrite());
     static SaoBlurConstants constants(const obscura_sao_settings& settings, int axis_x, int axis_y);
     // Blurs along x (the packed horizontal pass) or y (`final`) with the constants `pass` of `settings`.
     void run(const PassEnv& env, const obscura_sao_settings& settings, const UniformRange& frame,
              const UniformRange& pass, const Region& region, const gl::Texture2D& source,
-             const gl::Texture2D& destination, bool final);
+             const gl::Texture2D& destination, bool final) const;
+    // The vertical pass into the host's target image `target_texture` (prepare's `target`) instead of a texture.
+    void run_into_target(const PassEnv& env, const obscura_sao_settings& settings, const UniformRange& frame,
+                         const UniformRange& pass, const Region& region, const gl::Texture2D& source,
+                         GLuint target_texture) const;
 
 private:
+    void dispatch(const PassEnv& env, const obscura_sao_settings& settings, const UniformRange& frame,
+                  const UniformRange& pass, const Region& region, const gl::Texture2D& source, bool final) const;
     // Pixels an invocation filters along the axis (sao_blur.comp).
     static int run_length(const PassEnv& env);
     gl::Object programs_[kMaxRadius + 1][2];  // by radius, then final
+    // The vertical pass's target variants by their defines, the last gl::kProgramVariantsKept used.
+    gl::ProgramCache<gl::DefineLines> target_programs_;
+    GLuint target_program_ = 0;  // prepare's
+    TargetWrite target_;
 };
 
 }  // namespace obscura

@@ -117,10 +117,7 @@ void TemporalPass::run(const PassEnv& env, const UniformRange& frame, const Unif
     env.bind_texture(OBSCURA_UNIT_MOTION, GL_TEXTURE_2D,
                      input.motion_vector_texture ? input.motion_vector_texture : history.previous().name());
     gl.BindImageTexture(OBSCURA_IMAGE_OUT0, history.next().name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
-    if (target_.format != 0) {
-        gl.BindImageTexture(OBSCURA_IMAGE_OUT2, target_texture, 0, GL_FALSE, 0,
-                            target_.multiply ? GL_READ_WRITE : GL_WRITE_ONLY, target_.format);
-    }
+    if (target_.format != 0) bind_target_image(gl, OBSCURA_IMAGE_OUT2, target_texture, target_);
     if (bent) {
         env.bind_texture(OBSCURA_UNIT_BENT_SOURCE, GL_TEXTURE_2D, bent_source->name());
         env.bind_texture(OBSCURA_UNIT_BENT_HISTORY, GL_TEXTURE_2D, history.previous_bent().name());

@@ -66,8 +66,7 @@ void UpsamplePass::run(const PassEnv& env, const UniformRange& frame, const Unif
     env.bind_texture(OBSCURA_UNIT_NORMALS, GL_TEXTURE_2D, resources.normals.name());
     env.bind_texture(OBSCURA_UNIT_SOURCE, GL_TEXTURE_2D, source.name());
     if (destination_.format != 0) {
-        gl.BindImageTexture(OBSCURA_IMAGE_OUT0, target_texture, 0, GL_FALSE, 0,
-                            destination_.multiply ? GL_READ_WRITE : GL_WRITE_ONLY, destination_.format);
+        bind_target_image(gl, OBSCURA_IMAGE_OUT0, target_texture, destination_);
     } else {
         gl.BindImageTexture(OBSCURA_IMAGE_OUT0, ao_.name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
     }
