@@ -42,7 +42,7 @@ layout(binding = OBSCURA_IMAGE_OUT1, rgba16f) writeonly uniform image2D u_bent_n
 
 mat4 columns(vec4 c[4]) { return mat4(c[0], c[1], c[2], c[3]); }
 
-// The frame's visibility, as the composite would write it from the history into the host's target.
+// The frame's visibility into the host's target, where the composite would have copied the history's (held to [0, 1]).
 void write_target(ivec2 p, float visibility) {
 #if OBSCURA_TEMPORAL_TARGET
     obscura_write_final_output(p, visibility);

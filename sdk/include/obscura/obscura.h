@@ -858,7 +858,8 @@ typedef struct obscura_timing {
                           writes the output itself (no debug view): "upsample" at reduced resolution, else
                           "temporal" with settings.temporal on, else the method's last reconstruction pass (HBAO's
                           and SAO's "blur", GTAO's "gtao_denoise", LSAO's "gather"; REFERENCE, FFAO and a method with
-                          its blur or denoise off keep "composite"). Static strings */
+                          its blur or denoise off keep "composite"). The pass that writes the output also holds the
+                          bent-normal write and a blit target's blit. Static strings */
     double milliseconds;
 } obscura_timing;
 

@@ -158,15 +158,15 @@ public:
     void release() override { pass_.release(); }
 
 private:
-    // The gather into the host's target image, run by the output writer during the frame `frame` (the AO region is the
-    // output rectangle: LSAO has no apron).
+    // The gather into the host's target image, run by the output writer during the frame `frame`: over the output
+    // rectangle (LSAO's AO region is that rectangle, without an apron; the target holds nothing beyond it).
     struct GatherTargetWrite final : OutputImageWrite {
         explicit GatherTargetWrite(const LsaoTechnique& owner) : t(owner) {}
         const LsaoTechnique& t;
         const Frame* frame = nullptr;
         void write_image(const PassEnv& env, GLuint texture, GLenum) const override {
-            t.pass_.run_gather_into_target(env, frame->uniforms.ao, t.constants_, frame->regions.ao, frame->resources,
-                                           texture);
+            t.pass_.run_gather_into_target(env, frame->uniforms.output, t.constants_, frame->regions.output,
+                                           frame->resources, texture);
         }
     };
     LsaoPass pass_;

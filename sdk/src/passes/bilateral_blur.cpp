@@ -20,10 +20,16 @@ Error BilateralBlurPass::prepare(const PassEnv& env, int radius, const TargetWri
         gl::DefineLines defines;
         std::snprintf(defines.text, sizeof defines.text, "OBSCURA_BLUR_RADIUS %d\nOBSCURA_BLUR_RUN %d\nOBSCURA_BLUR_TARGET %d\n%s",
                       radius, run_length(env), into_target ? 1 : 0, into_target ? target_defines : "");
-        error = programs_.get(defines, [&](gl::Object* built) { return env.build("bilateral_blur.comp", defines.text, built); },
-                              into_target ? &target_program_ : &program_);
+        if (into_target) {
+            error = target_programs_.get(
+                defines, [&](gl::Object* built) { return env.build("bilateral_blur.comp", defines.text, built); },
+                &target_program_);
+        } else if (!programs_[radius]) {
+            error = env.build("bilateral_blur.comp", defines.text, &programs_[radius]);
+        }
         if (error) return error;
     }
+    program_ = programs_[radius].name();
     target_ = target;
     return Error();
 }

@@ -30,8 +30,10 @@ private:
                   const Region& region, const gl::Texture2D& linear_depth, const gl::Texture2D& source) const;
     // Pixels an invocation filters along the axis (bilateral_blur.comp).
     static int run_length(const PassEnv& env);
-    // The variants by their defines (radius, target format and blend), the last gl::kProgramVariantsKept used.
-    gl::ProgramCache<gl::DefineLines> programs_;
+    gl::Object programs_[kMaxRadius + 1];  // by radius: both passes into a texture
+    // The y pass's target variants by their defines (radius, target format and blend), the last
+    // gl::kProgramVariantsKept used.
+    gl::ProgramCache<gl::DefineLines> target_programs_;
     GLuint program_ = 0, target_program_ = 0;  // prepare's
     TargetWrite target_;
 };

@@ -70,8 +70,9 @@ Error LsaoPass::prepare(const PassEnv& env, const obscura_lsao_settings& setting
     gather_group_[0] = cpu ? OBSCURA_LSAO_GATHER_GROUP_X : OBSCURA_LSAO_GPU_GATHER_GROUP;
     gather_group_[1] = cpu ? OBSCURA_LSAO_GATHER_GROUP_Y : OBSCURA_LSAO_GPU_GATHER_GROUP;
     target_ = target;
+    // A frame runs one gather: into resources.ao, or with a target into the target's image.
     for (const bool into_target : {false, true}) {
-        if (into_target && target.format == 0) break;
+        if (into_target != (target.format != 0)) continue;
         char target_defines[64];
         error = output_target_defines(into_target ? target : TargetWrite(), "LSAO gather", target_defines);
         if (error) return error;

@@ -45,7 +45,8 @@ int lsao_gather_margin(const obscura_lsao_settings& settings);
 class LsaoPass {
 public:
     // Selects the programs for the settings, building them if no kept variant matches; with a `target` (format != 0)
-    // also the gather's variant that writes the host's target image (its format and blend compiled in).
+    // the gather's variant that writes the host's target image (its format and blend compiled in) instead of the one
+    // that writes resources.ao.
     Error prepare(const PassEnv& env, const obscura_lsao_settings& settings, const TargetWrite& target = TargetWrite());
     // Selects the layout of the frame's phase (layout_phase(frame_index)): drops every phase's layout when the
     // size, the pattern, K, D_S or D_L changed, and builds the phase's on its first use.
