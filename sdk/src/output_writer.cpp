@@ -318,6 +318,9 @@ TargetWrite target_write(const OutputTarget& target) {
     return write;
 }
 
+namespace {
+
+// common/output_target.glsl's #define lines for `write` (target_variant).
 Error output_target_defines(const TargetWrite& write, const char* pass, char (&out)[64]) {
     int channels = 0;
     const char* qualifier = write.format != 0 ? image_format_qualifier(write.format, &channels) : "r8";
@@ -327,6 +330,21 @@ Error output_target_defines(const TargetWrite& write, const char* pass, char (&o
     }
     std::snprintf(out, sizeof out, "OUTPUT_FORMAT %s\nOUTPUT_MULTIPLY %d\n", qualifier, write.multiply ? 1 : 0);
     return Error();
+}
+
+}  // namespace
+
+Error target_variant(const PassEnv& env, const char* shader, const char* pass_defines, const TargetWrite& write,
+                     gl::ProgramCache<gl::DefineLines>* cache, GLuint* program) {
+    char target_defines[64];
+    Error error = output_target_defines(write, shader, target_defines);
+    if (error) return error;
+    gl::DefineLines defines;
+    const int length = std::snprintf(defines.text, sizeof defines.text, "%s%s", pass_defines, target_defines);
+    if (length < 0 || size_t(length) >= sizeof defines.text) {
+        return Error::make(OBSCURA_STATUS_INTERNAL_ERROR, "%s: the variant's #define lines do not fit", shader);
+    }
+    return cache->get(defines, [&](gl::Object* built) { return env.build(shader, defines.text, built); }, program);
 }
 
 void bind_target_image(const gl::Table& gl, GLuint unit, GLuint texture, const TargetWrite& write) {

@@ -6,6 +6,7 @@
 #define OBSCURA_OUTPUT_WRITER_H
 
 #include "frame_input.h"
+#include "gl/program_cache.h"
 #include "passes/bent_normal_write.h"
 #include "passes/composite.h"
 #include "passes/pass_common.h"
@@ -63,10 +64,11 @@ struct TargetWrite {
 };
 // The write for `target` (its image's format and blend).
 TargetWrite target_write(const OutputTarget& target);
-// The #define lines common/output_target.glsl reads for `write` into `out`: "OUTPUT_FORMAT <qualifier>\nOUTPUT_MULTIPLY
-// <0|1>\n" (a placeholder format where the pass writes no target). INTERNAL_ERROR, naming `pass`, for a format without a
-// qualifier.
-Error output_target_defines(const TargetWrite& write, const char* pass, char (&out)[64]);
+// The program of `shader` with the #define lines `pass_defines` and then the ones common/output_target.glsl reads for
+// `write`, "OUTPUT_FORMAT <qualifier>\nOUTPUT_MULTIPLY <0|1>\n" (format 0, where the pass writes no target: a
+// placeholder): the one kept in `cache`, or built into it. INTERNAL_ERROR for a format without a qualifier.
+Error target_variant(const PassEnv& env, const char* shader, const char* pass_defines, const TargetWrite& write,
+                     gl::ProgramCache<gl::DefineLines>* cache, GLuint* program);
 // Binds the target image `texture` (of `write`'s format) to image `unit` for common/output_target.glsl: read and
 // written for the multiply blend, written otherwise.
 void bind_target_image(const gl::Table& gl, GLuint unit, GLuint texture, const TargetWrite& write);

@@ -12,20 +12,17 @@ Error BilateralBlurPass::prepare(const PassEnv& env, int radius, const TargetWri
     if (radius < 1 || radius > kMaxRadius) {
         return Error::make(OBSCURA_STATUS_INVALID_SETTING, "blur radius %d is outside [1, %d]", radius, kMaxRadius);
     }
-    for (const bool into_target : {false, true}) {
+    // The x pass and, without a target, the y pass write a texture; with one the y pass writes the target's image.
+    for (const int into_target : {0, 1}) {
         if (into_target && target.format == 0) break;
-        char target_defines[64];
-        Error error = output_target_defines(into_target ? target : TargetWrite(), "blur", target_defines);
-        if (error) return error;
-        gl::DefineLines defines;
-        std::snprintf(defines.text, sizeof defines.text, "OBSCURA_BLUR_RADIUS %d\nOBSCURA_BLUR_RUN %d\nOBSCURA_BLUR_TARGET %d\n%s",
-                      radius, run_length(env), into_target ? 1 : 0, into_target ? target_defines : "");
+        char defines[96];
+        std::snprintf(defines, sizeof defines, "OBSCURA_BLUR_RADIUS %d\nOBSCURA_BLUR_RUN %d\nOBSCURA_BLUR_TARGET %d\n",
+                      radius, run_length(env), into_target);
+        Error error;
         if (into_target) {
-            error = target_programs_.get(
-                defines, [&](gl::Object* built) { return env.build("bilateral_blur.comp", defines.text, built); },
-                &target_program_);
+            error = target_variant(env, "bilateral_blur.comp", defines, target, &target_programs_, &target_program_);
         } else if (!programs_[radius]) {
-            error = env.build("bilateral_blur.comp", defines.text, &programs_[radius]);
+            error = env.build("bilateral_blur.comp", defines, &programs_[radius]);
         }
         if (error) return error;
     }

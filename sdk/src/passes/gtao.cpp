@@ -138,16 +138,12 @@ Error GtaoDenoisePass::prepare(const PassEnv& env, bool bent_normals, const Targ
     }
     target_ = target;
     if (target.format == 0) return Error();
-    char target_defines[64];
-    Error error = output_target_defines(target, "GTAO denoise", target_defines);
-    if (error) return error;
-    gl::DefineLines defines;
-    std::snprintf(defines.text, sizeof defines.text,
+    char defines[160];
+    std::snprintf(defines, sizeof defines,
                   "OBSCURA_GTAO_BENT_NORMALS %d\nOBSCURA_GTAO_DENOISE_FINAL 1\nOBSCURA_GTAO_DENOISE_RUN %d\n"
-                  "OBSCURA_GTAO_DENOISE_TARGET 1\n%s",
-                  bent_normals ? 1 : 0, run_length(env), target_defines);
-    return target_programs_.get(
-        defines, [&](gl::Object* built) { return env.build("gtao_denoise.comp", defines.text, built); }, &target_program_);
+                  "OBSCURA_GTAO_DENOISE_TARGET 1\n",
+                  bent_normals ? 1 : 0, run_length(env));
+    return target_variant(env, "gtao_denoise.comp", defines, target, &target_programs_, &target_program_);
 }
 
 GtaoDenoiseConstants GtaoDenoisePass::constants(const obscura_gtao_settings& settings, bool final) {

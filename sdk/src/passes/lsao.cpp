@@ -71,24 +71,16 @@ Error LsaoPass::prepare(const PassEnv& env, const obscura_lsao_settings& setting
     gather_group_[1] = cpu ? OBSCURA_LSAO_GATHER_GROUP_Y : OBSCURA_LSAO_GPU_GATHER_GROUP;
     target_ = target;
     // A frame runs one gather: into resources.ao, or with a target into the target's image.
-    for (const bool into_target : {false, true}) {
-        if (into_target != (target.format != 0)) continue;
-        char target_defines[64];
-        error = output_target_defines(into_target ? target : TargetWrite(), "LSAO gather", target_defines);
-        if (error) return error;
-        defines = gl::DefineLines();
-        std::snprintf(defines.text, sizeof defines.text,
-                      "OBSCURA_LSAO_ALIGNED %d\nOBSCURA_LSAO_NORMAL_TEST %d\nOBSCURA_CPU_RASTERISER %d\n"
-                      "OBSCURA_LSAO_DIRECTIONS %d\nOBSCURA_LSAO_GATHER_MARGIN %d\nOBSCURA_LSAO_GATHER_BATCH %d\n"
-                      "OBSCURA_LSAO_TANGENT_STRATEGY %d\nOBSCURA_LSAO_GATHER_TARGET %d\n%s",
-                      aligned, settings.normal_test == OBSCURA_TOGGLE_ON ? 1 : 0, cpu, settings.directions,
-                      lsao_gather_margin(settings), cpu ? 1 : std::min(settings.directions, kLsaoGatherBatch),
-                      settings.tangent_strategy, into_target ? 1 : 0, into_target ? target_defines : "");
-        error = program_for(env, "lsao_gather.comp", defines, &gather_variants_,
-                            into_target ? &gather_target_program_ : &gather_program_);
-        if (error) return error;
-    }
-    return Error();
+    char gather_defines[384];
+    std::snprintf(gather_defines, sizeof gather_defines,
+                  "OBSCURA_LSAO_ALIGNED %d\nOBSCURA_LSAO_NORMAL_TEST %d\nOBSCURA_CPU_RASTERISER %d\n"
+                  "OBSCURA_LSAO_DIRECTIONS %d\nOBSCURA_LSAO_GATHER_MARGIN %d\nOBSCURA_LSAO_GATHER_BATCH %d\n"
+                  "OBSCURA_LSAO_TANGENT_STRATEGY %d\nOBSCURA_LSAO_GATHER_TARGET %d\n",
+                  aligned, settings.normal_test == OBSCURA_TOGGLE_ON ? 1 : 0, cpu, settings.directions,
+                  lsao_gather_margin(settings), cpu ? 1 : std::min(settings.directions, kLsaoGatherBatch),
+                  settings.tangent_strategy, target.format != 0 ? 1 : 0);
+    return target_variant(env, "lsao_gather.comp", gather_defines, target, &gather_variants_,
+                          target.format != 0 ? &gather_target_program_ : &gather_program_);
 }
 
 Error LsaoPass::ensure_layout(const PassEnv& env, const obscura_lsao_settings& settings, int width, int height,

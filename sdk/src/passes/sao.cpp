@@ -128,15 +128,11 @@ Error SaoBlurPass::prepare(const PassEnv& env, int radius, const TargetWrite& ta
     }
     target_ = target;
     if (target.format == 0) return Error();
-    char target_defines[64];
-    Error error = output_target_defines(target, "SAO blur", target_defines);
-    if (error) return error;
-    gl::DefineLines defines;
-    std::snprintf(defines.text, sizeof defines.text,
-                  "FINAL_OUTPUT 1\nOBSCURA_SAO_BLUR_RADIUS %d\nOBSCURA_SAO_BLUR_RUN %d\nOBSCURA_SAO_BLUR_TARGET 1\n%s",
-                  radius, run_length(env), target_defines);
-    return target_programs_.get(
-        defines, [&](gl::Object* built) { return env.build("sao_blur.comp", defines.text, built); }, &target_program_);
+    char defines[160];
+    std::snprintf(defines, sizeof defines,
+                  "FINAL_OUTPUT 1\nOBSCURA_SAO_BLUR_RADIUS %d\nOBSCURA_SAO_BLUR_RUN %d\nOBSCURA_SAO_BLUR_TARGET 1\n",
+                  radius, run_length(env));
+    return target_variant(env, "sao_blur.comp", defines, target, &target_programs_, &target_program_);
 }
 
 SaoBlurConstants SaoBlurPass::constants(const obscura_sao_settings& settings, int axis_x, int axis_y) {

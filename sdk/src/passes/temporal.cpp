@@ -65,17 +65,12 @@ void TemporalHistory::release() {
 }
 
 Error TemporalPass::prepare(const PassEnv& env, bool bent_normals, int reprojection, const TargetWrite& target) {
-    char target_defines[64];
-    Error error = output_target_defines(target, "temporal", target_defines);
-    if (error) return error;
-    gl::DefineLines defines;
-    std::snprintf(defines.text, sizeof defines.text,
+    char defines[160];
+    std::snprintf(defines, sizeof defines,
                   "OBSCURA_TEMPORAL_BENT_NORMALS %d\nOBSCURA_TEMPORAL_REPROJECT %d\nOBSCURA_CPU_RASTERISER %d\n"
-                  "OBSCURA_TEMPORAL_TARGET %d\n%s",
-                  bent_normals ? 1 : 0, reprojection, env.cpu_renderer ? 1 : 0, target.format != 0 ? 1 : 0,
-                  target_defines);
-    error = programs_.get(
-        defines, [&](gl::Object* built) { return env.build("temporal_accumulate.comp", defines.text, built); }, &program_);
+                  "OBSCURA_TEMPORAL_TARGET %d\n",
+                  bent_normals ? 1 : 0, reprojection, env.cpu_renderer ? 1 : 0, target.format != 0 ? 1 : 0);
+    Error error = target_variant(env, "temporal_accumulate.comp", defines, target, &programs_, &program_);
     if (!error) target_ = target;
     return error;
 }

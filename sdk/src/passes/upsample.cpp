@@ -9,16 +9,12 @@ namespace obscura {
 
 Error UpsamplePass::prepare(const PassEnv& env, const FrameInput& host, bool bent_normals,
                             const TargetWrite& destination) {
-    char target_defines[64];
-    Error error = output_target_defines(destination, "upsample", target_defines);
-    if (error) return error;
-    gl::DefineLines defines;
-    std::snprintf(defines.text, sizeof defines.text,
-                  "DEPTH_LINEAR %d\nDEPTH_MULTISAMPLE %d\nOBSCURA_UPSAMPLE_BENT_NORMALS %d\nOBSCURA_UPSAMPLE_TARGET %d\n%s",
+    char defines[160];
+    std::snprintf(defines, sizeof defines,
+                  "DEPTH_LINEAR %d\nDEPTH_MULTISAMPLE %d\nOBSCURA_UPSAMPLE_BENT_NORMALS %d\nOBSCURA_UPSAMPLE_TARGET %d\n",
                   host.depth_linear ? 1 : 0, host.depth_multisample ? 1 : 0, bent_normals ? 1 : 0,
-                  destination.format != 0 ? 1 : 0, target_defines);
-    error = programs_.get(defines, [&](gl::Object* built) { return env.build("upsample.comp", defines.text, built); },
-                                &program_);
+                  destination.format != 0 ? 1 : 0);
+    Error error = target_variant(env, "upsample.comp", defines, destination, &programs_, &program_);
     if (error) return error;
     destination_ = destination;
     return allocate(env, host.width, host.height, bent_normals, destination.format == 0);
