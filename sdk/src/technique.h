@@ -116,6 +116,29 @@ struct TechniqueOutput {
     PassId target_pass = PassId::Composite;
 };
 
+// A technique's last pass, run by the output writer into the target's image (Frame::target) in the composite's place:
+// T::write_target(env, frame, texture) for the frame that deferred it. The technique owns one; it holds that frame
+// until the frame's output is written.
+template <class T>
+class LastPassTargetWrite final : public OutputImageWrite {
+public:
+    explicit LastPassTargetWrite(const T& technique) : technique_(technique) {}
+    // Hands the pass to the output writer (TechniqueOutput::target_write), its time under `label`.
+    Error defer(const Frame& frame, PassId label, TechniqueOutput* out) {
+        frame_ = &frame;
+        out->target_write = this;
+        out->target_pass = label;
+        return Error();
+    }
+    void write_image(const PassEnv& env, GLuint texture, GLenum) const override {
+        technique_.write_target(env, *frame_, texture);
+    }
+
+private:
+    const T& technique_;
+    const Frame* frame_ = nullptr;
+};
+
 class Technique {
 public:
     virtual ~Technique() = default;

@@ -185,10 +185,7 @@ public:
         out->bent = bent ? &bent_ : nullptr;
         if (frame.target.format != 0) {
             // The final pass runs as the output's write, its time under "gtao_denoise" with the first pass's.
-            target_write_.frame = &frame;
-            out->target_write = &target_write_;
-            out->target_pass = PassId::GtaoDenoise;
-            return Error();
+            return target_write_.defer(frame, PassId::GtaoDenoise, out);
         }
         denoise_.run(frame.env, bent, true, frame.uniforms.output, denoise_y_, frame.regions.output, r,
                      bent ? bent_temp_ : r.blur_temp, r.ao_blurred, bent ? &bent_ : nullptr);
@@ -202,19 +199,14 @@ public:
         bent_ = gl::Texture2D();
     }
 
+    // The denoise's final pass into the host's target image (LastPassTargetWrite, during `frame`'s output write).
+    void write_target(const PassEnv& env, const Frame& frame, GLuint texture) const {
+        const bool bent = frame.bent_normals;
+        denoise_.run_into_target(env, bent, frame.uniforms.output, denoise_y_, frame.regions.output, frame.resources,
+                                 bent ? bent_temp_ : frame.resources.blur_temp, texture, bent ? &bent_ : nullptr);
+    }
+
 private:
-    // The denoise's final pass into the host's target image, run by the output writer during the frame `frame`.
-    struct DenoiseTargetWrite final : OutputImageWrite {
-        explicit DenoiseTargetWrite(const GtaoTechnique& owner) : t(owner) {}
-        const GtaoTechnique& t;
-        const Frame* frame = nullptr;
-        void write_image(const PassEnv& env, GLuint texture, GLenum) const override {
-            const bool bent = frame->bent_normals;
-            t.denoise_.run_into_target(env, bent, frame->uniforms.output, t.denoise_y_, frame->regions.output,
-                                       frame->resources, bent ? t.bent_temp_ : frame->resources.blur_temp, texture,
-                                       bent ? &t.bent_ : nullptr);
-        }
-    };
     static constexpr int kMaxPyramidDispatches = 4;
     ZPyramidPass pyramid_pass_;
     GtaoPass gtao_;
@@ -225,7 +217,7 @@ private:
     int levels_ = 1, pyramid_dispatches_ = 0;
     bool bent_requested_ = false;  // the last render's output had a bent-normal texture
     UniformRange pyramid_[kMaxPyramidDispatches], pass_, denoise_x_, denoise_y_;
-    DenoiseTargetWrite target_write_{*this};
+    LastPassTargetWrite<GtaoTechnique> target_write_{*this};
 };
 
 const PassId kGtaoPasses[] = {PassId::ZPyramid, PassId::Gtao, PassId::GtaoDenoise};

@@ -101,10 +101,7 @@ public:
         out->result = &r.ao_blurred;
         if (frame.target.format != 0) {
             // The y pass runs as the output's write, its time under "blur" with the x pass's.
-            target_write_.frame = &frame;
-            out->target_write = &target_write_;
-            out->target_pass = PassId::Blur;
-            return Error();
+            return target_write_.defer(frame, PassId::Blur, out);
         }
         blur_.run(frame.env, false, frame.uniforms.output, blur_y_, frame.regions.output, r.linear_depth, r.blur_temp,
                   r.ao_blurred);
@@ -114,21 +111,17 @@ public:
     uint64_t memory_bytes() const override { return 0; }  // the shared AO and blur textures only
     void release() override {}
 
+    // The blur's y pass into the host's target image (LastPassTargetWrite, during `frame`'s output write).
+    void write_target(const PassEnv& env, const Frame& frame, GLuint texture) const {
+        blur_.run_into_target(env, frame.uniforms.output, blur_y_, frame.regions.output, frame.resources.linear_depth,
+                              frame.resources.blur_temp, texture);
+    }
+
 private:
-    // The blur's y pass into the host's target image, run by the output writer during the frame `frame`.
-    struct BlurTargetWrite final : OutputImageWrite {
-        explicit BlurTargetWrite(const HbaoTechnique& owner) : t(owner) {}
-        const HbaoTechnique& t;
-        const Frame* frame = nullptr;
-        void write_image(const PassEnv& env, GLuint texture, GLenum) const override {
-            t.blur_.run_into_target(env, frame->uniforms.output, t.blur_y_, frame->regions.output,
-                                    frame->resources.linear_depth, frame->resources.blur_temp, texture);
-        }
-    };
     HbaoPass hbao_;
     BilateralBlurPass blur_;
     UniformRange pass_, blur_x_, blur_y_;
-    BlurTargetWrite target_write_{*this};
+    LastPassTargetWrite<HbaoTechnique> target_write_{*this};
 };
 
 const PassId kHbaoPasses[] = {PassId::Hbao, PassId::Blur};

@@ -145,10 +145,7 @@ public:
         Error error = recorder.end(PassId::LineSweep);
         if (error) return error;
         if (frame.target.format != 0) {  // the gather runs as the output's write
-            target_write_.frame = &frame;
-            out->target_write = &target_write_;
-            out->target_pass = PassId::Gather;
-            return Error();
+            return target_write_.defer(frame, PassId::Gather, out);
         }
         pass_.run_gather(frame.env, frame.uniforms.ao, constants_, frame.regions.ao, frame.resources);
         return recorder.end(PassId::Gather);
@@ -157,21 +154,17 @@ public:
     uint64_t memory_bytes() const override { return pass_.bytes(); }
     void release() override { pass_.release(); }
 
+    // The gather into the host's target image (LastPassTargetWrite, during `frame`'s output write), over the output
+    // rectangle: LSAO's AO region is that rectangle, without an apron, and the target holds nothing beyond it.
+    void write_target(const PassEnv& env, const Frame& frame, GLuint texture) const {
+        pass_.run_gather_into_target(env, frame.uniforms.output, constants_, frame.regions.output, frame.resources,
+                                     texture);
+    }
+
 private:
-    // The gather into the host's target image, run by the output writer during the frame `frame`: over the output
-    // rectangle (LSAO's AO region is that rectangle, without an apron; the target holds nothing beyond it).
-    struct GatherTargetWrite final : OutputImageWrite {
-        explicit GatherTargetWrite(const LsaoTechnique& owner) : t(owner) {}
-        const LsaoTechnique& t;
-        const Frame* frame = nullptr;
-        void write_image(const PassEnv& env, GLuint texture, GLenum) const override {
-            t.pass_.run_gather_into_target(env, frame->uniforms.output, t.constants_, frame->regions.output,
-                                           frame->resources, texture);
-        }
-    };
     LsaoPass pass_;
     UniformRange constants_;
-    GatherTargetWrite target_write_{*this};
+    LastPassTargetWrite<LsaoTechnique> target_write_{*this};
 };
 
 const PassId kLsaoPasses[] = {PassId::LineSweep, PassId::Gather};

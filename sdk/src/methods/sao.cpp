@@ -129,10 +129,7 @@ public:
         out->result = &frame.resources.ao_blurred;
         if (frame.target.format != 0) {
             // The vertical pass runs as the output's write, its time under "blur" with the horizontal one's.
-            target_write_.frame = &frame;
-            out->target_write = &target_write_;
-            out->target_pass = PassId::Blur;
-            return Error();
+            return target_write_.defer(frame, PassId::Blur, out);
         }
         blur_.run(frame.env, sao, frame.uniforms.output, blur_y_, frame.regions.output, packed_temp_,
                   frame.resources.ao_blurred, true);
@@ -145,17 +142,13 @@ public:
         packed_temp_ = gl::Texture2D();
     }
 
+    // The blur's vertical pass into the host's target image (LastPassTargetWrite, during `frame`'s output write).
+    void write_target(const PassEnv& env, const Frame& frame, GLuint texture) const {
+        blur_.run_into_target(env, frame.settings.sao, frame.uniforms.output, blur_y_, frame.regions.output,
+                              packed_temp_, texture);
+    }
+
 private:
-    // The blur's vertical pass into the host's target image, run by the output writer during the frame `frame`.
-    struct BlurTargetWrite final : OutputImageWrite {
-        explicit BlurTargetWrite(const SaoTechnique& owner) : t(owner) {}
-        const SaoTechnique& t;
-        const Frame* frame = nullptr;
-        void write_image(const PassEnv& env, GLuint texture, GLenum) const override {
-            t.blur_.run_into_target(env, frame->settings.sao, frame->uniforms.output, t.blur_y_,
-                                    frame->regions.output, t.packed_temp_, texture);
-        }
-    };
     static constexpr int kMaxPyramidDispatches = 4;
     ZPyramidPass pyramid_pass_;
     SaoPass sao_;
@@ -164,7 +157,7 @@ private:
     gl::Texture2D packed_temp_;  // ... and the same after the horizontal blur
     int levels_ = 1, pyramid_dispatches_ = 0;
     UniformRange pyramid_[kMaxPyramidDispatches], pass_, blur_x_, blur_y_;
-    BlurTargetWrite target_write_{*this};
+    LastPassTargetWrite<SaoTechnique> target_write_{*this};
 };
 
 const PassId kSaoPasses[] = {PassId::ZPyramid, PassId::Sao, PassId::Blur};
