@@ -214,10 +214,12 @@ void main() {
     // The four taps as the lanes of vec4s, in the gathers' order: texels (0, 1), (1, 1), (1, 0), (0, 0) of the block.
     const vec4 kTapX = vec4(0.0, 1.0, 1.0, 0.0), kTapY = vec4(1.0, 1.0, 0.0, 0.0);
     vec4 tap_weight = mix(vec4(1.0 - t.x), vec4(t.x), kTapX) * mix(vec4(1.0 - t.y), vec4(t.y), kTapY);
-    // Only the output rectangle was written (a change of it starts a new history).
-    bvec2 low_inside = greaterThanEqual(base, output_rect.xy), high_inside = lessThan(base + 1, rect_end);
-    bvec4 inside = bvec4(low_inside.x && high_inside.y, high_inside.x && high_inside.y, high_inside.x && low_inside.y,
-                         low_inside.x && low_inside.y);
+    // Only the output rectangle was written (a change of it starts a new history). Each tap is tested against both
+    // of the rectangle's edges on each axis: a reprojection past an edge puts the whole block outside it (the
+    // gathers then return the edge's texels, clamped, which are not this point's history).
+    vec4 tap_column = vec4(base.x) + kTapX, tap_row = vec4(base.y) + kTapY;
+    bvec4 inside = both(both(greaterThanEqual(tap_column, vec4(output_rect.x)), lessThan(tap_column, vec4(rect_end.x))),
+                        both(greaterThanEqual(tap_row, vec4(output_rect.y)), lessThan(tap_row, vec4(rect_end.y))));
     // On the point's plane as the previous frame saw it: each texel's stored point within the tolerance of it.
     vec4 tap_x, tap_y;
     obscura_view_position_at4(vec4(base.x) + 0.5 + kTapX, vec4(base.y) + 0.5 + kTapY, block_depth, tap_x, tap_y);
