@@ -136,7 +136,7 @@ Error Context::initialize() {
         sampler_ = gl::create_sampler_nearest_clamp(gl);
         sampler_mipmap_ = gl::create_sampler_nearest_mipmap_clamp(gl);
         planner_.create(gl, device_.uniform_alignment());
-        timer_.create(gl, (flags_ & OBSCURA_CONTEXT_FLAG_SYNC_TIMING) != 0);
+        timer_.create(gl, (flags_ & OBSCURA_CONTEXT_FLAG_SYNC_TIMING) != 0, device_.query_buffers());
     }
     // Buffer::create consumes the GL error of a failed allocation and returns an empty buffer: checked here, or
     // the context would be created without its uniform buffer and every render would fail.

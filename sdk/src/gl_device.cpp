@@ -90,6 +90,7 @@ Error GlDevice::initialize() {
                            version % 10000, reinterpret_cast<const char*>(get_string(GL_VERSION)));
     }
     cpu_renderer_ = !gpu_code_paths_ && is_cpu_renderer(reinterpret_cast<const char*>(get_string(GL_RENDERER)));
+    query_buffers_ = version >= 40004 || has_extension(gl_, "GL_ARB_query_buffer_object");
     // Context loss: only robust contexts report a reset, through GL 4.5's query or its extension forms. A
     // loader may hand out stubs for any name, so the name is looked up only where the context has it.
     const char* reset_query = version >= 40005                                ? "glGetGraphicsResetStatus"

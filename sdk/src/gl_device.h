@@ -27,6 +27,9 @@ public:
     // GL_RENDERER names a CPU rasteriser (llvmpipe ...), and the context's flags do not ask for the GPU code paths:
     // which variants the passes compile.
     bool cpu_renderer() const { return cpu_renderer_; }
+    // The context has GL_QUERY_BUFFER (GL 4.4, or GL_ARB_query_buffer_object), a binding that changes what
+    // glGetQueryObject* does: the GPU timer sets the host's aside while it reads its queries.
+    bool query_buffers() const { return query_buffers_; }
 
     // WRONG_GL_CONTEXT unless the GL context this device was initialised on is current.
     Error check_gl_context() const;
@@ -57,6 +60,7 @@ private:
     GLint uniform_alignment_ = 256;
     GLint max_texture_size_ = 0;
     bool cpu_renderer_ = false;
+    bool query_buffers_ = false;
     bool gpu_code_paths_ = false;  // OBSCURA_CONTEXT_FLAG_GPU_CODE_PATHS
     // glGetGraphicsResetStatus (GL 4.5) or its KHR/ARB_robustness form; null when the context has neither.
     ResetStatusFn get_reset_status_ = nullptr;

@@ -2,9 +2,10 @@
 
 namespace obscura {
 
-void GpuTimer::create(const gl::Table& gl, bool sync_timing) {
+void GpuTimer::create(const gl::Table& gl, bool sync_timing, bool query_buffers) {
     gl_ = &gl;
     sync_ = sync_timing;
+    query_buffers_ = query_buffers;
     if (sync_) return;
     for (FrameSlot& slot : slots_)
         for (gl::Object& query : slot.queries) query = gl::create_query(gl);
@@ -68,7 +69,34 @@ void GpuTimer::end_frame() {
     current_ = -1;
 }
 
+namespace {
+
+// The host's GL_QUERY_BUFFER binding, set aside for the scope: while a buffer is bound there, glGetQueryObject*
+// writes into it at the offset its pointer names (an invalid operation for a stack address) instead of reading back.
+class QueryBufferSetAside {
+public:
+    QueryBufferSetAside(const gl::Table& gl, bool query_buffers) : gl_(gl) {
+        if (query_buffers) gl.GetIntegerv(gl::kGlQueryBufferBinding, &host_binding_);
+        if (host_binding_ != 0) gl.BindBuffer(gl::kGlQueryBuffer, 0);
+    }
+    ~QueryBufferSetAside() {
+        if (host_binding_ != 0) gl_.BindBuffer(gl::kGlQueryBuffer, GLuint(host_binding_));
+    }
+    QueryBufferSetAside(const QueryBufferSetAside&) = delete;
+    QueryBufferSetAside& operator=(const QueryBufferSetAside&) = delete;
+
+private:
+    const gl::Table& gl_;
+    GLint host_binding_ = 0;
+};
+
+}  // namespace
+
 void GpuTimer::collect() {
+    bool pending = false;
+    for (const FrameSlot& slot : slots_) pending = pending || slot.pending;
+    if (!pending) return;
+    QueryBufferSetAside set_aside(*gl_, query_buffers_);
     // Oldest first, so the newest complete frame ends up in latest_*.
     for (int i = 0; i < kFramesInFlight; ++i) {
         FrameSlot& slot = slots_[(next_ + i) % kFramesInFlight];

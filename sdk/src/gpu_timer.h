@@ -18,7 +18,9 @@ public:
     static constexpr int kFramesInFlight = 4;
     static constexpr int kMaxPasses = 32;  // marks per frame (FFAO in chunks marks each chunk's passes)
 
-    void create(const gl::Table& gl, bool sync_timing);
+    // `query_buffers`: the context has GL_QUERY_BUFFER (GL 4.4 or ARB_query_buffer_object), whose host binding the
+    // timer sets aside while it reads its queries.
+    void create(const gl::Table& gl, bool sync_timing, bool query_buffers);
     void destroy();
 
     // Frame bracketing: each mark ends the pass it names.
@@ -43,6 +45,7 @@ private:
 
     const gl::Table* gl_ = nullptr;
     bool sync_ = false;
+    bool query_buffers_ = false;
     FrameSlot slots_[kFramesInFlight];
     int current_ = -1;  // slot being recorded, -1 when this frame is not timed
     int next_ = 0;

@@ -23,7 +23,7 @@ std::vector<obscura_timing> latest(obscura::GpuTimer& timer) {
 TEST_F(GpuTimerTest, RepeatedPassesAreReportedOnceWithTheirSum) {
     for (bool sync : {true, false}) {
         obscura::GpuTimer timer;
-        timer.create(gl_, sync);
+        timer.create(gl_, sync, /*query_buffers=*/true);
         const obscura::PassId marks[] = {obscura::PassId::DepthPrepare,   obscura::PassId::FfaoScan,
                                          obscura::PassId::FfaoObscurance, obscura::PassId::FfaoScan,
                                          obscura::PassId::FfaoObscurance, obscura::PassId::Composite};

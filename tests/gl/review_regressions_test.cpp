@@ -3,7 +3,9 @@
 //   - an orthographic projection with its near plane behind the eye (glOrtho(..., -8, 12)) gave no AO;
 //   - the blit path wrote every draw buffer of a multi-render-target host framebuffer;
 //   - MULTIPLY into a float renderbuffer clamped HDR colour to 1 (RGBA8 staging);
-//   - obscura_prepare mistook a host GL error for its own allocation failure and swallowed it.
+//   - obscura_prepare mistook a host GL error for its own allocation failure and swallowed it;
+//   - a host buffer bound to GL_QUERY_BUFFER (GL 4.4) made the GPU timer's query reads fail: frames reported GL_ERROR
+//     from the second on, and obscura_get_timings stayed empty.
 #include <algorithm>
 #include <cmath>
 
@@ -199,6 +201,44 @@ TEST_F(ReviewRegressions, PrepareReportsPendingHostErrorInsteadOfSwallowingIt) {
     EXPECT_NE(std::string(obscura_get_last_error(ctx())).find("GL_INVALID_ENUM"), std::string::npos)
         << obscura_get_last_error(ctx());
     EXPECT_EQ(obscura_prepare(ctx(), 64, 64, &settings), OBSCURA_OK) << obscura_get_last_error(ctx());
+}
+
+// GL 4.4's GL_QUERY_BUFFER, not in the 4.3 loader the tests use.
+constexpr GLenum kQueryBuffer = 0x9192, kQueryBufferBinding = 0x9193;
+
+// With a buffer bound to GL_QUERY_BUFFER, glGetQueryObject* writes into it at the offset its pointer names. The GPU
+// timer read its timestamps that way: GL_INVALID_OPERATION on the stack address, so every frame from the second
+// returned GL_ERROR (and dropped the temporal history), and the timings never completed. The timer now sets the
+// host's binding aside while it reads, and puts it back.
+TEST_F(ReviewRegressions, HostQueryBufferBindingLeavesFramesAndTimingsAlone) {
+    GLint major = 0, minor = 0;
+    glGetIntegerv(GL_MAJOR_VERSION, &major);
+    glGetIntegerv(GL_MINOR_VERSION, &minor);
+    if (major * 10 + minor < 44) GTEST_SKIP() << "GL_QUERY_BUFFER needs GL 4.4";
+    HostTexture depth;
+    obscura_input input = corner_input(&depth);
+    HostTexture target = make_texture(GL_RGBA8, kWidth, kHeight);
+    obscura_output output = make_output(target.get());
+    obscura_settings settings = make_settings(1.0f);
+    HostBuffer query_buffer = HostBuffer::create();
+    glBindBuffer(kQueryBuffer, query_buffer.get());
+    glBufferData(kQueryBuffer, 256, nullptr, GL_DYNAMIC_READ);
+    ASSERT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+    obscura_timing timings[32];
+    uint32_t count = 0;
+    uint64_t frame = 0;
+    for (int f = 0; f < 8 && count == 0; ++f) {
+        ASSERT_EQ(obscura_render(ctx(), &input, &settings, &output), OBSCURA_OK)
+            << "frame " << f << ": " << obscura_get_last_error(ctx());
+        glFinish();
+        ASSERT_EQ(obscura_get_timings(ctx(), timings, 32, &count, &frame), OBSCURA_OK) << obscura_get_last_error(ctx());
+    }
+    EXPECT_GT(count, 0u) << "the timings never completed";
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+    GLint bound = 0;
+    glGetIntegerv(kQueryBufferBinding, &bound);
+    EXPECT_EQ(GLuint(bound), query_buffer.get()) << "the host's query buffer binding must be left as it was";
+    glBindBuffer(kQueryBuffer, 0);
 }
 
 }  // namespace

@@ -96,6 +96,9 @@ Object create_framebuffer(const Table& gl);
 uint32_t bytes_per_texel(GLenum internal_format);
 
 constexpr GLenum kGlContextLostError = 0x0507;  // GL_CONTEXT_LOST (GL 4.5; the loader is generated for 4.3)
+// GL 4.4 / ARB_query_buffer_object: a buffer bound here turns glGetQueryObject*'s pointer into an offset into it.
+constexpr GLenum kGlQueryBuffer = 0x9192;         // GL_QUERY_BUFFER
+constexpr GLenum kGlQueryBufferBinding = 0x9193;  // GL_QUERY_BUFFER_BINDING
 // Drains the GL error queue (GL hands several pending errors back in no set order): GL_CONTEXT_LOST, else
 // GL_OUT_OF_MEMORY if either was pending (what failed, whatever an INVALID_* from a call that went on without the
 // memory says), else the first error; GL_NO_ERROR if none. The creators below use it, so that an allocation that
