@@ -56,8 +56,6 @@ uint64_t history_signature(const obscura_settings& settings, bool bent_normals) 
 }
 
 // The raw-AO debug views show the AO pass's own output: no reconstruction runs.
-bool is_raw_view(obscura_debug_view view) { return view == OBSCURA_DEBUG_AO_BEFORE_BLUR || view == OBSCURA_DEBUG_TAP_COUNT; }
-
 }  // namespace
 
 Context::Context(const obscura_context_desc& desc)
@@ -180,7 +178,8 @@ Error Context::technique_for(obscura_method method, Technique** out) {
     return Error();
 }
 
-Error Context::ensure_resources(int width, int height, const TechniquePlan& plan) {
+Error Context::ensure_resources(int width, int height, const TechniquePlan& plan, int shift,
+                                const obscura_settings& settings) {
     const PassEnv pass_env = env();
     const int depth_levels = plan.depth_levels;
     if (resources_.width != width || resources_.height != height || !resources_.linear_depth) {
@@ -190,8 +189,7 @@ Error Context::ensure_resources(int width, int height, const TechniquePlan& plan
         r.height = height;
         r.linear_depth = pass_env.create_texture(GL_R32F, width, height, depth_levels);
         r.normals = pass_env.create_texture(GL_RG16_SNORM, width, height);
-        r.ao = pass_env.create_texture(GL_R16F, width, height);
-        if (!r.linear_depth || !r.normals || !r.ao) {
+        if (!r.linear_depth || !r.normals) {
             return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating the %dx%d working textures failed", width,
                                height);
         }
@@ -204,19 +202,26 @@ Error Context::ensure_resources(int width, int height, const TechniquePlan& plan
                                width, height, depth_levels);
         }
     }
-    if (plan.blur_targets && !resources_.blur_temp) {
-        resources_.blur_temp = pass_env.create_texture(GL_R16F, width, height);
-        resources_.ao_blurred = pass_env.create_texture(GL_R16F, width, height);
-        if (!resources_.blur_temp || !resources_.ao_blurred) {
-            // Both or neither: a pair left half allocated would never be completed (only a missing blur_temp is).
-            resources_.blur_temp = gl::Texture2D();
-            resources_.ao_blurred = gl::Texture2D();
-            return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating the %dx%d reconstruction textures failed",
-                               width, height);
+    // Frames of these settings without a debug view end with the technique's own target write: nothing reads the
+    // reconstruction's result texture then (debug views skip the reconstruction).
+    const bool ends_with_target_write =
+        plan.writes_target && shift == 0 && settings.temporal.enabled != OBSCURA_TOGGLE_ON;
+    const struct {
+        gl::Texture2D* texture;
+        bool needed;
+    } working[] = {{&resources_.ao, plan.uses_ao},
+                   {&resources_.blur_temp, plan.uses_blur_temp},
+                   {&resources_.ao_blurred, plan.uses_ao_blurred && !ends_with_target_write}};
+    for (const auto& w : working) {
+        if (!w.needed) {
+            *w.texture = gl::Texture2D();  // the context holds what its latest configuration needs
+        } else if (!*w.texture) {
+            *w.texture = pass_env.create_texture(GL_R16F, width, height);
+            if (!*w.texture) {
+                return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating the %dx%d working textures failed",
+                                   width, height);
+            }
         }
-    } else if (!plan.blur_targets) {
-        resources_.blur_temp = gl::Texture2D();  // the context holds what its latest configuration needs
-        resources_.ao_blurred = gl::Texture2D();
     }
     return Error();
 }
@@ -335,7 +340,7 @@ Error Context::prepare_resources(int width, int height, const obscura_settings& 
     // (GTAO keeps its own record of the request).
     const bool upsample_bent = upsample_.bent() != nullptr;
     const bool upsample_result = upsample_.has_result();  // whose debug views read the upsampled AO
-    error = ensure_resources(working_width, working_height, plan);
+    error = ensure_resources(working_width, working_height, plan, shift, resolved);
     if (!error) error = technique->prepare(env(), resolved, request, resources_);
     if (!error && shift > 0) error = upsample_.allocate(env(), width, height, upsample_bent, upsample_result);
     if (!error && shift == 0) upsample_.release();
@@ -412,7 +417,8 @@ Error Context::record_frame(const FrameInput& host_input, const obscura_settings
     const int shift = resolution_shift(settings);
     const FrameInput input = shift > 0 ? reduced_frame_input(host, shift) : host;
     FrameRequest request;
-    request.raw_view = is_raw_view(target.debug_view);
+    // Every debug view skips the reconstruction: none shows its result (the AO pass's own output, depth or normals).
+    request.raw_view = debug_view;
     request.bent_normals = target.bent_texture != 0;
     request.frame_index = input.frame_index;
     const TechniquePlan plan = technique->plan(settings, input.width, input.height, request);
@@ -428,7 +434,7 @@ Error Context::record_frame(const FrameInput& host_input, const obscura_settings
     // can (the composite would only copy its result there), unless a debug view needs the composite's other sources.
     const bool technique_writes_target = plan.writes_target && shift == 0 && !temporal && !debug_view;
     if (technique_writes_target) request.target = target_write(target);
-    error = ensure_resources(input.width, input.height, plan);
+    error = ensure_resources(input.width, input.height, plan, shift, settings);
     if (!error) error = technique->prepare(pass_env, settings, request, resources_);
     if (!error) error = depth_prepare_.prepare(pass_env, input);
     // At reduced resolution the upsample writes the target itself (the composite would only copy its result there),

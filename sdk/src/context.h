@@ -73,7 +73,9 @@ private:
     Error technique_for(obscura_method method, Technique** out);
     // The shared per-size textures, the linear depth's MIP levels, and the reconstruction's targets when the
     // technique's plan writes them (freed when it does not).
-    Error ensure_resources(int width, int height, const TechniquePlan& plan);
+    // The shared working textures the plan's passes use at this size (FrameResources), and nothing else; ao_blurred
+    // only where a frame of these settings without a debug view does not end with the technique's target write.
+    Error ensure_resources(int width, int height, const TechniquePlan& plan, int shift, const obscura_settings& settings);
     // Every per-size resource: the frame's (shared textures, output staging, the techniques') and the views'.
     void release_resources();
     void release_frame_resources();

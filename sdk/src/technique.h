@@ -19,7 +19,7 @@ namespace obscura {
 
 // What the host asked of a frame beyond the AO (from its output), known before anything is planned.
 struct FrameRequest {
-    bool raw_view = false;      // the debug view shows the AO pass's own output: no reconstruction
+    bool raw_view = false;      // a debug view: no reconstruction (it shows the AO pass's own output, or depth or normals)
     bool bent_normals = false;  // output.bent_normal_texture is set (only techniques whose plan says so write it)
     // false in obscura_prepare, which knows no output: a technique prepares for what the last render's output
     // needed, so a host that renders bent normals every frame allocates nothing on the frame after a prepare.
@@ -41,14 +41,20 @@ struct TechniquePlan {
     int depth_levels = 1;      // MIP levels the linear depth needs (a z pyramid over level 0); 1: none
     float radius = 1.0f;       // the method's radius in metres: the linear-depth debug view's scale
     bool bent_normals = false; // the technique writes bent normals (TechniqueOutput::bent) when requested
-    // Its reconstruction writes FrameResources::blur_temp and ao_blurred (from the settings alone: a debug view,
-    // which skips the reconstruction, does not free and reallocate them).
-    bool blur_targets = false;
+    // The shared working textures (FrameResources) its passes write, from the settings and the output kind alone (a
+    // debug view, which skips the reconstruction, does not free and reallocate them): the AO pass's R16F result,
+    // a separable reconstruction's intermediate, and the reconstruction's result. The context allocates ao_blurred
+    // only where the frame does not end with the technique's own target write (writes_target): at reduced resolution
+    // or with accumulation, whose passes read it.
+    bool uses_ao = true;
+    bool uses_blur_temp = false;
+    bool uses_ao_blurred = false;
     // Texels beyond the AO region where its passes read the normals (depth preparation reconstructs them there
     // only; the guard band around gets the linear depth alone); kNormalsEverywhere: the whole texture.
     int normals_margin = 0;
     // Its last reconstruction pass can write the host's target image itself (FrameRequest::target): the composite
-    // would only copy its result there.
+    // would only copy its result there. From the settings alone; the context asks it only at full resolution, without
+    // accumulation and without a debug view.
     bool writes_target = false;
     static constexpr int kNormalsEverywhere = -1;
 };
@@ -75,7 +81,7 @@ struct Frame {
     const FrameRegions& regions;
     const FrameUniforms& uniforms;
     FrameResources& resources;         // the shared per-size textures (depth, normals, AO, blur targets)
-    bool raw_view;                     // the debug view shows the AO pass's own output: no reconstruction
+    bool raw_view;                     // a debug view: no reconstruction (FrameRequest::raw_view)
     bool bent_normals;                 // requested, and the technique's plan writes them
     TargetWrite target;                // FrameRequest::target: the last pass writes the host's target image
 };

@@ -214,6 +214,37 @@ TEST_F(Contexts, ReleaseResourcesReturnsToIdle) {
     EXPECT_TRUE(identical(render(ctx(), frame), before)) << "resources are recreated on the next render";
 }
 
+// The context holds the shared working textures its configuration's passes use and nothing else (obscura.h,
+// obscura_get_memory_usage). Until 2026-12-06 every configuration held the AO pass's R16F result, and every one
+// with a reconstruction its intermediate and its result: SAO, whose passes use packed textures of their own, held
+// all three for nothing, and since the methods' last passes write the host's target at full resolution nothing read
+// the result texture there either.
+TEST_F(Contexts, MemoryHoldsOnlyTheWorkingTexturesItsPassesUse) {
+    Frame frame = box_frame(96, 64);
+    const uint64_t texels = uint64_t(frame.input.depth_width) * uint64_t(frame.input.depth_height);
+    auto bytes_after = [&](const obscura_settings& settings) {
+        EXPECT_FALSE(render_to_new_texture(ctx(), frame.input, settings, GL_R32F, 1).empty());
+        uint64_t bytes = 0;
+        EXPECT_EQ(obscura_get_memory_usage(ctx(), &bytes), OBSCURA_OK);
+        return bytes;
+    };
+    obscura_settings hbao = method_defaults(OBSCURA_METHOD_HBAO), hbao_plain = hbao, hbao_temporal = hbao;
+    hbao_plain.hbao.blur = OBSCURA_TOGGLE_OFF;
+    hbao_temporal.temporal.enabled = OBSCURA_TOGGLE_ON;
+    obscura_settings sao = method_defaults(OBSCURA_METHOD_SAO), sao_plain = sao;
+    sao_plain.sao.blur = OBSCURA_TOGGLE_OFF;
+    const uint64_t hbao_bytes = bytes_after(hbao), hbao_plain_bytes = bytes_after(hbao_plain);
+    const uint64_t hbao_temporal_bytes = bytes_after(hbao_temporal);
+    const uint64_t sao_bytes = bytes_after(sao), sao_plain_bytes = bytes_after(sao_plain);
+    // The blur's intermediate (R16F) alone: its vertical pass writes the host's target.
+    EXPECT_EQ(hbao_bytes - hbao_plain_bytes, texels * 2);
+    // With accumulation the blur's result is the temporal pass's source (R16F), besides the view's history.
+    EXPECT_GT(hbao_temporal_bytes, hbao_bytes + texels * 2);
+    // SAO uses none of the shared AO textures, with or without its blur.
+    EXPECT_EQ(sao_bytes, sao_plain_bytes);
+    EXPECT_EQ(bytes_after(hbao), hbao_bytes) << "the same configuration reports the same bytes";
+}
+
 TEST_F(Contexts, PrepareAllocatesWhatRenderUses) {
     uint64_t prepared = 0, rendered = 0;
     obscura_settings settings = make_settings(1.0f);
@@ -275,7 +306,8 @@ TEST_F(Contexts, ObjectScanSeesLiveContexts) {
     Frame frame = box_frame(96, 64);
     ASSERT_FALSE(render(context.get(), frame).empty());
     std::map<std::string, int> alive = count_gl_objects();
-    EXPECT_GE(alive["texture"], before["texture"] + 1 + 5) << "the host depth/target plus >= 5 working textures";
+    EXPECT_GE(alive["texture"], before["texture"] + 1 + 4)
+        << "the host depth/target plus >= 4 working textures (linear depth, normals, the AO, the blur's intermediate)";
     EXPECT_GT(alive["program"], before["program"]);
     EXPECT_GT(alive["sampler"], before["sampler"]);
     EXPECT_GT(alive["buffer"], before["buffer"]);

@@ -125,7 +125,7 @@ public:
         plan.apron = ffao_blurs(ffao, request.raw_view) ? 2 : 0;  // the 5x5 box
         if (ffao_uses_mipmap(ffao)) plan.depth_levels = ZPyramidPass::level_count(width, height, kFfaoMipmapLevels);
         plan.radius = ffao.radius;
-        plan.blur_targets = ffao_blurs(ffao, false);
+        plan.uses_ao_blurred = ffao_blurs(ffao, false);
         // SAAO's box average reads the 3x3 around a region one pixel wider than the AO's (write_constants).
         plan.normals_margin = 2;
         return plan;

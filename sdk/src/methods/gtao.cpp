@@ -121,8 +121,13 @@ public:
         plan.depth_levels = ZPyramidPass::level_count(width, height, GtaoPass::wanted_levels(gtao));
         plan.radius = gtao.radius;
         plan.bent_normals = kGtaoMethodWritesBentNormals;
-        plan.blur_targets = gtao_denoises(gtao, false);
-        plan.writes_target = gtao_denoises(gtao, request.raw_view);  // the denoise's final pass
+        // With bent normals visibility and bent normal travel together in its own RGBA16F textures until the
+        // denoise's final pass (record()); obscura_prepare, which knows no output, goes by the last render's request.
+        const bool bent = request.output_known ? request.bent_normals : bent_requested_;
+        plan.uses_ao = !bent;
+        plan.uses_blur_temp = gtao_denoises(gtao, false) && !bent;
+        plan.uses_ao_blurred = gtao_denoises(gtao, false);
+        plan.writes_target = gtao_denoises(gtao, false);  // the denoise's final pass
         return plan;
     }
 

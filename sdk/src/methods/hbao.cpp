@@ -68,8 +68,8 @@ public:
         TechniquePlan plan;
         plan.apron = hbao_blurs(settings.hbao, request.raw_view) ? settings.hbao.blur_radius : 0;
         plan.radius = settings.hbao.radius;
-        plan.blur_targets = hbao_blurs(settings.hbao, false);
-        plan.writes_target = hbao_blurs(settings.hbao, request.raw_view);  // the blur's y pass
+        plan.uses_blur_temp = plan.uses_ao_blurred = hbao_blurs(settings.hbao, false);
+        plan.writes_target = hbao_blurs(settings.hbao, false);  // the blur's y pass
         return plan;
     }
 

@@ -125,6 +125,7 @@ public:
         const bool receiver_only = lsao.tangent_strategy == kLsaoFixedTangent && lsao.normal_test != OBSCURA_TOGGLE_ON;
         plan.normals_margin = receiver_only ? 0 : TechniquePlan::kNormalsEverywhere;
         plan.writes_target = true;  // the gather, over the output rectangle (no apron)
+        // The gather writes resources.ao wherever it does not write the target: debug views too, so ao stays.
         return plan;
     }
 

@@ -76,8 +76,9 @@ public:
         plan.ao_on_quads = true;  // the quad filter pairs pixels of 2x2 quads in absolute coordinates
         plan.depth_levels = ZPyramidPass::level_count(width, height, SaoPass::wanted_levels(sao));
         plan.radius = sao.radius;
-        plan.blur_targets = sao_blurs(sao, false);
-        plan.writes_target = sao_blurs(sao, request.raw_view);  // the blur's vertical pass
+        plan.uses_ao = false;  // its passes write packed_ao_ and packed_temp_
+        plan.uses_ao_blurred = sao_blurs(sao, false);
+        plan.writes_target = sao_blurs(sao, false);  // the blur's vertical pass
         return plan;
     }
 

@@ -19,10 +19,10 @@ struct FrameResources {
     int width = 0, height = 0;
     gl::Texture2D linear_depth; // R32F positive view depth, OBSCURA_SKY_DEPTH for sky; levels above 0: a z pyramid
     gl::Texture2D normals;      // RG16_SNORM octahedral view-space normals
+    // The working textures below exist only where the technique's plan uses them (TechniquePlan::uses_*): else empty.
     gl::Texture2D ao;           // R16F visibility before the reconstruction
-    gl::Texture2D blur_temp;    // R16F after a separable reconstruction's horizontal pass (only when the technique's
-                                // plan says blur_targets: else empty, like ao_blurred)
-    gl::Texture2D ao_blurred;   // R16F final visibility
+    gl::Texture2D blur_temp;    // R16F after a separable reconstruction's horizontal pass
+    gl::Texture2D ao_blurred;   // R16F final visibility (not where the last pass writes the host's target)
     uint64_t bytes() const {
         return linear_depth.bytes() + normals.bytes() + ao.bytes() + blur_temp.bytes() + ao_blurred.bytes();
     }
