@@ -77,6 +77,23 @@ Error check_output_fields(const obscura_output& output, OutputTarget* out) {
     return Error();
 }
 
+namespace {
+
+// GL has no blit into a multisampled framebuffer (INVALID_OPERATION; GL 4.3, 18.3.1): such a target is refused
+// before anything is rendered, with its sample count. Queries the framebuffer bound to GL_DRAW_FRAMEBUFFER.
+Error refuse_multisampled_draw_framebuffer(const gl::Table& gl, const char* what) {
+    GLint sample_buffers = 0, samples = 0;
+    gl.GetIntegerv(GL_SAMPLE_BUFFERS, &sample_buffers);
+    if (sample_buffers == 0) return Error();
+    gl.GetIntegerv(GL_SAMPLES, &samples);
+    return Error::make(OBSCURA_STATUS_INVALID_FRAMEBUFFER,
+                       "%s is multisampled (%d samples): GL cannot blit the result into it; resolve it first, or "
+                       "write the AO into a single-sample texture and composite that",
+                       what, int(samples));
+}
+
+}  // namespace
+
 Error check_output_target(const gl::Table& gl, const obscura_output& output, const obscura_rect& rect,
                           OutputTarget* out) {
     OutputTarget target = *out;
@@ -162,6 +179,9 @@ Error check_output_target(const gl::Table& gl, const obscura_output& output, con
                                    "output.framebuffer %u",
                                    rect.width, rect.height, target.x, target.y, width, height, output.framebuffer);
             }
+            char what[64];
+            std::snprintf(what, sizeof what, "output.framebuffer %u", output.framebuffer);
+            if (Error error = refuse_multisampled_draw_framebuffer(gl, what)) return error;
             target.kind = TargetKind::Blit;
             target.framebuffer = output.framebuffer;
             target.attachment_type = GLenum(type);
@@ -190,6 +210,7 @@ Error check_output_target(const gl::Table& gl, const obscura_output& output, con
                                "surface has none: name an output texture or framebuffer object",
                                unsigned(status));
         }
+        if (Error error = refuse_multisampled_draw_framebuffer(gl, "the default framebuffer")) return error;
         // GL cannot report the window's size; at least keep the blit's end coordinates representable.
         if (target.x > INT32_MAX - rect.width || target.y > INT32_MAX - rect.height) {
             return Error::make(OBSCURA_STATUS_INVALID_RECT, "output position (%d, %d) overflows with a %dx%d result",

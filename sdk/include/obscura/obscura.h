@@ -795,7 +795,9 @@ typedef struct obscura_output {
                                       texture format, the default framebuffer) receives the result through an
                                       RGBA8 staging texture (RGBA16F for float attachments): 8 bits for unorm
                                       attachments deeper than that, and for multiply the target's colour read
-                                      back through it. */
+                                      back through it. A multisampled framebuffer (an MSAA window, renderbuffer or
+                                      texture) is INVALID_FRAMEBUFFER: GL does not blit into one; resolve first, or
+                                      write the AO to a single-sample texture and composite it yourself. */
     int32_t x, y;                  /* where the output rectangle lands in the target; default (0, 0) */
     obscura_blend_mode blend;      /* default OVERWRITE */
     obscura_debug_view debug_view; /* default NONE */
