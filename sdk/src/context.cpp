@@ -448,7 +448,10 @@ Error Context::record_frame(const FrameInput& host_input, const obscura_settings
         error = output_.prepare(pass_env, target, host.output_rect,
                                 !upsample_writes_target && !temporal_writes_target && !technique_writes_target);
     }
-    if (!error && shift > 0) error = upsample_.prepare(pass_env, host, request.bent_normals, upsample_destination);
+    // A debug view shows the reduced grid itself (the composite reads it at pixel >> k): the upsample runs there only
+    // for the bent normals, which every view upsamples.
+    const bool upsample_runs = shift > 0 && (!debug_view || request.bent_normals);
+    if (!error && upsample_runs) error = upsample_.prepare(pass_env, host, request.bent_normals, upsample_destination);
     if (error) return error;
     if (shift == 0) upsample_.release();  // the context holds what its latest configuration needs
     // Temporal accumulation: the view's history continues when the frame can be reprojected and nothing it was
@@ -515,12 +518,11 @@ Error Context::record_frame(const FrameInput& host_input, const obscura_settings
     // The upsample's write of the target, which the output writer runs in the composite's place.
     const UpsampleImageWrite upsample_write(upsample_, host_output, upsample_pass, host, resources_, result.result,
                                             result.bent);
-    if (!error && shift > 0) {
-        // The raw debug views show the reduced grid itself; bent normals are upsampled for every view.
+    if (!error && upsample_runs) {
+        // Without a debug view as the output's write; with one (which shows the reduced grid) for the bent normals.
         if (!upsample_writes_target) {
             upsample_.run(pass_env, host_output, upsample_pass, host, resources_, *result.result, result.bent);
             error = recorder.end(PassId::Upsample);
-            if (!raw_view) result.result = &upsample_.result();
         }
         result.bent = upsample_.bent();
     }

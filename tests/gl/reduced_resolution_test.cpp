@@ -252,5 +252,23 @@ TEST_F(GLTest, ReducedResolutionMemoryFollowsTheResolution) {
     }
 }
 
+// A debug view shows the reduced grid itself (the composite reads it at pixel >> k): without bent normals the
+// upsample does not run, and no full-size result is made for it. Until 2026-12-06 a debug view allocated a host-size
+// R16F texture, wrote it and never read it (found by a read-only review).
+TEST_F(GLTest, ReducedResolutionDebugViewsAllocateNoFullSizeResult) {
+    AoScene scene = box_scene();
+    for (obscura_method method : kMethods) {
+        SCOPED_TRACE(obscura_method_name(method));
+        const obscura_settings settings = settings_for(method, OBSCURA_RESOLUTION_HALF);
+        ContextPtr context = create_context();
+        render_visibility(context.get(), scene.input, settings);
+        const uint64_t plain = memory_of(context.get());
+        for (obscura_debug_view view : {OBSCURA_DEBUG_LINEAR_DEPTH, OBSCURA_DEBUG_NORMALS, OBSCURA_DEBUG_AO_BEFORE_BLUR}) {
+            EXPECT_FALSE(render_to_new_texture(context.get(), scene.input, settings, GL_R32F, 1, view).empty());
+            EXPECT_EQ(memory_of(context.get()), plain) << "debug view " << int(view);
+        }
+    }
+}
+
 }  // namespace
 }  // namespace obscura_test

@@ -54,6 +54,7 @@ public:
     TechniquePlan plan(const obscura_settings& settings, int, int, const FrameRequest&) const override {
         TechniquePlan plan;
         plan.radius = settings.reference.radius;
+        plan.uses_ao = false;  // its rays accumulate in its own R32F texture, which is also its result
         return plan;
     }
 

@@ -24,8 +24,9 @@ Error UpsamplePass::allocate(const PassEnv& env, int width, int height, bool ben
     // Both results follow the host's size: a size change drops them together.
     const gl::Texture2D& sized = ao_ ? ao_ : bent_;
     if (sized && (sized.width() != width || sized.height() != height)) release();
-    // The R16F result is made for the first debug view and kept: a host that shows a debug inset beside its main view
-    // every frame would otherwise free and make it twice a frame.
+    // The R16F result (the visibility the pass writes beside the bent normals when a debug view shows the reduced
+    // grid) is made for the first such view and kept: a host that shows a debug inset beside its main view every frame
+    // would otherwise free and make it twice a frame.
     if (own_result && !ao_) {
         ao_ = env.create_texture(GL_R16F, width, height);
         if (!ao_) return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating the %dx%d upsampled AO failed", width, height);

@@ -29,7 +29,6 @@ public:
     void run(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const FrameInput& host,
              const FrameResources& resources, const gl::Texture2D& source, const gl::Texture2D* bent_source,
              GLuint target_texture = 0);
-    const gl::Texture2D& result() const { return ao_; }
     bool has_result() const { return static_cast<bool>(ao_); }
     const gl::Texture2D* bent() const { return bent_ ? &bent_ : nullptr; }
     uint64_t bytes() const { return ao_.bytes() + bent_.bytes(); }
