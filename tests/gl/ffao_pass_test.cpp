@@ -456,6 +456,22 @@ TEST_F(FfaoPasses, FourKKeepsEveryPeaksBlockWithin128MiB) {
     EXPECT_LE(pass.bytes() + shared, uint64_t(200) << 20) << "pass " << (pass.bytes() >> 20) << " MiB";
 }
 
+// The columns' offsets are 32-bit global entry indices: a layout past 2^31 - 1 entries (8192x8192 with 64 sectors and
+// B0 = 2: about 2.1e9) is refused with a status, whatever the driver's storage blocks would allow (a review found
+// that only each chunk was bounded, and the offsets would have wrapped on a driver with blocks above 32 GiB).
+TEST_F(FfaoPasses, LayoutsPastThirtyTwoBitIndicesAreRefused) {
+    obscura_ffao_settings settings = defaults();
+    settings.sectors = 64;
+    settings.base_interval = 2;
+    settings = resolved(settings);
+    obscura::FfaoPass pass;
+    ASSERT_FALSE(pass.prepare(env(), settings));
+    const obscura::Error error =
+        pass.ensure_layout(env(), settings, 8192, 8192, 0, obscura::Region{0, 0, 8192, 8192});
+    EXPECT_EQ(error.status(), OBSCURA_STATUS_INVALID_SIZE);
+    EXPECT_NE(std::string(error.message()).find("32-bit indices"), std::string::npos) << error.message();
+}
+
 // A wall facing the camera: every peak of every line lies in the receiver's own tangent plane, so nothing
 // rises above it.
 TEST_F(FfaoPasses, WallFacingTheCameraIsUnoccluded) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <new>
@@ -150,6 +151,14 @@ Error FfaoPass::build_grid(const PassEnv& env, const obscura_ffao_settings& sett
         grid.chunks[0] = Chunk{0, orientations, 0, 0};
         grid.chunk_count = 1;
         return Error();
+    }
+    // The columns' offsets are global entry indices, 32-bit in the records and the shaders (a chunk's buffer starts at
+    // its first entry, but the indices into it do not): the whole layout must fit them, whatever the blocks allow.
+    if (layout.entries > int64_t(INT32_MAX)) {
+        return Error::make(OBSCURA_STATUS_INVALID_SIZE,
+                           "FFAO at %dx%d needs %lld interval entries, more than 32-bit indices reach (2^31 - 1): use "
+                           "fewer sectors, a larger base_interval or a reduced resolution",
+                           width, height, static_cast<long long>(layout.entries));
     }
     const gl::Table& gl = env.gl;
     GLint64 max_block_bytes = 0;
