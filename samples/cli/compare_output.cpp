@@ -279,20 +279,26 @@ void print_compare_table(const CompareResult& result) {
                 row.push_back(format_fixed(errors.flicker.value_or(0.0), 5));
                 row.push_back(format_fixed(errors.last_mean_abs.value_or(0.0), 5));
             }
-            if (!result.geometry.empty()) row.push_back(format_fixed(errors.surface_flicker.value_or(0.0), 5));
+            // "-": no pixel could be followed from frame to frame (nothing measured, not "no flicker").
+            auto optional_fixed = [](const std::optional<double>& value) {
+                return value ? format_fixed(*value, 5) : std::string("-");
+            };
+            if (!result.geometry.empty()) row.push_back(optional_fixed(errors.surface_flicker));
             if (result.converged_frames > 0) {
                 row.push_back(format_fixed(errors.noise_flicker.value_or(0.0), 5));
                 row.push_back(format_fixed(errors.converged_mean_abs.value_or(0.0), 5));
-                row.push_back(format_fixed(errors.converged_surface_flicker.value_or(0.0), 5));
+                row.push_back(optional_fixed(errors.converged_surface_flicker));
             }
             row.push_back(std::to_string(method.reference + 1));
             table.add_row(row);
         }
         table.print(stdout);
         if (t < result.truth_surface_flicker.size()) {
+            const std::optional<double>& floor = result.truth_surface_flicker[t];
             std::printf("surface flicker: how much a surface point's AO changes from frame to frame (reprojected); the "
-                        "%s's own: %.5f (its sampling noise: the floor)\n",
-                        truth.kind == TruthKind::Geometry ? "truth" : "reference", result.truth_surface_flicker[t]);
+                        "%s's own: %s (its sampling noise: the floor)\n",
+                        truth.kind == TruthKind::Geometry ? "truth" : "reference",
+                        floor ? format_fixed(*floor, 5).c_str() : "- (no pixel could be followed)");
         }
         for (const ComparedMethod& method : result.methods) {
             const MethodErrors& errors = method.errors[t];
@@ -427,7 +433,9 @@ void write_compare_json(const CompareResult& result, const std::string& path, ob
     for (size_t t = 0; t < result.truths.size(); ++t) {
         const ComparedTruth& truth = result.truths[t];
         json.begin_object();
-        if (t < result.truth_surface_flicker.size()) json.field("surface_flicker", result.truth_surface_flicker[t]);
+        if (t < result.truth_surface_flicker.size() && result.truth_surface_flicker[t]) {
+            json.field("surface_flicker", *result.truth_surface_flicker[t]);
+        }
         json.key("truth").begin_object();
         json.field("kind", truth_kind_name(truth.kind));
         json.field("rays", truth.rays);

@@ -301,15 +301,18 @@ glm::dvec3 pixel_to_world(const FrameGeometry& frame, int x, int y, double depth
 // Where pixel (x, y) of `now` was in the previous frame `before`.
 enum class Previously { NoSurface, Elsewhere, Seen };
 struct Reprojection {
-    // NoSurface: sky now; Elsewhere: off the image, or not every texel around it sees its surface; Seen: every one does.
+    // NoSurface: sky now; Elsewhere: off the image, or a texel around it with bilinear weight does not see its surface;
+    // Seen: every texel with weight does.
     Previously what = Previously::NoSurface;
     double u = 0.0, v = 0.0;              // on the image: texel coordinates in the previous image (centres at integers)
     int x0 = 0, y0 = 0, x1 = 0, y1 = 0;   // on the image: the four texels around it
     bool matches[4] = {false, false, false, false};  // which of (x0, y0), (x1, y0), (x0, y1), (x1, y1) see it
 };
 
-// The pixel's surface point (on a moving part, moved back by its motion) projected into `before`: seen there when all
-// four texels around it see the same surface (their view depth within depth_tolerance of the point's, relative).
+// The pixel's surface point (on a moving part, moved back by its motion) projected into `before`: seen there when the
+// texels around it that carry bilinear weight see the same surface (their view depth within depth_tolerance of the
+// point's, relative). A texel of weight 0 does not count: a still camera lands each point on its own texel, whose
+// neighbours may lie on another surface (or at another depth of a slanted one) without changing the value read.
 Reprojection reproject(const FrameGeometry& now, const FrameGeometry& before, int x, int y, double depth_tolerance) {
     Reprojection r;
     const int width = now.view_depth.width, height = now.view_depth.height;
@@ -329,12 +332,15 @@ Reprojection reproject(const FrameGeometry& now, const FrameGeometry& before, in
     r.x1 = std::min(r.x0 + 1, width - 1);
     r.y1 = std::min(r.y0 + 1, height - 1);
     const std::pair<int, int> texels[4] = {{r.x0, r.y0}, {r.x1, r.y0}, {r.x0, r.y1}, {r.x1, r.y1}};
+    const double fx = r.u - r.x0, fy = r.v - r.y0;
+    const double weights[4] = {(1.0 - fx) * (1.0 - fy), fx * (1.0 - fy), (1.0 - fx) * fy, fx * fy};
     bool all = true;
     for (int k = 0; k < 4; ++k) {
         const float texel_depth = before.view_depth.at(texels[k].first, texels[k].second);
         r.matches[k] = sees_surface(texel_depth) &&
                        std::fabs(double(texel_depth) - expected_depth) <= depth_tolerance * expected_depth;
-        all = all && r.matches[k];
+        // Below 1e-9 of weight a texel's value changes the reading by less than the images' float precision.
+        all = all && (r.matches[k] || weights[k] < 1e-9);
     }
     if (all) r.what = Previously::Seen;
     return r;
@@ -353,8 +359,8 @@ void check_geometry(const char* what, const std::vector<FrameGeometry>& geometry
 
 }  // namespace
 
-double surface_flicker(const std::vector<FloatImage>& frames, const std::vector<FrameGeometry>& geometry,
-                       double depth_tolerance) {
+std::optional<double> surface_flicker(const std::vector<FloatImage>& frames, const std::vector<FrameGeometry>& geometry,
+                                      double depth_tolerance) {
     if (frames.size() != geometry.size() || frames.size() < 2) {
         throw std::invalid_argument("surface_flicker: " + std::to_string(frames.size()) + " frames and " +
                                     std::to_string(geometry.size()) + " geometries (two or more of each)");
@@ -372,15 +378,21 @@ double surface_flicker(const std::vector<FloatImage>& frames, const std::vector<
                 const Reprojection r = reproject(geometry[f], geometry[f - 1], x, y, depth_tolerance);
                 if (r.what != Previously::Seen) continue;
                 const double fx = r.u - r.x0, fy = r.v - r.y0;
-                const double value = (1.0 - fy) * ((1.0 - fx) * previous.at(r.x0, r.y0) + fx * previous.at(r.x1, r.y0)) +
-                                     fy * ((1.0 - fx) * previous.at(r.x0, r.y1) + fx * previous.at(r.x1, r.y1));
+                // Texels of weight 0 are left out, not multiplied: they may lie on sky (any value) or another surface.
+                const double weights[4] = {(1.0 - fx) * (1.0 - fy), fx * (1.0 - fy), (1.0 - fx) * fy, fx * fy};
+                const int xs[4] = {r.x0, r.x1, r.x0, r.x1}, ys[4] = {r.y0, r.y0, r.y1, r.y1};
+                double value = 0.0;
+                for (int k = 0; k < 4; ++k) {
+                    if (weights[k] >= 1e-9) value += weights[k] * previous.at(xs[k], ys[k]);
+                }
                 const double change = double(image.at(x, y)) - value;
                 sum += std::isfinite(change) ? std::fabs(change) : 1.0;
                 ++counted;
             }
         }
     }
-    return counted > 0 ? sum / double(counted) : 0.0;
+    if (counted == 0) return std::nullopt;
+    return sum / double(counted);
 }
 
 std::vector<std::vector<int>> frames_since_disocclusion(const std::vector<FrameGeometry>& geometry,

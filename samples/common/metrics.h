@@ -14,6 +14,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -97,14 +98,14 @@ struct FrameGeometry {
 
 // Flicker as a viewer sees it: how much the AO of a surface point changes from one frame to the next. Each geometry
 // pixel of frame f is taken to the world through its view depth (on a moving part, moved back by its motion),
-// projected into frame f - 1 and compared with frame f - 1's image there (bilinear), where all four texels around
-// that point see the same surface (their view depth within depth_tolerance of the point's, relative); other pixels
-// (disoccluded, off screen, sky) do not count. The
-// mean of |difference| over the counted pixels and frame pairs (first channels), 0 when none counts. A still camera
-// and scene make it the plain mean change per pixel. `frames` and `geometry` of one count, >= 2, and one size
-// (std::invalid_argument otherwise).
-double surface_flicker(const std::vector<FloatImage>& frames, const std::vector<FrameGeometry>& geometry,
-                       double depth_tolerance = 0.02);
+// projected into frame f - 1 and compared with frame f - 1's image there (bilinear), where every texel around that
+// point with bilinear weight sees the same surface (its view depth within depth_tolerance of the point's, relative);
+// other pixels (disoccluded, off screen, sky) do not count. The mean of |difference| over the counted pixels and frame
+// pairs (first channels); nullopt when none counts (nothing was measured, which is not "no flicker"). A still camera
+// and scene make it the plain mean change per geometry pixel. `frames` and `geometry` of one count, >= 2, and one
+// size (std::invalid_argument otherwise).
+std::optional<double> surface_flicker(const std::vector<FloatImage>& frames, const std::vector<FrameGeometry>& geometry,
+                                      double depth_tolerance = 0.02);
 
 // Frames since each pixel's surface point came into view, following the point from frame to frame as
 // surface_flicker does: 0 where the previous frame did not see it (off the image, or none of the four texels around

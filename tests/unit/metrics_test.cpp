@@ -7,6 +7,7 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <optional>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -343,19 +344,37 @@ TEST(SurfaceFlicker, FollowsTheSurfaceAcrossACameraMove) {
         }
     }
     const std::vector<FloatImage> frames = {make_image(8, 8, ramp), make_image(8, 8, shifted)};
-    EXPECT_NEAR(surface_flicker(frames, {wall_frame(0.0), wall_frame(1.0)}), 0.0, 1e-6);
+    EXPECT_NEAR(surface_flicker(frames, {wall_frame(0.0), wall_frame(1.0)}).value_or(-1.0), 0.0, 1e-6);
     // A still camera: the plain mean change, 0.1 per pixel.
-    EXPECT_NEAR(surface_flicker(frames, {wall_frame(0.0), wall_frame(0.0)}), 0.1, 1e-6);
-    // Where the previous frame saw another surface (its depth 10 % off) nothing counts.
+    EXPECT_NEAR(surface_flicker(frames, {wall_frame(0.0), wall_frame(0.0)}).value_or(-1.0), 0.1, 1e-6);
+    // Where the previous frame saw another surface (its depth 10 % off) nothing counts: nothing was measured.
     obscura::samples::FrameGeometry farther = wall_frame(0.0);
     farther.view_depth = constant_image(8, 8, 4.4f);
-    EXPECT_EQ(surface_flicker(frames, {farther, wall_frame(0.0)}), 0.0);
+    EXPECT_FALSE(surface_flicker(frames, {farther, wall_frame(0.0)}).has_value());
     // Sky does not count either.
     obscura::samples::FrameGeometry sky = wall_frame(0.0);
     sky.view_depth = constant_image(8, 8, 0.0f);
-    EXPECT_EQ(surface_flicker(frames, {wall_frame(0.0), sky}), 0.0);
+    EXPECT_FALSE(surface_flicker(frames, {wall_frame(0.0), sky}).has_value());
     EXPECT_THROW(surface_flicker({frames[0]}, {wall_frame(0.0)}), std::invalid_argument);
     EXPECT_THROW(surface_flicker(frames, {wall_frame(0.0)}), std::invalid_argument);
+}
+
+// A still camera lands every point on its own texel, with bilinear weight 0 on the texels beside it: those may lie on
+// another surface (here every other column is 10 % deeper, like a slanted floor's rows at low resolution) and do not
+// decide whether the point was seen. Until 2026-12-06 all four texels had to match, so such a view measured nothing
+// and reported 0, "no flicker" (found by a review: the room at 16x9).
+TEST(SurfaceFlicker, TexelsWithoutWeightDoNotDecide) {
+    using obscura::samples::surface_flicker;
+    std::vector<float> depth(64), before(64, 0.5f), after(64, 0.6f);
+    for (int y = 0; y < 8; ++y) {
+        for (int x = 0; x < 8; ++x) depth[size_t(y * 8 + x)] = x % 2 == 0 ? 4.0f : 4.4f;
+    }
+    obscura::samples::FrameGeometry frame = wall_frame(0.0);
+    frame.view_depth = make_image(8, 8, depth);
+    const std::vector<FloatImage> frames = {make_image(8, 8, before), make_image(8, 8, after)};
+    const std::optional<double> flicker = surface_flicker(frames, {frame, frame});
+    ASSERT_TRUE(flicker.has_value()) << "a still camera follows every geometry pixel";
+    EXPECT_NEAR(*flicker, 0.1, 1e-6);
 }
 
 TEST(SurfaceFlicker, FollowsAMovingPartToWhereItWas) {
@@ -379,9 +398,9 @@ TEST(SurfaceFlicker, FollowsAMovingPartToWhereItWas) {
     moved.motion = glm::dvec3(1.0, 0.0, 0.0);
     // Pixel 4 of the moving part came from pixel 3 (0.3), where the still wall (0.9) is now; pixel 0, uncovered,
     // is given the value the part had there (the same depth: the test cannot tell it was hidden).
-    EXPECT_NEAR(surface_flicker(frames, {wall_frame(0.0), moved}), 0.0, 1e-6);
+    EXPECT_NEAR(surface_flicker(frames, {wall_frame(0.0), moved}).value_or(-1.0), 0.0, 1e-6);
     // Without the motion the moving pixels are compared with what was at their place: 0.1 each (and 0.6 at x = 4).
-    EXPECT_GT(surface_flicker(frames, {wall_frame(0.0), wall_frame(0.0)}), 0.05);
+    EXPECT_GT(surface_flicker(frames, {wall_frame(0.0), wall_frame(0.0)}).value_or(-1.0), 0.05);
     moved.moving.resize(10);
     EXPECT_THROW(surface_flicker(frames, {wall_frame(0.0), moved}), std::invalid_argument);
 }
