@@ -445,8 +445,11 @@ void measure_method(const ObscuraSession& session, const std::vector<samples::Re
             mean.over_threshold += weight * metrics.over_threshold;
             mean_squared_error += weight * (std::isfinite(metrics.psnr) ? std::pow(10.0, -metrics.psnr / 10.0) : 0.0);
             mean.max_abs = std::max(mean.max_abs, metrics.max_abs);
-            mean.pixels = metrics.pixels;
-            mean.pixels_total = metrics.pixels_total;
+            // The counts are the first frame's, as the table's header says (an orbit's frames see different pixels).
+            if (f == 0) {
+                mean.pixels = metrics.pixels;
+                mean.pixels_total = metrics.pixels_total;
+            }
         }
         mean.psnr = mean_squared_error > 0.0 ? 10.0 * std::log10(1.0 / mean_squared_error)
                                              : std::numeric_limits<double>::infinity();

@@ -509,7 +509,8 @@ void write_tune_json(const TuneReport& report, const std::string& path, obscura_
     json.field("device", report.device);
     json.field("timing", report.sync_timing ? "glFinish + CPU clock per pass" : "GL timer queries");
     json.field("method", config.start.text);
-    json.field("width", config.scene.raster.width).field("height", config.scene.raster.height);
+    // --size's: the scenes'. Captures have each their file's size (in "scenes"), and no common one.
+    if (config.captures.empty()) json.field("width", config.scene.raster.width).field("height", config.scene.raster.height);
     json.key("scenes").begin_array();
     for (const TuneScene& scene : *report.scenes) {
         json.begin_object().field("name", scene.choice.name);
