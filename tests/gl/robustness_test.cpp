@@ -207,8 +207,10 @@ TEST_P(Numerics, LinearDepthSpecialValues) {
 }
 
 TEST_P(Numerics, HardwareDepthSpecialValues) {
-    // D32F: 1 is the far-plane clear value (sky); GL's transfer clamps +inf to 1. 0 is the near plane, just
-    // below 1 a surface at the far plane, NaN whatever the driver stores for it.
+    // D32F: 1 is the far-plane clear value (sky). 0 is the near plane, just below 1 a surface at the far plane, NaN
+    // whatever the driver stores for it. +inf and -inf are what a host may upload: GL's transfer clamps them to 1 and
+    // 0 (these cases repeat those), and no GL 4.3 path (uploads, depth writes) stores a non-finite D32F value, so the
+    // SDK's own handling of non-finite depth is exercised through the linear-depth input above.
     check(false, {1.0f, kInf}, {0.0f, std::nextafter(1.0f, 0.0f), kNaN, -kInf});
 }
 
