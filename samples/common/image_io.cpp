@@ -204,6 +204,18 @@ FloatImage read_pfm(const std::string& path) {
     }
     file.get();  // the single whitespace character that ends the header
     image.channels = type == "Pf" ? 1 : 3;
+    // The header's size against the file's before anything is allocated: a header claiming 100000x100000 would
+    // otherwise zero-fill 40 GB and only then find the file short.
+    const std::streampos data_start = file.tellg();
+    file.seekg(0, std::ios::end);
+    const std::streamoff available = file.tellg() - data_start;
+    file.seekg(data_start);
+    const double wanted = double(image.width) * double(image.height) * double(image.channels) * sizeof(float);
+    if (!file || double(available) < wanted) {
+        throw std::runtime_error("'" + path + "' is truncated: its header says " + std::to_string(image.width) + "x" +
+                                 std::to_string(image.height) + " x " + std::to_string(image.channels) +
+                                 " floats, the file holds " + std::to_string(static_cast<long long>(available)) + " bytes after it");
+    }
     image.pixels.resize(size_t(image.width) * size_t(image.height) * size_t(image.channels));
     file.read(reinterpret_cast<char*>(image.pixels.data()), std::streamsize(image.pixels.size() * sizeof(float)));
     if (!file) throw std::runtime_error("'" + path + "' is truncated");

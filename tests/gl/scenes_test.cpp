@@ -423,6 +423,25 @@ void expect_frame_layout(const obscura::samples::SceneFrame& frame) {
 
 class DepthFileTest : public GLTest {};
 
+// A header that claims more than the file holds is refused before anything is allocated (a 100000x100000 header
+// once zero-filled 40 GB before the read found the file short).
+TEST(PfmFile, HeaderLargerThanTheFileIsRefusedBeforeAllocating) {
+    TempFile pfm("claims_too_much.pfm");
+    {
+        std::ofstream file(pfm.path(), std::ios::binary);
+        file << "Pf\n100000 100000\n-1.0\n";
+        const float some[4] = {1.0f, 2.0f, 3.0f, 4.0f};
+        file.write(reinterpret_cast<const char*>(some), sizeof some);
+    }
+    try {
+        obscura::samples::read_pfm(pfm.path());
+        ADD_FAILURE() << "read_pfm accepted a truncated file";
+    } catch (const std::runtime_error& error) {
+        EXPECT_NE(std::string(error.what()).find("truncated: its header says 100000x100000"), std::string::npos)
+            << error.what();
+    }
+}
+
 TEST_F(DepthFileTest, LinearRoundTrip) {
     TempFile pfm("linear.pfm");
     const FloatImage written = plane_depth_image(expected_projection(50.0f), false);
