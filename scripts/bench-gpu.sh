@@ -3,7 +3,7 @@
 # Usage: scripts/bench-gpu.sh BUILD_DIR OUT_DIR [tests] [bench] [lsao] [lsao-error] [ffao]
 #   BUILD_DIR holds bin/obscura (and tests/obscura_*_tests for "tests") built on an x86-64 Debian machine
 #   with -DOBSCURA_SAMPLES_WITH_OSMESA=OFF (no Mesa needed there), and lib/ with the shared libraries the
-#   GPU machine lacks (libtinyobjloader). scripts/stage-gpu-build.sh prepares it.
+#   GPU machine lacks (tinyobjloader, Embree, TBB). scripts/stage-gpu-build.sh prepares it.
 #   If .gl/ holds Debian's GLVND .debs (libegl1, libglvnd0, libopengl0 ...), they are unpacked first, for
 #   driver-only machines without the GLVND dispatch libraries.
 #   tests: the GL, pass and unit test executables on the GPU (goldens are read from the path they were built
@@ -16,8 +16,10 @@
 #   ffao:  FFAO at 1920x1080: the default 16x2, SAAO 18x2 (the issue's H100 target, <= 0.6 ms), the mipmap
 #          baseline, B0 = 5 / 10 / 20 (Table 3), the radius, the sizes of Table 1, per kernel (Tables 2, 4).
 # The clock is the SDK's GL timer queries (bench reports "clock": "gpu-timer" in its JSON).
+# Every step runs to its end (one failing command does not hide the others' results); the exit status is non-zero
+# when any command of any step failed.
 set -uo pipefail
-build="$(cd "${1:?build dir}" && pwd)"
+build="$(cd "${1:?build dir}" && pwd)" || { echo "bench-gpu.sh: no build directory '$1'" >&2; exit 2; }
 out="${2:?output dir}"
 shift 2
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -31,9 +33,12 @@ mkdir -p "$out"
 nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm --format=csv | tee "$out/gpu.txt" || true
 # BENCH_FRAMES, BENCH_WARMUP, TABLE_SIZES and TABLE_SIZE shrink the runs for a dry run on llvmpipe (defaults: the GPU's).
 bench() { "$build/bin/obscura" bench --frames "${BENCH_FRAMES:-200}" --warmup "${BENCH_WARMUP:-20}" "$@"; }
+status=0
+# Runs a command and records a failure in `status`, in this shell: the steps write their output to files and show
+# them afterwards, since a group piped into tee runs in a subshell, which would lose the assignment.
+run() { "$@" || { echo "FAILED ($?): $*" >&2; status=1; }; }
 table_sizes="${TABLE_SIZES:-1280x720,1920x1080,3840x2160}"
 table_size="${TABLE_SIZE:-1920x1080}"
-status=0
 for what in "$@"; do
   case "$what" in
     tests)
@@ -53,29 +58,32 @@ for what in "$@"; do
       ;;
     bench)
       {
-        bench --scene atrium --sizes 1920x1080 \
+        run bench --scene atrium --sizes 1920x1080 \
               --methods hbao,hbao:steps=12:estimator=horizon_split:intensity=1:power=1:blur_radius=4:blur_sharpness=16,hbao:directions=16:steps=48:estimator=horizon_split:intensity=1:power=1:blur_radius=4:blur_sharpness=16,sao,lsao,lsao:preset=k16:tangent_strategy=fixed,lsao:preset=3,lsao:preset=4,lsao:exact=on,gtao,gtao:thickness_mode=bitmask,gtao:preset=low,gtao:preset=medium,gtao:preset=ultra \
               --json "$out/methods_1080.json"
-        bench --scene atrium --sizes 1280x720,2560x1600,3840x2160 --methods hbao:directions=16:steps=48:estimator=horizon_split:intensity=1:power=1:blur_radius=4:blur_sharpness=16,sao,lsao \
+        run bench --scene atrium --sizes 1280x720,2560x1600,3840x2160 --methods hbao:directions=16:steps=48:estimator=horizon_split:intensity=1:power=1:blur_radius=4:blur_sharpness=16,sao,lsao \
               --json "$out/methods_sizes.json"
-        bench --scene atrium --sizes 1920x1080 --methods lsao:radius=0.1,lsao:radius=1,lsao:radius=10 \
+        run bench --scene atrium --sizes 1920x1080 --methods lsao:radius=0.1,lsao:radius=1,lsao:radius=10 \
               --json "$out/lsao_radius.json"
-      } 2>&1 | tee "$out/bench.txt"
+      } > "$out/bench.txt" 2>&1
+      cat "$out/bench.txt"
       ;;
     ffao)
       {
-        bench --scene atrium --sizes 1920x1080 \
+        run bench --scene atrium --sizes 1920x1080 \
               --methods ffao,ffao:saao=on,ffao:saao=on:saao_blur=off,ffao:sectors=18,ffao:segments=1,ffao:geometry=2,ffao:base_interval=5,ffao:base_interval=20,ffao:radius=0.1,ffao:radius=10,ffao:thickness=0.3,hbao:directions=16:steps=48:estimator=horizon_split:intensity=1:power=1:blur_radius=4:blur_sharpness=16,lsao \
               --json "$out/ffao_1080.json"
-        bench --scene atrium --sizes 1280x720,2560x1600,3840x2160 --methods ffao,ffao:saao=on \
+        run bench --scene atrium --sizes 1280x720,2560x1600,3840x2160 --methods ffao,ffao:saao=on \
               --json "$out/ffao_sizes.json"
-      } 2>&1 | grep -E '^[a-z].* @ |total|ffao_|z_pyramid|blur|GPU memory' | tee "$out/ffao.txt"
+      } > "$out/ffao_full.txt" 2>&1
+      grep -E '^[a-z].* @ |total|ffao_|z_pyramid|blur|GPU memory|FAILED' "$out/ffao_full.txt" | tee "$out/ffao.txt"
       ;;
     lsao)
       # Sweep parallelism: whole lines vs segments of several lengths and warm-up tolerances.
-      bench --scene atrium --sizes 1920x1080 \
+      run bench --scene atrium --sizes 1920x1080 \
             --methods lsao:segment_steps=-1,lsao,lsao:segment_steps=64,lsao:segment_steps=256,lsao:warmup_stride=1,lsao:warmup_stride=2,lsao:warmup_stride=8,lsao:warmup_stride=16,lsao:warmup_tolerance=0.01,lsao:warmup_tolerance=0.2,lsao:hull_capacity=16,lsao:hull_capacity=64,lsao:hull_capacity=16:segment_steps=-1,lsao:hull_capacity=64:segment_steps=-1,lsao:hull_capacity=16:warmup_stride=8,lsao:hull_capacity=32,lsao:radius=0.1,lsao:radius=10,lsao:radius=10:warmup_stride=8,lsao:preset=k16:tangent_strategy=fixed,lsao:preset=3,lsao:preset=4,hbao:directions=16:steps=48:estimator=horizon_split:intensity=1:power=1:blur_radius=4:blur_sharpness=16,hbao,sao \
-            --json "$out/lsao.json" 2>&1 | grep -E '^[a-z].* @ |total|line_sweep|gather' | tee "$out/lsao.txt"
+            --json "$out/lsao.json" > "$out/lsao_full.txt" 2>&1
+      grep -E '^[a-z].* @ |total|line_sweep|gather|FAILED' "$out/lsao_full.txt" | tee "$out/lsao.txt"
       ;;
     lsao-error)
       # What the segments cost against whole-line sweeps and the exact (brute-force) sweep, per scene, at
@@ -86,17 +94,26 @@ for what in "$@"; do
         for v in "${variants[@]}"; do
           name="${scene}_$(echo "$v" | tr ':=' '__')"
           "$build/bin/obscura" render --scene "$scene" --size 1920x1080 --method "$v" --out "$out/img/$name.png" \
-            > /dev/null 2>&1 || echo "render $name failed"
+            > /dev/null 2>&1 || { echo "render $name failed"; status=1; }
         done
         for v in "${variants[@]:1}"; do
           name="${scene}_$(echo "$v" | tr ':=' '__')"
           for ref in lsao_exact_on lsao_segment_steps_-1; do
+            rm -f "$out/img/d.json"
+            # diff exits 1 where the images differ beyond its tolerance (expected here), 2 where it cannot compare.
             "$build/bin/obscura" diff "$out/img/$name.png" "$out/img/${scene}_$ref.png" --json "$out/img/d.json" \
               > /dev/null 2>&1
-            printf '%-9s %-32s vs %-22s %s\n' "$scene" "$v" "$ref" "$(tr -d '\n ' < "$out/img/d.json" | grep -o '"mean_abs":[0-9.e-]*')"
+            diff_status=$?
+            if [[ $diff_status -le 1 && -s "$out/img/d.json" ]]; then
+              printf '%-9s %-32s vs %-22s %s\n' "$scene" "$v" "$ref" "$(tr -d '\n ' < "$out/img/d.json" | grep -o '"mean_abs":[0-9.e-]*')"
+            else
+              printf '%-9s %-32s vs %-22s diff failed (%d)\n' "$scene" "$v" "$ref" "$diff_status"
+              status=1
+            fi
           done
         done
-      done 2>&1 | tee "$out/lsao_error.txt"
+      done > "$out/lsao_error.txt" 2>&1
+      cat "$out/lsao_error.txt"
       tar czf "$out/lsao_images.tgz" -C "$out" img && rm -rf "$out/img"
       ;;
     table)
@@ -113,17 +130,17 @@ for what in "$@"; do
       done
       {
         echo "== every method and preset"
-        bench --scene atrium --sizes "$table_sizes" --methods "$methods" --json "$out/table.json"
+        run bench --scene atrium --sizes "$table_sizes" --methods "$methods" --json "$out/table.json"
         echo "== reduced resolution"
-        bench --scene atrium --sizes "$table_size" --methods "${reduced%,}" --json "$out/reduced.json"
+        run bench --scene atrium --sizes "$table_size" --methods "${reduced%,}" --json "$out/reduced.json"
         echo "== temporal, still camera"
-        bench --scene atrium --sizes "$table_size" --methods hbao:temporal.enabled=on,gtao:temporal.enabled=on \
+        run bench --scene atrium --sizes "$table_size" --methods hbao:temporal.enabled=on,gtao:temporal.enabled=on \
               --json "$out/temporal_still.json"
         echo "== temporal, moving camera (--motion 1)"
-        bench --scene atrium --sizes "$table_size" --motion 1 \
+        run bench --scene atrium --sizes "$table_size" --motion 1 \
               --methods hbao:temporal.enabled=on,gtao:temporal.enabled=on,sao:temporal.enabled=on \
               --json "$out/temporal_moving.json"
-      } > "$out/table.txt" 2>&1 || status=1
+      } > "$out/table.txt" 2>&1
       # One line per configuration: method @ size, the total and every pass (median ms).
       awk '/ @ /{if(line)print line; line=$1" "$3} /^  [a-z_]+ +[0-9.]+ +[0-9.]+$/{line=line" "$1"="$2}
            /^== /{if(line)print line; line=""; print} /refused|error/{print} END{if(line)print line}' "$out/table.txt" | tee "$out/table_summary.txt"

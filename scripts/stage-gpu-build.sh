@@ -11,9 +11,10 @@ rm -rf "$stage"
 mkdir -p "$stage/bin" "$stage/tests" "$stage/lib"
 cp "$root/build-gpu/bin/obscura" "$stage/bin/"
 cp "$root"/build-gpu/tests/obscura_{gl,pass,unit}_tests "$stage/tests/"
-# The shared libraries Debian's packages give this machine and a driver-only GPU machine lacks.
+# The shared libraries Debian's packages give this machine and a driver-only GPU machine lacks: tinyobjloader, and
+# Embree with its TBB (the geometry truth, linked into the CLI since 2026-12-01).
 ldd "$root/build-gpu/bin/obscura" "$root/build-gpu/tests/obscura_gl_tests" |
-  awk '/tinyobjloader/ {print $3}' | sort -u | xargs -r cp -L -t "$stage/lib/"
+  awk '/tinyobjloader|embree|libtbb/ {print $3}' | sort -u | xargs -r cp -L -t "$stage/lib/"
 # The GL tests read goldens from the absolute path they were built with.
 grep -o 'OBSCURA_GOLDEN_DIR=[^ ]*' "$root/build-gpu/tests/CMakeFiles/obscura_gl_tests.dir/flags.make" |
   head -1 | sed 's/^OBSCURA_GOLDEN_DIR=//; s/[\\"]//g' > "$stage/golden_dir"
