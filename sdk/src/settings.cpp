@@ -55,6 +55,18 @@ const obscura_setting_info* find_info(obscura_method method, const char* name) {
     return nullptr;
 }
 
+// The block a row belongs to, as messages name it: the method's ("hbao"), or "obscura_settings" for the rows every
+// method shares ("obscura_settings.temporal.max_frames": the C field's path).
+const char* block_name(obscura_method method, const obscura_setting_info& info) {
+    uint32_t count = 0;
+    const obscura_setting_info* shared = shared_setting_infos(&count);
+    if (&info >= shared && &info < shared + count) return "obscura_settings";
+    // FFAO's rows added after its block's layout was released live in a block of their own.
+    const size_t added = offsetof(obscura_settings, ffao_added);
+    if (info.offset >= added && info.offset < added + sizeof(obscura_ffao_added_settings)) return "ffao_added";
+    return obscura_method_name(method);
+}
+
 // The field's bytes end within a struct of `size` bytes (an older header's obscura_settings).
 bool field_fits(const obscura_setting_info& info, size_t size) {
     const size_t bytes = info.type == OBSCURA_SETTING_FLOAT_ARRAY ? info.value_count * sizeof(float) : 4;
@@ -382,7 +394,7 @@ Error get_setting(const obscura_settings& settings, const char* name, double* va
     }
     if (info->type == OBSCURA_SETTING_FLOAT_ARRAY) {
         return Error::make(OBSCURA_STATUS_INVALID_SETTING, "%s.%s is an array of %u values: read it through its offset",
-                           obscura_method_name(method), info->name, unsigned(info->value_count));
+                           block_name(method, *info), info->name, unsigned(info->value_count));
     }
     // Reported as it will be used: derived values for derived fields, and what resolve makes of a set value
     // (LSAO rounds segment_steps up to a multiple of 8).
@@ -419,7 +431,7 @@ Error set_setting(obscura_settings* settings, const char* name, double value, ui
     }
     if (info->type == OBSCURA_SETTING_FLOAT_ARRAY) {
         return Error::make(OBSCURA_STATUS_INVALID_SETTING,
-                           "%s.%s is an array of %u values: write it through its offset", obscura_method_name(method),
+                           "%s.%s is an array of %u values: write it through its offset", block_name(method, *info),
                            info->name, unsigned(info->value_count));
     }
     // Whether the field will hold 0: a float field also turns a tiny double into 0.
@@ -429,7 +441,7 @@ Error set_setting(obscura_settings* settings, const char* name, double value, ui
     if (info->type == OBSCURA_SETTING_TOGGLE) {
         if (value != 0.0 && value != 1.0) {
             return Error::make(OBSCURA_STATUS_INVALID_SETTING, "%s.%s is a toggle: 0 (off) or 1 (on), not %g",
-                               obscura_method_name(method), info->name, value);
+                               block_name(method, *info), info->name, value);
         }
     } else if (stores_zero && zero_can_be_value(*info)) {
         // A literal 0 where 0 would mean "default": the struct switches to OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE,
@@ -439,7 +451,7 @@ Error set_setting(obscura_settings* settings, const char* name, double value, ui
                 return Error::make(OBSCURA_STATUS_INVALID_SETTING,
                                    "%s.%s = 0 needs OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE, which the caller's (older) "
                                    "obscura_settings has no field for",
-                                   obscura_method_name(method), info->name);
+                                   block_name(method, *info), info->name);
             }
             for_each_table([&](const char*, const obscura_setting_info* rows, uint32_t count) {
                 for (uint32_t i = 0; i < count; ++i) {
@@ -453,7 +465,7 @@ Error set_setting(obscura_settings* settings, const char* name, double value, ui
         }
     } else if (!(value == 0.0 && (info->min_value > 0.0 || is_derived(*info)))) {
         // 0 means "default" (or "derive") for fields whose range excludes it.
-        Error error = check_value(*info, obscura_method_name(method), value);
+        Error error = check_value(*info, block_name(method, *info), value);
         if (error) return error;
     }
     store_value(settings, *info, value);

@@ -106,7 +106,9 @@ void derive_for_renderer(bool cpu_renderer, obscura_settings* resolved);
 Error reference_settings_for(const obscura_settings& method_settings, obscura_settings* out);
 
 // Reads / writes one field of whole settings through the table (the value a UI shows: what resolve will use).
-// `host_size`: the caller's struct size; fields beyond it are UNKNOWN_SETTING.
+// get_setting reads every row, those beyond an older caller's struct as what resolve uses for them (their
+// defaults: read_host_settings filled them); set_setting cannot store there: `host_size`, the caller's struct size,
+// makes fields beyond it UNKNOWN_SETTING.
 Error get_setting(const obscura_settings& settings, const char* name, double* value);
 Error set_setting(obscura_settings* settings, const char* name, double value,
                   uint32_t host_size = sizeof(obscura_settings));

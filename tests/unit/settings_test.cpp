@@ -577,6 +577,24 @@ TEST(SettingsSetGet, ArraysAreRefusedByName) {
     EXPECT_EQ(resolve_status(s), OBSCURA_OK);
 }
 
+// A refusal names the C field: the shared rows' block is obscura_settings itself, FFAO's added rows live in ffao_added
+// (set_setting once said "hbao.temporal.max_frames", a field no header has; resolve already named them right).
+TEST(SettingsSetGet, RefusalsNameTheCField) {
+    obscura_settings s;
+    ASSERT_EQ(obscura_default_settings(OBSCURA_METHOD_HBAO, &s), OBSCURA_OK);
+    EXPECT_EQ(obscura_set_setting(&s, "temporal.max_frames", 100), OBSCURA_STATUS_INVALID_SETTING);
+    EXPECT_NE(std::string(obscura_get_last_error(nullptr)).find("obscura_settings.temporal.max_frames = 100"),
+              std::string::npos)
+        << obscura_get_last_error(nullptr);
+    EXPECT_EQ(obscura_set_setting(&s, "steps", 1000), OBSCURA_STATUS_INVALID_SETTING);
+    EXPECT_NE(std::string(obscura_get_last_error(nullptr)).find("hbao.steps = 1000"), std::string::npos)
+        << obscura_get_last_error(nullptr);
+    ASSERT_EQ(obscura_default_settings(OBSCURA_METHOD_FFAO, &s), OBSCURA_OK);
+    EXPECT_EQ(obscura_set_setting(&s, "frame_split", 7), OBSCURA_STATUS_INVALID_SETTING);
+    EXPECT_NE(std::string(obscura_get_last_error(nullptr)).find("ffao_added.frame_split = 7"), std::string::npos)
+        << obscura_get_last_error(nullptr);
+}
+
 TEST(SettingsSetGet, SetWritesTheStructField) {
     obscura_settings s = zero_settings();
     ASSERT_EQ(obscura_set_setting(&s, "radius", 2.5), OBSCURA_OK);

@@ -574,7 +574,10 @@ typedef struct obscura_resolution_settings {
    lsao.normal_threshold, gtao.mip_offset) cannot be 0; the editable form carries OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE,
    under which 0 in such a field is 0, and obscura_set_setting() sets the flag when it stores such a 0.
    Struct sizes: the library accepts the obscura_settings of every released header (0.1 to this one); the fields
-   an older header does not have hold their defaults (with the flag too). */
+   an older header does not have hold their defaults (with the flag too). One exception, which the library cannot
+   detect: a binary built against 0.1 or 0.2 that calls obscura_default_settings gets the 0.3 symbol (below), which
+   writes 428 bytes into its 60- or 156-byte struct. Such binaries must be rebuilt (or fill their struct with zeros
+   and struct_size instead of calling it). */
 enum {
     /* 0 in a field whose range includes 0 is the value 0 (not the default). Derived fields still derive. */
     OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE = 1u << 0
@@ -696,7 +699,8 @@ OBSCURA_API obscura_status obscura_set_setting(obscura_settings* settings, const
    While the settings do not resolve (K = 12 with LSAO's aligned pattern, a table falloff without its table) there
    is no derived value: a derived field left 0 reads 0, "derive", and obscura_resolve_settings() says why.
    lsao.segment_steps 0 reads 0: it depends on the renderer (obscura_resolve_settings() with a context gives it).
-   Returns OK, NULL_ARGUMENT, UNKNOWN_SETTING, INVALID_SETTING, INVALID_STRUCT_SIZE, INVALID_ENUM. */
+   A setting beyond an older caller's struct reads as it will be used (its default), where obscura_set_setting
+   cannot store it. Returns OK, NULL_ARGUMENT, UNKNOWN_SETTING, INVALID_SETTING, INVALID_STRUCT_SIZE, INVALID_ENUM. */
 OBSCURA_API obscura_status obscura_get_setting(const obscura_settings* settings, const char* name, double* out_value);
 
 /* ---- Per-frame input ------------------------------------------------------------------------- */
@@ -885,7 +889,8 @@ OBSCURA_API obscura_status obscura_get_memory_usage(const obscura_context* conte
 
 /* ---- The 0.3 ABI ----------------------------------------------------------------------------- */
 /* Binaries built against the 0.3 header call these two names; here they are macros (above), which the
-   parentheses keep from expanding. obscura_default_settings writes a 0.3-sized obscura_settings, and
+   parentheses keep from expanding. obscura_default_settings writes a 0.3-sized obscura_settings (428 bytes: too
+   many for a 0.1 or 0.2 binary's struct, which has no size to tell it by; those binaries must be rebuilt), and
    obscura_get_setting_infos returns the table in the 0.3 layout of obscura_setting_info (its first eight
    fields). New code calls the macros. */
 OBSCURA_API obscura_status(obscura_default_settings)(obscura_method method, obscura_settings* out);
