@@ -37,7 +37,9 @@ void main() {
             float d = texelFetch(u_depth, q, 0).r;
             if (obscura_is_sky(d)) continue;
             vec3 m = obscura_decode_normal(texelFetch(u_normals, q, 0).xy);
-            bool accepted = (dx == 0 && dy == 0) || (dot(m, normal) > kNormalDot && abs(d - depth) < kRelativeDepth * depth);
+            // Relative to the pixel's distance (orthographic: the tolerance distance, not the eye plane's depth).
+            bool accepted = (dx == 0 && dy == 0) ||
+                            (dot(m, normal) > kNormalDot && abs(d - depth) < kRelativeDepth * obscura_tolerance_distance(depth));
             if (!accepted) continue;
             depth_sum += d;
             normal_sum += m;

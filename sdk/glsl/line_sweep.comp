@@ -49,7 +49,10 @@ float sample_depth(inout vec2 point) {
         // Interpolate 1/w (perspective) or the depth itself (orthographic, where w = 1).
         bool perspective = obscura_is_perspective();
         vec4 k = perspective ? 1.0 / vec4(d00, d10, d01, d11) : vec4(d00, d10, d01, d11);
-        if (abs(k.x + k.w - k.y - k.z) <= kPlanarity * max(max(k.x, k.y), max(k.z, k.w))) {
+        // Relative to the quad's 1/w (perspective) or the tolerance distance (orthographic: the depths' own size
+        // would depend on where the eye plane sits).
+        float scale = perspective ? max(max(k.x, k.y), max(k.z, k.w)) : obscura_orthographic_distance();
+        if (abs(k.x + k.w - k.y - k.z) <= kPlanarity * scale) {
             float kk = mix(mix(k.x, k.y, t.x), mix(k.z, k.w, t.x), t.y);
             return perspective ? 1.0 / kk : kk;
         }

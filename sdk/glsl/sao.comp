@@ -49,7 +49,9 @@ float sample_visibility(ivec2 p, float depth, out int taps_read) {
     vec2 rot = rotation(p);
     vec2 center = vec2(p) + 0.5;
     int log_q = sao.config.y, deepest = sao.config.z;
-    float bias = c.z * sao.shaping.x;  // z_C beta: z_C < 0, so it raises the bar v.n must clear
+    // z_C beta (z_C < 0: it raises the bar v.n must clear); orthographic: the tolerance distance instead of the depth,
+    // so that the AO does not change where the eye plane sits (1000 units back, -z_C beta was -1 and cleared nothing).
+    float bias = -obscura_tolerance_distance(depth) * sao.shaping.x;
     float sum = 0.0;
     for (int i = 0; i < sao.config.x; ++i) {
         vec4 tap = sao.taps[i];
@@ -74,9 +76,10 @@ float sample_visibility(ivec2 p, float depth, out int taps_read) {
     return pow(max(0.0, 1.0 - sao.ball.z * sum), sao.shaping.y);
 }
 
-// 16-bit z key over [0, blur depth range] in G (high byte) and B (low byte), exact through RGBA8.
+// 16-bit z key over [0, blur depth range] past the key's origin (0: the eye; orthographic: the near plane, so that the
+// blur's edges do not depend on where the eye plane sits) in G (high byte) and B (low byte), exact through RGBA8.
 vec2 pack_key(float depth) {
-    uint key = uint(round(clamp(depth * sao.packing.x, 0.0, 1.0) * 65535.0));
+    uint key = uint(round(clamp((depth - sao.packing.y) * sao.packing.x, 0.0, 1.0) * 65535.0));
     return vec2(float(key >> 8u), float(key & 255u)) * (1.0 / 255.0);
 }
 

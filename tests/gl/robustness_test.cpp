@@ -265,6 +265,17 @@ const EyePlaneCase kEyePlaneCases[] = {
      false},
     {"hbao_temporal", OBSCURA_METHOD_HBAO, nullptr, true},
     {"gtao_denoise", OBSCURA_METHOD_GTAO, nullptr, false},
+    // SAO's bias (-z beta) and its blur's depth key, FFAO SAAO's 3x3 grouping and LSAO's free-pattern planarity were
+    // relative to the depth until 2026-12-06: 1000 units back SAO's bias cleared nothing and its blur's keys all
+    // clamped to the range's end (612 texels moved by more than 0.02, up to 0.60).
+    {"sao", OBSCURA_METHOD_SAO, nullptr, false},
+    {"ffao_saao", OBSCURA_METHOD_FFAO, [](obscura_settings* s) { s->ffao.saao = OBSCURA_TOGGLE_ON; }, false},
+    {"lsao_free", OBSCURA_METHOD_LSAO,
+     [](obscura_settings* s) {
+         s->lsao.pattern = 2;
+         s->lsao.tangent_strategy = 3;
+     },
+     false},
     // The paper's fixed tangent: with the receiver's own (the default) the sweep's hull decisions on a plane are ties
     // that rounding settles, and 18 texels by the box move by up to 0.069 when the eye is 1000 units back
     // (its depths lose about 12 bits): a sensitivity of that strategy, not of the eye plane.

@@ -259,7 +259,7 @@ OBSCURA_PASS_BLOCK_END(ZPyramidConstants, z_pyramid)
 OBSCURA_PASS_BLOCK_BEGIN(SaoConstants)
   OBSCURA_VEC4(ball);      // r, r^2 (view units), 2 sigma r / s, epsilon r^2
   OBSCURA_VEC4(shaping);   // beta, k, max screen radius (px), quad-filter edge scale (sharpness / depth range)
-  OBSCURA_VEC4(packing);   // 1 / blur depth range (view units^-1), unused x3
+  OBSCURA_VEC4(packing);   // 1 / blur depth range (view units^-1), the depth the key counts from, unused x2
   OBSCURA_IVEC4(config);   // s, log2 q', deepest MIP level (0: level 0 only), quad filter on
   OBSCURA_IVEC4(options);  // unused x4 (the MIP filter is compiled in: OBSCURA_SAO_MIP_FILTER)
   OBSCURA_VEC4(taps[OBSCURA_SAO_MAX_SAMPLES]); // unrotated tap i: cos, sin of 2 pi tau alpha_i; alpha_i; unused

@@ -80,6 +80,12 @@ SaoConstants SaoPass::constants(const obscura_sao_settings& settings, const Fram
     const float depth_range = settings.blur_depth_range * m2v;
     c.shaping[3] = settings.blur_sharpness / depth_range;
     c.packing[0] = 1.0f / depth_range;
+    // The key counts from the eye (perspective) or from the near plane (orthographic: the eye plane may sit anywhere
+    // behind it, 1000 units back the whole view lay past the range and the blur stopped at no edge).
+    if (!input.projection.perspective) {
+        const double near_window_depth = input.projection.reversed_z ? 1.0 : 0.0;
+        c.packing[1] = float(-view_z_from_window_depth(input.projection, near_window_depth));
+    }
     // (The MIP filter is compiled in: SaoPass::prepare.)
     c.config[0] = settings.samples;
     c.config[1] = settings.log_q;
