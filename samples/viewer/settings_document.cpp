@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cctype>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -407,9 +408,15 @@ std::string settings_to_c(const obscura_settings& settings) {
             case OBSCURA_SETTING_INT: literal = std::to_string(std::llround(value)); break;
             case OBSCURA_SETTING_TOGGLE: literal = value != 0.0 ? "OBSCURA_TOGGLE_ON" : "OBSCURA_TOGGLE_OFF"; break;
             case OBSCURA_SETTING_ENUM: {
-                // By number: the SDK's enumerated fields are plain int32_t (only the falloff has C constants).
-                literal = std::to_string(std::llround(value));
+                // By number: the SDK's enumerated fields are plain int32_t (only the falloff has C constants), except
+                // resolution.scale, a C enum (obscura_resolution), which C++ does not assign from an int: its constant.
                 const std::string value_name = samples::value_name(info, value);
+                if (std::strcmp(info.name, "resolution.scale") == 0 && !value_name.empty()) {
+                    literal = "OBSCURA_RESOLUTION_";
+                    for (char ch : value_name) literal += char(std::toupper(static_cast<unsigned char>(ch)));
+                } else {
+                    literal = std::to_string(std::llround(value));
+                }
                 if (!value_name.empty()) comment = " /* " + value_name + " */";
                 break;
             }

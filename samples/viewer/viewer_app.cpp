@@ -167,7 +167,8 @@ private:
     std::string truth_method_key_;   // the method (view_key()) truth_metrics_ were measured for
     std::optional<samples::ErrorMetrics> truth_metrics_;
     TimingState timings_;
-    std::string status_;
+    std::string status_;       // the latest event's message (a scene opened, a file saved, a failure)
+    std::string frame_error_;  // the current frame's render error: "" again once a frame renders
     std::string pending_drop_;
     std::array<char, 256> screenshot_path_{};
     bool screenshot_requested_ = false;
@@ -630,6 +631,7 @@ void ViewerApp::build_panel() {
         ImGui::InputText("png", screenshot_path_.data(), screenshot_path_.size());
         if (ImGui::Button("Save PNG")) screenshot_requested_ = true;
     }
+    if (!frame_error_.empty()) ImGui::TextWrapped("%s", frame_error_.c_str());
     if (!status_.empty()) ImGui::TextWrapped("%s", status_.c_str());
     ImGui::End();
 }
@@ -768,11 +770,21 @@ void ViewerApp::draw_scene_caption(int scene_x, int width) {
 }
 
 std::string ViewerApp::view_key() const {
-    const samples::Camera c = camera_.camera();
-    char key[256];
-    std::snprintf(key, sizeof key, "%s|%g,%g,%g|%g,%g,%g|%dx%d|%d|", scene_.name.c_str(), c.eye.x, c.eye.y, c.eye.z,
-                  c.target.x, c.target.y, c.target.z, renderer_ ? renderer_->width() : 0,
-                  renderer_ ? renderer_->height() : 0, use_normals_ ? 1 : 0);
+    // Built as a string (a fixed buffer cut long scene paths short, and the camera and size fell out of the key) with
+    // exact numbers (%a: %g's six digits missed small moves far from the origin). A depth file ignores the camera
+    // (its view is the file's): spinning over one must not restart the reference every frame.
+    std::string key = scene_.name + "|";
+    char number[48];
+    auto add = [&](double value) {
+        std::snprintf(number, sizeof number, "%a,", value);
+        key += number;
+    };
+    if (!scene_.depth_file) {
+        const samples::Camera c = camera_.camera();
+        for (double v : {c.eye.x, c.eye.y, c.eye.z, c.target.x, c.target.y, c.target.z}) add(v);
+    }
+    key += "|" + std::to_string(renderer_ ? renderer_->width() : 0) + "x" +
+           std::to_string(renderer_ ? renderer_->height() : 0) + "|" + (use_normals_ ? "1" : "0") + "|";
     return key + settings_to_json(panels_[0].settings);
 }
 
@@ -884,12 +896,13 @@ int ViewerApp::run() {
             glClear(GL_COLOR_BUFFER_BIT);
             if (width > 0 && height > 0) {
                 if (spin_ != 0.0f) camera_.rotate(spin_, 0.0f);  // moves the camera for temporal accumulation to follow
+                frame_error_.clear();
                 renderer_->render_scene(scene_, camera_.camera(), width, height, glfw_proc);
                 bool ok = renderer_->render_ao(0, panels_[0].settings, use_normals_);
                 if (ok && view_ == ViewMode::Split && !split_reference_) {
                     ok = renderer_->render_ao(1, panels_[1].settings, use_normals_);
                 }
-                if (!ok) status_ = renderer_->last_error();
+                if (!ok) frame_error_ = renderer_->last_error();
                 const bool wants_comparison =
                     view_ == ViewMode::ErrorMap || (view_ == ViewMode::Split && split_reference_);
                 const bool wait_for_truth = options_.frames > 0 && frame + 2 >= options_.frames;
@@ -898,7 +911,7 @@ int ViewerApp::run() {
                     const std::string key = reference_key();
                     if (!job_.active() || job_.key() != key) job_.start(key, panels_[0].settings, reference_rays_);
                     if (!job_.done()) {
-                        if (!renderer_->step_reference(job_, use_normals_)) status_ = renderer_->last_error();
+                        if (!renderer_->step_reference(job_, use_normals_)) frame_error_ = renderer_->last_error();
                     } else if (accumulates(panels_[0].settings)) {
                         renderer_->measure_reference(job_);  // the method's current frame, not its first
                     }
@@ -943,8 +956,8 @@ int ViewerApp::run() {
             std::fprintf(stderr, "obscura-viewer: GL error 0x%04x left pending\n", error);
             exit_code = 1;
         }
-        if (!renderer_->last_error().empty()) {
-            std::fprintf(stderr, "obscura-viewer: %s\n", renderer_->last_error().c_str());
+        if (!frame_error_.empty()) {  // the last frame did not render
+            std::fprintf(stderr, "obscura-viewer: %s\n", frame_error_.c_str());
             exit_code = 1;
         }
     } catch (const UsageError& error) {

@@ -245,8 +245,6 @@ bool ViewerRenderer::render_into(GLuint texture, const obscura_settings& setting
         input = frame.make_input(use_scene_normals, previous, frame_index_[slot]++);
         input.view = views_[slot];
         if (reset_history_[slot]) input.flags |= OBSCURA_INPUT_FLAG_RESET_HISTORY;
-        reset_history_[slot] = false;
-        previous_[slot] = frame;  // its camera, for the next frame's reprojection
     }
     obscura_output output = {};
     output.struct_size = sizeof output;
@@ -254,9 +252,16 @@ bool ViewerRenderer::render_into(GLuint texture, const obscura_settings& setting
     obscura_context* const context = slot == 0 ? context_ : compare_context_;
     const obscura_status status = obscura_render(context, &input, &settings, &output);
     if (status != OBSCURA_STATUS_OK) {
+        // A refused frame leaves the view's history as it was: the reset it asked for stays due (a camera cut
+        // followed by a refused frame must still cut the next one).
         last_error_ = std::string(obscura_status_string(status)) + ": " + obscura_get_last_error(context);
         return false;
     }
+    if (slot >= 0) {
+        reset_history_[slot] = false;
+        previous_[slot] = frame;  // its camera, for the next frame's reprojection
+    }
+    last_error_.clear();
     return true;
 }
 

@@ -369,8 +369,10 @@ Error reference_settings_for(const obscura_settings& method_settings, obscura_se
     Error error = resolve_settings(method_settings, &resolved);
     if (error) return error;
     const MethodDescriptor* row = find_method(resolved.method);
-    if (!row->reference_falloff) {  // REFERENCE: its settings are the reference
+    if (!row->reference_falloff) {  // REFERENCE: its settings are the reference, of one frame at the full size
         *out = resolved;
+        out->temporal.enabled = OBSCURA_TOGGLE_OFF;
+        out->resolution.scale = OBSCURA_RESOLUTION_FULL;
         return Error();
     }
     obscura_settings reference;

@@ -475,6 +475,14 @@ TEST(SettingsDocument, CListsExactlyTheChangedSettings) {
               "obscura_default_settings(OBSCURA_METHOD_FFAO, &settings);\n"
               "settings.ffao.segments = 1;\n"
               "settings.ffao_added.frame_split = 4;\n");
+
+    // resolution.scale is a C enum (obscura_resolution), which C++ does not assign from an int: its constant.
+    obscura_settings half = defaults_of(OBSCURA_METHOD_GTAO);
+    ASSERT_EQ(obscura_set_setting(&half, "resolution.scale", double(OBSCURA_RESOLUTION_HALF)), OBSCURA_OK);
+    EXPECT_EQ(settings_to_c(half),
+              "obscura_settings settings;\n"
+              "obscura_default_settings(OBSCURA_METHOD_GTAO, &settings);\n"
+              "settings.resolution.scale = OBSCURA_RESOLUTION_HALF; /* half */\n");
 }
 
 // Reads the C back as a compiler would (literal by literal; enums' comments and arrays' elements too) and
@@ -523,6 +531,9 @@ TEST(SettingsDocument, CRebuildsTheSettingsOfEveryMethod) {
             double value = 0.0;
             if (literal == "OBSCURA_TOGGLE_ON") value = 1.0;
             else if (literal == "OBSCURA_TOGGLE_OFF") value = 0.0;
+            else if (literal == "OBSCURA_RESOLUTION_FULL") value = double(OBSCURA_RESOLUTION_FULL);
+            else if (literal == "OBSCURA_RESOLUTION_HALF") value = double(OBSCURA_RESOLUTION_HALF);
+            else if (literal == "OBSCURA_RESOLUTION_QUARTER") value = double(OBSCURA_RESOLUTION_QUARTER);
             else if (literal.back() == 'f') {
                 ASSERT_NE(literal.find_first_of(".e"), std::string::npos) << "not a C float literal: " << literal;
                 value = std::strtof(literal.c_str(), nullptr);

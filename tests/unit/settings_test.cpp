@@ -902,6 +902,14 @@ TEST(ReferenceSettings, ForReferenceIsTheResolvedInput) {
     EXPECT_EQ(out.reference.rays, 1024);
     EXPECT_EQ(out.reference.falloff, OBSCURA_FALLOFF_EXPONENTIAL);
     EXPECT_EQ(out.reference.radius, 1.0f);
+    // The reference of one frame at the full size: a REFERENCE accumulated or at half size is measured against it
+    // (the viewer's error map once compared a half-size REFERENCE with a half-size reference and showed no error).
+    in.temporal.enabled = OBSCURA_TOGGLE_ON;
+    in.resolution.scale = OBSCURA_RESOLUTION_HALF;
+    ASSERT_EQ(obscura_reference_settings_for(&in, &out), OBSCURA_OK);
+    EXPECT_EQ(out.temporal.enabled, OBSCURA_TOGGLE_OFF);
+    EXPECT_EQ(out.resolution.scale, OBSCURA_RESOLUTION_FULL);
+    EXPECT_EQ(out.reference.rays, 1024);
 }
 
 TEST(ReferenceSettings, ForRejectsBadInput) {

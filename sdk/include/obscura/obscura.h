@@ -617,8 +617,9 @@ OBSCURA_API obscura_status obscura_resolve_settings(obscura_context* context, co
                                                     obscura_settings* out);
 
 /* Writes to `out` the REFERENCE settings that evaluate the same falloff (kind, radius, C, decay rate) as
-   `method_settings` (resolved first; a REFERENCE input is copied), and FFAO's thickness, with the default ray
-   counts, so an error measured against that screen-space reference compares like with like. Writes
+   `method_settings` (resolved first; a REFERENCE input is copied, without temporal accumulation and at full
+   resolution: the reference of one frame), and FFAO's thickness, with the default ray counts, at full resolution,
+   so an error measured against that screen-space reference compares like with like. Writes
    `method_settings->struct_size` bytes. Returns OK,
    NULL_ARGUMENT, INVALID_STRUCT_SIZE, INVALID_ENUM, INVALID_SETTING. */
 OBSCURA_API obscura_status obscura_reference_settings_for(const obscura_settings* method_settings,
