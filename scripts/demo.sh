@@ -8,9 +8,11 @@
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+# Resolved from the caller's directory, as build.sh resolves it, before this script changes directory.
+build_dir="$(realpath -m "${OBSCURA_BUILD_DIR:-$root/build}")"
 "$root/scripts/install-deps.sh"
 # The demo needs only the CLI; leaving the tests out keeps it independent of GoogleTest.
-OBSCURA_BUILD_TESTS=OFF "$root/scripts/build.sh" obscura_cli
+OBSCURA_BUILD_DIR="$build_dir" OBSCURA_BUILD_TESTS=OFF "$root/scripts/build.sh" obscura_cli
 
 cd "$root"
-"${OBSCURA_BUILD_DIR:-$root/build}/bin/obscura" demo --out-dir demo-output --json demo-output/report.json
+"$build_dir/bin/obscura" demo --out-dir demo-output --json demo-output/report.json

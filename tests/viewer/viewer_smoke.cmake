@@ -15,15 +15,22 @@ endif()
 if(NOT DEFINED FRAMES)
   set(FRAMES 3)
 endif()
+# ARGS is a shell-like line: paths in it are quoted (a checkout path may hold spaces).
 separate_arguments(extra_args UNIX_COMMAND "${ARGS}")
 file(REMOVE "${OUT}")
+# xvfb-run's own exit status can be 5 when another xvfb-run cleans up beside it (ctest -j), whatever the viewer
+# did: the viewer's status is printed by a shell inside the X server's run and read from there (as usage_error.cmake).
 execute_process(
   COMMAND "${XVFB_RUN}" -a -s "-screen 0 1024x600x24"
+          sh -c "\"$0\" \"$@\"; echo \"viewer exit status: $?\""
           "${VIEWER}" --size "${SIZE}" --method "${METHOD}" --view "${VIEW}" --reference-rays 8 ${extra_args}
           --screenshot "${OUT}" --frames "${FRAMES}"
-  RESULT_VARIABLE viewer_result
   OUTPUT_VARIABLE viewer_output
   ERROR_VARIABLE viewer_output)
+set(viewer_result "none (xvfb-run did not run it)")
+if(viewer_output MATCHES "viewer exit status: ([0-9]+)")
+  set(viewer_result "${CMAKE_MATCH_1}")
+endif()
 if(NOT viewer_result EQUAL 0)
   message(FATAL_ERROR "obscura-viewer exited with ${viewer_result}:\n${viewer_output}")
 endif()
