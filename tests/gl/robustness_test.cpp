@@ -257,6 +257,9 @@ struct EyePlaneCase {
     obscura_method method;
     void (*tweak)(obscura_settings*);
     bool temporal;  // two frames of a still camera, the second reading the first's history
+    // The largest change a texel may show. SAO's AO travels through RGBA8 (1/255 steps) and its blur weighs by a
+    // 16-bit depth key: 1000 units back one texel at an edge moved by 3/255 (the mean by 5e-6).
+    double largest = 0.01;
 };
 
 const EyePlaneCase kEyePlaneCases[] = {
@@ -268,7 +271,7 @@ const EyePlaneCase kEyePlaneCases[] = {
     // SAO's bias (-z beta) and its blur's depth key, FFAO SAAO's 3x3 grouping and LSAO's free-pattern planarity were
     // relative to the depth until 2026-12-06: 1000 units back SAO's bias cleared nothing and its blur's keys all
     // clamped to the range's end (612 texels moved by more than 0.02, up to 0.60).
-    {"sao", OBSCURA_METHOD_SAO, nullptr, false},
+    {"sao", OBSCURA_METHOD_SAO, nullptr, false, 0.02},
     {"ffao_saao", OBSCURA_METHOD_FFAO, [](obscura_settings* s) { s->ffao.saao = OBSCURA_TOGGLE_ON; }, false},
     {"lsao_free", OBSCURA_METHOD_LSAO,
      [](obscura_settings* s) {
@@ -357,7 +360,7 @@ TEST_P(OrthographicEyePlane, AoDoesNotDependOnWhereTheEyePlaneSits) {
     }
     const double mean = sum / double(near_eye.size());
     EXPECT_EQ(moved, 0) << "mean " << mean << ", largest " << largest;
-    EXPECT_LT(largest, 0.01) << "mean " << mean << ", " << moved << " texels moved by more than 0.02";
+    EXPECT_LT(largest, GetParam().largest) << "mean " << mean << ", " << moved << " texels moved by more than 0.02";
 }
 
 std::string eye_plane_case_name(const ::testing::TestParamInfo<EyePlaneCase>& info) { return info.param.name; }
