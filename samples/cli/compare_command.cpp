@@ -173,6 +173,14 @@ void resolve_scene_defaults(CompareConfig& config, const SceneSource& source) {
                          "depth buffer: drop --msaa " + std::to_string(config.scene.raster.samples) +
                          " or give --motion-vectors off");
     }
+    // The geometry truth traces each pixel's centre, the SDK reads an MSAA depth buffer's sample 0, which lies off it:
+    // at silhouettes the two can see different surfaces. Said, not refused: --msaa checks the SDK's MSAA input path.
+    if (config.scene.raster.samples > 1 &&
+        std::find(config.truths.begin(), config.truths.end(), TruthKind::Geometry) != config.truths.end()) {
+        std::fprintf(stderr, "obscura: note: with --msaa %d the geometry truth traces pixel centres and the SDK reads "
+                             "the depth's sample 0: silhouette pixels compare different points (not for error figures)\n",
+                     config.scene.raster.samples);
+    }
 }
 
 // The cameras of the frames: the chosen one, or N along an orbit of `degrees` in total.

@@ -387,8 +387,9 @@ Error Context::render(const obscura_input& input, const obscura_settings& settin
 Error Context::timings(obscura_timing* out, uint32_t capacity, uint32_t* count, uint64_t* frame_index) {
     *count = 0;
     *frame_index = 0;
-    // The GL context first: the reset status is the current context's.
-    Error error = device_.check_gl_context();
+    // A loss already recorded first (a lost context's queries answer 0, which the identity check would read as another
+    // context); then the GL context, since the reset status is the current context's.
+    Error error = device_.lost() ? device_.check_context_lost() : device_.check_gl_context();
     if (!error) error = device_.check_context_lost();
     if (error) return error;
     *count = timer_.latest(out, capacity, frame_index);

@@ -189,9 +189,24 @@ Error GlDevice::error_status(GLenum error, const char* where) {
 }
 
 Error GlDevice::check_host_state(const char* call) {
-    Error error = check_context_lost();
-    if (error) return error;
-    error = check_gl_context();
+    // A loss already recorded is this context's for good. Otherwise the GL context comes first: the reset status
+    // answers for whichever context is current, and another context's reset must not mark this one lost (it then
+    // refused every call and leaked its objects on destroy, with its own healthy context current).
+    if (lost_reason_) return check_context_lost();
+    Error error = check_gl_context();
+    if (error) {
+        // The current context was reset (ours, whose queries now answer 0, or another): said as a loss, not recorded.
+        const GLenum current_reset = get_reset_status_ ? get_reset_status_() : GLenum(GL_NO_ERROR);
+        if (current_reset != GL_NO_ERROR) {
+            return Error::make(OBSCURA_STATUS_CONTEXT_LOST,
+                               "the current OpenGL context was lost (%s) and is not known to be this obscura "
+                               "context's; if it is, destroy this obscura context and create a new one on a new GL "
+                               "context",
+                               reset_name(current_reset));
+        }
+        return error;
+    }
+    error = check_context_lost();
     if (error) return error;
     GLenum pending = take_error();
     if (pending == kGlContextLost) return error_status(pending, call);

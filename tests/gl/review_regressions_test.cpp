@@ -5,7 +5,9 @@
 //   - MULTIPLY into a float renderbuffer clamped HDR colour to 1 (RGBA8 staging);
 //   - obscura_prepare mistook a host GL error for its own allocation failure and swallowed it;
 //   - a host buffer bound to GL_QUERY_BUFFER (GL 4.4) made the GPU timer's query reads fail: frames reported GL_ERROR
-//     from the second on, and obscura_get_timings stayed empty.
+//     from the second on, and obscura_get_timings stayed empty;
+//   - a host program deleted while current could not be restored: the SDK's program stayed bound and the frame
+//     reported GL_ERROR.
 #include <algorithm>
 #include <cmath>
 
@@ -239,6 +241,36 @@ TEST_F(ReviewRegressions, HostQueryBufferBindingLeavesFramesAndTimingsAlone) {
     glGetIntegerv(kQueryBufferBinding, &bound);
     EXPECT_EQ(GLuint(bound), query_buffer.get()) << "the host's query buffer binding must be left as it was";
     glBindBuffer(kQueryBuffer, 0);
+}
+
+// glDeleteProgram on the current program only flags it: it lives while bound. The SDK binds its own programs, so GL
+// deletes the host's during the call, and restoring it raised GL_INVALID_VALUE: the frame returned GL_ERROR and the
+// SDK's compute program stayed current. Now the call succeeds and leaves no program bound (the host's is gone).
+TEST_F(ReviewRegressions, HostProgramDeletedWhileCurrentLeavesNoSdkProgramBound) {
+    HostTexture depth;
+    obscura_input input = corner_input(&depth);
+    HostTexture target = make_texture(GL_RGBA8, kWidth, kHeight);
+    obscura_output output = make_output(target.get());
+    obscura_settings settings = make_settings(1.0f);
+    const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
+    const char* source = "#version 430 core\nlayout(local_size_x = 1) in;\nvoid main() {}\n";
+    glShaderSource(shader, 1, &source, nullptr);
+    glCompileShader(shader);
+    const GLuint program = glCreateProgram();
+    glAttachShader(program, shader);
+    glLinkProgram(program);
+    glDeleteShader(shader);
+    GLint linked = GL_FALSE;
+    glGetProgramiv(program, GL_LINK_STATUS, &linked);
+    ASSERT_EQ(linked, GL_TRUE);
+    glUseProgram(program);
+    glDeleteProgram(program);  // flagged: alive while current
+    ASSERT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+    EXPECT_EQ(obscura_render(ctx(), &input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+    GLint current = -1;
+    glGetIntegerv(GL_CURRENT_PROGRAM, &current);
+    EXPECT_EQ(current, 0) << "the SDK's program was left bound";
 }
 
 }  // namespace

@@ -494,6 +494,35 @@ TEST_F(ContextLoss, ResetIsReportedByEveryLaterCall) {
     context.reset();  // destroying a lost context deletes nothing and does not crash
 }
 
+// The reset status answers for whichever GL context is current. Another context's reset, seen while that context was
+// current by mistake, is reported (the call cannot run there) but does not mark this obscura context lost: with its
+// own GL context current again it renders. Until 2026-12-06 the reset was polled before the context was checked and
+// recorded for good: every later call was CONTEXT_LOST and destroy leaked the healthy context's objects (found by a
+// read-only review).
+TEST_F(ContextLoss, AnotherContextsResetDoesNotMarkThisOneLost) {
+    make_frame();
+    obscura_context* raw = nullptr;
+    ASSERT_EQ(obscura_create_context(&desc_, &raw), OBSCURA_OK);
+    ContextPtr context(raw);
+    ASSERT_EQ(render(context.get()), OBSCURA_OK) << obscura_get_last_error(context.get());
+
+    shared_gl().make_current();  // another GL context, which was reset
+    FakeRobustness::reset_status = kInnocentReset;
+    EXPECT_EQ(render(context.get()), OBSCURA_STATUS_CONTEXT_LOST) << obscura_get_last_error(context.get());
+    EXPECT_NE(std::string(obscura_get_last_error(context.get())).find("not known to be this obscura context's"),
+              std::string::npos)
+        << obscura_get_last_error(context.get());
+    FakeRobustness::reset_status = GL_NO_ERROR;
+    EXPECT_EQ(render(context.get()), OBSCURA_STATUS_WRONG_GL_CONTEXT) << obscura_get_last_error(context.get());
+
+    gl_->make_current();  // its own, healthy
+    EXPECT_EQ(render(context.get()), OBSCURA_OK) << obscura_get_last_error(context.get());
+    obscura_timing timings[32];
+    uint32_t count = 0;
+    uint64_t frame = 0;
+    EXPECT_EQ(obscura_get_timings(context.get(), timings, 32, &count, &frame), OBSCURA_OK);
+}
+
 TEST_F(ContextLoss, ContextLostFromGlGetErrorIsNotBlamedOnTheHost) {
     make_frame();
     obscura_context* raw = nullptr;

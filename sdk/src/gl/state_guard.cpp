@@ -56,7 +56,9 @@ StateGuard::StateGuard(const Table& gl) : gl_(gl) {
 
 StateGuard::~StateGuard() {
     const Table& gl = gl_;
-    gl.UseProgram(GLuint(program_));
+    // A host program deleted while current lives only while it is bound: once the SDK bound its own, GL deleted it.
+    // It cannot come back (UseProgram would raise INVALID_VALUE and leave the SDK's program bound): 0 instead.
+    gl.UseProgram(program_ != 0 && !gl.IsProgram(GLuint(program_)) ? 0u : GLuint(program_));
     for (int unit = 0; unit < OBSCURA_TEXTURE_UNIT_COUNT; ++unit) {
         gl.ActiveTexture(GLenum(GL_TEXTURE0 + unit));
         gl.BindTexture(GL_TEXTURE_2D, GLuint(texture_2d_[unit]));
