@@ -177,7 +177,8 @@ typedef void (*obscura_log_fn)(obscura_log_level level, obscura_status status, c
 
 /* Optional allocator for all the CPU memory of the context (both functions or neither): the context, its views and
    techniques, LSAO's and FFAO's line layouts (megabytes at 4K, one per layout phase) and the scratch of building
-   them, shader sources and logs. `alloc` must return memory aligned for any type, as malloc does (16 bytes on 64-bit
+   them, shader sources and logs. (One exception: while obscura_create_context loads GL, the generated loader reads
+   the extension list into memory of its own, malloc'd and freed within the call.) `alloc` must return memory aligned for any type, as malloc does (16 bytes on 64-bit
    platforms): the context holds 16-byte aligned members. It may return NULL: the call that needed the memory
    returns OUT_OF_MEMORY and the context stays usable. */
 typedef struct obscura_allocator {
@@ -824,12 +825,13 @@ typedef struct obscura_output {
    INVALID_RECT, INVALID_TEXTURE, UNSUPPORTED_FORMAT, INVALID_PROJECTION, PROJECTION_TRANSPOSED,
    INVALID_SETTING, INVALID_ENUM, INVALID_VIEW (input->view is not a live view of this context),
    METHOD_NOT_AVAILABLE, INVALID_FRAMEBUFFER, SHADER_COMPILE_FAILED (a variant built on first use), OUT_OF_MEMORY,
-   GL_ERROR, CONTEXT_LOST.
+   GL_ERROR, CONTEXT_LOST, and INTERNAL_ERROR (a defect of the SDK: please report it with the message).
    Host errors and context loss: a GL error the host left pending is consumed and reported as HOST_GL_ERROR
    before anything is done (never blamed on a pass). A reset reported by glGetGraphicsResetStatus (GL 4.5,
-   KHR/ARB_robustness; only robust contexts report one) or GL_CONTEXT_LOST from glGetError makes this and
-   every later obscura_render, obscura_prepare and obscura_get_timings on the context return CONTEXT_LOST
-   (after the checks of their arguments, which need no GL); calls that touch no GL (settings, views, memory
+   KHR/ARB_robustness; only robust contexts report one) on this context's GL context, or GL_CONTEXT_LOST from
+   glGetError, makes this and every later obscura_render, obscura_prepare and obscura_get_timings on the context
+   return CONTEXT_LOST (after the checks of their arguments, which need no GL; a reset of another GL context, current
+   by mistake, is CONTEXT_LOST for that call only); calls that touch no GL (settings, views, memory
    usage) go on answering, and obscura_destroy_context deletes nothing.
    Out of memory: an allocation that fails, or GL_OUT_OF_MEMORY raised by any call of the frame, returns
    OUT_OF_MEMORY; the context stays usable: what was allocated stays, and the next render or prepare allocates
