@@ -52,7 +52,10 @@ uniform vec2 u_viewport_size;
 layout(location = 0) out vec4 o_normal;
 layout(location = 1) out vec2 o_motion;
 void main() {
-    o_normal = vec4(normalize(v_view_normal), 1.0);
+    // Facing the camera, as the geometry truth turns its normals: a surface seen from behind (a clockwise face, a
+    // flipped vn, an open mesh) would otherwise hand the SDK a normal pointing into it.
+    vec3 n = normalize(v_view_normal);
+    o_normal = vec4(gl_FrontFacing ? n : -n, 1.0);
     o_motion = (v_previous_clip.xy / v_previous_clip.w - v_clip.xy / v_clip.w) * 0.5 * u_viewport_size;
 }
 )";
@@ -194,8 +197,17 @@ HostTexture create_color_texture(GLenum internal_format, int width, int height) 
 void require_complete(GLenum target, const char* what) {
     const GLenum status = glCheckFramebufferStatus(target);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
-        char message[128];
-        std::snprintf(message, sizeof message, "%s framebuffer incomplete (status 0x%04x)", what, status);
+        // The usual cause is an attachment GL refused to allocate (a texture past GL_MAX_TEXTURE_SIZE): its error is
+        // named here and not left pending (render_scene leaves no GL error behind, on failure either).
+        const GLenum first = glGetError();
+        while (glGetError() != GL_NO_ERROR) {
+        }
+        GLint max_size = 0;
+        glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+        char message[192];
+        std::snprintf(message, sizeof message,
+                      "%s framebuffer incomplete (status 0x%04x; GL error 0x%04x before it; GL_MAX_TEXTURE_SIZE %d)",
+                      what, status, first, max_size);
         throw std::runtime_error(message);
     }
 }

@@ -301,8 +301,16 @@ std::vector<float> parse_array_value(const obscura_setting_info& info, const std
 std::vector<float> read_array_file(const obscura_setting_info& info, const std::string& path, const std::string& what) {
     std::ifstream file(path, std::ios::binary);
     if (!file) throw MethodSpecError(what + ": cannot open '" + path + "': " + std::strerror(errno));
-    const std::string contents((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    // A table is a few hundred bytes: read at most 64 KiB, so that @/dev/zero or a wrong path to a large file cannot
+    // take the memory (and a longer file is refused, not cut).
+    constexpr size_t kMaxBytes = 64 * 1024;
+    std::string contents(kMaxBytes + 1, '\0');
+    file.read(&contents[0], std::streamsize(contents.size()));
     if (file.bad()) throw MethodSpecError(what + ": cannot read '" + path + "'");
+    contents.resize(size_t(file.gcount()));
+    if (contents.size() > kMaxBytes) {
+        throw MethodSpecError(what + ": '" + path + "' is longer than 64 KiB; a falloff table holds 16 numbers");
+    }
     std::vector<float> values;
     const char* const separators = " \t\r\n,";
     for (size_t start = contents.find_first_not_of(separators); start != std::string::npos;) {

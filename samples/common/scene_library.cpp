@@ -115,6 +115,13 @@ SceneMesh load_obj_mesh(const std::string& path) {
                 }
                 const glm::vec3 a = position(index[0].vertex_index), b = position(index[1].vertex_index),
                                 c = position(index[2].vertex_index);
+                // A vertex beyond the float range (1e400) or NaN would give infinite bounds, a NaN camera and NaN
+                // rays (Embree asserts on them): such faces are left out, with or without file normals.
+                auto finite = [](const glm::vec3& v) { return !glm::any(glm::isnan(v)) && !glm::any(glm::isinf(v)); };
+                if (!finite(a) || !finite(b) || !finite(c)) {
+                    offset += count;
+                    continue;
+                }
                 glm::vec3 na, nb, nc;
                 if (file_normal(index[0].normal_index, &na) && file_normal(index[1].normal_index, &nb) &&
                     file_normal(index[2].normal_index, &nc)) {

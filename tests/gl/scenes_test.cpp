@@ -327,14 +327,33 @@ TEST_F(SceneGLTest, ObjCubeLoadsAndAutoFrames) {
     }
 }
 
+// The same cube wound clockwise (every face reversed): its normals, from the winding, point into it. The rasteriser
+// turns each fragment's normal towards the camera, as the geometry truth turns its own, so a host passing the
+// scene's normals (--normals) gives the SDK normals on the viewer's side (they pointed into the surface before:
+// up to 0.43 of AO apart from the reconstructed normals' on such a mesh).
+TEST_F(SceneGLTest, ObjNormalsFaceTheCameraWhateverTheWinding) {
+    TempFile obj("cube_cw.obj");
+    obj.write("v 9 1 -21\nv 11 1 -21\nv 11 3 -21\nv 9 3 -21\n"
+              "v 9 1 -19\nv 11 1 -19\nv 11 3 -19\nv 9 3 -19\n"
+              "f 8 7 6 5\nf 3 4 1 2\nf 4 8 5 1\nf 7 3 2 6\nf 4 3 7 8\nf 5 6 2 1\n");
+    const Scene scene = obscura::samples::load_scene(obj.path());
+    ASSERT_EQ(scene.mesh.triangle_count(), 12);
+    const RenderedScene rendered = obscura::samples::render_scene(scene.mesh, options_for(scene.viewpoints[0].camera));
+    const FrameCheck check = check_frame(rendered);
+    EXPECT_GT(check.fraction(), 0.05);
+    EXPECT_EQ(check.facing_away, 0);
+}
+
 TEST(SceneLibrary, ObjNormalsComeFromTheFile) {
     // One triangle wound towards +z whose file normals say -z: the file wins. A degenerate face
     // without normals is dropped; a file without faces is an error.
     TempFile obj("normals.obj");
-    obj.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 2 2\nvn 0 0 -2\n"
-              "f 1//1 2//1 3//1\nf 4 4 4\n");
+    // A vertex past the float range (1e400) drops its face, file normals or not (its rays would be NaN).
+    obj.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 2 2\nv 1e400 1 0\nvn 0 0 -2\n"
+              "f 1//1 2//1 3//1\nf 4 4 4\nf 5//1 2//1 3//1\n");
     const Scene scene = obscura::samples::load_scene(obj.path());
     ASSERT_EQ(scene.mesh.triangle_count(), 1);
+    EXPECT_TRUE(std::isfinite(scene.bounds_max.x));
     for (int k = 0; k < 3; ++k) EXPECT_EQ(scene.mesh.vertices[size_t(k) * 6 + 5], -1.0f);
     TempFile empty("empty.OBJ");
     empty.write("v 0 0 0\n");
