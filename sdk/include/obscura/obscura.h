@@ -39,12 +39,12 @@
  * INTEGRATION
  *   1. obscura_context_desc desc = {0};
  *      desc.struct_size = sizeof desc; desc.header_version = OBSCURA_VERSION;
- *      desc.get_proc_address = eglGetProcAddress;             // or glfwGetProcAddress, SDL_GL_GetProcAddress
+ *      desc.get_proc_address = eglGetProcAddress;             // or glfwGetProcAddress, (obscura_get_proc_address_fn)SDL_GL_GetProcAddress
  *   2. obscura_context* ctx; if (obscura_create_context(&desc, &ctx) != OBSCURA_OK) ... ;
  *   3. obscura_settings settings; obscura_default_settings(OBSCURA_METHOD_HBAO, &settings);
  *      settings.hbao.radius = 1.5f;                           // metres: the falloff now ends at 1.5 m
  *   4. each frame: obscura_input in = {0}; in.struct_size = sizeof in;
- *      in.depth_texture = depth_tex; in.projection = proj (column-major, as given to GL);
+ *      in.depth_texture = depth_tex; memcpy(in.projection, proj, sizeof in.projection) (column-major, as given to GL);
  *      in.depth_width/height = depth size; in.output_rect = the visible part (guard band around it);
  *      obscura_output out = {0}; out.struct_size = sizeof out; out.texture = ao_tex;
  *      obscura_render(ctx, &in, &settings, &out);
@@ -159,7 +159,8 @@ OBSCURA_API const char* obscura_status_string(obscura_status status);
 
 /* ---- Host callbacks -------------------------------------------------------------------------- */
 /* A GL function pointer as loaders return it; eglGetProcAddress, glfwGetProcAddress, SDL3's
-   SDL_GL_GetProcAddress and glad's GLADloadfunc all have the shape of obscura_get_proc_address_fn. */
+   SDL_GL_GetProcAddress and glad's GLADloadfunc all have the shape of obscura_get_proc_address_fn (SDL2's returns
+   void*: cast it). */
 typedef void (*obscura_gl_function)(void);
 typedef obscura_gl_function (*obscura_get_proc_address_fn)(const char* name);
 /* The same with the host's pointer passed back, for loaders that need state (several GL contexts). */
@@ -772,8 +773,10 @@ typedef struct obscura_input {
     uint32_t motion_vector_texture; /* optional GL_TEXTURE_2D (RG16F or RG32F, the depth's size): per texel, the offset
                                        from this frame's position to the previous frame's (previous = current +
                                        vector), in GL's texture axes: +y is up, towards higher rows (a D3D-style
-                                       vector in UV, +y down, needs its y negated); used instead of the matrices,
-                                       which may then be zero. 0: none */
+                                       vector in UV, +y down, needs its y negated). They move the history's read;
+                                       the matrices still map the pixel's point into the previous view for the
+                                       history's plane test, so without them (all zero) the history survives only a
+                                       nearly still camera: give both (the vectors for objects that move). 0: none */
     obscura_motion_units motion_vector_units; /* default PIXELS */
 } obscura_input;
 
