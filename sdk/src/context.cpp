@@ -55,7 +55,13 @@ uint64_t history_signature(const obscura_settings& settings, bool bent_normals) 
     return hash;
 }
 
-// The raw-AO debug views show the AO pass's own output: no reconstruction runs.
+// Whether frames of these settings end with the technique's own write of the host's target (no composite) when
+// they show no debug view: full resolution, no accumulation, and a last pass that can (TechniquePlan::writes_target).
+// The one rule for both the frame's plan and the working textures it keeps.
+bool ends_with_technique_write(const TechniquePlan& plan, int shift, const obscura_settings& settings) {
+    return plan.writes_target && shift == 0 && settings.temporal.enabled != OBSCURA_TOGGLE_ON;
+}
+
 }  // namespace
 
 Context::Context(const obscura_context_desc& desc)
@@ -202,10 +208,9 @@ Error Context::ensure_resources(int width, int height, const TechniquePlan& plan
                                width, height, depth_levels);
         }
     }
-    // Frames of these settings without a debug view end with the technique's own target write: nothing reads the
-    // reconstruction's result texture then (debug views skip the reconstruction).
-    const bool ends_with_target_write =
-        plan.writes_target && shift == 0 && settings.temporal.enabled != OBSCURA_TOGGLE_ON;
+    // Where frames end with the technique's own target write nothing reads the reconstruction's result texture
+    // (debug views skip the reconstruction).
+    const bool ends_with_target_write = ends_with_technique_write(plan, shift, settings);
     const struct {
         gl::Texture2D* texture;
         bool needed;
@@ -339,7 +344,7 @@ Error Context::prepare_resources(int width, int height, const obscura_settings& 
     // Whether the last render asked for bent normals, read before ensure_resources, which may release the upsample
     // (GTAO keeps its own record of the request).
     const bool upsample_bent = upsample_.bent() != nullptr;
-    const bool upsample_result = upsample_.has_result();  // whose debug views read the upsampled AO
+    const bool upsample_result = upsample_.has_result();  // made for a debug view with bent normals (record_frame)
     error = ensure_resources(working_width, working_height, plan, shift, resolved);
     if (!error) error = technique->prepare(env(), resolved, request, resources_);
     if (!error && shift > 0) error = upsample_.allocate(env(), width, height, upsample_bent, upsample_result);
@@ -433,7 +438,7 @@ Error Context::record_frame(const FrameInput& host_input, const obscura_settings
     request.ao_region = regions.ao;
     // At full resolution without accumulation the method's last reconstruction pass writes the target itself where it
     // can (the composite would only copy its result there), unless a debug view needs the composite's other sources.
-    const bool technique_writes_target = plan.writes_target && shift == 0 && !temporal && !debug_view;
+    const bool technique_writes_target = ends_with_technique_write(plan, shift, settings) && !debug_view;
     if (technique_writes_target) request.target = target_write(target);
     error = ensure_resources(input.width, input.height, plan, shift, settings);
     if (!error) error = technique->prepare(pass_env, settings, request, resources_);
