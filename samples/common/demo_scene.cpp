@@ -198,16 +198,13 @@ void require_complete(GLenum target, const char* what) {
     const GLenum status = glCheckFramebufferStatus(target);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
         // The usual cause is an attachment GL refused to allocate (a texture past GL_MAX_TEXTURE_SIZE): its error is
-        // named here and not left pending (render_scene leaves no GL error behind, on failure either).
-        const GLenum first = glGetError();
-        while (glGetError() != GL_NO_ERROR) {
-        }
+        // named and drained (render_scene leaves no GL error behind, on failure either).
         GLint max_size = 0;
         glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
-        char message[192];
-        std::snprintf(message, sizeof message,
-                      "%s framebuffer incomplete (status 0x%04x; GL error 0x%04x before it; GL_MAX_TEXTURE_SIZE %d)",
-                      what, status, first, max_size);
+        char message[160];
+        std::snprintf(message, sizeof message, "making the %s framebuffer (incomplete: status 0x%04x; GL_MAX_TEXTURE_SIZE %d)",
+                      what, status, max_size);
+        throw_gl_error_if_any(message);
         throw std::runtime_error(message);
     }
 }
