@@ -15,7 +15,5 @@ cp "$root"/build-gpu/tests/obscura_{gl,pass,unit}_tests "$stage/tests/"
 # Embree with its TBB (the geometry truth, linked into the CLI since 2026-12-01).
 ldd "$root/build-gpu/bin/obscura" "$root/build-gpu/tests/obscura_gl_tests" |
   awk '/tinyobjloader|embree|libtbb/ {print $3}' | sort -u | xargs -r cp -L -t "$stage/lib/"
-# The GL tests read goldens from the absolute path they were built with.
-grep -o 'OBSCURA_GOLDEN_DIR=[^ ]*' "$root/build-gpu/tests/CMakeFiles/obscura_gl_tests.dir/flags.make" |
-  head -1 | sed 's/^OBSCURA_GOLDEN_DIR=//; s/[\\"]//g' > "$stage/golden_dir"
+# The GL tests find the goldens through OBSCURA_GOLDEN_DIR, which bench-gpu.sh sets to the checkout's.
 du -sh "$stage"

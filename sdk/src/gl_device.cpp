@@ -164,8 +164,12 @@ Error GlDevice::check_gl_context() const {
         gl_.GetObjectLabel(GL_FRAMEBUFFER, identity_framebuffer_.name(), GLsizei(sizeof label), nullptr, label);
     }
     if (std::strcmp(label, identity_label_) != 0) {
+        // A lost context answers its queries with 0 too: when the host has already read its reset status
+        // (glGetGraphicsResetStatus reports a reset once), a loss looks like this.
         return Error::make(OBSCURA_STATUS_WRONG_GL_CONTEXT,
-                           "the current OpenGL context is not the one this obscura context was created on");
+                           "the current OpenGL context is not the one this obscura context was created on (or that "
+                           "context was lost and its reset status already read: then destroy this obscura context "
+                           "and create a new one on a new GL context)");
     }
     return Error();
 }

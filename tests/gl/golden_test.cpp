@@ -136,7 +136,12 @@ bool update_requested() {
     return value && *value && std::string(value) != "0";
 }
 
-fs::path golden_path(const std::string& name) { return fs::path(OBSCURA_GOLDEN_DIR) / (name + ".png"); }
+// The goldens' folder: OBSCURA_GOLDEN_DIR from the environment (a build run where its source tree is not, as
+// scripts/bench-gpu.sh runs a staged build on a GPU machine), else the source tree's, compiled in.
+fs::path golden_path(const std::string& name) {
+    const char* configured = std::getenv("OBSCURA_GOLDEN_DIR");
+    return fs::path(configured && *configured ? configured : OBSCURA_GOLDEN_DIR) / (name + ".png");
+}
 
 fs::path failure_dir(const std::string& name) {
     const char* configured = std::getenv("OBSCURA_GOLDEN_OUT");

@@ -514,6 +514,9 @@ TEST_F(ContextLoss, AnotherContextsResetDoesNotMarkThisOneLost) {
         << obscura_get_last_error(context.get());
     FakeRobustness::reset_status = GL_NO_ERROR;
     EXPECT_EQ(render(context.get()), OBSCURA_STATUS_WRONG_GL_CONTEXT) << obscura_get_last_error(context.get());
+    // A reset whose status the host read first looks the same from here: the message says so.
+    EXPECT_NE(std::string(obscura_get_last_error(context.get())).find("reset status already read"), std::string::npos)
+        << obscura_get_last_error(context.get());
 
     gl_->make_current();  // its own, healthy
     EXPECT_EQ(render(context.get()), OBSCURA_OK) << obscura_get_last_error(context.get());

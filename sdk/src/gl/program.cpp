@@ -151,6 +151,38 @@ Error driver_failure(const Table& gl, const char* doing, const char* entry) {
     return Error();
 }
 
+// A compile or link the driver refused: its whole log goes to the log callback as a warning (the header's "shader
+// logs"; a log can outgrow an Error's message), and the Error names the step, the entry and the log's first error
+// line. The host's callback then receives that error once, from the call that returns it (Context::report): it
+// received the whole log twice as errors when this function logged it as an error too.
+Error build_failure(obscura_log_fn log, void* log_user_data, const char* doing, const char* entry,
+                    const HostString& driver_log) {
+    if (log) {
+        HostString full{driver_log.get_allocator()};
+        full.append(doing).append(" ").append(entry).append(": the driver's log (#line file numbers index sdk/glsl files):\n");
+        full.append(driver_log);
+        log(OBSCURA_LOG_WARNING, OBSCURA_STATUS_SHADER_COMPILE_FAILED, full.c_str(), log_user_data);
+    }
+    // The first line that names an error (drivers may lead with warnings), else the first line.
+    const char* text = driver_log.c_str();
+    const char* line = text;
+    for (const char* p = text; *p;) {
+        const char* eol = std::strchr(p, '\n');
+        const size_t length = eol ? size_t(eol - p) : std::strlen(p);
+        const char* lower = std::strstr(p, "rror");
+        const char* upper = std::strstr(p, "RROR");
+        if ((lower && lower < p + length) || (upper && upper < p + length)) {
+            line = p;
+            break;
+        }
+        p = eol ? eol + 1 : p + length;
+    }
+    const char* end = std::strchr(line, '\n');
+    const int length = int(end ? end - line : std::strlen(line));
+    return Error::make(OBSCURA_STATUS_SHADER_COMPILE_FAILED, "%s %s failed: %.*s%s", doing, entry, length, line,
+                       log ? " (the driver's whole log went to the log callback)" : "");
+}
+
 Error build_program(const Table& gl, const char* entry, const char* defines, const AllocatorCallbacks& alloc,
                     obscura_log_fn log, void* log_user_data, Object* out_program) {
     HostString source{HostAllocator<char>(&alloc)};
@@ -166,14 +198,7 @@ Error build_program(const Table& gl, const char* entry, const char* defines, con
     if (!compiled) {
         error = driver_failure(gl, "compiling", entry);
         if (error) return error;
-        HostString message = read_log(gl, shader.name(), false, alloc);
-        if (log) {
-            HostString full{HostAllocator<char>(&alloc)};
-            full.append("compiling ").append(entry).append(" failed (#line file numbers index sdk/glsl files):\n");
-            full.append(message);
-            log(OBSCURA_LOG_ERROR, OBSCURA_STATUS_SHADER_COMPILE_FAILED, full.c_str(), log_user_data);
-        }
-        return Error::make(OBSCURA_STATUS_SHADER_COMPILE_FAILED, "compiling %s failed: %s", entry, message.c_str());
+        return build_failure(log, log_user_data, "compiling", entry, read_log(gl, shader.name(), false, alloc));
     }
     Object program(&gl, ObjectKind::Program, gl.CreateProgram());
     gl.AttachShader(program.name(), shader.name());
@@ -185,9 +210,7 @@ Error build_program(const Table& gl, const char* entry, const char* defines, con
     if (!linked) {
         error = driver_failure(gl, "linking", entry);
         if (error) return error;
-        HostString message = read_log(gl, program.name(), true, alloc);
-        if (log) log(OBSCURA_LOG_ERROR, OBSCURA_STATUS_SHADER_COMPILE_FAILED, message.c_str(), log_user_data);
-        return Error::make(OBSCURA_STATUS_SHADER_COMPILE_FAILED, "linking %s failed: %s", entry, message.c_str());
+        return build_failure(log, log_user_data, "linking", entry, read_log(gl, program.name(), true, alloc));
     }
     *out_program = std::move(program);
     return Error();
