@@ -157,6 +157,9 @@ void main() {
     vec2 clip_xy = proj_scale.xy * previous_h.xy + proj_scale.zw * previous_h.z + proj_offset.xy * previous_h.w;
     float clip_w = proj_depth.z * previous_h.z + proj_depth.w * previous_h.w;
     previous_pixel = (clip_xy * (0.5 / clip_w) + 0.5) * vec2(depth_size.xy);
+    // A point behind the previous camera (or on its eye plane) was not in its image: clip_w's sign would mirror it
+    // to a pixel on the opposite side. Far outside the rectangle, no tap has a history (NaN fails the test too).
+    if (!(clip_w > 0.0)) previous_pixel = vec2(-1.0e9);
 #endif
 #endif
 
@@ -197,7 +200,9 @@ void main() {
     int valid_taps = 0;
 #if OBSCURA_TEMPORAL_REPROJECT == OBSCURA_TEMPORAL_REPROJECT_IDENTITY
     // The one tap: the pixel's own texel (always inside the output rectangle).
-    if (temporal.config.x != 0 && !obscura_is_sky(own_texel.z)) {  // not sky: a history (age >= 1)
+    // Not sky (a history: age >= 1), and a finite visibility (a NaN kept would stay for good: clamp and min/max of
+    // NaN are undefined in GLSL).
+    if (temporal.config.x != 0 && !obscura_is_sky(own_texel.z) && obscura_is_finite(own_texel.x)) {
         float plane_distance = dot(obscura_view_position(p, own_texel.z) - previous_position, previous_normal);
         if (plane_distance * plane_distance <= limit_sq) {  // another surface (moved), or not finite, otherwise
             history = own_texel.x;
@@ -229,7 +234,9 @@ void main() {
     // Gathers return the 2x2 block at floor(uv * size - 0.5) as (0, 1), (1, 1), (1, 0), (0, 0) in x, y, z, w. A texel
     // counts when it has a history (not sky: the age is then >= 1), lies on the plane, inside the rectangle, and has
     // bilinear weight; NaN fails every comparison.
-    bvec4 has_history = both(both(lessThan(block_depth, vec4(OBSCURA_SKY_THRESHOLD)), inside),
+    // A finite visibility too: a NaN kept would stay for good (clamp and min/max of NaN are undefined in GLSL).
+    bvec4 finite = notEqual(floatBitsToUint(block_visibility) & uvec4(0x7f800000u), uvec4(0x7f800000u));
+    bvec4 has_history = both(both(both(lessThan(block_depth, vec4(OBSCURA_SKY_THRESHOLD)), inside), finite),
                              both(lessThanEqual(plane_distance * plane_distance, vec4(limit_sq)),
                                   greaterThan(tap_weight, vec4(0.0))));
     if (temporal.config.x == 0) has_history = bvec4(false);
@@ -265,12 +272,15 @@ void main() {
                             all(lessThanEqual(base + 2, output_rect.xy + output_rect.zw - 1));
         // Held within the four texels' range: the cubic's outer ring may lie on another surface (a silhouette one
         // texel away), and its negative lobes overshoot at steps.
-        if (valid_taps == 4 && cubic_inside) {
-            history = clamp(catmull_rom_history(cubic_fraction, quadrants), history_low, history_high);
+        // The cubic's outer ring is not tested: a non-finite result keeps the bilinear read.
+        float cubic = catmull_rom_history(cubic_fraction, quadrants);
+        if (valid_taps == 4 && cubic_inside && obscura_is_finite(cubic)) {
+            history = clamp(cubic, history_low, history_high);
         }
 #endif
         // The box holds the pixel's own value too: an image equal to its history is kept as it is.
         float spread = temporal.params.y * deviation;
+        float unclamped = history;
         history = clamp(history, min(mean - spread, current), max(mean + spread, current));
         new_age = min(floor(age * inverse_weight + 0.5) + 1.0, temporal.params.x);
         float alpha = 1.0 / new_age;
@@ -282,8 +292,15 @@ void main() {
 #else
         vec3 previous_bent = transpose(rotation) * history_bent;
 #endif
+        // The clamp moved the visibility's history towards this frame's value by the fraction `moved` of their
+        // difference (the box holds the current value, so it lies between them): the result is then the current value
+        // at weight 1 - (1 - moved)(1 - alpha). The bent normal is blended at the same weight, so that where the AO
+        // changed under a surface (a moving object's contact shadow) its direction follows the visibility rather than
+        // keeping (N - 1) / N of the history's.
+        float moved = min(abs(unclamped - history) / max(abs(unclamped - current), 1e-6), 1.0);
+        float bent_alpha = 1.0 - (1.0 - moved) * (1.0 - alpha);
         float previous_length = length(previous_bent);
-        if (previous_length > 0.0) result_bent = normalize(mix(previous_bent / previous_length, current_bent, alpha));
+        if (previous_length > 0.0) result_bent = normalize(mix(previous_bent / previous_length, current_bent, bent_alpha));
 #endif
     }
     imageStore(u_next, p, sky ? vec4(current, depth, 0.0, 0.0) : vec4(result, pack_depth_age(depth, new_age), 0.0, 0.0));

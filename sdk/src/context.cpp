@@ -1,6 +1,7 @@
 #include "context.h"
 
 #include <cstdio>
+#include <cstring>
 #include <new>
 
 #include "gl/state_guard.h"
@@ -37,9 +38,11 @@ private:
     Error error_;
 };
 
-// What a history was computed with: the method and its settings blocks (FNV-1a over the bytes). GTAO's own
-// frame_index only moves its noise, as obscura_input.frame_index does, so it is left out. A change starts anew.
-uint64_t history_signature(const obscura_settings& settings, bool bent_normals) {
+// What a history was computed with: the method and its settings blocks (FNV-1a over the bytes), and what of the
+// frame's input changes the AO as a setting would: the scale of a metre (the radius in view units), the host's
+// normals or the reconstructed ones, linear or hardware depth. GTAO's own frame_index only moves its noise, as
+// obscura_input.frame_index does, so it is left out. A change starts anew.
+uint64_t history_signature(const obscura_settings& settings, const FrameInput& input, bool bent_normals) {
     const MethodDescriptor* row = find_method(settings.method);
     obscura_settings copy = settings;
     copy.gtao.frame_index = 0;
@@ -52,6 +55,11 @@ uint64_t history_signature(const obscura_settings& settings, bool bent_normals) 
     mix(static_cast<unsigned char>(settings.method));
     mix(bent_normals ? 1 : 0);
     mix(static_cast<unsigned char>(settings.resolution.scale));  // a 1x1 frame is 1x1 at every resolution
+    unsigned char scale[sizeof input.meters_to_view_units];
+    std::memcpy(scale, &input.meters_to_view_units, sizeof scale);
+    for (unsigned char b : scale) mix(b);
+    mix(static_cast<unsigned char>(input.normal_mode));
+    mix(input.depth_linear ? 1 : 0);
     return hash;
 }
 
@@ -410,8 +418,10 @@ Error Context::record_frame(const FrameInput& host_input, const obscura_settings
     View* view = find_view(host_input.view);
     const bool debug_view = target.debug_view != OBSCURA_DEBUG_NONE;
     const bool temporal = settings.temporal.enabled == OBSCURA_TOGGLE_ON && !debug_view;
-    // A debug view shows this frame alone and leaves the view's history as it is, but a camera cut drops it.
-    if (debug_view && host_input.reset_history) view->history.invalidate();
+    // A camera cut drops the history here, before anything can refuse the frame: a cut on a frame refused below (an
+    // output the method cannot fill, memory, a shader) would otherwise be lost, and the next frame would continue the
+    // history from before the cut. (A debug view shows this frame alone and otherwise leaves the history as it is.)
+    if (host_input.reset_history) view->history.invalidate();
     // With matrices the history is reprojected from the frame it was made at. That is the host's previous frame
     // unless the host rendered that one with a debug view (or not at all): then its previous_view_projection would
     // miss a frame of motion. (On the host's grid: the reprojection maps view spaces, before any reduction.)
@@ -466,7 +476,7 @@ Error Context::record_frame(const FrameInput& host_input, const obscura_settings
     if (temporal) {
         const bool reproject = input.has_matrices || input.motion_vector_texture != 0;
         error = view->history.prepare(pass_env, input, request.bent_normals,
-                                      history_signature(settings, request.bent_normals), reproject,
+                                      history_signature(settings, input, request.bent_normals), reproject,
                                       &history_continues);
         if (!error) {
             error = temporal_.prepare(pass_env, request.bent_normals, TemporalPass::reprojection(input),

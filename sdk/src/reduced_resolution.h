@@ -13,12 +13,14 @@ namespace obscura {
 // k of the settings' resolution: 0 full, 1 half, 2 quarter (resolved settings).
 int resolution_shift(const obscura_settings& settings);
 
-// Texels of the reduced grid along an axis of `extent` host texels: every host texel lies between two of them.
+// Texels of the reduced grid along an axis of `extent` host texels: the first lies on host texel 0, the last on host
+// texel ((extent - 1) >> shift) << shift; the host texels past it (when extent - 1 is not a multiple of 2^shift) take
+// the last texel alone (the upsample clamps).
 inline int reduced_extent(int extent, int shift) { return ((extent - 1) >> shift) + 1; }
 
 // The frame the method sees at reduced resolution `shift` > 0: the reduced size, the output rectangle grown to the
-// reduced texels every pixel of the host's rectangle interpolates between, the remapped projection and previous
-// clip matrix; the host's textures stay (read at t << shift).
+// reduced texels every pixel of the host's rectangle interpolates between, the remapped projection; the host's
+// textures stay (read at t << shift).
 FrameInput reduced_frame_input(const FrameInput& host, int shift);
 
 }  // namespace obscura

@@ -8,6 +8,8 @@
 //   - a debug-view frame leaves the history and the camera it was made with (a reset on it drops the history);
 //   - motion vectors continue a history only from the previous frame index;
 //   - two views keep separate histories, and a resize of one leaves the other's history alone;
+//   - a host resize at reduced resolution, a change of meters_to_view_units, and a camera cut on a refused frame drop
+//     the history; bent normals follow the clamp where the AO changed under a surface;
 //   - motion vectors and matrices reproject alike after a camera move; a point reprojected past the texture's edge
 //     starts a new history; an orbit with a guard band stays on the still image of its last camera, at the output
 //     rectangle's edge too;
@@ -361,6 +363,62 @@ TEST_F(GLTest, TemporalViewsKeepSeparateHistoriesAndAResizeInvalidatesOnlyItsVie
     EXPECT_EQ(obscura_destroy_view(ctx(), a), OBSCURA_OK);
 }
 
+// At reduced resolution several host sizes share one reduced grid (320 and 319 wide are both 160 at half) but map it
+// to the screen differently: a host resize starts a new history as a resize of the grid does. Until 2026-12-06 only
+// the grid's size was compared, and the 319-wide frame continued the 320-wide history (found by a read-only review:
+// 0.118 off on a 64x48 -> 63x47 resize).
+TEST_F(GLTest, TemporalHostResizeAtReducedResolutionStartsANewHistory) {
+    AoScene wide = box_scene();
+    AoScene narrower = make_ao_scene(Projection::Perspective, wide.camera.view(),
+                                     {plane(1, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0)),
+                                      box(2, glm::dvec3(-kBoxHalf, 0.0, -kBoxHalf), glm::dvec3(kBoxHalf, kBoxHeight, kBoxHalf))},
+                                     Lens(), kWidth - 1, kHeight);
+    set_matrices(&wide.input, wide.camera);
+    set_matrices(&narrower.input, narrower.camera);
+    obscura_settings settings = noisy_hbao(true);
+    settings.resolution.scale = OBSCURA_RESOLUTION_HALF;
+    obscura_settings alone = noisy_hbao(false);
+    alone.resolution.scale = OBSCURA_RESOLUTION_HALF;
+    const std::vector<float> fifth_alone = render_frames(ctx(), narrower.input, alone, 5, 1);
+    EXPECT_GT(max_abs_difference(render_frames(ctx(), narrower.input, settings, 0, 6), fifth_alone), 0.01)
+        << "frames of one size accumulate";
+    render_frames(ctx(), wide.input, settings, 0, 5);
+    EXPECT_LE(max_abs_difference(render_frames(ctx(), narrower.input, settings, 5, 1), fifth_alone), kAloneRounding);
+}
+
+// A camera cut on a frame the SDK refuses (here: a bent-normal output that HBAO cannot fill) still drops the history:
+// the next frame, without the flag, starts anew. Until 2026-12-06 the flag was read only once the frame got as far as
+// the history, and the frame after the cut continued the history from before it.
+TEST_F(GLTest, TemporalCameraCutOnARefusedFrameStillDropsTheHistory) {
+    AoScene scene = box_scene();
+    set_matrices(&scene.input, scene.camera);
+    const obscura_settings settings = noisy_hbao(true);
+    const std::vector<float> fifth_alone = render_frames(ctx(), scene.input, noisy_hbao(false), 5, 1);
+    render_frames(ctx(), scene.input, settings, 0, 5);
+    obscura_input cut = scene.input;
+    cut.frame_index = 5;
+    cut.flags = OBSCURA_INPUT_FLAG_RESET_HISTORY;
+    HostTexture ao = make_texture(GL_R32F, kWidth, kHeight);
+    HostTexture bent = make_texture(GL_RGBA16F, kWidth, kHeight);
+    obscura_output output = make_output(ao.get());
+    output.bent_normal_texture = bent.get();
+    ASSERT_EQ(obscura_render(ctx(), &cut, &settings, &output), OBSCURA_STATUS_INVALID_SETTING);
+    EXPECT_LE(max_abs_difference(render_frames(ctx(), scene.input, settings, 5, 1), fifth_alone), kAloneRounding);
+}
+
+// What of the input changes the AO as a setting would starts a new history: the scale of a metre (the radius in view
+// units). Until 2026-12-06 only the settings were compared.
+TEST_F(GLTest, TemporalChangeOfMetresToViewUnitsStartsANewHistory) {
+    AoScene scene = box_scene();
+    set_matrices(&scene.input, scene.camera);
+    const obscura_settings settings = noisy_hbao(true);
+    obscura_input rescaled = scene.input;
+    rescaled.meters_to_view_units = 2.0f;
+    const std::vector<float> fifth_alone = render_frames(ctx(), rescaled, noisy_hbao(false), 5, 1);
+    render_frames(ctx(), scene.input, settings, 0, 5);
+    EXPECT_LE(max_abs_difference(render_frames(ctx(), rescaled, settings, 5, 1), fifth_alone), kAloneRounding);
+}
+
 // GTAO's bent normals accumulate with the visibility, and the history's (in the previous view's space) is rotated
 // into the current view. The camera drops 0.5 m between two frames (its pitch changes by 6.6 degrees, and with it the
 // floor's normal in view space); on the open floor GTAO's bent normal is the floor's normal, so the accumulated
@@ -420,6 +478,57 @@ TEST_F(GLTest, TemporalBentNormalsAccumulateInTheCurrentView) {
     EXPECT_GT(pitch, 5.0) << "the camera's pitch changed: the history must be rotated";
     EXPECT_LT(sum / double(count), 0.2);
     EXPECT_LT(worst_length, 1e-3);
+}
+
+// Where the AO changes under a surface that stays (here the box vanishes from the floor between two frames of a still
+// camera), the neighbourhood clamp holds the visibility's history to this frame's, and the bent normal must follow: it
+// is blended at the weight the clamp left the visibility's history. Until 2026-12-06 the bent normal kept (N - 1) / N of
+// its history whatever the clamp did, so the floor beside the vanished box showed this frame's visibility with a bent
+// normal still leaning away from the box (found by a read-only review).
+TEST_F(GLTest, TemporalBentNormalsFollowTheClampWhereTheAoChanged) {
+    AoScene with_box = box_scene();
+    AoScene floor_only = make_ao_scene(Projection::Perspective, with_box.camera.view(),
+                                       {plane(1, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0))});
+    set_matrices(&with_box.input, with_box.camera);
+    set_matrices(&floor_only.input, floor_only.camera);
+    obscura_settings settings;
+    ASSERT_EQ(obscura_default_settings(OBSCURA_METHOD_GTAO, &settings), OBSCURA_OK);
+    settings.temporal.enabled = OBSCURA_TOGGLE_ON;
+    obscura_settings alone = settings;
+    alone.temporal.enabled = OBSCURA_TOGGLE_OFF;
+    const auto render_bent = [&](obscura_input input, const obscura_settings& s, uint32_t frame) {
+        input.frame_index = frame;
+        HostTexture ao = make_texture(GL_R32F, kWidth, kHeight);
+        HostTexture bent = make_texture(GL_RGBA32F, kWidth, kHeight);
+        obscura_output output = make_output(ao.get());
+        output.bent_normal_texture = bent.get();
+        EXPECT_EQ(obscura_render(ctx(), &input, &s, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+        return read_texture(bent.get(), kWidth, kHeight, 4);
+    };
+    for (uint32_t f = 0; f < 8; ++f) render_bent(with_box.input, settings, f);
+    const std::vector<float> accumulated = render_bent(floor_only.input, settings, 8);
+    const std::vector<float> box_alone = render_bent(with_box.input, alone, 8);
+    const std::vector<float> floor_alone = render_bent(floor_only.input, alone, 8);
+    const auto at = [](const std::vector<float>& b, size_t i) { return glm::dvec3(b[4 * i + 1], b[4 * i + 2], b[4 * i + 3]); };
+    const auto angle = [](glm::dvec3 a, glm::dvec3 b) {
+        return std::acos(std::clamp(glm::dot(glm::normalize(a), glm::normalize(b)), -1.0, 1.0)) * 57.29577951308232;
+    };
+    // The floor pixels whose bent normal the box tilted by more than 3 degrees (and whose visibility it lowered by more than 0.05).
+    double lean = 0.0, left = 0.0;
+    size_t count = 0;
+    for (size_t i = 0; i < floor_only.hits.size(); ++i) {
+        if (!with_box.hits[i].hit || with_box.hits[i].id != 1) continue;  // the floor in both images
+        const double tilt = angle(at(box_alone, i), at(floor_alone, i));
+        if (tilt < 3.0 || floor_alone[4 * i] - box_alone[4 * i] < 0.05) continue;
+        lean += tilt;
+        left += angle(at(accumulated, i), at(floor_alone, i));
+        ++count;
+    }
+    ASSERT_GT(count, 200u);
+    std::printf("floor beside the box: %zu pixels, the box tilted their bent normals %.2f degrees; after it vanished "
+                "the accumulated ones are %.2f degrees off this frame's\n", count, lean / double(count),
+                left / double(count));
+    EXPECT_LT(left, 0.25 * lean);
 }
 
 TEST_F(GLTest, TemporalMotionVectorsAndMatricesReprojectAlike) {

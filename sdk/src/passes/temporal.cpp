@@ -40,11 +40,16 @@ Error TemporalHistory::prepare(const PassEnv& env, const FrameInput& input, bool
     // Motion vectors give this frame's offsets to the host's previous frame: the history must be that frame's.
     const bool follows = input.frame_index - frame_index_ <= 1u;  // +1, or the same index (unsigned: wraps)
     const bool motion = input.motion_vector_texture != 0;
-    *continues = valid_ && same_rect && signature == signature_ && reproject && !input.reset_history &&
+    // At reduced resolution several host sizes share one reduced size (640 and 639 wide are both 320 at half), but
+    // their grids map to the screen differently: a host resize starts anew as a resize of the grid does.
+    const bool same_host = input.host_width == host_width_ && input.host_height == host_height_;
+    *continues = valid_ && same_rect && same_host && signature == signature_ && reproject && !input.reset_history &&
                  (!motion || follows);
     // Dropped now, not at the swap: a frame that fails after this point must not leave the old history valid.
     if (!*continues) valid_ = false;
     rect_ = rect;
+    host_width_ = input.host_width;
+    host_height_ = input.host_height;
     signature_ = signature;
     return Error();
 }
