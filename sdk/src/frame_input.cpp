@@ -103,19 +103,23 @@ Error check_temporal_fields(const obscura_input& input, int32_t layout, FrameInp
     frame->reset_history = (input.flags & OBSCURA_INPUT_FLAG_RESET_HISTORY) != 0;
     frame->motion_vector_texture = input.motion_vector_texture;
     frame->motion_units = units;
-    if (all_zero(input.view_projection) || all_zero(input.previous_view_projection)) return Error();  // no reprojection from matrices (motion vectors may still give one)
+    // Each matrix given is checked on its own, the other one all zero or not: a first frame (no previous matrix) with
+    // a broken view_projection was accepted, and the host heard of it a frame later, as previous_view_projection.
+    const bool has_current = !all_zero(input.view_projection), has_previous = !all_zero(input.previous_view_projection);
     for (int i = 0; i < 16; ++i) {
-        if (!std::isfinite(input.view_projection[i]) || !std::isfinite(input.previous_view_projection[i])) {
+        if ((has_current && !std::isfinite(input.view_projection[i])) ||
+            (has_previous && !std::isfinite(input.previous_view_projection[i]))) {
             return Error::make(OBSCURA_STATUS_INVALID_PROJECTION, "%sview_projection[%d] is not finite",
-                               std::isfinite(input.view_projection[i]) ? "previous_" : "", i);
+                               has_current && std::isfinite(input.view_projection[i]) ? "previous_" : "", i);
         }
     }
     const glm::dmat4 view_projection = host_matrix(input.view_projection, layout);
     const glm::dmat4 previous = host_matrix(input.previous_view_projection, layout);
     const double det = glm::determinant(view_projection);
-    if (!std::isfinite(det) || std::fabs(det) < 1e-30) {
+    if (has_current && (!std::isfinite(det) || std::fabs(det) < 1e-30)) {
         return Error::make(OBSCURA_STATUS_INVALID_PROJECTION, "view_projection is singular (determinant %g)", det);
     }
+    if (!has_current || !has_previous) return Error();  // no reprojection from matrices (motion vectors may still give one)
     frame->has_matrices = true;
     double previous_columns[16];
     for (int column = 0; column < 4; ++column) {
@@ -195,7 +199,7 @@ Error check_input_fields(const obscura_input& input, GLint max_texture_size, Fra
         return Error::make(OBSCURA_STATUS_INVALID_ENUM, "clip_depth = %d is not an obscura_clip_depth", int(clip_depth));
     }
     Error error = decode_projection(input.projection, obscura_matrix_layout(layout), obscura_clip_depth(clip_depth),
-                                    &frame.projection);
+                                    obscura_depth_kind(depth_kind), &frame.projection);
     if (error) return error;
     frame.depth_texture = input.depth_texture;
     frame.normal_texture = input.normal_texture;

@@ -38,7 +38,7 @@ double view_z_from_window_depth(const ProjectionInfo& info, double window_depth)
 }
 
 Error decode_projection(const float matrix[16], obscura_matrix_layout layout, obscura_clip_depth clip_depth,
-                        ProjectionInfo* out) {
+                        obscura_depth_kind depth_kind, ProjectionInfo* out) {
     if (layout != OBSCURA_MATRIX_COLUMN_MAJOR && layout != OBSCURA_MATRIX_ROW_MAJOR) {
         return Error::make(OBSCURA_STATUS_INVALID_ENUM, "projection_layout = %d is not an obscura_matrix_layout",
                            int(layout));
@@ -80,6 +80,19 @@ Error decode_projection(const float matrix[16], obscura_matrix_layout layout, ob
     info.perspective = is_perspective_shape(info.m);
     float scale = info.perspective ? -info.m[11] : info.m[15];
     for (float& v : info.m) v /= scale;
+    // Checked after the normalisation, which can overflow (a tiny w scale) or leave denormal x/y scales whose
+    // reciprocals, which every pass takes, are infinite: the frame then rendered unoccluded with status OK.
+    for (int i = 0; i < 16; ++i) {
+        if (!std::isfinite(info.m[i])) {
+            return Error::make(OBSCURA_STATUS_INVALID_PROJECTION,
+                               "projection[%d] divided by the w scale %g is not finite", i, double(scale));
+        }
+    }
+    if (!std::isnormal(info.m[0]) || !std::isnormal(info.m[5])) {
+        return Error::make(OBSCURA_STATUS_INVALID_PROJECTION,
+                           "the projection's x and y scales (%g, %g once w is normalised) must be normal floats",
+                           double(info.m[0]), double(info.m[5]));
+    }
 
     info.clip_scale = clip_depth == OBSCURA_CLIP_DEPTH_ZERO_TO_ONE ? 1.0f : 2.0f;
     info.clip_bias = clip_depth == OBSCURA_CLIP_DEPTH_ZERO_TO_ONE ? 0.0f : -1.0f;
@@ -112,9 +125,10 @@ Error decode_projection(const float matrix[16], obscura_matrix_layout layout, ob
     }
     info.reversed_z = d_far < d_near;
     info.sky_window_depth = info.reversed_z ? 0.0f : 1.0f;
-    if (!info.perspective) {
+    if (!info.perspective && depth_kind == OBSCURA_DEPTH_HARDWARE) {
         // When the near plane (window depth 0, or 1 when reversed) is at or behind the eye, move it to z = -1:
-        // z' = z - shift, so every visible point has a positive distance.
+        // z' = z - shift, so every visible point has a positive distance. (Linear depth is the host's distance: its
+        // points behind the eye are sky, as obscura.h says, and its view space stays the host's.)
         double z_near = view_z_from_window_depth(info, info.reversed_z ? 1.0 : 0.0);
         if (z_near > -1e-6) {
             float shift = float(z_near + 1.0);

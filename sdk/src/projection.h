@@ -17,16 +17,18 @@ struct ProjectionInfo {
     float clip_bias = -1.0f;
     float sky_window_depth = 1.0f; // the far-plane clear value: 1, or 0 with reversed-Z
     // Orthographic cameras may put the near plane at or behind the eye (glOrtho(..., -8, 12)); the SDK
-    // needs positive distances, so view space is translated along z by this much (folded into m12..m14).
-    // AO of an orthographic view does not change under such a translation. 0 for perspective.
+    // needs positive distances, so for hardware depth view space is translated along z by this much (folded into
+    // m12..m14). AO of an orthographic view does not change under such a translation. 0 for perspective, and for
+    // host linear depth, which is the host's own distance (its view space must stay the host's: the temporal
+    // reprojection maps it through the host's matrices).
     float view_z_shift = 0.0f;
 };
 
-// Validates and decodes `matrix` (given in `layout`). Errors: INVALID_PROJECTION (not a projection GL can
+// Validates and decodes `matrix` (given in `layout`) for depth of `depth_kind`. Errors: INVALID_PROJECTION (not a projection GL can
 // use: non-finite, zero scale, rotation terms, w not from z), PROJECTION_TRANSPOSED (a valid projection once
 // transposed), INVALID_ENUM (bad layout / clip-depth value).
 Error decode_projection(const float matrix[16], obscura_matrix_layout layout, obscura_clip_depth clip_depth,
-                        ProjectionInfo* out);
+                        obscura_depth_kind depth_kind, ProjectionInfo* out);
 
 // View-space z (negative in front of the camera) of a window depth under `info`; used by tests and by the
 // CPU mirror of the shader math.

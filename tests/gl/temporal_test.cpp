@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstring>
+#include <limits>
 #include <vector>
 
 #include "ao_test_scene.h"
@@ -778,6 +779,18 @@ TEST_F(GLTest, TemporalInputErrors) {
     input = scene.input;
     std::fill(std::begin(input.view_projection), std::end(input.view_projection), 0.0f);
     input.view_projection[0] = 1.0f;  // rank 1
+    EXPECT_EQ(obscura_render(ctx(), &input, &settings, &output), OBSCURA_STATUS_INVALID_PROJECTION);
+    // Each matrix is checked on its own: a first frame (no previous matrix) with a broken one is refused then, not a
+    // frame later.
+    std::fill(std::begin(input.previous_view_projection), std::end(input.previous_view_projection), 0.0f);
+    EXPECT_EQ(obscura_render(ctx(), &input, &settings, &output), OBSCURA_STATUS_INVALID_PROJECTION);
+    input = scene.input;
+    std::fill(std::begin(input.previous_view_projection), std::end(input.previous_view_projection), 0.0f);
+    input.view_projection[5] = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_EQ(obscura_render(ctx(), &input, &settings, &output), OBSCURA_STATUS_INVALID_PROJECTION);
+    input = scene.input;
+    std::fill(std::begin(input.view_projection), std::end(input.view_projection), 0.0f);
+    input.previous_view_projection[2] = std::numeric_limits<float>::infinity();
     EXPECT_EQ(obscura_render(ctx(), &input, &settings, &output), OBSCURA_STATUS_INVALID_PROJECTION);
     input = scene.input;
     store_raw(&input.motion_vector_units, 7);

@@ -78,7 +78,7 @@ double window_ortho(double z) { return (-z - kNear) / (kFar - kNear); }
 ProjectionInfo decode_ok(const Matrix& matrix, obscura_clip_depth clip,
                          obscura_matrix_layout layout = OBSCURA_MATRIX_COLUMN_MAJOR) {
     ProjectionInfo info;
-    obscura::Error error = decode_projection(matrix.m, layout, clip, &info);
+    obscura::Error error = decode_projection(matrix.m, layout, clip, OBSCURA_DEPTH_HARDWARE, &info);
     EXPECT_TRUE(error.ok()) << error.message();
     return info;
 }
@@ -86,7 +86,7 @@ ProjectionInfo decode_ok(const Matrix& matrix, obscura_clip_depth clip,
 obscura_status decode_status(const Matrix& matrix, obscura_clip_depth clip = OBSCURA_CLIP_DEPTH_NEGATIVE_ONE_TO_ONE,
                              obscura_matrix_layout layout = OBSCURA_MATRIX_COLUMN_MAJOR) {
     ProjectionInfo info;
-    return decode_projection(matrix.m, layout, clip, &info).status();
+    return decode_projection(matrix.m, layout, clip, OBSCURA_DEPTH_HARDWARE, &info).status();
 }
 
 void expect_inverse(const ProjectionInfo& info, double (*window)(double), double relative_tolerance) {
@@ -177,6 +177,20 @@ TEST(ProjectionDecode, OrthographicNearBehindEyeIsShiftedInFront) {
     EXPECT_NEAR(view_z_from_window_depth(info, 0.0), -1.0, 1e-5);   // near plane
     EXPECT_NEAR(view_z_from_window_depth(info, 1.0), -21.0, 1e-4);  // far plane: 20 units further
     EXPECT_NEAR(view_z_from_window_depth(info, 0.5), -11.0, 1e-4);  // linear in between
+}
+
+// Host linear depth is the host's distance from its eye plane: its view space is not moved (points behind the eye
+// are sky), so that the temporal reprojection, which maps view spaces through the host's matrices, lands where the
+// host's own would (until 2026-12-06 linear depth under such a projection reprojected a constant off: 0.013 of
+// visibility under a turning camera against the same depth given as hardware depth, found by a read-only review).
+TEST(ProjectionDecode, OrthographicNearBehindEyeIsNotShiftedForLinearDepth) {
+    const Matrix matrix = from_glm(glm::orthoRH_NO(-1.0f, 1.0f, -1.0f, 1.0f, -8.0f, 12.0f));
+    ProjectionInfo info;
+    ASSERT_TRUE(decode_projection(matrix.m, OBSCURA_MATRIX_COLUMN_MAJOR, OBSCURA_CLIP_DEPTH_NEGATIVE_ONE_TO_ONE,
+                                  OBSCURA_DEPTH_LINEAR_VIEW, &info)
+                    .ok());
+    EXPECT_EQ(info.view_z_shift, 0.0f);
+    for (int i = 0; i < 16; ++i) EXPECT_EQ(info.m[i], matrix.m[i]) << i;
 }
 
 TEST(ProjectionDecode, OrthographicNearInFrontIsNotShifted) {
@@ -281,6 +295,21 @@ TEST(ProjectionReject, ZeroScale) {
     Matrix matrix = standard_perspective();
     matrix.m[0] = 0.0f;
     EXPECT_EQ(decode_status(matrix), OBSCURA_STATUS_INVALID_PROJECTION);
+}
+
+// Checked once normalised (2026-12-06, a read-only review): a denormal x scale passed (every pass takes 1 / m0, which
+// is infinite, and the frame rendered unoccluded with status OK), and a tiny w scale overflowed m0 to infinity.
+TEST(ProjectionReject, DenormalOrOverflowingScalesOnceNormalised) {
+    Matrix denormal = standard_perspective();
+    denormal.m[0] = 1e-40f;
+    EXPECT_EQ(decode_status(denormal), OBSCURA_STATUS_INVALID_PROJECTION);
+    Matrix tiny_w = standard_perspective();
+    for (float& v : tiny_w.m) v *= 1e-20f;
+    tiny_w.m[0] = 1e20f;  // finite as given, 1e40 once divided by w = 1e-20
+    EXPECT_EQ(decode_status(tiny_w), OBSCURA_STATUS_INVALID_PROJECTION);
+    Matrix scaled = standard_perspective();
+    for (float& v : scaled.m) v *= 1e-20f;  // the same matrix at another homogeneous scale: fine
+    EXPECT_EQ(decode_status(scaled), OBSCURA_STATUS_OK);
 }
 
 TEST(ProjectionReject, ConstantDepth) {
