@@ -7,9 +7,11 @@
 //   - a host buffer bound to GL_QUERY_BUFFER (GL 4.4) made the GPU timer's query reads fail: frames reported GL_ERROR
 //     from the second on, and obscura_get_timings stayed empty;
 //   - a host program deleted while current could not be restored: the SDK's program stayed bound and the frame
-//     reported GL_ERROR.
+//     reported GL_ERROR;
+//   - a depth texture whose GL_TEXTURE_BASE_LEVEL is not 0 was checked at level 0 but read at its base level.
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "analytic_scene.h"
 #include "gl_test_support.h"
@@ -271,6 +273,49 @@ TEST_F(ReviewRegressions, HostProgramDeletedWhileCurrentLeavesNoSdkProgramBound)
     GLint current = -1;
     glGetIntegerv(GL_CURRENT_PROGRAM, &current);
     EXPECT_EQ(current, 0) << "the SDK's program was left bound";
+}
+
+// The passes read a GL_TEXTURE_2D at its base level (texelFetch's level 0): its size is what must match the depth size.
+// A host's depth pyramid with the base level moved to level 1 (the scene's depth) renders as the plain texture does,
+// and one whose base level is smaller than the depth size is refused. Until 2026-12-06 level 0 was checked: the first
+// was refused, and the second rendered level 1 (and zeros outside it) with status OK (found by a read-only review).
+TEST_F(ReviewRegressions, DepthTextureIsReadAndCheckedAtItsBaseLevel) {
+    Camera camera(Projection::Perspective, kWidth, kHeight, Lens(), corner_view());
+    const CornerDepth corner = corner_depth(camera);
+    HostTexture plain = make_depth_texture(GL_DEPTH_COMPONENT32F, kWidth, kHeight, corner.depth);
+    const std::vector<float> expected =
+        render_to_new_texture(ctx(), make_input(plain.get(), kWidth, kHeight, camera.matrix()), make_settings(1.0f),
+                              GL_R32F, 1);
+    ASSERT_FALSE(expected.empty());
+
+    HostTexture pyramid = HostTexture::create();
+    glBindTexture(GL_TEXTURE_2D, pyramid.get());
+    glTexStorage2D(GL_TEXTURE_2D, 2, GL_DEPTH_COMPONENT32F, 2 * kWidth, 2 * kHeight);
+    const std::vector<float> level0(size_t(4) * kWidth * kHeight, 0.25f);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 2 * kWidth, 2 * kHeight, GL_DEPTH_COMPONENT, GL_FLOAT, level0.data());
+    glTexSubImage2D(GL_TEXTURE_2D, 1, 0, 0, kWidth, kHeight, GL_DEPTH_COMPONENT, GL_FLOAT, corner.depth.data());
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 1);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    const std::vector<float> from_pyramid =
+        render_to_new_texture(ctx(), make_input(pyramid.get(), kWidth, kHeight, camera.matrix()), make_settings(1.0f),
+                              GL_R32F, 1);
+    ASSERT_EQ(from_pyramid.size(), expected.size()) << obscura_get_last_error(ctx());
+    for (size_t i = 0; i < expected.size(); ++i) ASSERT_EQ(from_pyramid[i], expected[i]) << i;
+
+    HostTexture moved = HostTexture::create();
+    glBindTexture(GL_TEXTURE_2D, moved.get());
+    glTexStorage2D(GL_TEXTURE_2D, 2, GL_DEPTH_COMPONENT32F, kWidth, kHeight);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kWidth, kHeight, GL_DEPTH_COMPONENT, GL_FLOAT, corner.depth.data());
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 1);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    HostTexture target = make_texture(GL_R32F, kWidth, kHeight);
+    obscura_input input = make_input(moved.get(), kWidth, kHeight, camera.matrix());
+    obscura_settings settings = make_settings(1.0f);
+    obscura_output output = make_output(target.get());
+    EXPECT_EQ(obscura_render(ctx(), &input, &settings, &output), OBSCURA_STATUS_INVALID_TEXTURE);
+    EXPECT_NE(std::string(obscura_get_last_error(ctx())).find("base level 1"), std::string::npos)
+        << obscura_get_last_error(ctx());
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 }
 
 }  // namespace

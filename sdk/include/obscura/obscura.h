@@ -57,7 +57,9 @@
  *     in view units). Hardware depth may come from any projection GL can express: perspective or
  *     orthographic, standard or reversed-Z, finite or infinite far plane, [-1,1] or [0,1] clip depth
  *     (glClipControl). The projection is decoded from the matrix itself; its near/far layout is
- *     validated ("looks transposed" is reported as such).
+ *     validated ("looks transposed" is reported as such). The SDK reads a GL_TEXTURE_2D at its
+ *     GL_TEXTURE_BASE_LEVEL (texelFetch's level 0), whose size must be the depth size; so do the normal
+ *     and motion-vector textures.
  *   - Pixels at the far-plane clear value (1, or 0 with reversed-Z), NaN or inf, and linear depths that are
  *     zero, negative or denormal, are "sky": they receive visibility 1, occlude nothing and do not enter
  *     their neighbours' normals or filters. Every input depth gives finite AO in [0, 1].
