@@ -57,12 +57,15 @@ declare -A context=(
   [lsao.normal_threshold]="normal_test=on"
   [ffao.saao_blur]="saao=on"
   [lsao.tangent]="tangent_strategy=fixed"  # the receiver's tangent (the default) does not read it
+  [gtao.thickness]="thickness_mode=bitmask"  # horizon mode's occluders are infinitely thick
+  [gtao.sectors]="thickness_mode=bitmask"
 )
 # Values where the automatic rule gives a useless picture.
 declare -A fixed_values=(
   # At 320x180 a 1 m radius rarely spans 64 px: the automatic 64, 256, 1024 look the same.
   [hbao.max_radius_pixels]="8 32 256"
   [sao.max_radius_pixels]="8 32 256"
+  [gtao.max_radius_pixels]="8 32 256"
   # The aligned pattern needs multiples of 8; the automatic low value (4) is refused.
   [lsao.directions]="8 16 32"
   # Automatic -1, 0, 4096: 0 is -1 (whole lines) on CPU renderers and no line is 4096 steps long.
@@ -229,6 +232,14 @@ for method in "${methods[@]}"; do
   while IFS=$'\x1f' read -r name type default min max unit description; do
     [[ -z "${GUIDE_ONLY:-}" || "$name" == "$GUIDE_ONLY" ]] || continue
     key="$method.$name"
+    # The shared settings (every method has them): the temporal ones act across frames, which one still picture
+    # cannot show, and the upsample's tolerance only at reduced resolution.
+    if [[ "$name" == temporal.* && -z "${text_only[$key]:-}" ]]; then
+      text_only[$key]="It acts across frames (the accumulation of a view's history), which one still picture cannot show: docs/quality.md measures it under an orbit and on the moving scene (\`obscura compare --frames N --orbit DEG --temporal on\`; the sliding scene for the ghosting)."
+    fi
+    if [[ "$name" == "resolution.upsample_tolerance" && -z "${context[$key]:-}" ]]; then
+      context[$key]="resolution.scale=half"
+    fi
     effective="$(jq -r --arg name "$name" '.methods[0].settings[$name] | if . == true then "on" elif . == false then "off" elif . == null then "" else tostring end' "$work/$method.defaults.json")"
     [[ -n "$effective" ]] || effective="$default"
     unit_text="${unit:+ $unit}"

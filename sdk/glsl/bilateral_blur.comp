@@ -62,7 +62,9 @@ void main() {
         if (i >= run_length) break;
         ivec2 p = first + axis * i;
         float center_ao = value[i + kRadius], center_depth = depth[i + kRadius];
-        float sharpness = blur.params.x / obscura_tolerance_distance(center_depth);
+        // Bounded (a depth near 1e-37 overflowed it): GLSL does not promise NaN semantics, so the w >= 0 test below
+        // is a second line only.
+        float sharpness = blur.params.x / max(obscura_tolerance_distance(center_depth), 1e-30);
         // The weighted mean is taken as the centre plus the weighted mean of the differences, so a uniform
         // neighbourhood returns its value exactly: sum / weight_sum lands a rounding step below it, which a
         // truncating conversion to r16f keeps (NVIDIA: unoccluded 1.0 came out 0.99902 after x and y).

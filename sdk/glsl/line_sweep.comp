@@ -113,7 +113,9 @@ int warmup_steps(LsaoLine line, int begin, int end) {
         float d[8];
         for (int u = 0; u < 8; ++u) {
             vec2 point = lsao_sample_point(line, line.first_step + min(i + u, end - 1));
-            d[u] = texelFetch(u_depth, ivec2(point), 0).r;
+            // Clamped: a free pattern's point is unclamped (lsao_sample_point) and a float step can round onto the
+            // texture's far edge, where texelFetch's result is undefined.
+            d[u] = texelFetch(u_depth, clamp(ivec2(point), ivec2(0), depth_size.xy - 1), 0).r;
         }
         for (int u = 0; u < 8; ++u) nearest = min(nearest, d[u]);
     }
@@ -186,7 +188,7 @@ float sweep_step(int i, vec2 point, float depth) {
         // Strategy 3 fixes the tangent for both uses; 1 uses the receiver's for both, 2 only for the occlusion.
         float real_sin_t = fixed_sin_t;
         if (strategy != 3) {
-            vec3 n = obscura_decode_normal(texelFetch(u_normals, ivec2(point), 0).xy);
+            vec3 n = obscura_decode_normal(texelFetch(u_normals, clamp(ivec2(point), ivec2(0), depth_size.xy - 1), 0).xy);
             real_sin_t = lsao_receiver_sin_t_3d(n, obscura_towards_eye(obscura_view_position_at(point, depth)), g_a);
         }
         float hull_sin_t = strategy == 1 ? real_sin_t : fixed_sin_t;

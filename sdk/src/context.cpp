@@ -40,12 +40,13 @@ private:
 
 // What a history was computed with: the method and its settings blocks (FNV-1a over the bytes), and what of the
 // frame's input changes the AO as a setting would: the scale of a metre (the radius in view units), the host's
-// normals or the reconstructed ones, linear or hardware depth. GTAO's own frame_index only moves its noise, as
-// obscura_input.frame_index does, so it is left out. A change starts anew.
+// normals or the reconstructed ones, linear or hardware depth. GTAO's own frame_index and REFERENCE's first_ray only
+// move the noise, as obscura_input.frame_index does, so they are left out. A change starts anew.
 uint64_t history_signature(const obscura_settings& settings, const FrameInput& input, bool bent_normals) {
     const MethodDescriptor* row = find_method(settings.method);
     obscura_settings copy = settings;
     copy.gtao.frame_index = 0;
+    copy.reference.first_ray = 0;  // likewise: REFERENCE's frames advance it to trace new rays
     const unsigned char* bytes = reinterpret_cast<const unsigned char*>(&copy) + row->settings_offset;
     uint64_t hash = 1469598103934665603ull;
     auto mix = [&](unsigned char b) { hash = (hash ^ b) * 1099511628211ull; };
@@ -368,6 +369,7 @@ Error Context::render(const obscura_input& input, const obscura_settings& settin
     OutputTarget target;
     if (!error) error = check_input_fields(input, device_.max_texture_size(), &frame);
     if (!error) error = check_output_fields(output, &target);
+    if (!error) error = check_output_aliasing(input, output);
     if (!error && !find_view(frame.view)) {
         error = Error::make(OBSCURA_STATUS_INVALID_VIEW, "obscura_input.view %p is not a view of this context",
                             static_cast<void*>(frame.view));

@@ -77,6 +77,29 @@ Error check_output_fields(const obscura_output& output, OutputTarget* out) {
     return Error();
 }
 
+Error check_output_aliasing(const obscura_input& input, const obscura_output& output) {
+    struct Named {
+        GLuint texture;
+        const char* field;
+    };
+    const Named written[] = {{output.texture, "output.texture"}, {output.bent_normal_texture, "output.bent_normal_texture"}};
+    const Named read[] = {{input.depth_texture, "input.depth_texture"},
+                          {input.normal_texture, "input.normal_texture"},
+                          {input.motion_vector_texture, "input.motion_vector_texture"},
+                          {output.bent_normal_texture, "output.bent_normal_texture"}};
+    for (const Named& w : written) {
+        if (w.texture == 0) continue;
+        for (const Named& r : read) {
+            if (r.texture == w.texture && r.field != w.field) {
+                return Error::make(OBSCURA_STATUS_INVALID_TEXTURE,
+                                   "%s and %s are the same texture (%u): the frame would write a texture it reads or "
+                                   "writes otherwise", w.field, r.field, w.texture);
+            }
+        }
+    }
+    return Error();
+}
+
 namespace {
 
 // GL has no blit into a multisampled framebuffer (INVALID_OPERATION; GL 4.3, 18.3.1): such a target is refused

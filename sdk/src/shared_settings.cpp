@@ -11,8 +11,8 @@ constexpr const char* const kResolutionNames[] = {"full", "half", "quarter"};
 // disocclusion recovers within a few frames), a clamp of 3 deviations (wide enough that the per-frame noise of a
 // converged pixel stays inside it: at 2 the clamp clipped the moving noise pattern, and HBAO's and GTAO's flicker
 // stayed at 0.35-0.37 of the unaccumulated image's; at 3 it is 0.33 on the atrium and the clutter room, with the
-// sliding box's trail still gone after 8 frames; docs/quality.md), a 2 % plane tolerance (the denoisers' own
-// scale of "the same surface").
+// sliding box's trail still gone after 8 frames; docs/quality.md), a 1 % plane tolerance (2 % before 0.5; 1 % gave the
+// lower orbit error once the history was 32-bit: docs/quality.md).
 const obscura_setting_info kSharedSettings[] = {
     setting_row("temporal.enabled", OBSCURA_SETTING_TOGGLE, 0, 0, 1, "",
      "accumulate frames per view: reprojected history, disocclusion rejection, neighbourhood clamp",

@@ -335,6 +335,36 @@ TEST_F(ApiErrors, DepthFormatAsLinearDepth) {
     expect_render_fails(OBSCURA_STATUS_UNSUPPORTED_FORMAT);
 }
 
+// A texture the frame writes that it also reads, or writes twice (found by a read-only review: each rendered with
+// status OK, reading and writing one texture in a dispatch).
+TEST_F(ApiErrors, OutputTextureThatTheFrameReadsIsRefused) {
+    // The output as the host's normals (the target is RGBA16F, a format both accept).
+    HostTexture shared = make_texture(GL_RGBA16F, kWidth, kHeight);
+    input_.normal_texture = shared.get();
+    output_.texture = shared.get();
+    expect_render_fails(OBSCURA_STATUS_INVALID_TEXTURE, "output.texture and input.normal_texture");
+    input_.normal_texture = 0;
+    // The output as the motion vectors.
+    HostTexture vectors = make_texture(GL_RG16F, kWidth, kHeight);
+    input_.motion_vector_texture = vectors.get();
+    output_.texture = vectors.get();
+    expect_render_fails(OBSCURA_STATUS_INVALID_TEXTURE, "output.texture and input.motion_vector_texture");
+    input_.motion_vector_texture = 0;
+    // The bent normals into the output texture itself.
+    output_.texture = shared.get();
+    output_.bent_normal_texture = shared.get();
+    settings_.method = OBSCURA_METHOD_GTAO;
+    obscura_default_settings(OBSCURA_METHOD_GTAO, &settings_);
+    expect_render_fails(OBSCURA_STATUS_INVALID_TEXTURE, "output.texture and output.bent_normal_texture");
+    // Linear depth written over by its own AO.
+    input_.depth_kind = OBSCURA_DEPTH_LINEAR_VIEW;
+    HostTexture linear = make_texture(GL_R32F, kWidth, kHeight);
+    input_.depth_texture = linear.get();
+    output_.texture = linear.get();
+    output_.bent_normal_texture = 0;
+    expect_render_fails(OBSCURA_STATUS_INVALID_TEXTURE, "output.texture and input.depth_texture");
+}
+
 TEST_F(ApiErrors, NormalTextureWrongSize) {
     HostTexture normals = make_texture(GL_RGBA16F, kWidth / 2, kHeight);
     input_.normal_texture = normals.get();

@@ -825,7 +825,10 @@ typedef struct obscura_output {
 /* Renders AO for input->output_rect with `settings` into `output`. Allocates per-size resources on the
    first call and when the size or the settings' resource needs change (see obscura_prepare).
    Sizes: a depth texture whose size differs from depth_width/height is INVALID_TEXTURE; an output
-   rectangle outside the depth, or a result that does not fit the output target, is INVALID_RECT.
+   rectangle outside the depth, or a result that does not fit the output target, is INVALID_RECT (the
+   default framebuffer excepted: GL cannot tell a window's size, and the blit clips what lies outside it).
+   A texture the frame writes (output->texture, output->bent_normal_texture) that is also one it reads
+   (the input's depth, normal or motion-vector texture) or the other one it writes is INVALID_TEXTURE.
    Returns OK or NULL_ARGUMENT, INVALID_STRUCT_SIZE, WRONG_GL_CONTEXT, HOST_GL_ERROR, INVALID_SIZE,
    INVALID_RECT, INVALID_TEXTURE, UNSUPPORTED_FORMAT, INVALID_PROJECTION, PROJECTION_TRANSPOSED,
    INVALID_SETTING, INVALID_ENUM, INVALID_VIEW (input->view is not a live view of this context),

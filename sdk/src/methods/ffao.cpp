@@ -225,8 +225,8 @@ private:
     UniformRange saao_frame_, pyramid_[kMaxPyramidDispatches], pass_, table_;
 };
 
-const PassId kFfaoPasses[] = {PassId::FfaoTable,      PassId::ZPyramid,       PassId::FfaoScan,
-                              PassId::FfaoPrefix,     PassId::FfaoBoxAverage, PassId::FfaoObscurance,
+const PassId kFfaoPasses[] = {PassId::FfaoTable,      PassId::ZPyramid,       PassId::FfaoBoxAverage,
+                              PassId::FfaoScan,       PassId::FfaoPrefix,     PassId::FfaoObscurance,
                               PassId::FfaoGather,     PassId::Blur};
 
 }  // namespace
