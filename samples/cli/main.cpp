@@ -119,8 +119,10 @@ tune searches SPEC's settings, starting from them, for the lowest mean_abs again
   deterministic): compass steps with halving, pattern moves, random directions and restarts, --evaluations
   renders in all. Cost: the SDK's total summed over the scenes, median of warm frames, timed in the same run;
   --budget 1.0x:hbao rejects candidates costing more than 1.0 times the spec hbao on the same scenes, and the best
-  is timed again against it (alternately) before it is reported; settings of the best that leave its pictures
-  unchanged are put back.
+  is timed again against it (alternately) before it is reported; a candidate that is the budget's own
+  configuration (resolved) costs exactly 1.0x, untimed, and the result is never farther from the truth than the
+  start when the start is within the budget (it is timed again and kept). Settings of the best that leave its
+  pictures unchanged are put back. SPEC may not turn temporal.enabled on (one frame per scene).
   Progress on stderr; prints the start's and the best's error (per scene) and cost, the budget, and the best
   settings as a spec (for --method) and as C code; --json writes them with every evaluation. Exit 1 when no
   candidate is within the budget. On a studio's own captures instead of scenes: --captures names depth files
