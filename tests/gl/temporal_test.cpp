@@ -420,6 +420,27 @@ TEST_F(GLTest, TemporalChangeOfMetresToViewUnitsStartsANewHistory) {
     EXPECT_LE(max_abs_difference(render_frames(ctx(), rescaled, settings, 5, 1), fifth_alone), kAloneRounding);
 }
 
+// REFERENCE's first_ray only picks which rays of the sequence a frame traces, as GTAO's frame_index moves its noise: a
+// host that advances it while accumulating keeps its history (until 2026-12-06 it was part of the history's
+// signature, and every frame started anew).
+TEST_F(GLTest, TemporalReferenceFirstRayKeepsTheHistory) {
+    AoScene scene = box_scene();
+    set_matrices(&scene.input, scene.camera);
+    obscura_settings settings;
+    ASSERT_EQ(obscura_default_settings(OBSCURA_METHOD_REFERENCE, &settings), OBSCURA_OK);
+    settings.reference.rays = 4;
+    settings.temporal.enabled = OBSCURA_TOGGLE_ON;
+    std::vector<float> accumulated;
+    for (uint32_t f = 0; f < 4; ++f) {
+        settings.reference.first_ray = int32_t(f) * settings.reference.rays;
+        accumulated = render_frames(ctx(), scene.input, settings, f, 1);
+    }
+    obscura_settings alone = settings;
+    alone.temporal.enabled = OBSCURA_TOGGLE_OFF;
+    EXPECT_GT(max_abs_difference(accumulated, render_frames(ctx(), scene.input, alone, 3, 1)), 0.05)
+        << "the fourth frame carries the first three";
+}
+
 // GTAO's bent normals accumulate with the visibility, and the history's (in the previous view's space) is rotated
 // into the current view. The camera drops 0.5 m between two frames (its pitch changes by 6.6 degrees, and with it the
 // floor's normal in view space); on the open floor GTAO's bent normal is the floor's normal, so the accumulated
