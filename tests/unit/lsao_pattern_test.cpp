@@ -131,6 +131,25 @@ TEST(LsaoLayout, EveryPixelHasANearbySampleInEveryDirection) {
     }
 }
 
+// Free axis directions are exact, so a line on an edge row's or column's texel centre runs the texture's whole extent.
+// Until 2026-12-06 cos(pi / 2) = 6e-17 drifted such a line off the centre step by step, and the samples on one side of
+// its origin failed the inside test: at 64x36 with K = 8, D_S = D_L = 1 the leftward line on row 0 kept 32 of its 64
+// steps, the vertical ones on column 0 18 of 35, and the gather took values up to half the width away.
+TEST(LsaoLayout, FreeAxisLinesOnTheEdgesRunTheWholeTexture) {
+    const int width = 64, height = 36;
+    const LsaoLayout layout = obscura::make_lsao_layout(obscura::free_directions(8, 1.0), 1.0, width, height, false);
+    int checked = 0;
+    for (const obscura::LsaoLine& line : layout.lines) {
+        const LsaoDirection& d = layout.directions[size_t(line.direction)];
+        const bool horizontal = d.dir[1] == 0.0, vertical = d.dir[0] == 0.0;
+        if (!horizontal && !vertical) continue;
+        ++checked;
+        EXPECT_GE(line.steps, (horizontal ? width : height) - 1)
+            << "direction " << line.direction << " origin (" << line.origin[0] << ", " << line.origin[1] << ")";
+    }
+    EXPECT_GT(checked, 2 * (width + height) - 8) << "the four axis directions' lines";
+}
+
 // No two lines of a direction sample the same texel: the lines are distinct and D_L apart.
 TEST(LsaoLayout, LinesOfADirectionDoNotShareSamples) {
     for (const LayoutCase& c : layout_cases()) {

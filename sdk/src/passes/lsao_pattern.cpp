@@ -78,6 +78,10 @@ LsaoDirections free_directions(int k, double step_length, double rotation, const
         LsaoDirection d = {};
         d.dir[0] = std::cos(angle);
         d.dir[1] = std::sin(angle);
+        // Axis directions exactly: cos(pi / 2) is 6e-17, and a line on an edge row's texel centre then drifted off it
+        // step by step, so half of it failed the inside test (as FFAO's layout does, ffao_layout.cpp).
+        if (std::fabs(d.dir[0]) < 1e-12) d.dir[0] = 0.0;
+        if (std::fabs(d.dir[1]) < 1e-12) d.dir[1] = 0.0;
         d.step[0] = d.dir[0] * step_length;
         d.step[1] = d.dir[1] * step_length;
         d.step_length = step_length;
