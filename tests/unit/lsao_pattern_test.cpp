@@ -53,6 +53,30 @@ TEST(LsaoPattern, AlignedDirectionsMatchTable2) {
     EXPECT_LT(k16[2].weight, k16[0].weight);
 }
 
+// The paper's Figures 1 and 13 walk the aligned templates two rings at a time (K = 8, D_S = 2.83; K = 16, D_S = 4.87):
+// whole multiples of the template's steps, so samples stay on texel centres. Until 2026-12-06 an aligned pattern ignored
+// D_S, and the presets k8_figure1 and k16_figure13 rendered with the template's 1.41 and 2.43 (found by a read-only
+// review: k8_figure1 was k8 at D_L 2.12 to the bit).
+TEST(LsaoPattern, AlignedPatternsWalkWholeMultiplesOfTheirTemplate) {
+    EXPECT_NEAR(obscura::aligned_template_step(1), 1.41, 0.005);
+    EXPECT_NEAR(obscura::aligned_template_step(2), 2.43, 0.005);
+    EXPECT_EQ(obscura::aligned_step_multiple(1, 2.83), 2);
+    EXPECT_EQ(obscura::aligned_step_multiple(2, 4.87), 2);
+    EXPECT_EQ(obscura::aligned_step_multiple(1, 1.41), 1);
+    EXPECT_EQ(obscura::aligned_step_multiple(4, 0.5), 1);  // at least one ring
+    for (int n : {1, 2}) {
+        const obscura::LsaoDirections once = obscura::aligned_directions(n), twice = obscura::aligned_directions(n, 2);
+        ASSERT_EQ(once.size(), twice.size());
+        EXPECT_NEAR(obscura::average_step_length(twice), 2.0 * obscura::average_step_length(once), 1e-12);
+        for (size_t k = 0; k < once.size(); ++k) {
+            if (once[k].axis) continue;
+            EXPECT_EQ(twice[k].step[0], 2.0 * once[k].step[0]);  // whole texels: centres stay centres
+            EXPECT_EQ(twice[k].step[1], 2.0 * once[k].step[1]);
+            EXPECT_DOUBLE_EQ(twice[k].weight, once[k].weight);
+        }
+    }
+}
+
 TEST(LsaoPattern, FreeDirectionsAreEven) {
     obscura::LsaoDirections dirs = obscura::free_directions(12, 2.5);
     ASSERT_EQ(dirs.size(), 12u);

@@ -39,7 +39,9 @@ const obscura_setting_info kLsaoSettings[] = {
              OBSCURA_SETTING_OFFSET(lsao, pattern), kLsaoPatternNames),
     setting_row("directions", OBSCURA_SETTING_INT, 0, 1, 64, "", "K; aligned patterns need a multiple of 8; derived: the preset's",
      OBSCURA_SETTING_OFFSET(lsao, directions), OBSCURA_SETTING_FLAG_DERIVED),
-    setting_row("step_length", OBSCURA_SETTING_FLOAT, 0.0, 0.5, 16.0, "px", "D_S (free pattern); derived: the preset's",
+    setting_row("step_length", OBSCURA_SETTING_FLOAT, 0.0, 0.5, 16.0, "px",
+                "D_S; an aligned pattern walks the nearest whole number (at least 1) of its template's steps; derived: "
+                "the preset's",
      OBSCURA_SETTING_OFFSET(lsao, step_length), OBSCURA_SETTING_FLAG_DERIVED),
     setting_row("line_spacing", OBSCURA_SETTING_FLOAT, 0.0, 0.5, 16.0, "px", "D_L between parallel lines; derived: the preset's",
      OBSCURA_SETTING_OFFSET(lsao, line_spacing), OBSCURA_SETTING_FLAG_DERIVED),

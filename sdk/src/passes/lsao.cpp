@@ -22,7 +22,10 @@ static_assert(sizeof(GpuLine) == 16, "one RGBA32UI texel");
 }  // namespace
 
 LsaoDirections lsao_directions(const obscura_lsao_settings& settings, int phase, const AllocatorCallbacks& alloc) {
-    if (settings.pattern == 1) return aligned_directions(settings.directions / 8, alloc);
+    if (settings.pattern == 1) {
+        const int n = settings.directions / 8;
+        return aligned_directions(n, aligned_step_multiple(n, settings.step_length), alloc);
+    }
     return free_directions(settings.directions, settings.step_length, layout_phase_fraction(phase), alloc);
 }
 
@@ -50,7 +53,8 @@ Error LsaoPass::program_for(const PassEnv& env, const char* shader, const gl::De
 int lsao_gather_margin(const obscura_lsao_settings& settings) {
     // A pixel's nearest sample of a direction lies within half a step along the lines and half a spacing
     // across them, plus up to half a texel diagonal where aligned samples snap to texel centres.
-    const double longest_step = settings.pattern == 1 ? (settings.directions / 8) * std::sqrt(2.0)
+    const int n = settings.directions / 8;
+    const double longest_step = settings.pattern == 1 ? aligned_step_multiple(n, settings.step_length) * n * std::sqrt(2.0)
                                                       : double(settings.step_length);
     const double reach = 0.5 * std::hypot(longest_step, double(settings.line_spacing)) + 0.5 * std::sqrt(2.0);
     return std::clamp(int(std::ceil(reach)), 1, kLsaoMaxGatherMargin);

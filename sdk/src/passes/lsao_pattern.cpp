@@ -35,9 +35,28 @@ void assign_coverage_weights(LsaoDirections* directions) {
 
 }  // namespace
 
-LsaoDirections aligned_directions(int n, const AllocatorCallbacks& alloc) {
+double aligned_template_step(int n) {
+    double sum = 0.0;
+    int count = 0;
+    for (int j = -n; j <= n; ++j)
+        for (int i = -n; i <= n; ++i) {
+            if (std::max(std::abs(i), std::abs(j)) != n || i == 0 || j == 0) continue;  // the ring, less the axes
+            sum += std::hypot(double(i), double(j));
+            ++count;
+        }
+    return count > 0 ? sum / double(count) : 0.0;
+}
+
+int aligned_step_multiple(int n, double step_length) {
+    const double template_step = aligned_template_step(n);
+    if (!(template_step > 0.0)) return 1;
+    return std::max(1, int(std::lround(step_length / template_step)));
+}
+
+LsaoDirections aligned_directions(int n, int step_multiple, const AllocatorCallbacks& alloc) {
     LsaoDirections out{HostAllocator<LsaoDirection>(&alloc)};
     if (n < 1) return out;
+    const int m = std::max(1, step_multiple);
     double sum = 0.0;
     int non_axis = 0;
     for (int j = -n; j <= n; ++j)
@@ -48,17 +67,17 @@ LsaoDirections aligned_directions(int n, const AllocatorCallbacks& alloc) {
             const double length = std::hypot(double(i), double(j));
             d.dir[0] = i / length;
             d.dir[1] = j / length;
-            d.step[0] = i;
-            d.step[1] = j;
-            d.step_length = length;
+            d.step[0] = m * i;
+            d.step[1] = m * j;
+            d.step_length = m * length;
             if (!d.axis) {
                 sum += length;
                 ++non_axis;
             }
             out.push_back(d);
         }
-    // Axis directions may use any step length and take the average of the others.
-    const double average = sum / double(non_axis);
+    // Axis directions may use any step length and take the average of the others (walked as many rings at a time).
+    const double average = m * sum / double(non_axis);
     for (LsaoDirection& d : out) {
         if (!d.axis) continue;
         d.step[0] = d.dir[0] * average;

@@ -26,8 +26,16 @@ struct LsaoDirection {
 using LsaoDirections = HostVector<LsaoDirection>;
 
 // K = 8n aligned directions from the (2n+1)x(2n+1) texel template (Figure 10), ordered by angle from +x.
-// Non-axis directions step to the outer ring's texel centres; axis ones use the average of those lengths.
-LsaoDirections aligned_directions(int n, const AllocatorCallbacks& alloc = AllocatorCallbacks::system());
+// Non-axis directions step to the outer ring's texel centres, `step_multiple` rings at a time (the paper's Figures
+// 1 and 13 walk two: D_S 2.83 and 4.87 for K = 8 and 16); axis ones use the average of those lengths.
+LsaoDirections aligned_directions(int n, int step_multiple = 1,
+                                  const AllocatorCallbacks& alloc = AllocatorCallbacks::system());
+
+// The template's own D_S for K = 8n (its non-axis steps' mean length: Table 2's 1.41, 2.43, 3.56, 4.69), and the whole
+// number of template steps an aligned pattern walks for a requested D_S (at least 1): aligned samples must stay on
+// texel centres, so D_S is the template's times that number.
+double aligned_template_step(int n);
+int aligned_step_multiple(int n, double step_length);
 
 // K evenly spaced directions (angle 2 pi (k + rotation) / K, rotation in [0, 1): a layout phase's turn) with step
 // length `step_length` and weight 1/K.
