@@ -480,6 +480,10 @@ TEST_F(SyncTimings, AtOnceAfterRenderWithExactlyTheMethodsPasses) {
     sao_no_blur.sao.blur = OBSCURA_TOGGLE_OFF;
     obscura_settings lsao = method_defaults(OBSCURA_METHOD_LSAO);
     obscura_settings ffao = method_defaults(OBSCURA_METHOD_FFAO);
+    // The infinitely thick field (thickness 0): its scanned peaks are summed over sectors (the prefix pass); with a
+    // thickness (the default) single lines are read and there is no prefix pass.
+    ffao.ffao.thickness = 0.0f;
+    obscura_settings ffao_thick = method_defaults(OBSCURA_METHOD_FFAO);
     ffao.ffao.saao = OBSCURA_TOGGLE_OFF;
     obscura_settings ffao_saao = ffao;
     ffao_saao.ffao.saao = OBSCURA_TOGGLE_ON;
@@ -518,6 +522,9 @@ TEST_F(SyncTimings, AtOnceAfterRenderWithExactlyTheMethodsPasses) {
          ffao_saao,
          {"depth_prepare", "ffao_box_average", "ffao_scan", "ffao_prefix", "ffao_obscurance", "ffao_gather", "blur",
           "composite"}},
+        {"ffao, default thickness: single lines, no prefix sums",
+         ffao_thick,
+         {"depth_prepare", "ffao_scan", "ffao_obscurance", "composite"}},
         {"ffao, another falloff shape: a new table",
          ffao_rho0,
          {"depth_prepare", "ffao_table", "ffao_scan", "ffao_prefix", "ffao_obscurance", "composite"}},

@@ -57,9 +57,12 @@ protected:
         return out.ffao;
     }
 
+    // The defaults with the paper's infinitely thick field (thickness 0; the default is 0.4 m since 2026-12-06): the
+    // scanned peaks, prefix sums and sector averages these tests check. A case that needs a thickness sets it.
     static obscura_ffao_settings defaults() {
         obscura_settings s;
         obscura_default_settings(OBSCURA_METHOD_FFAO, &s);
+        s.ffao.thickness = 0.0f;
         return s.ffao;
     }
 
@@ -568,7 +571,7 @@ TEST_F(FfaoPasses, StorageBufferAndBufferTexturePathsAgree) {
             darkest = std::min(darkest, double(ao[1][i]));
         }
         EXPECT_EQ(different, 0) << "thickness " << thickness;
-        EXPECT_LT(darkest, 0.8) << "thickness " << thickness;  // there is occlusion to compare
+        EXPECT_LT(darkest, 0.9) << "thickness " << thickness;  // there is occlusion to compare (0.80 with 0.2 m)
     }
     cpu_renderer_ = true;
 }

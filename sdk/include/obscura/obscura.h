@@ -433,8 +433,8 @@ typedef struct obscura_ffao_settings {
                              (sec. 5), a depth MIP pyramid (mean, or max height with a thickness) sampled along
                              each sector's centre at distances growing by 1.5, [1, 2]. Default 1 */
     float thickness;      /* metres of solid behind every depth texel (sec. 11), [0, 1e4]; > 0 also reads single
-                             lines instead of sector averages (a finite field cannot be averaged). Default 0:
-                             infinitely thick */
+                             lines instead of sector averages (a finite field cannot be averaged); 0: infinitely
+                             thick (0 before 0.5). Default 0.4 */
     obscura_toggle jitter; /* offset every sector's lines per pixel (sec. 11.1): banding becomes noise. Default off */
     obscura_toggle saao;  /* SAAO interleaving (sec. 10): in every 3x3 pixel group each pixel evaluates the far field
                              of K/9 of the sectors (x2 segments) at its group's edge-aware averaged depth and normal;
@@ -575,7 +575,7 @@ typedef struct obscura_resolution_settings {
    resolves the same way.
    Zero-initialised structs (struct_size and method set, the rest 0) also work: every zero field means its
    default. In them a field whose range includes 0 but whose default is not 0 (lsao.tangent,
-   lsao.normal_threshold, gtao.mip_offset) cannot be 0; the editable form carries OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE,
+   lsao.normal_threshold, gtao.mip_offset, ffao.thickness) cannot be 0; the editable form carries OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE,
    under which 0 in such a field is 0, and obscura_set_setting() sets the flag when it stores such a 0.
    Struct sizes: the library accepts the obscura_settings of every released header (0.1 to this one); the fields
    an older header does not have hold their defaults (with the flag too). One exception, which the library cannot
