@@ -200,6 +200,22 @@ TEST_F(Lsao, LayoutOverTheBufferLimitsIsInvalidSize) {
     EXPECT_EQ(obscura_prepare(ctx(), 160, 90, &settings), OBSCURA_OK) << obscura_get_last_error(ctx());
 }
 
+// The line records and the sweeps index the values with 32-bit integers: a layout of more than 2^31 values is
+// refused as such, before any GL limit is asked (NVIDIA's storage blocks exceed 4 GiB). 4096x2160 at K = 64,
+// D_S = D_L = 0.5 needs 2.3e9 values. Until 2026-12-06 only the GL limits bounded it (found by a read-only review).
+TEST_F(Lsao, LayoutPastThirtyTwoBitIndicesIsInvalidSize) {
+    obscura_settings settings = lsao_settings(1.0f);
+    settings.lsao.pattern = 2;
+    settings.lsao.directions = 64;
+    settings.lsao.step_length = 0.5f;
+    settings.lsao.line_spacing = 0.5f;
+    EXPECT_EQ(obscura_prepare(ctx(), 4096, 2160, &settings), OBSCURA_STATUS_INVALID_SIZE);
+    const std::string message = obscura_get_last_error(ctx());
+    EXPECT_NE(message.find("past 32-bit indices"), std::string::npos) << message;
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+    EXPECT_EQ(obscura_prepare(ctx(), 160, 90, &settings), OBSCURA_OK) << obscura_get_last_error(ctx());
+}
+
 // ---- The hull against the brute force, on the scene library ---------------------------------------------
 
 // The paper: the obscure hull's answer differs from the largest occluder's in rare configurations, costing

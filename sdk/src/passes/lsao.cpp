@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <cstring>
 #include <new>
 
@@ -132,6 +133,14 @@ Error LsaoPass::build_phase(const PassEnv& env, const obscura_lsao_settings& set
     gl.GetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block_bytes);
     GLint max_texels = 0;
     gl.GetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
+    // The line records and the sweeps index the values with 32-bit integers (LsaoLine::offset, GpuLine::value_base),
+    // whatever a driver's storage block allows (NVIDIA reports more than 4 GiB).
+    if (values > INT32_MAX) {
+        return Error::make(OBSCURA_STATUS_INVALID_SIZE,
+                           "LSAO at %dx%d needs %lld sweep values, past 32-bit indices: use fewer directions or larger "
+                           "step_length / line_spacing",
+                           width, height, values);
+    }
     const bool over_block = values * 2 + 4 > max_block_bytes;
     if (over_block || (env.cpu_renderer && values + 2 > max_texels)) {
         return Error::make(OBSCURA_STATUS_INVALID_SIZE,
