@@ -141,6 +141,7 @@ TuneConfig take_tune_config(ArgumentList& arguments) {
     const std::optional<std::string> method = arguments.take_value("--method");
     if (!method) throw UsageError("tune needs --method SPEC, the settings the search starts from");
     config.start = parse_method_spec(*method);
+    normalise_start(&config.start.settings);
     // Each candidate is weighed by one frame per scene, rendered through one view: accumulation would carry one
     // scene's history into the next (the error then depended on the scenes' order) and add cost without its quality.
     if (config.start.settings.temporal.enabled == OBSCURA_TOGGLE_ON) {

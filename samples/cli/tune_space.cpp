@@ -286,6 +286,15 @@ std::string settings_spec(const obscura_settings& settings) {
 
 // The spec printed should always read back as the settings measured: a check on the formatting above, which
 // tune reports rather than trusts.
+void normalise_start(obscura_settings* settings) {
+    for (const obscura_setting_info& info : setting_infos(settings->method)) {
+        if (samples::is_array(info) || samples::derives(*settings, info)) continue;
+        double value = 0.0;
+        if (obscura_get_setting(settings, info.name, &value) != OBSCURA_OK) continue;
+        if (value != samples::stored_value(*settings, info)) obscura_set_setting(settings, info.name, value);
+    }
+}
+
 bool spec_reads_back(const std::string& spec, const obscura_settings& settings) {
     obscura_settings parsed{};
     try {

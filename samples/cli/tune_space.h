@@ -77,6 +77,11 @@ std::string settings_spec(const obscura_settings& settings);
 // Whether `spec` parses to settings that store what `settings` stores.
 bool spec_reads_back(const std::string& spec, const obscura_settings& settings);
 
+// The start as tune searches from it: every single-valued field that is not left to derive holds the value the SDK
+// reads for it (a 0 that means "default" in a field whose range excludes 0 becomes that default), so that the best
+// settings, their spec and their C code name the same values.
+void normalise_start(obscura_settings* settings);
+
 }  // namespace obscura::cli
 
 #endif  // OBSCURA_CLI_TUNE_SPACE_H

@@ -171,6 +171,12 @@ obscura_cli_command_test(tune_budget_of_the_start 0
   GL EXPECT_STDOUT "timed again [(]hbao, #1, [^)]*[)]: [0-9.]+ ms against [0-9.]+ ms, 1[.]000x: within the budget
 .*best spec: hbao
 ")
+# A start whose fields hold 0 for "default" (steps, blur_radius) searches from those defaults and prints them as the
+# defaults: the spec and the C name the same values (until 2026-12-06 the spec read `hbao:steps=7:blur_radius=1`, the C
+# set nothing, and tune warned that the spec did not read back).
+obscura_cli_command_test(tune_start_zero_means_default 0
+  "tune|--method|hbao:steps=0:blur_radius=0|--scenes|analytic|--size|64x36|--keys|power|--evaluations|2|--truth-rays|4"
+  GL EXPECT_STDOUT "best spec: hbao\n")
 # tune on a studio's captures: the capture written by truth (64x36, 16 rays, HBAO's falloff), then tune from HBAO at
 # power 3 on it (check tune_capture: the objective is the capture's own error, render --depth against its truth
 # over the non-sky pixels).
