@@ -270,7 +270,8 @@ typedef enum obscura_toggle {
 typedef struct obscura_hbao_settings {
     float radius;         /* metres, [1e-3, 1e4]: distance where the falloff rho0 reaches 0; steps cover it. Default 1 */
     float falloff_c;      /* C of rho0(d) = max(0, r(1+C)/(r+d^2) - C), [1e-3, 0.999]. Default 0.3 */
-    float decay_rate;     /* r of rho0 in m^2, [1e-10, 1e8]. Derived: C*radius^2, so rho0 reaches 0 at radius */
+    float decay_rate;     /* r of rho0 in m^2, [1e-10, 1e8]. Derived: C*radius^2, so rho0 reaches 0 at radius
+                             (the steps stop at the radius whatever r: a larger r is cut off there) */
     int32_t directions;   /* K azimuthal directions, [1, 32]. Default 8 */
     int32_t steps;        /* N steps per direction, [1, 128]. Default 7 */
     int32_t estimator;    /* 1: horizon-split integration (Bavoil 2008); 2: largest falloff-weighted occluder

@@ -22,7 +22,8 @@ const obscura_setting_info kHbaoSettings[] = {
     setting_row("falloff_c", OBSCURA_SETTING_FLOAT, 0.3, 1e-3, 0.999, "",
      "C of rho0(d) = max(0, r(1+C)/(r+d^2) - C): how far the falloff is sunk", OBSCURA_SETTING_OFFSET(hbao, falloff_c)),
     setting_row("decay_rate", OBSCURA_SETTING_FLOAT, 0.0, 1e-10, 1e8, "m^2",
-     "r of rho0; derived: C*radius^2, so rho0 reaches zero at the radius",
+     "r of rho0; derived: C*radius^2, so rho0 reaches zero at the radius (the steps stop at the radius whatever "
+     "r: a larger one is cut off there)",
      OBSCURA_SETTING_OFFSET(hbao, decay_rate), OBSCURA_SETTING_FLAG_DERIVED),
     setting_row("directions", OBSCURA_SETTING_INT, 8, 1, 32, "", "K azimuthal directions per pixel",
      OBSCURA_SETTING_OFFSET(hbao, directions)),
