@@ -261,7 +261,8 @@ void main() {
                 bool inside = unclamped == q && q != p;
                 bool valid = inside && !obscura_is_sky(z);
                 taps_read += inside ? 1 : 0;
-                // The pyramid holds harmonic means, exact at the block's centre on planes.
+                // The pyramid holds harmonic means (perspective) or plain means (orthographic) of the geometry below,
+                // exact at the block's centre on planes.
                 vec2 origin = obscura_level_texel_origin(texel, m, OBSCURA_MIP_FILTER_HARMONIC_MEAN_OF_GEOMETRY);
                 float sample_depth = valid ? z : depth, sample_w = obscura_clip_w(sample_depth);
                 // The sample relative to the pixel, moved into the slice.

@@ -268,6 +268,10 @@ const EyePlaneCase kEyePlaneCases[] = {
      false},
     {"hbao_temporal", OBSCURA_METHOD_HBAO, nullptr, true},
     {"gtao_denoise", OBSCURA_METHOD_GTAO, nullptr, false},
+    // Every step from the z pyramid: its texels are the plain mean of the geometry below under an orthographic
+    // projection (depth is affine on screen there), the harmonic mean under perspective. Until 2026-12-06 the harmonic
+    // mean was used for both, and the image depended on where the eye sat (found by a read-only review).
+    {"gtao_mip_offset_0", OBSCURA_METHOD_GTAO, [](obscura_settings* s) { s->gtao.mip_offset = 0.0f; }, false},
     // SAO's bias (-z beta) and its blur's depth key, FFAO SAAO's 3x3 grouping and LSAO's free-pattern planarity were
     // relative to the depth until 2026-12-06: 1000 units back SAO's bias cleared nothing and its blur's keys all
     // clamped to the range's end (612 texels moved by more than 0.02, up to 0.60).

@@ -242,7 +242,8 @@ OBSCURA_PASS_BLOCK_END(ReferenceConstants, reference)
 #define OBSCURA_MIP_FILTER_HARMONIC_MEAN 3
 #define OBSCURA_MIP_FILTER_MIN 4
 #define OBSCURA_MIP_FILTER_MAX 5
-// Internal (FFAO's mipmap method): the mean of the children that are not sky; sky only if all four are.
+// Internal (FFAO's mipmap method, GTAO's under an orthographic projection, where depth is affine on screen): the mean
+// of the children that are not sky; sky only if all four are.
 #define OBSCURA_MIP_FILTER_MEAN_OF_GEOMETRY 6
 // Internal (GTAO's): the harmonic mean of the children that are not sky. 1/z is affine in screen space on a plane,
 // so on planes it is the depth at the block's centre, where GTAO reconstructs the sample.

@@ -107,9 +107,14 @@ bool gtao_denoises(const obscura_gtao_settings& gtao, bool raw_view) {
 
 constexpr bool kGtaoMethodWritesBentNormals = true;
 
-// The pyramid's texels: harmonic means of the geometry below (sky left out), exact on planes at the block's centre,
-// where gtao.comp reconstructs a step's sample.
-constexpr int kGtaoPyramidFilter = OBSCURA_MIP_FILTER_HARMONIC_MEAN_OF_GEOMETRY;
+// The pyramid's texels: means of the geometry below (sky left out) that are exact on planes at the block's centre,
+// where gtao.comp reconstructs a step's sample. Under perspective 1/z is affine on screen, so the harmonic mean is;
+// under an orthographic projection z itself is, so the plain mean is (the harmonic mean there left tilted planes up to
+// 0.036 dark at mip_offset 0, and the image depended on where the eye sat along its axis: 0.0038 mean, 0.17 at most,
+// found by a read-only review).
+int gtao_pyramid_filter(const FrameInput& input) {
+    return input.projection.perspective ? OBSCURA_MIP_FILTER_HARMONIC_MEAN_OF_GEOMETRY : OBSCURA_MIP_FILTER_MEAN_OF_GEOMETRY;
+}
 
 class GtaoTechnique final : public Technique {
 public:
@@ -136,7 +141,9 @@ public:
         // obscura_prepare (output unknown) allocates the bent-normal textures when the last render asked for them.
         if (request.output_known) bent_requested_ = request.bent_normals;
         const bool bent = request.output_known ? request.bent_normals : bent_requested_;
-        Error error = pyramid_pass_.prepare(env, kGtaoPyramidFilter);
+        // Both filters (the frame's projection picks one at record; a host may switch projections).
+        Error error = pyramid_pass_.prepare(env, OBSCURA_MIP_FILTER_HARMONIC_MEAN_OF_GEOMETRY);
+        if (!error) error = pyramid_pass_.prepare(env, OBSCURA_MIP_FILTER_MEAN_OF_GEOMETRY);
         if (!error) error = gtao_.prepare(env, settings.gtao, bent);
         if (!error) error = denoise_.prepare(env, bent, request.target);
         if (error) return error;
@@ -174,7 +181,7 @@ public:
         const bool bent = frame.bent_normals;
         Error error;
         if (levels_ > 1) {
-            pyramid_pass_.run(frame.env, kGtaoPyramidFilter, pyramid_, pyramid_dispatches_, r.linear_depth);
+            pyramid_pass_.run(frame.env, gtao_pyramid_filter(frame.input), pyramid_, pyramid_dispatches_, r.linear_depth);
             error = recorder.end(PassId::ZPyramid);
             if (error) return error;
         }
