@@ -795,7 +795,8 @@ typedef enum obscura_debug_view {
     OBSCURA_DEBUG_NORMALS = 2,     /* view-space normal * 0.5 + 0.5 in rgb (single-channel targets get z) */
     OBSCURA_DEBUG_AO_BEFORE_BLUR = 3,
     OBSCURA_DEBUG_TAP_COUNT = 4    /* depth texels the AO pass read for the pixel / 256 (HBAO, SAO, GTAO; others 0);
-                                      with a float target, round(value * 256) is the count (up to 127) */
+                                      with a float target, round(value * 256) is the count (SAO's packing keeps
+                                      up to 127; HBAO's and GTAO's are exact through R16F up to 2048) */
 } obscura_debug_view;
 
 typedef struct obscura_output {
