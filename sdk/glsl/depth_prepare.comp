@@ -94,7 +94,15 @@ float continuation_error(float center, float k_center, float near, float k_near,
         return kOneTexelError * (1.0 + abs(near - center) / obscura_tolerance_distance(center));
     }
     float scale = obscura_is_perspective() ? k_center : obscura_orthographic_distance();
-    return abs(2.0 * k_near - k_far - k_center) / scale;
+    float error = abs(2.0 * k_near - k_far - k_center) / scale;
+    // A feature two texels wide: the near texel continues the centre's surface (a small step) and the far one is
+    // another surface. The side then ranks as one texel before the feature's end, as at sky: the tangent to the
+    // neighbour is the feature's own (both sides failing the two-texel test left one column of a two-texel pole
+    // 64-72 degrees off, the other 10-18).
+    if (error > kOtherSurfaceError && abs(k_near - k_center) / scale < 0.5 * kOtherSurfaceError) {
+        return kOneTexelError * (1.0 + abs(near - center) / obscura_tolerance_distance(center));
+    }
+    return error;
 }
 
 // The function of depth that is affine in screen space on planes: 1 / clip w under perspective, the depth itself

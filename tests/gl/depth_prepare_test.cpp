@@ -255,6 +255,41 @@ TEST_P(DepthPrepareProjection, OneTexelPoleFacesTheEye) {
     EXPECT_LT(worst, 1.0) << "the pole's normal must face the eye, not turn toward the wall";
 }
 
+TEST_P(DepthPrepareProjection, TwoTexelPoleTakesItsOwnFace) {
+    // A pole two texels wide (x within +-0.045 m holds the centres either side of x = 0, as the one-texel pole above
+    // holds one), 2 m in front of a wall: each of its texels has one x-neighbour on the pole and, beyond
+    // it, the wall, so neither side's two-texel continuation holds. The side whose first texel continues the centre's
+    // surface ranks as a side one texel long (as beside sky), and both columns take the pole's own face. Until
+    // 2026-12-06 one column came out 64-72 degrees off and the other 10-18 (found by a read-only review).
+    constexpr int kWallId = 1, kPoleId = 2;
+    const DepthScene scene = make_primitive_scene(
+        GetParam(), {plane(kWallId, glm::dvec3(0.0, 0.0, -6.0), glm::dvec3(0.0, 0.0, 1.0)),
+                     // Its face turned 30 degrees about y: a face towards the eye would pass with any rule that
+                     // falls back to the eye direction.
+                     bounded_plane(kPoleId, glm::dvec3(0.0, 0.0, -4.0), glm::dvec3(0.5, 0.0, 0.866),
+                                   glm::dvec3(-0.045, -1.0, -4.5), glm::dvec3(0.045, 1.0, -3.5))});
+    std::vector<float> got = reconstructed_normals(ctx(), scene);
+    ASSERT_FALSE(got.empty());
+    int pole_texels = 0;
+    double worst = 0.0;
+    for (int y = 2; y < kHeight - 2; ++y) {
+        for (int x = 2; x < kWidth - 2; ++x) {
+            size_t i = size_t(y) * kWidth + x;
+            if (scene.hits[i].id != kPoleId) continue;
+            // Where it is two texels wide: one x-neighbour on the pole, and the wall beyond both.
+            const bool left = scene.hits[i - 1].id == kPoleId, right = scene.hits[i + 1].id == kPoleId;
+            if (left == right || scene.hits[left ? i - 2 : i + 2].id != kWallId ||
+                scene.hits[left ? i + 1 : i - 1].id != kWallId) {
+                continue;
+            }
+            worst = std::max(worst, angle_degrees(decoded_normal(got, i), scene.hits[i].view_normal));
+            ++pole_texels;
+        }
+    }
+    EXPECT_GT(pole_texels, 40) << "texels of the pole where it is two texels wide";
+    EXPECT_LT(worst, 1.0) << "both columns must take the pole's face";
+}
+
 TEST_P(DepthPrepareProjection, ConcaveCreaseKeepsEachSidesNormal) {
     // A valley across the view: plane A above the crease line (y > 0) recedes gently, plane B below it steeply, so
     // beside the crease the other plane's first texel is the smaller depth step. Each texel must still take its
