@@ -951,9 +951,11 @@ int run_tune(ArgumentList& arguments) {
             std::find(passed_over.begin(), passed_over.end(), tuner.candidates().front().error) == passed_over.end()) {
             try_candidate(0);
         }
-        // Never a result worse than the start: when the start is at most as far from the truth as the candidate kept
-        // (or none was kept), the start is timed again, whatever its status in the search (a noisy timing may have
-        // put it over), and kept if it is within the budget.
+    }
+    // Never a result worse than the start: when the start is at most as far from the truth as the candidate kept (or
+    // none was kept, nor found within the budget by the search), the start is timed again, whatever its status in
+    // the search (a noisy timing may have put it over), and kept if it is within the budget.
+    if (config.budget && !tuner.candidates().empty()) {
         const Candidate& first = tuner.candidates().front();
         const bool start_no_worse = first.status != Status::Refused &&
                                     (!report.best || first.error <= tuner.candidates()[*report.best].error);

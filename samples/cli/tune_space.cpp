@@ -284,8 +284,6 @@ std::string settings_spec(const obscura_settings& settings) {
     return text;
 }
 
-// The spec printed should always read back as the settings measured: a check on the formatting above, which
-// tune reports rather than trusts.
 void normalise_start(obscura_settings* settings) {
     for (const obscura_setting_info& info : setting_infos(settings->method)) {
         if (samples::is_array(info) || samples::derives(*settings, info)) continue;
@@ -295,6 +293,8 @@ void normalise_start(obscura_settings* settings) {
     }
 }
 
+// The spec printed should always read back as the settings measured: a check on the formatting above, which
+// tune reports rather than trusts.
 bool spec_reads_back(const std::string& spec, const obscura_settings& settings) {
     obscura_settings parsed{};
     try {

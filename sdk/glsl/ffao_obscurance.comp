@@ -171,6 +171,9 @@ vec4 column_sum(FfaoColumn column, int la, int lb) {
 // A quad whose four texels lie on one plane: |k00 + k11 - k10 - k01| within this fraction of the quad's 1/w
 // (orthographic: of the tolerance distance), as LSAO's free pattern tests it (line_sweep.comp).
 const float kPlanarity = 1e-3;
+// ... and whose texels differ by at most this fraction (a depth edge along a row or column of texels is planar in that
+// sense: its quad does not twist).
+const float kContinuity = 0.1;
 
 // The scene point on the pixel's screen line at q (texel units). A continuous field (infinite thickness)
 // interpolates the four texels around q bilinearly in 1/w (orthographic: in depth), which reproduces planes
@@ -193,7 +196,11 @@ bool line_point(vec2 q, out vec3 position) {
         bool perspective = obscura_is_perspective();
         vec4 k = perspective ? 1.0 / d : d;
         float scale = perspective ? max(max(k.x, k.y), max(k.z, k.w)) : obscura_orthographic_distance();
-        if (!kFiniteThickness || abs(k.x + k.w - k.y - k.z) <= kPlanarity * scale) {
+        // Planar (no twist) and continuous: a depth step along a texel row or column has no twist, and interpolating
+        // it would put points in the gap between the two surfaces.
+        float spread = max(max(k.x, k.y), max(k.z, k.w)) - min(min(k.x, k.y), min(k.z, k.w));
+        bool one_plane = abs(k.x + k.w - k.y - k.z) <= kPlanarity * scale && spread <= kContinuity * scale;
+        if (!kFiniteThickness || one_plane) {
             float kk = mix(mix(k.x, k.y, t.x), mix(k.z, k.w, t.x), t.y);
             position = obscura_view_position_at(q, perspective ? 1.0 / kk : kk);
             return true;

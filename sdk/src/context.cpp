@@ -369,11 +369,17 @@ Error Context::render(const obscura_input& input, const obscura_settings& settin
     OutputTarget target;
     if (!error) error = check_input_fields(input, device_.max_texture_size(), &frame);
     if (!error) error = check_output_fields(output, &target);
-    if (!error) error = check_output_aliasing(input, output);
     if (!error && !find_view(frame.view)) {
         error = Error::make(OBSCURA_STATUS_INVALID_VIEW, "obscura_input.view %p is not a view of this context",
                             static_cast<void*>(frame.view));
     }
+    if (error) return error;
+    // A camera cut drops the view's history as soon as the view is known, before anything else can refuse the frame
+    // (its textures, its output, a setting its method cannot fill, memory, a shader): otherwise the cut was lost and
+    // the next frame continued the history from before it. (A debug view shows this frame alone and otherwise leaves
+    // the history as it is.)
+    if (frame.reset_history) find_view(frame.view)->history.invalidate();
+    error = check_output_aliasing(input, output);
     if (error) return error;
     // Stage 2: the GL context, then the objects the input and output name.
     error = device_.check_host_state("obscura_render");
@@ -420,10 +426,6 @@ Error Context::record_frame(const FrameInput& host_input, const obscura_settings
     View* view = find_view(host_input.view);
     const bool debug_view = target.debug_view != OBSCURA_DEBUG_NONE;
     const bool temporal = settings.temporal.enabled == OBSCURA_TOGGLE_ON && !debug_view;
-    // A camera cut drops the history here, before anything can refuse the frame: a cut on a frame refused below (an
-    // output the method cannot fill, memory, a shader) would otherwise be lost, and the next frame would continue the
-    // history from before the cut. (A debug view shows this frame alone and otherwise leaves the history as it is.)
-    if (host_input.reset_history) view->history.invalidate();
     // With matrices the history is reprojected from the frame it was made at. That is the host's previous frame
     // unless the host rendered that one with a debug view (or not at all): then its previous_view_projection would
     // miss a frame of motion. (On the host's grid: the reprojection maps view spaces, before any reduction.)

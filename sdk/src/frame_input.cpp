@@ -1,5 +1,6 @@
 #include "frame_input.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -47,8 +48,14 @@ int normal_mode_for_format(GLenum format) {
 // are what must match. Multisample textures have one level.
 GLint base_level(const gl::Table& gl, GLenum target) {
     if (target != GL_TEXTURE_2D) return 0;
-    GLint level = 0;
+    GLint level = 0, immutable = GL_FALSE, levels = 0;
     gl.GetTexParameteriv(target, GL_TEXTURE_BASE_LEVEL, &level);
+    // An immutable texture's base level is clamped to its levels (GL 4.3, 8.17).
+    gl.GetTexParameteriv(target, GL_TEXTURE_IMMUTABLE_FORMAT, &immutable);
+    if (immutable) {
+        gl.GetTexParameteriv(target, GL_TEXTURE_IMMUTABLE_LEVELS, &levels);
+        level = std::clamp(level, 0, std::max(levels - 1, 0));
+    }
     return level;
 }
 
@@ -120,8 +127,10 @@ Error check_temporal_fields(const obscura_input& input, int32_t layout, FrameInp
     for (int i = 0; i < 16; ++i) {
         if ((has_current && !std::isfinite(input.view_projection[i])) ||
             (has_previous && !std::isfinite(input.previous_view_projection[i]))) {
+            const bool previous_bad = has_previous && !std::isfinite(input.previous_view_projection[i]);
+            const bool current_bad = has_current && !std::isfinite(input.view_projection[i]);
             return Error::make(OBSCURA_STATUS_INVALID_PROJECTION, "%sview_projection[%d] is not finite",
-                               has_current && std::isfinite(input.view_projection[i]) ? "previous_" : "", i);
+                               previous_bad && !current_bad ? "previous_" : "", i);
         }
     }
     const glm::dmat4 view_projection = host_matrix(input.view_projection, layout);

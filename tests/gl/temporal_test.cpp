@@ -406,6 +406,14 @@ TEST_F(GLTest, TemporalCameraCutOnARefusedFrameStillDropsTheHistory) {
     output.bent_normal_texture = bent.get();
     ASSERT_EQ(obscura_render(ctx(), &cut, &settings, &output), OBSCURA_STATUS_INVALID_SETTING);
     EXPECT_LE(max_abs_difference(render_frames(ctx(), scene.input, settings, 5, 1), fifth_alone), kAloneRounding);
+    // The same for a cut on a frame whose output is refused before anything renders (a texture it also reads).
+    render_frames(ctx(), scene.input, settings, 0, 5);
+    obscura_output aliased = make_output(ao.get());
+    cut.normal_texture = 0;
+    cut.motion_vector_texture = ao.get();
+    aliased.texture = ao.get();
+    ASSERT_EQ(obscura_render(ctx(), &cut, &settings, &aliased), OBSCURA_STATUS_INVALID_TEXTURE);
+    EXPECT_LE(max_abs_difference(render_frames(ctx(), scene.input, settings, 5, 1), fifth_alone), kAloneRounding);
 }
 
 // What of the input changes the AO as a setting would starts a new history: the scale of a metre (the radius in view

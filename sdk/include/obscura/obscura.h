@@ -139,7 +139,7 @@ OBSCURA_API uint32_t obscura_version(void);
     X(INVALID_ENUM, 15, "an enum field holds a value the SDK does not know")                          \
     X(METHOD_NOT_AVAILABLE, 16, "the requested method is not implemented in this version")            \
     X(INVALID_FRAMEBUFFER, 17, "the output framebuffer is incomplete or has no colour attachment 0")   \
-    X(SHADER_COMPILE_FAILED, 18, "an embedded shader failed to compile or link (log in message)")     \
+    X(SHADER_COMPILE_FAILED, 18, "an embedded shader failed to compile or link (log: log callback)")  \
     X(OUT_OF_MEMORY, 19, "the allocator or the GL implementation ran out of memory")                  \
     X(HOST_GL_ERROR, 20, "the host left a GL error pending before the call; nothing was rendered")    \
     X(GL_ERROR, 21, "a GL error was raised inside the SDK; the message names the pass")               \
@@ -516,14 +516,17 @@ typedef struct obscura_gtao_settings {
    ghosting, and blended with weight 1 / (frames seen + 1) up to max_frames, so a static view converges to the
    mean of that many frames. Each method moves its noise with obscura_input.frame_index. Without the matrices and
    motion vectors, or with OBSCURA_INPUT_FLAG_RESET_HISTORY, the frame starts a new history; so does a change of
-   size, output rectangle, method, method settings or bent-normal output. A debug view (obscura_output.debug_view)
+   size (the host's too at reduced resolution), output rectangle, method, method settings, bent-normal output,
+   meters_to_view_units, host normals (given or not) or depth kind. A debug view (obscura_output.debug_view)
    shows its frame alone and leaves the history as it is (a reset flag on it still drops the history); a frame with
    `enabled` off frees the view's history. With matrices the history is reprojected from the view-projection of the
    frame that made it, which is previous_view_projection unless the host's previous frame rendered this view with a
    debug view or not at all: such a frame costs nothing. Motion vectors span one frame, so with them the history
    continues only when frame_index is the history's + 1 (or equal, for a host that keeps it constant). A frame that
    fails while rendering (GL_ERROR, OUT_OF_MEMORY, SHADER_COMPILE_FAILED ...) leaves no history, the next starts
-   anew; one refused before rendering (an invalid input or output) leaves the history as it was.
+   anew; one refused before rendering (an invalid input or output) leaves the history as it was, except that its
+   reset flag (a camera cut) still drops it once the input's and output's fields and the view are valid (a refusal
+   of its textures, its output target or what its settings need).
    Timing label "temporal" (after the method's passes; at full resolution it also writes the output, the bent-normal
    texture and a blit target's blit included, and the frame has no "composite"). Memory: 16 bytes per depth texel per view, 32 with bent
    normals (per texel of the reduced grid at half or quarter resolution), allocated by the first temporal render
@@ -579,7 +582,9 @@ typedef struct obscura_resolution_settings {
    lsao.normal_threshold, gtao.mip_offset, ffao.thickness) cannot be 0; the editable form carries OBSCURA_SETTINGS_FLAG_ZERO_IS_VALUE,
    under which 0 in such a field is 0, and obscura_set_setting() sets the flag when it stores such a 0.
    Struct sizes: the library accepts the obscura_settings of every released header (0.1 to this one); the fields
-   an older header does not have hold their defaults (with the flag too). One exception, which the library cannot
+   an older header does not have hold their defaults (with the flag too). A 0.1-0.3 struct has no flags, so its 0 in
+   such a field means the default: there ffao.thickness 0 (infinitely thick, the default before 0.5) now reads 0.4 m,
+   and infinitely thick FFAO needs a 0.4 or newer header. One exception, which the library cannot
    detect: a binary built against 0.1 or 0.2 that calls obscura_default_settings gets the 0.3 symbol (below), which
    writes 428 bytes into its 60- or 156-byte struct. Such binaries must be rebuilt (or fill their struct with zeros
    and struct_size instead of calling it). */

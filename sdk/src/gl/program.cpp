@@ -169,9 +169,13 @@ Error build_failure(obscura_log_fn log, void* log_user_data, const char* doing, 
     for (const char* p = text; *p;) {
         const char* eol = std::strchr(p, '\n');
         const size_t length = eol ? size_t(eol - p) : std::strlen(p);
-        const char* lower = std::strstr(p, "rror");
-        const char* upper = std::strstr(p, "RROR");
-        if ((lower && lower < p + length) || (upper && upper < p + length)) {
+        // "error", "Error" or "ERROR" (not "rror": "mirror" would do).
+        bool names_error = false;
+        for (const char* word : {"error", "Error", "ERROR"}) {
+            const char* found = std::strstr(p, word);
+            names_error = names_error || (found && found < p + length);
+        }
+        if (names_error) {
             line = p;
             break;
         }

@@ -20,7 +20,7 @@ constexpr const char* const kFfaoGeometryNames[] = {"peaks", "mipmap"};
 // FFAO (Timonen, HPG 2013). Defaults are the paper's: K = 16x2, B0 = 10, an exponential falloff; and 0.4 m of thickness
 // (sec. 11; 0, infinitely thick, until 2026-12-06): once a finite thickness interpolated planar quads, it took the
 // mean error against the geometry truth over the seven built-in scenes at 320x180 from 0.0294 to 0.0150 (better on 6
-// of 7, terrain +0.0015) and on 4 of 5 held-out views (docs/parameters.md), at 0.97x the cost. The falloff
+// of 7, terrain +0.0015) and on 4 of 5 held-out views (docs/parameters.md), at 0.93x the cost. The falloff
 // fields mirror the reference's, so obscura_reference_settings_for() gives the screen-space reference FFAO
 // converges to (same falloff and thickness).
 const obscura_setting_info kFfaoSettings[] = {

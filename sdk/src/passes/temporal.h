@@ -42,7 +42,7 @@ private:
     int current_ = 0;
     bool valid_ = false;
     obscura_rect rect_ = {};
-    int host_width_ = 0, host_height_ = 0;  // FrameInput's: the host's depth size at reduced resolution, else 0
+    int host_width_ = 0, host_height_ = 0;  // FrameInput's: the host's depth size (the frame's own at full resolution)
     uint64_t signature_ = 0;
     bool has_view_projection_ = false;
     double view_projection_[16] = {};
