@@ -90,6 +90,18 @@ double max_abs_difference(const std::vector<float>& a, const std::vector<float>&
     return m;
 }
 
+// One frame's bent normals (RGBA: visibility, bent normal xyz) through an R32F visibility target and an RGBA32F
+// bent-normal target.
+std::vector<float> render_bent_normals(obscura_context* context, const obscura_input& input,
+                                       const obscura_settings& settings) {
+    HostTexture ao = make_texture(GL_R32F, kWidth, kHeight);
+    HostTexture bent = make_texture(GL_RGBA32F, kWidth, kHeight);
+    obscura_output output = make_output(ao.get());
+    output.bent_normal_texture = bent.get();
+    EXPECT_EQ(obscura_render(context, &input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(context);
+    return read_texture(bent.get(), kWidth, kHeight, 4);
+}
+
 // Renders frames first .. first + count - 1 of a static camera through `view`; returns the last image.
 std::vector<float> render_frames(obscura_context* context, obscura_input input, const obscura_settings& settings,
                                  uint32_t first, uint32_t count, obscura_view* view = nullptr) {
@@ -468,12 +480,7 @@ TEST_F(GLTest, TemporalBentNormalsAccumulateInTheCurrentView) {
     obscura_settings alone = settings;
     alone.temporal.enabled = OBSCURA_TOGGLE_OFF;
     const auto render_bent = [&](const obscura_input& input, const obscura_settings& s) {
-        HostTexture ao = make_texture(GL_R32F, kWidth, kHeight);
-        HostTexture bent = make_texture(GL_RGBA32F, kWidth, kHeight);
-        obscura_output output = make_output(ao.get());
-        output.bent_normal_texture = bent.get();
-        EXPECT_EQ(obscura_render(ctx(), &input, &s, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
-        return read_texture(bent.get(), kWidth, kHeight, 4);
+        return render_bent_normals(ctx(), input, s);
     };
     obscura_view* view = nullptr;
     ASSERT_EQ(obscura_create_view(ctx(), &view), OBSCURA_OK);
@@ -529,12 +536,7 @@ TEST_F(GLTest, TemporalBentNormalsFollowTheClampWhereTheAoChanged) {
     alone.temporal.enabled = OBSCURA_TOGGLE_OFF;
     const auto render_bent = [&](obscura_input input, const obscura_settings& s, uint32_t frame) {
         input.frame_index = frame;
-        HostTexture ao = make_texture(GL_R32F, kWidth, kHeight);
-        HostTexture bent = make_texture(GL_RGBA32F, kWidth, kHeight);
-        obscura_output output = make_output(ao.get());
-        output.bent_normal_texture = bent.get();
-        EXPECT_EQ(obscura_render(ctx(), &input, &s, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
-        return read_texture(bent.get(), kWidth, kHeight, 4);
+        return render_bent_normals(ctx(), input, s);
     };
     for (uint32_t f = 0; f < 8; ++f) render_bent(with_box.input, settings, f);
     const std::vector<float> accumulated = render_bent(floor_only.input, settings, 8);
