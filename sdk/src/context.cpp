@@ -379,10 +379,11 @@ Error Context::render(const obscura_input& input, const obscura_settings& settin
     // the next frame continued the history from before it. (A debug view shows this frame alone and otherwise leaves
     // the history as it is.)
     if (frame.reset_history) find_view(frame.view)->history.invalidate();
-    error = check_output_aliasing(input, output);
-    if (error) return error;
-    // Stage 2: the GL context, then the objects the input and output name.
+    // Stage 2: the GL context, then the objects the input and output name (first whether they name one texture
+    // twice: a host GL error left pending is still reported before that, as before every GL name's check).
     error = device_.check_host_state("obscura_render");
+    if (error) return error;
+    error = check_output_aliasing(input, output);
     if (error) return error;
     const gl::Table& gl = device_.gl();
     bool recorded = false;  // record_frame succeeded: the view's history (with temporal on) is this frame's

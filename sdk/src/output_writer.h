@@ -43,10 +43,11 @@ struct OutputTarget {
 
 // Stage 1, no GL: the fields of `output` (blend, debug view, position). Errors: INVALID_ENUM, INVALID_RECT.
 Error check_output_fields(const obscura_output& output, OutputTarget* out);
-// Stage 1, no GL: no texture the frame writes (output.texture, output.bent_normal_texture) is one it reads
-// (input.depth_texture, normal_texture, motion_vector_texture) or the other one it writes: GL leaves reading and
-// writing one texture in a dispatch undefined, and two writes of one texture clobber each other. Error:
-// INVALID_TEXTURE, naming both fields. (A framebuffer's attachments are not compared.)
+// Stage 2, first (after the host's GL state is checked, so that a pending host error is reported first), no GL call:
+// no texture the frame writes (output.texture, output.bent_normal_texture) is one it reads (input.depth_texture,
+// normal_texture, motion_vector_texture) or the other one it writes: GL leaves reading and writing one texture in a
+// dispatch undefined, and two writes of one texture clobber each other. Error: INVALID_TEXTURE, naming both fields.
+// (A framebuffer's attachments are not compared.)
 Error check_output_aliasing(const obscura_input& input, const obscura_output& output);
 // Stage 2: the texture, or the framebuffer and its attachment, for a result of `rect`'s size, completing `*out`
 // from stage 1. Errors: INVALID_TEXTURE, UNSUPPORTED_FORMAT, INVALID_RECT, INVALID_FRAMEBUFFER.
