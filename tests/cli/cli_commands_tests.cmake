@@ -332,5 +332,7 @@ obscura_cli_command_test(json_report_file_name_not_utf8 0 "" CHECK json_utf8)
 obscura_cli_command_test(compare_sky_only_view 1
   "compare|--scene|analytic|--size|64x36|--eye|0,2,0|--target|0,10,5|--methods|hbao|--truth-rays|1"
   GL EXPECT_STDERR "shows no geometry [(]every pixel is sky[)]")
-# A method the library does not implement (found with --list-methods): exit 1, naming it.
+# A method the library does not implement (found with --list-methods): exit 1, naming it. Every method is built in
+# today, so ctest reports it as skipped (not passed) until a build leaves one out.
 obscura_cli_command_test(unavailable_method 1 "" CHECK unavailable)
+set_tests_properties(obscura_cli.unavailable_method PROPERTIES SKIP_REGULAR_EXPRESSION "every method is available: nothing to check")

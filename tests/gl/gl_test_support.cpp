@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 
 namespace obscura_test {
@@ -353,6 +354,9 @@ std::vector<float> render_to_new_texture(obscura_context* context, const obscura
 
 Stats stats(const std::vector<float>& values, const std::vector<bool>& mask) {
     Stats s;
+    // An empty selection has no statistics: NaN fails every comparison, so a check on a mask that selected nothing
+    // (a scene or camera that moved) fails instead of passing on a mean of 0.
+    s.min = s.max = s.mean = std::numeric_limits<double>::quiet_NaN();
     double sum = 0;
     for (size_t i = 0; i < values.size() && i < mask.size(); ++i) {
         if (!mask[i]) continue;
@@ -363,7 +367,7 @@ Stats stats(const std::vector<float>& values, const std::vector<bool>& mask) {
         sum += v;
         ++s.count;
     }
-    s.mean = s.count ? sum / s.count : 0.0;
+    if (s.count) s.mean = sum / s.count;
     return s;
 }
 

@@ -125,7 +125,7 @@ std::vector<float> render_to_new_texture(obscura_context* context, const obscura
 std::map<std::string, int> count_gl_objects();
 std::string describe(const std::map<std::string, int>& counts);
 
-// Statistics over a float image with a mask.
+// Statistics over a float image with a mask; min, max and mean are NaN where the mask selects nothing.
 struct Stats {
     int count = 0;
     double min = 0, max = 0, mean = 0;

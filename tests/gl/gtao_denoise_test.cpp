@@ -1,6 +1,7 @@
 // GTAO's denoise (sdk/src/passes/gtao.*, sdk/glsl/gtao_denoise.comp) run directly: CPU rasterisers filter long runs
 // of pixels per invocation and GPUs short ones (OBSCURA_GTAO_DENOISE_RUN_CPU / _GPU); both must give the same
 // image, bit for bit, clipped to the same regions.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -11,6 +12,8 @@
 #include "passes/gtao.h"
 #include "settings.h"
 
+#include <glm/gtc/packing.hpp>
+
 namespace {
 
 namespace gl = obscura::gl;
@@ -18,20 +21,21 @@ namespace gl = obscura::gl;
 // Odd sizes: the runs end inside the region on both axes.
 constexpr int kWidth = 67, kHeight = 41;
 
+// A wavy wall with a box in front of it (depth edges) and a patch of sky.
+float scene_depth(int x, int y) {
+    if (x < 6 && y > 33) return float(OBSCURA_SKY_DEPTH);
+    if (x >= 20 && x < 37 && y >= 9 && y < 30) return 4.0f;
+    return 6.0f + 0.8f * std::sin(x * 0.21f) * std::sin(y * 0.17f);
+}
+bool is_sky(int x, int y) { return scene_depth(x, y) == float(OBSCURA_SKY_DEPTH); }
+
 class GtaoDenoise : public obscura_pass_test::PassTest {
 protected:
     void SetUp() override {
         PassTest::SetUp();
-        // A wavy wall with a box in front of it (depth edges) and a patch of sky.
         std::vector<float> depth(size_t(kWidth) * kHeight);
-        for (int y = 0; y < kHeight; ++y) {
-            for (int x = 0; x < kWidth; ++x) {
-                float d = 6.0f + 0.8f * std::sin(x * 0.21f) * std::sin(y * 0.17f);
-                if (x >= 20 && x < 37 && y >= 9 && y < 30) d = 4.0f;
-                if (x < 6 && y > 33) d = OBSCURA_SKY_DEPTH;
-                depth[size_t(y) * kWidth + x] = d;
-            }
-        }
+        for (int y = 0; y < kHeight; ++y)
+            for (int x = 0; x < kWidth; ++x) depth[size_t(y) * kWidth + x] = scene_depth(x, y);
         obscura_pass_test::upload_linear_depth(gl_, depth, kWidth, kHeight, &resources_);
         float matrix[16];
         frame_ = obscura_pass_test::perspective_linear_depth_frame(kWidth, kHeight, matrix);
@@ -139,6 +143,67 @@ TEST_F(GtaoDenoise, CpuAndGpuRunLengthsGiveTheSameImage) {
             EXPECT_EQ(untouched, kWidth * kHeight - output.width * output.height) << name;
             EXPECT_GT(changed, output.width * output.height / 2) << name << ": the filter did not smooth the noise";
         }
+    }
+}
+
+// The filter's formula (gtao_denoise.comp), computed here: per pass, the centre plus the weighted mean of the
+// differences over the taps -2..2 along the pass's axis, tap weights (1/2, 1, 1, 1/2) / (1 + (sharpness * the tap's
+// distance from the centre's tangent plane / the centre's distance)^2), taps outside the texture or on sky left out,
+// sky passed through; both passes store R16F. The upload gives every texel the normal (0, 0, 1), so a tap's plane
+// distance is its depth difference (the box's 2 m step weighs about 1e-4: no blur across it).
+TEST_F(GtaoDenoise, MatchesTheFormula) {
+    const auto half = [](double v) { return double(glm::unpackHalf1x16(glm::packHalf1x16(float(v)))); };
+    const double sharpness = settings_.denoise_sharpness;
+    const double m0 = 1.0 / std::tan(0.5 * 1.0471976) * kHeight / kWidth, m5 = 1.0 / std::tan(0.5 * 1.0471976);
+    const auto distance = [&](int x, int y) {  // |view position| of the texel's centre
+        const double d = scene_depth(x, y);
+        const double ndc_x = (x + 0.5) / kWidth * 2.0 - 1.0, ndc_y = (y + 0.5) / kHeight * 2.0 - 1.0;
+        return std::sqrt(std::pow(ndc_x * d / m0, 2) + std::pow(ndc_y * d / m5, 2) + d * d);
+    };
+    const auto filter = [&](const std::vector<double>& in, int dx, int dy) {
+        std::vector<double> out(in.size());
+        for (int y = 0; y < kHeight; ++y) {
+            for (int x = 0; x < kWidth; ++x) {
+                const size_t i = size_t(y) * kWidth + x;
+                const double d = scene_depth(x, y);
+                if (is_sky(x, y)) {
+                    out[i] = in[i];
+                    continue;
+                }
+                double delta = 0.0, weights = 1.0;
+                for (int j : {-2, -1, 1, 2}) {
+                    const int qx = x + j * dx, qy = y + j * dy;
+                    if (qx < 0 || qy < 0 || qx >= kWidth || qy >= kHeight || is_sky(qx, qy))
+                        continue;
+                    const double plane = (scene_depth(qx, qy) - d) * sharpness / distance(x, y);
+                    const double w = (j == -2 || j == 2 ? 0.5 : 1.0) / (1.0 + plane * plane);
+                    delta += w * (in[size_t(qy) * kWidth + qx] - in[i]);
+                    weights += w;
+                }
+                out[i] = half(in[i] + delta / weights);
+            }
+        }
+        return out;
+    };
+    for (bool cpu : {true, false}) {
+        cpu_renderer_ = cpu;
+        const obscura::Region whole{0, 0, kWidth, kHeight};
+        const Denoised got = run(false, whole);
+        cpu_renderer_ = true;
+        std::vector<double> source(source_visibility_.size());
+        for (size_t i = 0; i < source.size(); ++i) source[i] = half(source_visibility_[i]);
+        const std::vector<double> expected = filter(filter(source, 1, 0), 0, 1);
+        int far_off = 0;
+        double worst = 0.0;
+        for (int y = 0; y < kHeight; ++y) {
+            for (int x = 0; x < kWidth; ++x) {
+                const size_t i = size_t(y) * kWidth + x;
+                const double error = std::fabs(got.visibility[i] - expected[i]);
+                worst = std::max(worst, std::isfinite(error) ? error : 1.0);
+                far_off += !(error <= 2e-3);  // a NaN counts
+            }
+        }
+        EXPECT_EQ(far_off, 0) << (cpu ? "CPU" : "GPU") << " code path: worst difference " << worst;
     }
 }
 

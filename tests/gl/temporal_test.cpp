@@ -542,7 +542,9 @@ TEST_F(GLTest, TemporalBentNormalsFollowTheClampWhereTheAoChanged) {
     const std::vector<float> accumulated = render_bent(floor_only.input, settings, 8);
     const std::vector<float> box_alone = render_bent(with_box.input, alone, 8);
     const std::vector<float> floor_alone = render_bent(floor_only.input, alone, 8);
-    const auto at = [](const std::vector<float>& b, size_t i) { return glm::dvec3(b[4 * i + 1], b[4 * i + 2], b[4 * i + 3]); };
+    // The bent-normal texture holds the normal in rgb and the visibility in a (obscura_output::bent_normal_texture).
+    const auto at = [](const std::vector<float>& b, size_t i) { return glm::dvec3(b[4 * i], b[4 * i + 1], b[4 * i + 2]); };
+    const auto visibility = [](const std::vector<float>& b, size_t i) { return b[4 * i + 3]; };
     const auto angle = [](glm::dvec3 a, glm::dvec3 b) {
         return std::acos(std::clamp(glm::dot(glm::normalize(a), glm::normalize(b)), -1.0, 1.0)) * 57.29577951308232;
     };
@@ -552,7 +554,7 @@ TEST_F(GLTest, TemporalBentNormalsFollowTheClampWhereTheAoChanged) {
     for (size_t i = 0; i < floor_only.hits.size(); ++i) {
         if (!with_box.hits[i].hit || with_box.hits[i].id != 1) continue;  // the floor in both images
         const double tilt = angle(at(box_alone, i), at(floor_alone, i));
-        if (tilt < 3.0 || floor_alone[4 * i] - box_alone[4 * i] < 0.05) continue;
+        if (tilt < 3.0 || visibility(floor_alone, i) - visibility(box_alone, i) < 0.05) continue;
         lean += tilt;
         left += angle(at(accumulated, i), at(floor_alone, i));
         ++count;
