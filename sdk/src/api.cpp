@@ -114,6 +114,14 @@ OBSCURA_API obscura_status obscura_create_context(const obscura_context_desc* de
     if ((desc->allocator.alloc == nullptr) != (desc->allocator.free == nullptr)) {
         return fail(Error::make(OBSCURA_STATUS_NULL_ARGUMENT, "obscura_allocator needs both alloc and free, or neither"));
     }
+    // Unknown bits are refused as obscura_input's and obscura_settings' are: a flag of a later header (or a stray
+    // value) would otherwise be ignored without a word.
+    constexpr uint32_t kKnownFlags = OBSCURA_CONTEXT_FLAG_SYNC_TIMING | OBSCURA_CONTEXT_FLAG_VALIDATE_PASSES |
+                                     OBSCURA_CONTEXT_FLAG_GPU_CODE_PATHS;
+    if ((desc->flags & ~kKnownFlags) != 0) {
+        return fail(Error::make(OBSCURA_STATUS_INVALID_SETTING, "obscura_context_desc.flags = 0x%x has unknown bits",
+                                unsigned(desc->flags)));
+    }
     Context* context = nullptr;
     try {
         error = Context::create(*desc, &context);

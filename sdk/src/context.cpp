@@ -198,7 +198,7 @@ Error Context::ensure_resources(int width, int height, const TechniquePlan& plan
     const PassEnv pass_env = env();
     const int depth_levels = plan.depth_levels;
     if (resources_.width != width || resources_.height != height || !resources_.linear_depth) {
-        release_frame_resources();  // the views' histories stay: each follows its own view's size
+        release_frame_resources(/*sized_only=*/true);  // the views' histories stay: each follows its own view's size
         FrameResources r;
         r.width = width;
         r.height = height;
@@ -277,12 +277,17 @@ View* Context::find_view(const obscura_view* handle) {
     return nullptr;
 }
 
-void Context::release_frame_resources() {
+void Context::release_frame_resources(bool sized_only) {
     resources_ = FrameResources();
     output_.release();
     upsample_.release();
     for (Technique* technique : techniques_) {
-        if (technique) technique->release();
+        if (!technique) continue;
+        if (sized_only) {
+            technique->release_sized();
+        } else {
+            technique->release();
+        }
     }
 }
 
@@ -391,6 +396,7 @@ Error Context::render(const obscura_input& input, const obscura_settings& settin
         gl::StateGuard guard(gl);
         error = check_input_textures(gl, input, &frame);
         if (!error) error = check_output_target(gl, output, frame.output_rect, &target);
+        if (!error) error = check_attachment_aliasing(input, output, target);
         if (!error) error = check_bent_normal_target(gl, output, frame.output_rect, &target);
         if (!error) error = record_frame(frame, resolved, target);
         recorded = !error;

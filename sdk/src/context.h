@@ -78,7 +78,9 @@ private:
     Error ensure_resources(int width, int height, const TechniquePlan& plan, int shift, const obscura_settings& settings);
     // Every per-size resource: the frame's (shared textures, output staging, the techniques') and the views'.
     void release_resources();
-    void release_frame_resources();
+    // The frame's resources (shared textures, output staging, the techniques'); with `sized_only` (a resize) the
+    // techniques keep what does not depend on the size.
+    void release_frame_resources(bool sized_only = false);
     Error record_frame(const FrameInput& input, const obscura_settings& settings, const OutputTarget& target);
     // The view a frame names (null: the context's own); null if it is none of this context's.
     View* find_view(const obscura_view* view);

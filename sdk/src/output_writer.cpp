@@ -77,19 +77,24 @@ Error check_output_fields(const obscura_output& output, OutputTarget* out) {
     return Error();
 }
 
-Error check_output_aliasing(const obscura_input& input, const obscura_output& output) {
-    struct Named {
-        GLuint texture;
-        const char* field;
-    };
-    const Named written[] = {{output.texture, "output.texture"}, {output.bent_normal_texture, "output.bent_normal_texture"}};
-    const Named read[] = {{input.depth_texture, "input.depth_texture"},
-                          {input.normal_texture, "input.normal_texture"},
-                          {input.motion_vector_texture, "input.motion_vector_texture"},
-                          {output.bent_normal_texture, "output.bent_normal_texture"}};
-    for (const Named& w : written) {
+namespace {
+
+struct NamedTexture {
+    GLuint texture;
+    const char* field;
+};
+
+// INVALID_TEXTURE where a texture in `written` is one of `read` named by another field.
+Error refuse_aliases(const NamedTexture* written, size_t written_count, const obscura_input& input,
+                     const obscura_output& output) {
+    const NamedTexture read[] = {{input.depth_texture, "input.depth_texture"},
+                                 {input.normal_texture, "input.normal_texture"},
+                                 {input.motion_vector_texture, "input.motion_vector_texture"},
+                                 {output.bent_normal_texture, "output.bent_normal_texture"}};
+    for (size_t i = 0; i < written_count; ++i) {
+        const NamedTexture& w = written[i];
         if (w.texture == 0) continue;
-        for (const Named& r : read) {
+        for (const NamedTexture& r : read) {
             if (r.texture == w.texture && r.field != w.field) {
                 return Error::make(OBSCURA_STATUS_INVALID_TEXTURE,
                                    "%s and %s are the same texture (%u): the frame would write a texture it reads or "
@@ -98,6 +103,23 @@ Error check_output_aliasing(const obscura_input& input, const obscura_output& ou
         }
     }
     return Error();
+}
+
+}  // namespace
+
+Error check_output_aliasing(const obscura_input& input, const obscura_output& output) {
+    const NamedTexture written[] = {{output.texture, "output.texture"},
+                                    {output.bent_normal_texture, "output.bent_normal_texture"}};
+    return refuse_aliases(written, sizeof written / sizeof written[0], input, output);
+}
+
+Error check_attachment_aliasing(const obscura_input& input, const obscura_output& output, const OutputTarget& target) {
+    if (output.texture != 0 || output.framebuffer == 0) return Error();
+    const GLuint attached = target.kind == TargetKind::Image ? target.texture
+                            : target.attachment_type == GL_TEXTURE ? target.attachment_name
+                                                                   : 0;
+    const NamedTexture written[] = {{attached, "output.framebuffer's colour attachment 0"}};
+    return refuse_aliases(written, 1, input, output);
 }
 
 namespace {
@@ -426,7 +448,7 @@ void OutputWriter::write_image(const PassEnv& env, const UniformRange& frame, co
     gl::BlitStateGuard blit_state(gl);
     const GLuint host = blit_framebuffer(gl, target);
     std::optional<gl::AttachmentZeroScope> attachment_zero;
-    if (host != 0 && host == target.framebuffer) attachment_zero.emplace(gl, host);
+    if (host == target.framebuffer) attachment_zero.emplace(gl, host);  // the host's framebuffer, or the default one
     // Multiply needs the framebuffer's colour first: blit it into the staging texture.
     if (target.blend == OBSCURA_BLEND_MULTIPLY) {
         gl.BindFramebuffer(GL_READ_FRAMEBUFFER, host);
@@ -442,7 +464,9 @@ void OutputWriter::write_image(const PassEnv& env, const UniformRange& frame, co
                        target.y + rect.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
     // Hold no reference to the host's image between frames: a renderbuffer or texture the host deletes would live
     // on, attached to this framebuffer, until the next blit (the next frame attaches it again).
-    if (host == target_framebuffer_.name()) detach_target(gl);
+    // (Not the default framebuffer: with no framebuffer of the SDK's yet, both names are 0, and detaching from the
+    // window-system framebuffer is GL_INVALID_OPERATION: every frame into the default framebuffer failed with it.)
+    if (host != 0 && host == target_framebuffer_.name()) detach_target(gl);
 }
 
 void OutputWriter::release() {

@@ -47,8 +47,11 @@ Error check_output_fields(const obscura_output& output, OutputTarget* out);
 // no texture the frame writes (output.texture, output.bent_normal_texture) is one it reads (input.depth_texture,
 // normal_texture, motion_vector_texture) or the other one it writes: GL leaves reading and writing one texture in a
 // dispatch undefined, and two writes of one texture clobber each other. Error: INVALID_TEXTURE, naming both fields.
-// (A framebuffer's attachments are not compared.)
+// A framebuffer's attachment is compared once check_output_target has found it (check_attachment_aliasing).
 Error check_output_aliasing(const obscura_input& input, const obscura_output& output);
+// The same for output.framebuffer's colour attachment 0 when it is a texture (written directly or blitted into),
+// after check_output_target has filled `target`. Error: INVALID_TEXTURE.
+Error check_attachment_aliasing(const obscura_input& input, const obscura_output& output, const OutputTarget& target);
 // Stage 2: the texture, or the framebuffer and its attachment, for a result of `rect`'s size, completing `*out`
 // from stage 1. Errors: INVALID_TEXTURE, UNSUPPORTED_FORMAT, INVALID_RECT, INVALID_FRAMEBUFFER.
 Error check_output_target(const gl::Table& gl, const obscura_output& output, const obscura_rect& rect,

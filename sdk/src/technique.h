@@ -163,9 +163,12 @@ public:
     virtual Error record(const Frame& frame, PassRecorder& recorder, TechniqueOutput* out) = 0;
     // GPU memory of the technique's own resources.
     virtual uint64_t memory_bytes() const = 0;
-    // Frees the technique's resources (not its programs): another method renders now, the size changed, or
-    // the host released the context's resources.
+    // Frees the technique's resources (not its programs): another method renders now, or the host released the
+    // context's resources.
     virtual void release() = 0;
+    // Frees what depends on the frame's size (the size changed); resources of another kind (FFAO's estimator table,
+    // which only its falloff's shape changes) are kept. The default frees everything.
+    virtual void release_sized() { release(); }
 };
 
 // Techniques live in the host allocator's memory, like every CPU allocation of the SDK.

@@ -365,6 +365,40 @@ TEST_F(ApiErrors, OutputTextureThatTheFrameReadsIsRefused) {
     expect_render_fails(OBSCURA_STATUS_INVALID_TEXTURE, "output.texture and input.depth_texture");
 }
 
+// The same through a framebuffer whose colour attachment 0 is an input (written directly: RGBA16F; blitted into:
+// RGBA8I is refused as integer, so a cube map face's blit): both rendered with status OK before 2026-12-06.
+TEST_F(ApiErrors, OutputFramebufferAttachmentThatTheFrameReadsIsRefused) {
+    HostTexture shared = make_texture(GL_RGBA16F, kWidth, kHeight);
+    HostFramebuffer framebuffer = HostFramebuffer::create();
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.get());
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, shared.get(), 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    input_.normal_texture = shared.get();
+    output_.texture = 0;
+    output_.framebuffer = framebuffer.get();
+    expect_render_fails(OBSCURA_STATUS_INVALID_TEXTURE, "colour attachment 0 and input.normal_texture");
+    // The blit path: an attachment the compute pass cannot write (RGB8: no image format), the host's normals too.
+    HostTexture rgb = make_texture(GL_RGB8, kWidth, kHeight);
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.get());
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, rgb.get(), 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    input_.normal_texture = rgb.get();
+    expect_render_fails(OBSCURA_STATUS_INVALID_TEXTURE, "colour attachment 0 and input.normal_texture");
+    // Not an input: renders.
+    input_.normal_texture = 0;
+    EXPECT_EQ(render(), OBSCURA_OK) << obscura_get_last_error(ctx());
+}
+
+// A host GL error left pending is reported before the aliased textures (the render fuzzer found INVALID_TEXTURE
+// returned over it).
+TEST_F(ApiErrors, PendingHostErrorComesBeforeAliasedTextures) {
+    HostTexture shared = make_texture(GL_RGBA16F, kWidth, kHeight);
+    input_.normal_texture = shared.get();
+    output_.texture = shared.get();
+    glBindTexture(GL_TEXTURE_2D, 4242424);  // not a texture name: GL_INVALID_OPERATION, left pending
+    expect_render_fails(OBSCURA_STATUS_HOST_GL_ERROR);
+}
+
 TEST_F(ApiErrors, NormalTextureWrongSize) {
     HostTexture normals = make_texture(GL_RGBA16F, kWidth / 2, kHeight);
     input_.normal_texture = normals.get();
@@ -526,6 +560,22 @@ TEST_F(ApiErrors, HeaderVersionLeftUnset) {
     obscura_context* context = nullptr;
     EXPECT_EQ(obscura_create_context(&desc, &context), OBSCURA_STATUS_VERSION_MISMATCH);
     EXPECT_EQ(context, nullptr);
+}
+
+// Unknown context flags are refused, as obscura_input's and obscura_settings' unknown flags are (they were ignored).
+TEST_F(ApiErrors, UnknownContextFlags) {
+    obscura_context_desc desc = make_desc();
+    LogCapture log;
+    log.attach(&desc);
+    desc.flags = OBSCURA_CONTEXT_FLAG_SYNC_TIMING | (1u << 5);
+    obscura_context* context = nullptr;
+    EXPECT_EQ(obscura_create_context(&desc, &context), OBSCURA_STATUS_INVALID_SETTING);
+    EXPECT_EQ(context, nullptr);
+    ASSERT_EQ(log.entries.size(), 1u);
+    EXPECT_NE(log.entries[0].message.find("0x21"), std::string::npos) << log.entries[0].message;
+    desc.flags = OBSCURA_CONTEXT_FLAG_SYNC_TIMING | OBSCURA_CONTEXT_FLAG_VALIDATE_PASSES | OBSCURA_CONTEXT_FLAG_GPU_CODE_PATHS;
+    ASSERT_EQ(obscura_create_context(&desc, &context), OBSCURA_OK);
+    obscura_destroy_context(context);
 }
 
 TEST_F(ApiErrors, AllocatorNeedsBothFunctions) {

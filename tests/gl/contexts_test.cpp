@@ -557,6 +557,28 @@ TEST_F(SyncTimings, AtOnceAfterRenderWithExactlyTheMethodsPasses) {
     }
 }
 
+// FFAO's estimator table depends on the falloff's shape alone: a resize keeps it (until 2026-12-06 every resized frame
+// rebuilt it, a 3D texture allocation and the ffao_table pass for a host resizing its window each frame);
+// obscura_release_resources frees it.
+TEST_F(SyncTimings, FfaoKeepsItsTableAcrossAResize) {
+    obscura_settings ffao = method_defaults(OBSCURA_METHOD_FFAO);
+    const auto builds_table = [&](const Frame& frame) {
+        EXPECT_FALSE(render_to_new_texture(ctx(), frame.input, ffao, GL_R32F, 1).empty());
+        obscura_timing timings[kTimingCapacity] = {};
+        uint32_t count = 0;
+        EXPECT_EQ(obscura_get_timings(ctx(), timings, kTimingCapacity, &count, nullptr), OBSCURA_OK);
+        const std::vector<std::string> labels = labels_of(timings, count);
+        EXPECT_GT(labels.size(), 2u);
+        return std::find(labels.begin(), labels.end(), "ffao_table") != labels.end();
+    };
+    const Frame small = box_frame(96, 64), large = box_frame(128, 72);
+    EXPECT_TRUE(builds_table(small));
+    EXPECT_FALSE(builds_table(large)) << "a resize rebuilt the table";
+    EXPECT_FALSE(builds_table(small));
+    obscura_release_resources(ctx());
+    EXPECT_TRUE(builds_table(small)) << "released resources must include the table";
+}
+
 TEST_F(SyncTimings, NoBlurPassWithoutBlur) {
     Frame frame = box_frame(96, 64);
     obscura_settings settings = make_settings(1.0f);

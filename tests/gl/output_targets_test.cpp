@@ -579,6 +579,55 @@ TEST_F(OutputTargets, DefaultFramebufferWithoutSurface) {
     EXPECT_EQ(take_gl_error(), GLenum(GL_NO_ERROR));
 }
 
+// MULTIPLY into the default framebuffer reads back the buffer it draws to, whatever the host's read buffer (it read
+// the read buffer: a host reading GL_FRONT while drawing to GL_BACK got the front's colour times the AO), and leaves
+// the host's read buffer as it was. Needs a context with a default framebuffer: ctest runs it under OSMesa
+// (OutputTargets.DefaultFramebufferMultiplyOsmesa); surfaceless EGL has none and skips.
+TEST_F(OutputTargets, DefaultFramebufferMultiplyReadsTheDrawBuffer) {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        GTEST_SKIP() << "this context has no default framebuffer";
+    }
+    GLint viewport[4] = {};
+    glGetIntegerv(GL_VIEWPORT, viewport);  // the default framebuffer's size at first use
+    const int side = std::min({viewport[2], viewport[3], 16});
+    ASSERT_GT(side, 0);
+    Frame frame = corner_frame();
+    frame.input.output_rect = obscura_rect{kWidth / 2 - side / 2, kHeight / 2 - side / 2, side, side};
+    obscura_settings settings = make_settings(1.0f);
+    HostTexture direct = make_texture(GL_RGBA8, side, side);
+    obscura_output direct_output = make_output(direct.get());
+    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &direct_output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    const std::vector<uint8_t> ao = read_texture_rgba8(direct.get(), side, side);
+
+    GLint draw_buffer = GL_NONE;
+    glGetIntegerv(GL_DRAW_BUFFER0, &draw_buffer);
+    const GLfloat grey[4] = {0.5f, 0.5f, 0.5f, 1.0f};
+    glClearBufferfv(GL_COLOR, 0, grey);
+    glReadBuffer(GL_NONE);  // the host reads nothing (or another buffer) while it draws to draw_buffer
+    obscura_output output = make_output(0);
+    output.blend = OBSCURA_BLEND_MULTIPLY;
+    ASSERT_EQ(obscura_render(ctx(), &frame.input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    GLint read_buffer = -1;
+    glGetIntegerv(GL_READ_BUFFER, &read_buffer);
+    EXPECT_EQ(read_buffer, GL_NONE) << "the host's read buffer must be restored";
+    glReadBuffer(GLenum(draw_buffer == GL_FRONT_AND_BACK ? GL_FRONT : draw_buffer));
+    std::vector<uint8_t> got(size_t(side) * side * 4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, side, side, GL_RGBA, GL_UNSIGNED_BYTE, got.data());
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadBuffer(GLenum(read_buffer));
+    int off = 0, occluded = 0;
+    for (int i = 0; i < side * side; ++i) {
+        const int expected = int(std::lround(0.5 * ao[4 * size_t(i)]));  // grey 128/255 times the AO
+        off += std::abs(int(got[4 * size_t(i)]) - expected) > 2;
+        occluded += ao[4 * size_t(i)] < 250;
+    }
+    EXPECT_GT(occluded, 0) << "the rectangle must hold occlusion for the product to show";
+    EXPECT_EQ(off, 0) << "MULTIPLY must read back the colour of the buffer it draws to";
+    EXPECT_EQ(take_gl_error(), GLenum(GL_NO_ERROR));
+}
+
 // GL 4.3 forbids blitting into a multisample framebuffer (18.3.1; Mesa allows it, NVIDIA does not): the SDK refuses
 // such a target on every driver before rendering, with a validation status (until 2026-12-06 a conforming driver
 // reported the blit's GL_INVALID_OPERATION as GL_ERROR), and leaves it and the GL error queue untouched.

@@ -222,8 +222,8 @@ typedef struct obscura_context_desc {
 
 /* Creates a context for the GL context current on this thread (programs are built by obscura_prepare() or by
    the first render that needs them).
-   Returns OK, NULL_ARGUMENT, INVALID_STRUCT_SIZE, VERSION_MISMATCH, NO_GL_CONTEXT,
-   GL_VERSION_UNSUPPORTED, MISSING_GL_FUNCTION, HOST_GL_ERROR, OUT_OF_MEMORY, GL_ERROR, CONTEXT_LOST,
+   Returns OK, NULL_ARGUMENT, INVALID_STRUCT_SIZE, VERSION_MISMATCH, INVALID_SETTING (flags with bits that are
+   no OBSCURA_CONTEXT_FLAG_*), NO_GL_CONTEXT, GL_VERSION_UNSUPPORTED, MISSING_GL_FUNCTION, HOST_GL_ERROR, OUT_OF_MEMORY, GL_ERROR, CONTEXT_LOST,
    INTERNAL_ERROR (no program is built here, so no SHADER_COMPILE_FAILED). On failure the message goes to desc->log (there is no context to ask). */
 OBSCURA_API obscura_status obscura_create_context(const obscura_context_desc* desc, obscura_context** out_context);
 
@@ -834,8 +834,9 @@ typedef struct obscura_output {
    Sizes: a depth texture whose size differs from depth_width/height is INVALID_TEXTURE; an output
    rectangle outside the depth, or a result that does not fit the output target, is INVALID_RECT (the
    default framebuffer excepted: GL cannot tell a window's size, and the blit clips what lies outside it).
-   A texture the frame writes (output->texture, output->bent_normal_texture) that is also one it reads
-   (the input's depth, normal or motion-vector texture) or the other one it writes is INVALID_TEXTURE.
+   A texture the frame writes (output->texture, output->framebuffer's colour attachment 0,
+   output->bent_normal_texture) that is also one it reads (the input's depth, normal or motion-vector texture)
+   or the other one it writes is INVALID_TEXTURE.
    Returns OK or NULL_ARGUMENT, INVALID_STRUCT_SIZE, WRONG_GL_CONTEXT, HOST_GL_ERROR, INVALID_SIZE,
    INVALID_RECT, INVALID_TEXTURE, UNSUPPORTED_FORMAT, INVALID_PROJECTION, PROJECTION_TRANSPOSED,
    INVALID_SETTING, INVALID_ENUM, INVALID_VIEW (input->view is not a live view of this context),

@@ -115,6 +115,13 @@ AttachmentZeroScope::AttachmentZeroScope(const Table& gl, GLuint framebuffer) : 
         draw_buffers_[i] = GLenum(buffer);
     }
     gl.GetIntegerv(GL_READ_BUFFER, &read_buffer_);
+    if (framebuffer == 0) {
+        // ReadBuffer takes no FRONT_AND_BACK: both are written there, read the front (every default framebuffer
+        // has one). NONE draws nothing: the read buffer stays.
+        const GLenum drawn = draw_buffers_[0] == GL_FRONT_AND_BACK ? GLenum(GL_FRONT) : draw_buffers_[0];
+        if (drawn != GL_NONE) gl.ReadBuffer(drawn);
+        return;
+    }
     const GLenum attachment_zero = GL_COLOR_ATTACHMENT0;
     gl.DrawBuffers(1, &attachment_zero);
     gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
@@ -123,7 +130,7 @@ AttachmentZeroScope::AttachmentZeroScope(const Table& gl, GLuint framebuffer) : 
 AttachmentZeroScope::~AttachmentZeroScope() {
     gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer_);
     gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_);
-    gl_.DrawBuffers(draw_buffer_count_, draw_buffers_);
+    if (framebuffer_ != 0) gl_.DrawBuffers(draw_buffer_count_, draw_buffers_);
     gl_.ReadBuffer(GLenum(read_buffer_));
 }
 

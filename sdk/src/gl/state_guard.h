@@ -66,7 +66,9 @@ private:
 
 // Narrows a host framebuffer object to its colour attachment 0 for a blit (draw buffers and read
 // buffer), and puts the host's buffers back. Binds the framebuffer to both targets: the StateGuard
-// restores those bindings.
+// restores those bindings. For the default framebuffer (0) the draw buffers stay the host's and the read
+// buffer becomes the first of them, so that MULTIPLY reads back the colour it then writes (a host reading
+// GL_FRONT while drawing to GL_BACK got the front buffer's colour times the AO).
 class AttachmentZeroScope {
 public:
     AttachmentZeroScope(const Table& gl, GLuint framebuffer);

@@ -218,6 +218,9 @@ public:
         ffao_.release();
         ffao_.release_table();
     }
+    // A resize keeps the estimator table: it depends on the falloff's shape alone (rebuilding it cost a 3D texture
+    // allocation and the ffao_table pass on every frame of a host resizing its window).
+    void release_sized() override { ffao_.release(); }
 
 private:
     static constexpr int kMaxPyramidDispatches = 4;
