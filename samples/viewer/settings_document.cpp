@@ -138,8 +138,8 @@ std::string range_text(const obscura_setting_info& info) {
 }
 
 // The value of one entry of "settings", as obscura_set_setting takes it (toggles: 0 off, 1 on; enums their
-// number, from a name or a number). Arrays: array_value.
-double setting_value(obscura_method method, const obscura_setting_info& info, const JsonValue& value) {
+// number, from a name or a number), in a document of `version`. Arrays: array_value.
+double setting_value(obscura_method method, const obscura_setting_info& info, const JsonValue& value, int version) {
     const std::string what = std::string("setting ") + quoted(info.name) + " of " + obscura_method_name(method);
     if (info.type == OBSCURA_SETTING_TOGGLE) {
         if (value.is_bool()) return value.as_bool() ? 1.0 : 0.0;
@@ -164,12 +164,17 @@ double setting_value(obscura_method method, const obscura_setting_info& info, co
     if (info.type != OBSCURA_SETTING_FLOAT && number != std::floor(number)) {
         throw SettingsDocumentError(what + " must be a whole number, not " + shortest_double(number));
     }
-    // 0 means "derive" to the SDK in derived fields, and "default" where the range excludes it.
-    const bool zero_is_default = number == 0.0 && (info.min_value > 0.0 || samples::is_derived(info));
-    if (!zero_is_default && (number < info.min_value || number > info.max_value)) {
+    // 0 in a derived field means "derive" (what version 2 writes for it). Where the range excludes 0 (radius,
+    // intensity, samples, falloff) the SDK would read it as the default, which is not what a document saying 0 means:
+    // it is out of range. Version 1 documents were read with 0 as the default there, and still are.
+    const bool zero_derives = number == 0.0 && samples::is_derived(info);
+    const bool version1_default = number == 0.0 && version < 2 && info.min_value > 0.0;
+    if (!zero_derives && !version1_default && (number < info.min_value || number > info.max_value)) {
         std::string range = range_text(info);
         if (info.type == OBSCURA_SETTING_ENUM) range += " (" + samples::value_name_list(info) + ")";
-        throw SettingsDocumentError(what + " = " + shortest_double(number) + " is outside its range " + range);
+        const char* const default_hint = number == 0.0 ? " (leave the key out for its default)" : "";
+        throw SettingsDocumentError(what + " = " + shortest_double(number) + " is outside its range " + range +
+                                    default_hint);
     }
     return number;
 }
@@ -212,7 +217,38 @@ void derive_where_derived(obscura_settings& settings) {
     }
 }
 
+// Every value is in its range, but settings the SDK refuses as a whole (the table falloff with an all-zero table,
+// FFAO's SAAO with K = 16) would load and then fail every render: they are refused here, with the SDK's reason, as
+// the method-spec parser refuses the same settings given on the command line.
+void check_resolves(const obscura_settings& settings) {
+    obscura_settings resolved = settings;
+    const obscura_status status = obscura_resolve_settings(nullptr, &settings, &resolved);
+    if (status == OBSCURA_OK) return;
+    const std::string reason = obscura_get_last_error(nullptr);
+    throw SettingsDocumentError(std::string("the settings of ") + obscura_method_name(method_of(settings)) +
+                                " are refused: " + (reason.empty() ? obscura_status_string(status) : reason));
+}
+
 }  // namespace
+
+double effective_setting_value(obscura_context* context, const obscura_settings& settings,
+                               const obscura_setting_info& info) {
+    obscura_settings resolved = settings;
+    // Resolved, a derived field holds what the SDK derives, a renderer-dependent one (LSAO's segment_steps) too when
+    // a context is given; unresolved settings have no derived values, and read as they are stored.
+    const obscura_settings& source =
+        obscura_resolve_settings(context, &settings, &resolved) == OBSCURA_OK ? resolved : settings;
+    return effective_value(source, info.name);
+}
+
+bool set_derive(obscura_context* context, obscura_settings& settings, const obscura_setting_info& info, bool derive) {
+    if (!samples::is_derived(info)) return false;
+    // Ticked: 0, "derive". Unticked: the value the renders use now, so that the picture does not change and the
+    // field is set (0 there would be "derive" again).
+    const double value = derive ? 0.0 : effective_setting_value(context, settings, info);
+    if (!derive && value == 0.0) return false;
+    return obscura_set_setting(&settings, info.name, value) == OBSCURA_OK;
+}
 
 bool method_from_name(std::string_view name, obscura_method* method) {
     for (int m = OBSCURA_METHOD_DEFAULT + 1; m < int(OBSCURA_METHOD_COUNT_); ++m) {
@@ -337,7 +373,7 @@ obscura_settings settings_from_json(std::string_view text) {
         throw SettingsDocumentError(std::string("obscura_default_settings failed: ") + obscura_status_string(status));
     }
     const JsonValue* values = document.find("settings");
-    if (!values) return settings;  // every setting keeps its default
+    if (!values) return settings;  // every setting keeps its default (and the defaults resolve)
     if (!values->is_object()) {
         throw SettingsDocumentError("\"settings\" must be an object of setting names and values, not " +
                                     describe(*values));
@@ -354,7 +390,7 @@ obscura_settings settings_from_json(std::string_view text) {
             std::copy(elements.begin(), elements.end(), samples::array_values(settings, *info));
             continue;
         }
-        const double value = setting_value(method, *info, member.second);
+        const double value = setting_value(method, *info, member.second, version_number);
         const obscura_status set_status = obscura_set_setting(&settings, info->name, value);
         if (set_status != OBSCURA_OK) {
             throw SettingsDocumentError(std::string("setting ") + quoted(info->name) + " of " +
@@ -363,6 +399,7 @@ obscura_settings settings_from_json(std::string_view text) {
         }
     }
     if (version_number < 2) derive_where_derived(settings);
+    check_resolves(settings);
     return settings;
 }
 

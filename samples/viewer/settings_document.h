@@ -13,9 +13,9 @@
 // settings as 0 ("derive": decay rates, LSAO's K, D_S and D_L, SAO's turns, FFAO's K) unless set, so a loaded
 // document derives them again from the settings it holds. Version 1 documents (the effective values: derived
 // ones written out, enums as numbers, no tables) still load; their derived values that are what the settings
-// derive load as "derive". settings_from_json checks each value against its metadata range, not the
-// constraints between settings (e.g. FFAO's sectors with saao), which obscura_resolve_settings and
-// obscura_render report.
+// derive load as "derive". settings_from_json checks each value against its metadata range, then the settings as
+// a whole (obscura_resolve_settings: e.g. FFAO's sectors with saao, the table falloff's table), as the method-spec
+// parser checks a --method spec.
 #ifndef OBSCURA_VIEWER_SETTINGS_DOCUMENT_H
 #define OBSCURA_VIEWER_SETTINGS_DOCUMENT_H
 
@@ -46,9 +46,24 @@ std::string settings_to_json(const obscura_settings& settings);
 // missing keys keep their default. "format" and "version" are checked when present. Throws
 // SettingsDocumentError: malformed JSON, a missing or unknown method, an unknown key, a value of the wrong type
 // or outside its range, a toggle other than "on"/"off"/true/false, an enum value that is neither one of its
-// names nor one of its numbers, an array of the wrong length. 0 is accepted where the SDK reads it as
-// "default" or "derive" (derived fields, ranges that exclude 0).
+// names nor one of its numbers, an array of the wrong length, settings that obscura_resolve_settings refuses
+// (with its reason: obscura_get_last_error(NULL)). 0 is accepted where it is a value of the field's range, and in
+// derived fields ("derive"); where the range excludes it (radius, intensity, falloff) it is out of range, except
+// in version 1 documents, which were read with such a 0 as the field's default.
 obscura_settings settings_from_json(std::string_view text);
+
+// The value of `info` that renders with `context` use: obscura_resolve_settings with the context (a derived field's
+// derived value; LSAO's segment_steps, which depends on the renderer, as the context's renders settle it), read
+// with obscura_get_setting. Settings that do not resolve read as stored (a derived field left 0 reads 0). `context`
+// may be NULL: the context-free value. Throws SettingsDocumentError if the read fails.
+double effective_setting_value(obscura_context* context, const obscura_settings& settings,
+                               const obscura_setting_info& info);
+
+// The panel's "derive" box of a derived setting: ticked, the field goes back to 0, "derive"; unticked, it is set
+// to the value renders with `context` use now (effective_setting_value), so that nothing moves and the field stays
+// set. False when nothing was stored (not a derived field, refused, or no derived value to keep: settings that do
+// not resolve).
+bool set_derive(obscura_context* context, obscura_settings& settings, const obscura_setting_info& info, bool derive);
 
 // C that rebuilds `settings`: obscura_default_settings(OBSCURA_METHOD_X, &settings) followed by one assignment
 // per setting that differs from the method's default, one statement per line: enums by number with their

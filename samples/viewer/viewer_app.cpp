@@ -34,24 +34,6 @@ const char* const kTruthUnavailable =
     "The geometry truth traces rays against the scene's triangles: a depth file (.pfm) has none. "
     "Open a built-in scene or an .obj to compare against it.";
 
-// A string that changes exactly when the falloff that `settings` weigh occluders with changes: the bytes of the
-// falloff fields of the matching REFERENCE settings (obscura_reference_settings_for: kind, radius, C, decay
-// rate, table), as the CLI tells falloffs apart. Rays and thickness are left out: the geometry truth has its
-// own rays and the scene's real thickness.
-std::string falloff_signature(const obscura_settings& settings) {
-    obscura_settings reference{};
-    if (obscura_reference_settings_for(&settings, &reference) != OBSCURA_STATUS_OK) return "refused";
-    const obscura_reference_settings& r = reference.reference;
-    std::string text;
-    auto append = [&text](const void* bytes, size_t size) { text.append(static_cast<const char*>(bytes), size); };
-    append(&r.falloff, sizeof r.falloff);
-    append(&r.radius, sizeof r.radius);
-    append(&r.falloff_c, sizeof r.falloff_c);
-    append(&r.decay_rate, sizeof r.decay_rate);
-    append(r.falloff_table, sizeof r.falloff_table);
-    return text;
-}
-
 // A line of explanation, wrapped to the panel, in the dimmed text colour.
 void note(const char* text) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
@@ -95,8 +77,8 @@ struct UsageError : std::runtime_error {
 // file.
 struct MethodPanel {
     obscura_settings settings{};
-    std::array<char, 256> path{};
-    std::array<char, 256> table_path{};
+    std::string path;
+    std::string table_path;
     std::string c_code;
     std::string message;
 };
@@ -170,18 +152,29 @@ private:
     std::string status_;       // the latest event's message (a scene opened, a file saved, a failure)
     std::string frame_error_;  // the current frame's render error: "" again once a frame renders
     std::string pending_drop_;
-    std::array<char, 256> screenshot_path_{};
+    std::string screenshot_path_;  // --screenshot, or the panel's (a path of any length)
     bool screenshot_requested_ = false;
     double last_cursor_[2] = {0.0, 0.0};
 };
 
 void ViewerApp::open_scene(const std::string& name) {
+    const bool first = scene_.name.empty();  // the command line's --scene and --viewpoint: bad ones are usage errors
     try {
-        ViewerScene scene = load_viewer_scene(name);
+        ViewerScene scene;
+        try {
+            scene = load_viewer_scene(name);
+        } catch (const std::exception& error) {
+            if (first) throw UsageError(std::string("--scene ") + name + ": " + error.what());
+            throw;
+        }
+        if (first && scene.depth_file && !options_.viewpoint.empty()) {
+            throw UsageError("--viewpoint " + options_.viewpoint + ": " + name +
+                             " is a depth file, seen from its own camera; viewpoints are of mesh scenes");
+        }
         if (scene.mesh) {
-            const bool first = scene_.name.empty();  // the command line's scene: its --viewpoint
+            const std::string viewpoint = first && !options_.viewpoint.empty() ? options_.viewpoint : "default";
             try {
-                camera_.reset(samples::find_viewpoint(*scene.mesh, first ? options_.viewpoint : "default").camera);
+                camera_.reset(samples::find_viewpoint(*scene.mesh, viewpoint).camera);
             } catch (const std::invalid_argument& error) {
                 if (first) throw UsageError(error.what());
                 throw;
@@ -234,6 +227,20 @@ void ViewerApp::handle_input() {
     }
 }
 
+// A text box over a std::string, which grows as it is typed into (ImGui's resize callback, as misc/cpp/imgui_stdlib
+// does): paths are not cut at a fixed buffer's length.
+bool input_text(const char* label, std::string& text) {
+    const ImGuiInputTextCallback resize = [](ImGuiInputTextCallbackData* data) {
+        if (data->EventFlag == ImGuiInputTextFlags_CallbackResize) {
+            auto* const string = static_cast<std::string*>(data->UserData);
+            string->resize(size_t(data->BufTextLen));
+            data->Buf = string->data();
+        }
+        return 0;
+    };
+    return ImGui::InputText(label, text.data(), text.capacity() + 1, ImGuiInputTextFlags_CallbackResize, resize, &text);
+}
+
 // Switching to the table falloff with an empty table: the table starts as the falloff that was selected
 // (obscura_evaluate_falloff at d = i/(N-1) * radius), so the picture does not jump and every value is a start.
 void seed_falloff_table(obscura_settings& settings) {
@@ -268,18 +275,18 @@ bool array_control(MethodPanel& panel, const obscura_setting_info& info) {
             changed |= ImGui::SliderFloat(label, &values[i], float(info.min_value), float(info.max_value), "%.3f",
                                           ImGuiSliderFlags_AlwaysClamp);
         }
-        if (panel.table_path[0] == 0) std::snprintf(panel.table_path.data(), panel.table_path.size(), "falloff.txt");
-        ImGui::InputText("table file", panel.table_path.data(), panel.table_path.size());
+        if (panel.table_path.empty()) panel.table_path = "falloff.txt";
+        input_text("table file", panel.table_path);
         if (ImGui::IsItemHovered()) {
             ImGui::SetTooltip("%u numbers in [%g, %g], separated by spaces, commas or newlines", info.value_count,
                               info.min_value, info.max_value);
         }
         if (ImGui::Button("Load table")) {
             try {
-                const std::vector<float> loaded = samples::read_array_file(info, panel.table_path.data(), info.name);
+                const std::vector<float> loaded = samples::read_array_file(info, panel.table_path, info.name);
                 std::copy(loaded.begin(), loaded.end(), values);
                 changed = true;
-                panel.message = std::string("loaded the falloff table from ") + panel.table_path.data();
+                panel.message = "loaded the falloff table from " + panel.table_path;
             } catch (const std::exception& error) {
                 panel.message = error.what();
             }
@@ -291,13 +298,23 @@ bool array_control(MethodPanel& panel, const obscura_setting_info& info) {
 
 // A setting's control: a slider over its declared range, logarithmic over wide positive ranges, a drag box
 // where the range is wide and starts at 0, a checkbox for toggles, a combo box of the value names for enums;
-// derived settings get a "derive" checkbox before it (ticked: the control shows what the SDK derives, and
-// moving it sets a value). The tooltip carries the metadata.
-bool setting_control(MethodPanel& panel, const obscura_setting_info& info) {
+// derived settings get a "derive" checkbox before it (ticked: the control shows what the SDK derives for renders
+// with `context`, and moving it sets a value). The tooltip carries the metadata.
+bool setting_control(MethodPanel& panel, const obscura_setting_info& info, obscura_context* context) {
     obscura_settings& settings = panel.settings;
     if (samples::is_array(info)) return array_control(panel, info);
     double value = 0.0;  // the effective value: derived fields show what they derive to
-    if (obscura_get_setting(&settings, info.name, &value) != OBSCURA_STATUS_OK) return false;
+    if (samples::is_derived(info)) {
+        // With the renderer's context: the context-free value of a renderer-dependent field (LSAO's segment_steps)
+        // is 0, which is neither what renders use nor a value that unticking could set (0 derives).
+        try {
+            value = effective_setting_value(context, settings, info);
+        } catch (const std::exception&) {
+            return false;
+        }
+    } else if (obscura_get_setting(&settings, info.name, &value) != OBSCURA_STATUS_OK) {
+        return false;
+    }
     ImGui::PushID(info.name);
     bool changed = false;
     bool derive = samples::derives(settings, info);
@@ -305,7 +322,7 @@ bool setting_control(MethodPanel& panel, const obscura_setting_info& info) {
         if (ImGui::Checkbox("derive", &derive)) {
             // Ticked: back to 0, "derive". Unticked: the derived value, now set, is where editing starts.
             ImGui::PopID();
-            return obscura_set_setting(&settings, info.name, derive ? 0.0 : value) == OBSCURA_STATUS_OK;
+            return set_derive(context, settings, info, derive);
         }
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("ticked: the SDK derives %s (%s)", info.name, info.description);
         ImGui::SameLine();
@@ -395,7 +412,9 @@ bool ViewerApp::method_panel(const char* id, MethodPanel& panel) {
         }
         ImGui::EndCombo();
     }
-    for (const obscura_setting_info& info : infos_of(settings.method)) changed |= setting_control(panel, info);
+    for (const obscura_setting_info& info : infos_of(settings.method)) {
+        changed |= setting_control(panel, info, renderer_->context());
+    }
     if (ImGui::Button("Reset to defaults")) {
         obscura_default_settings(settings.method, &settings);
         changed = true;
@@ -406,22 +425,20 @@ bool ViewerApp::method_panel(const char* id, MethodPanel& panel) {
         glfwSetClipboardString(window_, panel.c_code.c_str());
         panel.message = "copied to the clipboard";
     }
-    if (panel.path[0] == 0) std::snprintf(panel.path.data(), panel.path.size(), "obscura-%s.json", id);
-    ImGui::InputText("file", panel.path.data(), panel.path.size());
+    if (panel.path.empty()) panel.path = std::string("obscura-") + id + ".json";
+    input_text("file", panel.path);
     if (ImGui::Button("Save JSON")) {
         std::string error;
-        panel.message = write_text_file(panel.path.data(), settings_to_json(settings), &error)
-                            ? std::string("saved ") + panel.path.data()
-                            : error;
+        panel.message = write_text_file(panel.path, settings_to_json(settings), &error) ? "saved " + panel.path : error;
     }
     ImGui::SameLine();
     if (ImGui::Button("Load JSON")) {
         std::string text, error;
         try {
-            if (!read_text_file(panel.path.data(), &text, &error)) throw std::runtime_error(error);
+            if (!read_text_file(panel.path, &text, &error)) throw std::runtime_error(error);
             settings = settings_from_json(text);
             changed = true;
-            panel.message = std::string("loaded ") + panel.path.data();
+            panel.message = "loaded " + panel.path;
         } catch (const std::exception& failure) {
             panel.message = failure.what();
         }
@@ -525,8 +542,11 @@ void ViewerApp::truth_section() {
     ImGui::SliderInt("truth rays", &truth_rays_, kTruthBatchRays, 4096, "%d",
                      ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
     if (ImGui::Button("Restart##truth")) {
-        truth_.stop();
-        truth_wanted_key_.clear();  // starts again at once on the next frame
+        // Cancelled, not stopped: joining here would freeze the window until the worker returns, which a BVH build
+        // (it cannot be cancelled) may take seconds to. update_truth starts the new job once the old one has
+        // returned (TruthJob::busy).
+        truth_.cancel();
+        truth_wanted_key_.clear();  // no restart delay: the next frame the worker is idle
         if (view_ != ViewMode::Split) view_ = ViewMode::ErrorMap;
     }
     const TruthProgress progress = truth_.progress();
@@ -627,8 +647,8 @@ void ViewerApp::build_panel() {
     comparison_panel();
     timings_panel();
     if (ImGui::CollapsingHeader("Screenshot")) {
-        if (screenshot_path_[0] == 0) std::snprintf(screenshot_path_.data(), screenshot_path_.size(), "obscura-viewer.png");
-        ImGui::InputText("png", screenshot_path_.data(), screenshot_path_.size());
+        if (screenshot_path_.empty()) screenshot_path_ = "obscura-viewer.png";
+        input_text("png", screenshot_path_);
         if (ImGui::Button("Save PNG")) screenshot_requested_ = true;
     }
     if (!frame_error_.empty()) ImGui::TextWrapped("%s", frame_error_.c_str());
@@ -637,26 +657,7 @@ void ViewerApp::build_panel() {
 }
 
 std::string ViewerApp::truth_key(const samples::TruthView& view) const {
-    std::string key = scene_.name + "|";
-    char number[48];
-    auto add = [&](double value) {
-        std::snprintf(number, sizeof number, "%a,", value);
-        key += number;
-    };
-    for (int c = 0; c < 4; ++c)
-        for (int r = 0; r < 4; ++r) add(view.view[c][r]);
-    for (int c = 0; c < 4; ++c)
-        for (int r = 0; r < 4; ++r) add(view.projection[c][r]);
-    add(view.depth_width);
-    add(view.depth_height);
-    add(view.output_rect.x);
-    add(view.output_rect.y);
-    add(view.output_rect.width);
-    add(view.output_rect.height);
-    add(view.near_plane);
-    add(view.far_plane);
-    add(truth_rays_);
-    return key + "|" + falloff_signature(panels_[0].settings);
+    return truth_view_key(scene_.name, scene_generation_, view, truth_rays_, panels_[0].settings);
 }
 
 void ViewerApp::update_truth(bool wanted, bool wait) {
@@ -867,9 +868,7 @@ int ViewerApp::run() {
         }
         split_reference_ = options_.compare.empty() || options_.compare == "reference" || options_.compare == "truth";
         panels_[1].settings = settings_from_spec(split_reference_ ? "hbao" : options_.compare);
-        if (!options_.screenshot.empty()) {
-            std::snprintf(screenshot_path_.data(), screenshot_path_.size(), "%s", options_.screenshot.c_str());
-        }
+        screenshot_path_ = options_.screenshot;
         int frame = 0;
         while (!glfwWindowShouldClose(window_)) {
             glfwPollEvents();
@@ -944,7 +943,7 @@ int ViewerApp::run() {
             ++frame;
             const bool last = options_.frames > 0 && frame >= options_.frames;
             if (screenshot_requested_ || (last && !options_.screenshot.empty())) {
-                if (!save_screenshot(screenshot_path_.data()) && last) exit_code = 1;
+                if (!save_screenshot(screenshot_path_) && last) exit_code = 1;
                 screenshot_requested_ = false;
             }
             glfwSwapBuffers(window_);

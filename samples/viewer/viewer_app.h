@@ -11,7 +11,7 @@ namespace obscura::viewer {
 
 struct ViewerOptions {
     std::string scene = "atrium";   // built-in name, .obj or .pfm path
-    std::string viewpoint = "default";
+    std::string viewpoint;          // --viewpoint: a viewpoint of the mesh scene ("": its "default")
     std::string method = "hbao";    // NAME[:KEY=VALUE...], as the CLI's specs
     std::string compare;            // split view's right side: a spec, or "reference" / "truth" (the comparison)
     Comparison comparison = Comparison::ScreenSpaceReference;  // what the heat map and the split compare with

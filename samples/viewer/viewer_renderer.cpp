@@ -111,7 +111,7 @@ samples::FloatImage heat_map(const samples::FloatImage& method, const samples::F
     return heat;
 }
 
-obscura_context* create_context(obscura_get_proc_address_fn get_proc_address, bool software) {
+ObscuraContextPtr create_context(obscura_get_proc_address_fn get_proc_address, bool software) {
     obscura_context_desc desc = {};
     desc.struct_size = sizeof desc;
     desc.header_version = OBSCURA_VERSION;
@@ -125,7 +125,7 @@ obscura_context* create_context(obscura_get_proc_address_fn get_proc_address, bo
     if (status != OBSCURA_STATUS_OK) {
         throw std::runtime_error(std::string("obscura_create_context: ") + obscura_status_string(status));
     }
-    return context;
+    return ObscuraContextPtr(context);
 }
 
 samples::FloatImage average(const ReferenceJob& job) {
@@ -182,24 +182,20 @@ void ReferenceJob::start(const std::string& key, const obscura_settings& method,
     reference.struct_size = sizeof(obscura_settings);
     if (obscura_reference_settings_for(&method, &reference) != OBSCURA_STATUS_OK) return;
     key_ = key;
-    total_rays_ = std::max(rays, kChunkRays);
+    total_rays_ = std::max(rays, 1);
 }
 
-ViewerRenderer::ViewerRenderer(obscura_get_proc_address_fn get_proc_address, bool software) {
-    context_ = create_context(get_proc_address, software);
-    try {
-        compare_context_ = create_context(get_proc_address, software);
-    } catch (...) {
-        obscura_destroy_context(context_);
-        throw;
-    }
-    obscura_context* const contexts[2] = {context_, compare_context_};
+void ObscuraContextDeleter::operator()(obscura_context* context) const { obscura_destroy_context(context); }
+
+ViewerRenderer::ViewerRenderer(obscura_get_proc_address_fn get_proc_address, bool software)
+    : context_(create_context(get_proc_address, software)),
+      compare_context_(create_context(get_proc_address, software)) {
+    // The contexts own their views, and are owned here from the start: a throw below (a view, the composite
+    // program) destroys them.
+    obscura_context* const contexts[2] = {context_.get(), compare_context_.get()};
     for (int slot = 0; slot < 2; ++slot) {
         if (obscura_create_view(contexts[slot], &views_[slot]) != OBSCURA_STATUS_OK) {
-            const std::string error = obscura_get_last_error(contexts[slot]);
-            obscura_destroy_context(compare_context_);
-            obscura_destroy_context(context_);
-            throw std::runtime_error("obscura_create_view: " + error);
+            throw std::runtime_error(std::string("obscura_create_view: ") + obscura_get_last_error(contexts[slot]));
         }
     }
     composite_ = samples::link_host_program(kFullscreenVertex, kCompositeFragment, "viewer composite");
@@ -210,8 +206,7 @@ ViewerRenderer::ViewerRenderer(obscura_get_proc_address_fn get_proc_address, boo
 
 ViewerRenderer::~ViewerRenderer() {
     scene_.reset();
-    obscura_destroy_context(compare_context_);
-    obscura_destroy_context(context_);
+    // The members go in reverse order: the host's textures and program, then the contexts (views included).
 }
 
 void ViewerRenderer::render_scene(const ViewerScene& scene, const samples::Camera& camera, int width, int height,
@@ -242,14 +237,18 @@ bool ViewerRenderer::render_into(GLuint texture, const obscura_settings& setting
     obscura_input input = frame.make_input(use_scene_normals);
     if (slot >= 0) {
         const samples::SceneFrame* previous = previous_[slot] ? &*previous_[slot] : nullptr;
-        input = frame.make_input(use_scene_normals, previous, frame_index_[slot]++);
+        // The frame index moves the methods' noise: it advances only while frames accumulate. Without accumulation
+        // it stays 0 (as `obscura compare` and a host keep it), so a still view renders the same image every frame,
+        // the image its error was measured on once per view.
+        const bool accumulates = settings.temporal.enabled == OBSCURA_TOGGLE_ON;
+        input = frame.make_input(use_scene_normals, previous, accumulates ? frame_index_[slot]++ : 0u);
         input.view = views_[slot];
         if (reset_history_[slot]) input.flags |= OBSCURA_INPUT_FLAG_RESET_HISTORY;
     }
     obscura_output output = {};
     output.struct_size = sizeof output;
     output.texture = texture;
-    obscura_context* const context = slot == 0 ? context_ : compare_context_;
+    obscura_context* const context = slot == 0 ? context_.get() : compare_context_.get();
     const obscura_status status = obscura_render(context, &input, &settings, &output);
     if (status != OBSCURA_STATUS_OK) {
         // A refused frame leaves the view's history as it was: the reset it asked for stays due (a camera cut
@@ -275,8 +274,10 @@ void ViewerRenderer::reset_history() {
 bool ViewerRenderer::step_reference(ReferenceJob& job, bool use_scene_normals) {
     if (!scene_ || !job.active() || job.done()) return false;
     chunk_.ensure(visible_width_, visible_height_, GL_R32F);
+    // Chunks of kChunkRays, the last one what is left: exactly the rays asked for.
+    const int rays = std::min(ReferenceJob::kChunkRays, job.total_rays_ - job.traced_rays_);
     obscura_settings chunk = job.reference;
-    chunk.reference.rays = ReferenceJob::kChunkRays;
+    chunk.reference.rays = rays;
     chunk.reference.first_ray = job.traced_rays_;
     if (!render_into(chunk_.texture.get(), chunk, use_scene_normals)) {
         job.cancel();
@@ -287,8 +288,8 @@ bool ViewerRenderer::step_reference(ReferenceJob& job, bool use_scene_normals) {
         job.sum = image;
         for (float& v : job.sum.pixels) v = 0.0f;
     }
-    for (size_t i = 0; i < image.pixels.size(); ++i) job.sum.pixels[i] += image.pixels[i] * float(ReferenceJob::kChunkRays);
-    job.traced_rays_ += ReferenceJob::kChunkRays;
+    for (size_t i = 0; i < image.pixels.size(); ++i) job.sum.pixels[i] += image.pixels[i] * float(rays);
+    job.traced_rays_ += rays;
     const samples::FloatImage reference = average(job);
     upload_image(reference_, reference);
     if (job.done()) measure_reference(job);

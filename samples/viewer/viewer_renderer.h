@@ -64,7 +64,8 @@ struct AoTexture {
 // method's AO image against it.
 class ReferenceJob {
 public:
-    // Chunk size in rays: small enough that a step stays interactive on llvmpipe at window sizes.
+    // Chunk size in rays: small enough that a step stays interactive on llvmpipe at window sizes. The last chunk
+    // traces what is left, so a job traces exactly the rays it was started with.
     static constexpr int kChunkRays = 8;
 
     bool active() const { return total_rays_ > 0; }
@@ -74,6 +75,7 @@ public:
     // The view it belongs to: the renderer restarts it when this no longer matches.
     const std::string& key() const { return key_; }
 
+    // A job of `rays` rays per pixel (at least 1) of the reference of `method`, for the view `key`.
     void start(const std::string& key, const obscura_settings& method, int rays);
     void cancel() { *this = ReferenceJob(); }
 
@@ -88,6 +90,12 @@ private:
     int total_rays_ = 0;
     int traced_rays_ = 0;
 };
+
+// Owns an Obscura context: obscura_destroy_context (with the context's GL context current).
+struct ObscuraContextDeleter {
+    void operator()(obscura_context* context) const;
+};
+using ObscuraContextPtr = std::unique_ptr<obscura_context, ObscuraContextDeleter>;
 
 class ViewerRenderer {
 public:
@@ -104,7 +112,9 @@ public:
                       obscura_get_proc_address_fn get_proc_address);
     // AO of `settings` for the current scene into slot 0 or 1. False on failure, with last_error() set. Each slot
     // is one obscura_view with its own frame index and previous camera, so with `temporal` on the two sides of the
-    // split accumulate their own histories as the camera moves. Slot 0 renders with context() (the method's:
+    // split accumulate their own histories as the camera moves. The frame index (the methods' noise) advances only
+    // while `settings` accumulate (temporal on); otherwise it is 0, and a still view renders the same image every
+    // frame. Slot 0 renders with context() (the method's:
     // its timings and memory are the method's alone), slot 1 and the reference with a second context, so that
     // alternating methods does not make the SDK free and rebuild one method's resources every frame.
     bool render_ao(int slot, const obscura_settings& settings, bool use_scene_normals);
@@ -142,7 +152,7 @@ public:
     // The size of the visible image of the current scene.
     int width() const { return visible_width_; }
     int height() const { return visible_height_; }
-    obscura_context* context() const { return context_; }
+    obscura_context* context() const { return context_.get(); }
     const std::string& last_error() const { return last_error_; }
     const std::string& renderer_name() const { return renderer_name_; }
 
@@ -150,11 +160,11 @@ private:
     // obscura_render of the current scene into `texture` (in `slot`'s view and frame sequence; -1: none, a static
     // view of the context's own); false with last_error() set on failure.
     bool render_into(GLuint texture, const obscura_settings& settings, bool use_scene_normals, int slot = -1);
-    obscura_context* context_ = nullptr;            // slot 0: the method
-    obscura_context* compare_context_ = nullptr;    // slot 1 and the reference chunks
+    ObscuraContextPtr context_;                     // slot 0: the method
+    ObscuraContextPtr compare_context_;             // slot 1 and the reference chunks
     obscura_view* views_[2] = {};                        // the AO slots' temporal histories (of their contexts)
     std::optional<samples::SceneFrame> previous_[2];     // each slot's previous frame (its camera), not owned
-    uint32_t frame_index_[2] = {};
+    uint32_t frame_index_[2] = {};                       // each slot's next frame index while it accumulates
     bool reset_history_[2] = {};                         // the slot's next render starts a new history
     // The current frame: rasterised every frame for a mesh, the scene's own upload for a depth file.
     std::shared_ptr<const samples::RenderedScene> scene_;

@@ -1,6 +1,7 @@
 #include "viewer_truth.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <exception>
 #include <utility>
 
@@ -11,7 +12,47 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// A string that changes exactly when the falloff that `settings` weigh occluders with changes: the bytes of the
+// falloff fields of the matching REFERENCE settings (kind, radius, C, decay rate, table).
+std::string falloff_signature(const obscura_settings& settings) {
+    obscura_settings reference{};
+    if (obscura_reference_settings_for(&settings, &reference) != OBSCURA_STATUS_OK) return "refused";
+    const obscura_reference_settings& r = reference.reference;
+    std::string text;
+    auto append = [&text](const void* bytes, size_t size) { text.append(static_cast<const char*>(bytes), size); };
+    append(&r.falloff, sizeof r.falloff);
+    append(&r.radius, sizeof r.radius);
+    append(&r.falloff_c, sizeof r.falloff_c);
+    append(&r.decay_rate, sizeof r.decay_rate);
+    append(r.falloff_table, sizeof r.falloff_table);
+    return text;
+}
+
 }  // namespace
+
+std::string truth_view_key(const std::string& scene_name, int scene_generation, const samples::TruthView& view,
+                           int rays, const obscura_settings& method_settings) {
+    std::string key = scene_name + "#" + std::to_string(scene_generation) + "|";
+    char number[48];
+    auto add = [&](double value) {  // exact (%a): a small move far from the origin is another view
+        std::snprintf(number, sizeof number, "%a,", value);
+        key += number;
+    };
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) add(view.view[c][r]);
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) add(view.projection[c][r]);
+    add(view.depth_width);
+    add(view.depth_height);
+    add(view.output_rect.x);
+    add(view.output_rect.y);
+    add(view.output_rect.width);
+    add(view.output_rect.height);
+    add(view.near_plane);
+    add(view.far_plane);
+    add(rays);
+    return key + "|" + falloff_signature(method_settings);
+}
 
 void TruthJob::start(TruthRequest request, const samples::SceneMesh& mesh) {
     stop();

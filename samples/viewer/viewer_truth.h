@@ -64,6 +64,14 @@ struct TruthSnapshot {
     int rays_total = 0;
 };
 
+// The key of the geometry truth of `view` (TruthRequest::key): the scene opened (its name and `scene_generation`, which
+// counts the scenes opened, so that an OBJ reopened after an edit on disk is another scene), the view's exact
+// matrices, sizes and planes, the rays, and the falloff `method_settings` weigh occluders with (the falloff fields of
+// obscura_reference_settings_for, as the CLI tells falloffs apart; not the rays or the thickness: the truth has its
+// own rays and the scene's real thickness). Changes exactly when the truth must be traced again.
+std::string truth_view_key(const std::string& scene_name, int scene_generation, const samples::TruthView& view,
+                           int rays, const obscura_settings& method_settings);
+
 class TruthJob {
 public:
     TruthJob() = default;

@@ -1,6 +1,7 @@
 // The viewer's settings documents (samples/viewer/settings_document.h): JSON save/load round trips for
 // every method of the metadata (enums by name, derived settings left to the SDK, the falloff tables), the load
 // errors, documents of version 1, and copy-as-C. No GL.
+#include <algorithm>
 #include <cstddef>
 #include <cstdio>
 #include <cstdlib>
@@ -95,6 +96,23 @@ obscura_settings changed_settings(obscura_method method) {
         EXPECT_EQ(obscura_set_setting(&settings, info.name, value), OBSCURA_OK) << info.name << " = " << value;
         EXPECT_NE(get(settings, info.name), default_value) << info.name;
     }
+    return settings;
+}
+
+// The settings a document can hold (settings_from_json refuses settings that do not resolve): changed_settings, less
+// the keys it returns to their defaults, `kept`. Moved one by one, FFAO's settings conflict: SAAO (on) needs K a
+// multiple of 18 and no frame split, and K moved to 4 leaves a split of 4 no orientation to evaluate (K/2 = 2). So
+// SAAO stays off and K is 8 (still not its default, 16).
+obscura_settings resolving_changed_settings(obscura_method method, std::vector<std::string>* kept) {
+    obscura_settings settings = changed_settings(method);
+    if (method == OBSCURA_METHOD_FFAO) {
+        EXPECT_EQ(obscura_set_setting(&settings, "saao", 0.0), OBSCURA_OK);
+        EXPECT_EQ(obscura_set_setting(&settings, "sectors", 8.0), OBSCURA_OK);
+        kept->push_back("saao");
+    }
+    obscura_settings resolved = settings;
+    EXPECT_EQ(obscura_resolve_settings(nullptr, &settings, &resolved), OBSCURA_OK)
+        << obscura_method_name(method) << ": " << obscura_get_last_error(nullptr);
     return settings;
 }
 
@@ -218,13 +236,15 @@ TEST(SettingsDocument, DefaultsRoundTripForEveryMethod) {
 TEST(SettingsDocument, ChangedSettingsRoundTripForEveryMethod) {
     for (obscura_method method : all_methods()) {
         SCOPED_TRACE(obscura_method_name(method));
-        const obscura_settings changed = changed_settings(method);
+        std::vector<std::string> kept;
+        const obscura_settings changed = resolving_changed_settings(method, &kept);
         const std::string text = settings_to_json(changed);
         const obscura_settings loaded = settings_from_json(text);
         expect_same_settings(method, changed, loaded);
         // And no key still equals its default (the round trip did not fall back to defaults).
         const obscura_settings defaults = defaults_of(method);
         for (const obscura_setting_info& info : infos_of(method)) {
+            if (std::find(kept.begin(), kept.end(), info.name) != kept.end()) continue;
             if (obscura::samples::is_array(info)) {
                 EXPECT_NE(table_of(loaded, info), table_of(defaults, info)) << info.name;
             } else {
@@ -233,6 +253,11 @@ TEST(SettingsDocument, ChangedSettingsRoundTripForEveryMethod) {
         }
         EXPECT_EQ(settings_to_json(loaded), text);
     }
+    // FFAO's SAAO, which resolving_changed_settings keeps off, round-trips on with a K of its own.
+    obscura_settings saao = defaults_of(OBSCURA_METHOD_FFAO);
+    ASSERT_EQ(obscura_set_setting(&saao, "saao", 1.0), OBSCURA_OK);
+    ASSERT_EQ(obscura_set_setting(&saao, "sectors", 36.0), OBSCURA_OK);
+    expect_same_settings(OBSCURA_METHOD_FFAO, saao, settings_from_json(settings_to_json(saao)));
 }
 
 TEST(SettingsDocument, FloatsThatAreNotDecimalRoundTrip) {
@@ -418,6 +443,62 @@ TEST(SettingsDocument, LoadErrorsNameTheProblem) {
     expect_load_error(R"({"version": 0, "method": "hbao"})", {"\"version\""});
     // And the error is a std::runtime_error.
     EXPECT_THROW(settings_from_json("{"), std::runtime_error);
+}
+
+// Every value in range, but settings the SDK refuses as a whole: refused when loaded, with the SDK's reason, as the
+// same settings given as a --method spec are (they used to load, and every render then failed).
+TEST(SettingsDocument, SettingsThatDoNotResolveAreRefused) {
+    expect_load_error(document_of("ffao", R"("falloff": "table")"), {"ffao", "refused", "falloff_table", "all zero"});
+    expect_load_error(document_of("reference", R"("falloff": "table",
+        "falloff_table": [0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0])"), {"refused", "all zero"});
+    expect_load_error(document_of("ffao", R"("saao": "on", "sectors": 16)"), {"ffao", "refused", "sectors"});
+    // The same settings through the spec parser are refused too.
+    EXPECT_THROW(obscura::samples::parse_method_spec("ffao:saao=on:sectors=16"), obscura::samples::MethodSpecError);
+    // Version 1 documents are checked the same way.
+    expect_load_error(document_of("ffao", R"("saao": "on", "sectors": 16)", 1), {"refused", "sectors"});
+    // What resolves still loads.
+    EXPECT_NO_THROW(settings_from_json(document_of("ffao", R"("saao": "on")")));
+}
+
+// 0 in a field whose range excludes it (radius, intensity, the tap count, an enum numbered from 1) is not a value of
+// it: the SDK would read it as the default, so a document saying 0 loaded as something else. Out of range now,
+// except in derived fields (0 derives) and in version 1 documents, which were read with 0 as the default.
+TEST(SettingsDocument, ZeroOutsideTheRangeIsRefused) {
+    expect_load_error(hbao_document(R"("radius": 0)"), {"\"radius\"", "= 0", "[0.001, 10000] m", "default"});
+    expect_load_error(hbao_document(R"("intensity": 0)"), {"\"intensity\"", "= 0", "[0.001, 16]"});
+    expect_load_error(document_of("sao", R"("samples": 0)"), {"\"samples\"", "= 0", "[1, 64]"});
+    expect_load_error(document_of("ffao", R"("falloff": 0)"), {"\"falloff\"", "= 0", "[1, 4]", "rho0"});
+    // 0 is a value where the range includes it (HBAO's bias, FFAO's thickness), and derives a derived field.
+    EXPECT_EQ(get(settings_from_json(hbao_document(R"("bias": 0)")), "bias"), 0.0);
+    EXPECT_EQ(get(settings_from_json(document_of("ffao", R"("thickness": 0)")), "thickness"), 0.0);
+    EXPECT_TRUE(obscura::samples::derives(settings_from_json(hbao_document(R"("decay_rate": 0)")),
+                                          info_of(OBSCURA_METHOD_HBAO, "decay_rate")));
+    // Version 1: 0 reads as the default, as it did.
+    const obscura_settings version1 = settings_from_json(document_of("hbao", R"("radius": 0, "intensity": 0)", 1));
+    EXPECT_EQ(get(version1, "radius"), 1.0);
+    EXPECT_EQ(get(version1, "intensity"), 2.0);
+}
+
+// The panel's "derive" box (no context here: the context-free values; viewer_scene_test checks a renderer's):
+// unticked, a derived field holds the value it derived, so the picture stays and the box stays unticked.
+TEST(SettingsDocument, UntickingDeriveSetsTheDerivedValue) {
+    using obscura::viewer::effective_setting_value;
+    using obscura::viewer::set_derive;
+    obscura_settings hbao = defaults_of(OBSCURA_METHOD_HBAO);
+    ASSERT_EQ(obscura_set_setting(&hbao, "radius", 2.0), OBSCURA_OK);
+    const obscura_setting_info decay = info_of(OBSCURA_METHOD_HBAO, "decay_rate");
+    EXPECT_EQ(effective_setting_value(nullptr, hbao, decay), double(0.3f * 2.0f * 2.0f));
+    ASSERT_TRUE(set_derive(nullptr, hbao, decay, false));
+    EXPECT_FALSE(obscura::samples::derives(hbao, decay));
+    EXPECT_EQ(get(hbao, "decay_rate"), double(0.3f * 2.0f * 2.0f));
+    ASSERT_TRUE(set_derive(nullptr, hbao, decay, true));
+    EXPECT_TRUE(obscura::samples::derives(hbao, decay));
+    // Without a context LSAO's segment_steps has no value (it depends on the renderer): nothing to set.
+    obscura_settings lsao = defaults_of(OBSCURA_METHOD_LSAO);
+    const obscura_setting_info steps = info_of(OBSCURA_METHOD_LSAO, "segment_steps");
+    EXPECT_EQ(effective_setting_value(nullptr, lsao, steps), 0.0);
+    EXPECT_FALSE(set_derive(nullptr, lsao, steps, false));
+    EXPECT_TRUE(obscura::samples::derives(lsao, steps));
 }
 
 // ---- C -------------------------------------------------------------------------------------------

@@ -1,7 +1,8 @@
 // The viewer's presets (samples/viewer/viewer_presets.h): every spec parses with the samples' method-spec parser
 // into settings of the method whose combo lists it, and those settings resolve; every method has exactly one
-// preset of its plain defaults, and no two presets of a method share a label. A misspelled key or value in a
-// preset would otherwise surface only when a technical artist picks it. No GL.
+// preset of its plain defaults, no two presets of a method share a label, and FFAO's presets of its paper are
+// infinitely thick. A misspelled key or value in a preset would otherwise surface only when a technical artist
+// picks it. No GL.
 #include <set>
 #include <string>
 
@@ -31,6 +32,25 @@ TEST(ViewerPresets, EverySpecParsesIntoItsMethodAndResolves) {
         resolved.struct_size = sizeof resolved;
         EXPECT_EQ(obscura_resolve_settings(nullptr, &settings, &resolved), OBSCURA_OK);
     }
+}
+
+// FFAO's paper renders an infinitely thick depth field; the defaults are 0.4 m thick since 0.5 (docs/parameters.md,
+// "FFAO's thickness"), so a preset that names the paper and starts from them must set thickness 0 itself.
+TEST(ViewerPresets, FfaoPaperPresetsAreInfinitelyThick) {
+    int paper_presets = 0;
+    for (const ViewerPreset& preset : kViewerPresets) {
+        if (preset.method != OBSCURA_METHOD_FFAO || std::string(preset.label).find("paper") == std::string::npos) {
+            continue;
+        }
+        SCOPED_TRACE(std::string(preset.label) + ": " + preset.spec);
+        ++paper_presets;
+        const obscura_settings settings = obscura::samples::parse_method_spec(preset.spec);
+        obscura_settings resolved{};
+        resolved.struct_size = sizeof resolved;
+        ASSERT_EQ(obscura_resolve_settings(nullptr, &settings, &resolved), OBSCURA_OK);
+        EXPECT_EQ(resolved.ffao.thickness, 0.0f);
+    }
+    EXPECT_GE(paper_presets, 4);
 }
 
 TEST(ViewerPresets, EachMethodHasOneDefaultsPresetAndDistinctLabels) {

@@ -49,6 +49,26 @@ TruthRequest request(const std::string& key, int rays, int batch) {
     return r;
 }
 
+// The key the viewer keeps its truth under: a scene reopened under the same name (an OBJ edited on disk) is another
+// scene, so the old scene's truth must not match it; the falloff and the rays are in it, other settings are not.
+TEST(ViewerTruthJob, KeyTellsReopenedScenesAndFalloffsApart) {
+    using obscura::viewer::truth_view_key;
+    obscura_settings hbao{};
+    obscura_default_settings(OBSCURA_METHOD_HBAO, &hbao);
+    const std::string key = truth_view_key("room.obj", 1, small_view(), 64, hbao);
+    EXPECT_EQ(truth_view_key("room.obj", 1, small_view(), 64, hbao), key);
+    EXPECT_NE(truth_view_key("room.obj", 2, small_view(), 64, hbao), key);  // reopened
+    EXPECT_NE(truth_view_key("other.obj", 1, small_view(), 64, hbao), key);
+    EXPECT_NE(truth_view_key("room.obj", 1, small_view(50, 32), 64, hbao), key);
+    EXPECT_NE(truth_view_key("room.obj", 1, small_view(), 128, hbao), key);
+    obscura_settings moved = hbao;
+    ASSERT_EQ(obscura_set_setting(&moved, "radius", 2.0), OBSCURA_OK);
+    EXPECT_NE(truth_view_key("room.obj", 1, small_view(), 64, moved), key);
+    obscura_settings steps = hbao;  // leaves the falloff alone: the truth stays
+    ASSERT_EQ(obscura_set_setting(&steps, "steps", 20.0), OBSCURA_OK);
+    EXPECT_EQ(truth_view_key("room.obj", 1, small_view(), 64, steps), key);
+}
+
 TEST(ViewerTruthJob, CompletesInBatchesAndEqualsOneTrace) {
     TruthJob job;
     job.start(request("a", 12, 4), atrium().mesh);
