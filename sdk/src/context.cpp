@@ -329,6 +329,11 @@ Error Context::prepare(int width, int height, const obscura_settings& settings) 
 }
 
 Error Context::take_pending_error(Error error, const char* where) {
+    // A loss a step reported itself (a shader build's drained errors) is recorded like one seen here: every later
+    // call must answer CONTEXT_LOST, not WRONG_GL_CONTEXT once the lost context's queries answer 0.
+    if (error.status() == OBSCURA_STATUS_CONTEXT_LOST && !device_.lost()) {
+        return device_.error_status(GlDevice::kContextLost, where);
+    }
     const GLenum gl_error = device_.take_error();
     // Out of memory is what failed, whatever it made fail after it (a link without memory reads as a failed link),
     // and a lost context is lost; any other GL error only explains a call that succeeded otherwise.
@@ -337,9 +342,10 @@ Error Context::take_pending_error(Error error, const char* where) {
         (!error && gl_error != GL_NO_ERROR)) {
         return device_.error_status(gl_error, where);
     }
-    // An allocation or a build that failed may have drained a GL_CONTEXT_LOST with its own errors (gl::take_errors):
-    // the reset status tells a loss from memory that ran out.
-    if (error.status() == OBSCURA_STATUS_OUT_OF_MEMORY || error.status() == OBSCURA_STATUS_SHADER_COMPILE_FAILED) {
+    // A step that failed may have drained a GL_CONTEXT_LOST with its own errors (an allocation or a build through
+    // gl::take_errors, a texture probe reading its bind's error as a wrong target): the reset status tells a loss
+    // from memory that ran out or a texture that was refused.
+    if (error && !device_.lost()) {
         Error lost = device_.check_context_lost();
         if (lost) return lost;
     }
@@ -415,10 +421,9 @@ Error Context::render(const obscura_input& input, const obscura_settings& settin
 Error Context::timings(obscura_timing* out, uint32_t capacity, uint32_t* count, uint64_t* frame_index) {
     *count = 0;
     *frame_index = 0;
-    // A loss already recorded first (a lost context's queries answer 0, which the identity check would read as another
-    // context); then the GL context, since the reset status is the current context's.
-    Error error = device_.lost() ? device_.check_context_lost() : device_.check_gl_context();
-    if (!error) error = device_.check_context_lost();
+    // As obscura_render checks it (without the host's pending errors, which are not this call's to take): a recorded
+    // loss first, then the GL context, a reset of the current context reported as CONTEXT_LOST like render does.
+    Error error = device_.check_current_context();
     if (error) return error;
     *count = timer_.latest(out, capacity, frame_index);
     return Error();
@@ -521,6 +526,11 @@ Error Context::record_frame(const FrameInput& host_input, const obscura_settings
         shift > 0 ? planner_.push(UpsamplePass::constants(settings.resolution, input)) : UniformRange();
     planner_.upload(device_.gl());
 
+    // The host's inputs (and, for MULTIPLY, its target) may come from its own image stores or compute writes just
+    // before this call: GL orders those before the frame's fetches and image loads only through a barrier (GL 4.3,
+    // 7.12.2), which a host calling middleware seldom knows it owes. One barrier a frame costs nothing measurable.
+    device_.gl().MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
+                               GL_FRAMEBUFFER_BARRIER_BIT);
     FramePassRecorder recorder(device_, timer_, (flags_ & OBSCURA_CONTEXT_FLAG_VALIDATE_PASSES) != 0);
     timer_.begin_frame();
     depth_prepare_.run(pass_env, input, depth_rects, depth_uniforms, resources_);

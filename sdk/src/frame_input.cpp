@@ -43,22 +43,6 @@ int normal_mode_for_format(GLenum format) {
     }
 }
 
-// The level the passes read of the texture bound to `target` on the active unit: texelFetch's level 0 is the
-// texture's GL_TEXTURE_BASE_LEVEL (a host building a depth pyramid in place may have moved it), so its size and format
-// are what must match. Multisample textures have one level.
-GLint base_level(const gl::Table& gl, GLenum target) {
-    if (target != GL_TEXTURE_2D) return 0;
-    GLint level = 0, immutable = GL_FALSE, levels = 0;
-    gl.GetTexParameteriv(target, GL_TEXTURE_BASE_LEVEL, &level);
-    // An immutable texture's base level is clamped to its levels (GL 4.3, 8.17).
-    gl.GetTexParameteriv(target, GL_TEXTURE_IMMUTABLE_FORMAT, &immutable);
-    if (immutable) {
-        gl.GetTexParameteriv(target, GL_TEXTURE_IMMUTABLE_LEVELS, &levels);
-        level = std::clamp(level, 0, std::max(levels - 1, 0));
-    }
-    return level;
-}
-
 // A texture that goes with the depth (normals, motion vectors): a GL_TEXTURE_2D of the depth's size, probed on
 // `unit` (the state guard restores it); its internal format in *format.
 Error check_companion_texture(const gl::Table& gl, GLuint texture, const char* field, int unit, const FrameInput& frame,
@@ -68,7 +52,7 @@ Error check_companion_texture(const gl::Table& gl, GLuint texture, const char* f
         return Error::make(OBSCURA_STATUS_INVALID_TEXTURE, "%s %u is not a GL_TEXTURE_2D", field, texture);
     }
     GLint width = 0, height = 0, internal_format = 0;
-    const GLint level = base_level(gl, GL_TEXTURE_2D);
+    const GLint level = gl::texture_base_level(gl, GL_TEXTURE_2D);
     gl.GetTexLevelParameteriv(GL_TEXTURE_2D, level, GL_TEXTURE_WIDTH, &width);
     gl.GetTexLevelParameteriv(GL_TEXTURE_2D, level, GL_TEXTURE_HEIGHT, &height);
     gl.GetTexLevelParameteriv(GL_TEXTURE_2D, level, GL_TEXTURE_INTERNAL_FORMAT, &internal_format);
@@ -249,7 +233,7 @@ Error check_input_textures(const gl::Table& gl, const obscura_input& input, Fram
     }
     frame.depth_multisample = target == GL_TEXTURE_2D_MULTISAMPLE;
     GLint width = 0, height = 0, format = 0;
-    const GLint level = base_level(gl, target);
+    const GLint level = gl::texture_base_level(gl, target);
     gl.GetTexLevelParameteriv(target, level, GL_TEXTURE_WIDTH, &width);
     gl.GetTexLevelParameteriv(target, level, GL_TEXTURE_HEIGHT, &height);
     gl.GetTexLevelParameteriv(target, level, GL_TEXTURE_INTERNAL_FORMAT, &format);

@@ -192,7 +192,7 @@ Error GlDevice::error_status(GLenum error, const char* where) {
                        "%s (0x%04X) raised %s", error_name(error), unsigned(error), where);
 }
 
-Error GlDevice::check_host_state(const char* call) {
+Error GlDevice::check_current_context() {
     // A loss already recorded is this context's for good. Otherwise the GL context comes first: the reset status
     // answers for whichever context is current, and another context's reset must not mark this one lost (it then
     // refused every call and leaked its objects on destroy, with its own healthy context current).
@@ -210,7 +210,11 @@ Error GlDevice::check_host_state(const char* call) {
         }
         return error;
     }
-    error = check_context_lost();
+    return check_context_lost();
+}
+
+Error GlDevice::check_host_state(const char* call) {
+    Error error = check_current_context();
     if (error) return error;
     GLenum pending = take_error();
     if (pending == kGlContextLost) return error_status(pending, call);

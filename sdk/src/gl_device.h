@@ -36,8 +36,11 @@ public:
     // CONTEXT_LOST once the GL context has reported a reset (sticky: a lost context never comes back).
     Error check_context_lost();
     bool lost() const { return lost_reason_ != 0; }
-    // check_context_lost, check_gl_context, then HOST_GL_ERROR if the host left an error pending (consumed and
-    // reported, never blamed on a pass), or CONTEXT_LOST if that error is GL_CONTEXT_LOST.
+    // A recorded loss; else check_gl_context (CONTEXT_LOST instead when the current context reports a reset, not
+    // recorded: it may be another context's), then check_context_lost.
+    Error check_current_context();
+    // check_current_context, then HOST_GL_ERROR if the host left an error pending (consumed and reported, never
+    // blamed on a pass), or CONTEXT_LOST if that error is GL_CONTEXT_LOST.
     Error check_host_state(const char* call);
     // Drains the GL error queue: gl::take_errors (GL_CONTEXT_LOST, else GL_OUT_OF_MEMORY if either was pending, else
     // the first error).

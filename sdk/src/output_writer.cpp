@@ -11,6 +11,7 @@ namespace obscura {
 namespace {
 
 using gl::ScopedTextureProbe;
+using gl::texture_base_level;
 using gl::texture_has_target;
 
 // The target of an attached texture (GL_NONE if none binds), probed in the order hosts most often use.
@@ -137,6 +138,15 @@ Error refuse_multisampled_draw_framebuffer(const gl::Table& gl, const char* what
                        what, int(samples));
 }
 
+// The passes write level 0 of an output texture through an image unit, which is invalid below the texture's base
+// level (GL 4.3, 8.26: its stores are dropped, without an error): a base level moved from 0 is refused.
+Error refuse_moved_base_level(GLint base, const char* what, GLuint texture) {
+    if (base == 0) return Error();
+    return Error::make(OBSCURA_STATUS_INVALID_TEXTURE,
+                       "%s %u has GL_TEXTURE_BASE_LEVEL %d: the AO is written to level 0, which must be its base level",
+                       what, texture, int(base));
+}
+
 }  // namespace
 
 Error check_output_target(const gl::Table& gl, const obscura_output& output, const obscura_rect& rect,
@@ -173,8 +183,11 @@ Error check_output_target(const gl::Table& gl, const obscura_output& output, con
             GLint format = 0;
             gl.BindTexture(GL_TEXTURE_2D, GLuint(name));
             gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+            const GLint base = texture_base_level(gl, GL_TEXTURE_2D);
             gl.BindTexture(GL_TEXTURE_2D, 0);
-            if (image_format_qualifier(GLenum(format), nullptr)) texture = GLuint(name);
+            // Written directly only where level 0 is the base level (an image unit below it is invalid: its stores
+            // are dropped); otherwise the blit reaches the level the host attached.
+            if (image_format_qualifier(GLenum(format), nullptr) && base == 0) texture = GLuint(name);
         }
         if (texture == 0) {
             // Blit path: the attachment must accept a blit from the RGBA8 staging texture, and the result
@@ -275,7 +288,9 @@ Error check_output_target(const gl::Table& gl, const obscura_output& output, con
     gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &width);
     gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &height);
     gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+    const GLint base = texture_base_level(gl, GL_TEXTURE_2D);
     gl.BindTexture(GL_TEXTURE_2D, 0);
+    if (Error error = refuse_moved_base_level(base, "output texture", texture)) return error;
     if (!image_format_qualifier(GLenum(format), nullptr)) {
         return Error::make(OBSCURA_STATUS_UNSUPPORTED_FORMAT,
                            "output texture %u has format 0x%04X; use R8, R16F, R32F, RG8/16F/32F, RGBA8/16F/32F, "
@@ -306,7 +321,9 @@ Error check_bent_normal_target(const gl::Table& gl, const obscura_output& output
     gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &width);
     gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &height);
     gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+    const GLint base = texture_base_level(gl, GL_TEXTURE_2D);
     gl.BindTexture(GL_TEXTURE_2D, 0);
+    if (Error error = refuse_moved_base_level(base, "output.bent_normal_texture", texture)) return error;
     if (!is_bent_normal_format(GLenum(format))) {
         return Error::make(OBSCURA_STATUS_UNSUPPORTED_FORMAT,
                            "output.bent_normal_texture %u has format 0x%04X; use RGBA8, RGBA16F or RGBA32F", texture,

@@ -318,5 +318,62 @@ TEST_F(ReviewRegressions, DepthTextureIsReadAndCheckedAtItsBaseLevel) {
     EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 }
 
+// The outputs are written at level 0 through image units, which GL leaves invalid below a texture's base level (the
+// stores are dropped): an output or bent-normal texture whose base level is not 0 is refused, and a framebuffer whose
+// colour attachment is such a texture's level 0 is reached by the blit instead. Until 2026-12-06 all three rendered
+// nothing with status OK (found by a read-only review).
+TEST_F(ReviewRegressions, OutputTexturesWithAMovedBaseLevel) {
+    Camera camera(Projection::Perspective, kWidth, kHeight, Lens(), corner_view());
+    const CornerDepth corner = corner_depth(camera);
+    HostTexture depth = make_depth_texture(GL_DEPTH_COMPONENT32F, kWidth, kHeight, corner.depth);
+    obscura_input input = make_input(depth.get(), kWidth, kHeight, camera.matrix());
+    obscura_settings settings = make_settings(1.0f);
+    const std::vector<float> expected = render_to_new_texture(ctx(), input, settings, GL_RGBA8, 1);
+    ASSERT_FALSE(expected.empty());
+    const auto moved_texture = [](GLenum format) {
+        HostTexture texture = HostTexture::create();
+        glBindTexture(GL_TEXTURE_2D, texture.get());
+        glTexStorage2D(GL_TEXTURE_2D, 2, format, kWidth, kHeight);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 1);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glBindTexture(GL_TEXTURE_2D, 0);
+        return texture;
+    };
+    HostTexture moved = moved_texture(GL_RGBA8);
+    obscura_output output = make_output(moved.get());
+    EXPECT_EQ(obscura_render(ctx(), &input, &settings, &output), OBSCURA_STATUS_INVALID_TEXTURE);
+    EXPECT_NE(std::string(obscura_get_last_error(ctx())).find("GL_TEXTURE_BASE_LEVEL 1"), std::string::npos)
+        << obscura_get_last_error(ctx());
+
+    obscura_settings gtao;
+    ASSERT_EQ(obscura_default_settings(OBSCURA_METHOD_GTAO, &gtao), OBSCURA_OK);
+    HostTexture target = make_texture(GL_R32F, kWidth, kHeight);
+    HostTexture bent = moved_texture(GL_RGBA16F);
+    output = make_output(target.get());
+    output.bent_normal_texture = bent.get();
+    EXPECT_EQ(obscura_render(ctx(), &input, &gtao, &output), OBSCURA_STATUS_INVALID_TEXTURE);
+    EXPECT_NE(std::string(obscura_get_last_error(ctx())).find("output.bent_normal_texture"), std::string::npos)
+        << obscura_get_last_error(ctx());
+
+    // Level 0 of the moved texture attached to a framebuffer: written, through the blit.
+    HostFramebuffer framebuffer = HostFramebuffer::create();
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.get());
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, moved.get(), 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    output = make_output(0);
+    output.framebuffer = framebuffer.get();
+    ASSERT_EQ(obscura_render(ctx(), &input, &settings, &output), OBSCURA_OK) << obscura_get_last_error(ctx());
+    std::vector<uint8_t> written(size_t(kWidth) * kHeight * 4);
+    glBindTexture(GL_TEXTURE_2D, moved.get());
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_UNSIGNED_BYTE, written.data());
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    int off = 0;
+    for (size_t i = 0; i < expected.size(); ++i) off += std::abs(int(written[4 * i]) - int(std::lround(expected[i] * 255.0))) > 1;
+    EXPECT_EQ(off, 0) << "the attachment's level 0 must hold the AO";
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+}
+
 }  // namespace
 }  // namespace obscura_test

@@ -391,6 +391,18 @@ struct FakeRobustness {
         if (queued > 0) return queued-- == 2 ? GLenum(GL_INVALID_OPERATION) : kContextLost;
         return error_is_context_lost ? kContextLost : real_get_error();
     }
+    // A reset while the SDK binds texture `lose_at_bind` (0: none): the reset status turns guilty and the next glGetError
+    // answers GL_CONTEXT_LOST, which the SDK's texture probe reads as a refused bind.
+    static GLuint lose_at_bind;
+    static void (*real_bind_texture)(GLenum, GLuint);
+    static void bind_texture(GLenum target, GLuint texture) {
+        real_bind_texture(target, texture);
+        if (lose_at_bind != 0 && texture == lose_at_bind) {
+            lose_at_bind = 0;
+            reset_status = kGuiltyReset;
+            queued = 1;
+        }
+    }
     static void tex_storage_2d(GLenum target, GLsizei levels, GLenum format, GLsizei width, GLsizei height) {
         if (reset_at_storage > 0 && --reset_at_storage == 0) {
             reset_status = kGuiltyReset;
@@ -405,6 +417,7 @@ struct FakeRobustness {
         }
         if (std::strcmp(name, "glGetError") == 0) return reinterpret_cast<obscura_gl_function>(&get_error);
         if (std::strcmp(name, "glTexStorage2D") == 0) return reinterpret_cast<obscura_gl_function>(&tex_storage_2d);
+        if (std::strcmp(name, "glBindTexture") == 0) return reinterpret_cast<obscura_gl_function>(&bind_texture);
         return HeadlessGL::get_proc_address(name);
     }
 };
@@ -414,6 +427,8 @@ GLenum (*FakeRobustness::real_get_error)() = nullptr;
 int FakeRobustness::reset_at_storage = 0;
 int FakeRobustness::queued = 0;
 void (*FakeRobustness::real_tex_storage_2d)(GLenum, GLsizei, GLenum, GLsizei, GLsizei) = nullptr;
+GLuint FakeRobustness::lose_at_bind = 0;
+void (*FakeRobustness::real_bind_texture)(GLenum, GLuint) = nullptr;
 
 // Each test runs on a GL context of its own: a "lost" obscura context leaves its GL objects to die with it.
 class ContextLoss : public ::testing::Test {
@@ -428,6 +443,9 @@ protected:
             reinterpret_cast<GLenum (*)()>(HeadlessGL::get_proc_address("glGetError"));
         FakeRobustness::real_tex_storage_2d = reinterpret_cast<void (*)(GLenum, GLsizei, GLenum, GLsizei, GLsizei)>(
             HeadlessGL::get_proc_address("glTexStorage2D"));
+        FakeRobustness::real_bind_texture =
+            reinterpret_cast<void (*)(GLenum, GLuint)>(HeadlessGL::get_proc_address("glBindTexture"));
+        FakeRobustness::lose_at_bind = 0;
         desc_ = make_desc();
         desc_.get_proc_address = nullptr;
         desc_.get_proc_address_with_user_data = &FakeRobustness::loader;
@@ -439,6 +457,7 @@ protected:
         FakeRobustness::error_is_context_lost = false;
         FakeRobustness::reset_at_storage = 0;
         FakeRobustness::queued = 0;
+        FakeRobustness::lose_at_bind = 0;
         gl_.reset();
         shared_gl().make_current();
     }
@@ -475,6 +494,25 @@ TEST_F(ContextLoss, AResetDuringAnAllocationIsALoss) {
     EXPECT_EQ(FakeRobustness::reset_at_storage, 0) << "no texture was allocated";
     EXPECT_EQ(FakeRobustness::queued, 0) << "the errors were not read";
     EXPECT_EQ(render(context.get()), OBSCURA_STATUS_CONTEXT_LOST);
+}
+
+// A reset that a texture probe's bind reads as a refused target (its GL_CONTEXT_LOST consumed there): the call answers
+// CONTEXT_LOST from the reset status, not INVALID_TEXTURE, and records the loss for every later call, also once the
+// reset status reads GL_NO_ERROR again (the reset completed). Until 2026-12-06 the loss was not recorded: the next
+// render rendered on, and get_timings answered apart (found by a read-only review).
+TEST_F(ContextLoss, AResetReadByATextureProbeIsRecorded) {
+    make_frame();
+    obscura_context* raw = nullptr;
+    ASSERT_EQ(obscura_create_context(&desc_, &raw), OBSCURA_OK);
+    ContextPtr context(raw);
+    ASSERT_EQ(render(context.get()), OBSCURA_OK) << obscura_get_last_error(context.get());
+    FakeRobustness::lose_at_bind = depth_.get();
+    EXPECT_EQ(render(context.get()), OBSCURA_STATUS_CONTEXT_LOST) << obscura_get_last_error(context.get());
+    EXPECT_EQ(FakeRobustness::lose_at_bind, 0u) << "the depth texture was not bound";
+    FakeRobustness::reset_status = GL_NO_ERROR;
+    EXPECT_EQ(render(context.get()), OBSCURA_STATUS_CONTEXT_LOST) << obscura_get_last_error(context.get());
+    uint32_t count = 0;
+    EXPECT_EQ(obscura_get_timings(context.get(), nullptr, 0, &count, nullptr), OBSCURA_STATUS_CONTEXT_LOST);
 }
 
 TEST_F(ContextLoss, ResetIsReportedByEveryLaterCall) {

@@ -34,7 +34,8 @@
  *                             al., "Screen Space Indirect Lighting with Visibility Bitmask" (2023): occluders of finite
  *                             thickness mark sectors of a 32-bit mask, so light passes behind thin objects.
  *   All six are available in this version; obscura_method_available() and OBSCURA_STATUS_METHOD_NOT_AVAILABLE
- *   remain for methods a build or a later version does not have.
+ *   remain for a declared method a build leaves out (none does today). A value that names no method of this
+ *   library (one from a later header) is INVALID_ENUM.
  *
  * INTEGRATION
  *   1. obscura_context_desc desc = {0};
@@ -67,16 +68,18 @@
  *     whole depth texture; AO is written only for `output_rect`. The papers use 10-20 % per side.
  *   - Units: view units are the units of the host's view space; settings distances are metres and
  *     are multiplied by `meters_to_view_units` (default 1).
- *   - Normals (optional): view-space normals in a GL_TEXTURE_2D (RGB, signed float formats as is,
- *     unsigned normalised formats decoded as n*2-1) the size of the depth texture. Without them the
- *     SDK reconstructs face normals from depth.
+ *   - Normals (optional): view-space normals in a GL_TEXTURE_2D (RGB, signed float and snorm formats as
+ *     is; unsigned formats, R11F_G11F_B10F included since it has no sign bit, decoded as n*2-1) the size
+ *     of the depth texture. Without them the SDK reconstructs face normals from depth.
  *
  * GL STATE CONTRACT
  *   obscura_render() leaves every GL binding it touches as it found it (program, texture and
  *   sampler bindings on the units it uses, image units, SSBO/UBO bindings, read/draw framebuffers,
  *   active texture, pixel-store state) and leaves no GL error. It never calls glFinish or reads data
- *   back, except when OBSCURA_CONTEXT_FLAG_SYNC_TIMING is set. One context per GL context, used
- *   from the thread where that GL context is current.
+ *   back, except when OBSCURA_CONTEXT_FLAG_SYNC_TIMING is set. It issues a glMemoryBarrier (texture
+ *   fetch, image access, framebuffer) before its first pass, so inputs the host wrote with image stores
+ *   or compute just before the call are seen. One context per GL context, used from the thread where that
+ *   GL context is current.
  *
  * PERFORMANCE (docs/performance.md; NVIDIA H100, GL timer queries, 10 % guard band, median of 200 frames)
  *   method / settings            1280x720          1920x1080         3840x2160     GPU memory, 1080p
@@ -551,10 +554,11 @@ typedef struct obscura_temporal_settings {
    distance, so AO does not cross depth edges or creases; where all four are off the pixel's plane, the nearest
    plane's texel alone. The raw debug views (ao-before-blur, tap-count) and the depth and normal views show the
    reduced grid, each texel covering its 2^k x 2^k pixels. Without a debug view the upsample writes the output
-   itself (timing label "upsample", which then holds the whole output write, and no "composite"); with one it writes
-   a full-size R16F result that "composite" then shows. Memory: the working textures at the reduced size, plus with
-   bent normals a full-size RGBA16F result, and once a debug view has run the full-size R16F one (kept until the
-   size changes or obscura_release_resources).
+   itself (timing label "upsample", which then holds the whole output write, and no "composite"); with one the
+   composite shows the reduced grid and the upsample runs only for the bent normals (writing, beside them, a
+   full-size R16F visibility that the debug view does not show). Memory: the working textures at the reduced size,
+   plus with bent normals a full-size RGBA16F result, and once a debug view has run with bent normals the full-size
+   R16F one (kept until the size changes or obscura_release_resources).
    Every field: 0 selects the default given after it. */
 typedef enum obscura_resolution {
     OBSCURA_RESOLUTION_DEFAULT = 0, /* full */
@@ -776,7 +780,8 @@ typedef struct obscura_input {
                                        (LSAO and FFAO their lines) */
     uint32_t flags;                 /* OBSCURA_INPUT_FLAG_* */
     float view_projection[16];      /* world -> clip of this frame, the depth's (projection_layout; jitter included);
-                                       all zero: none, and the frame starts a new history */
+                                       all zero: none, and without motion vectors the frame starts a new history
+                                       (with them the history continues, read where the vectors point) */
     float previous_view_projection[16]; /* the same of the previous frame; all zero: none */
     uint32_t motion_vector_texture; /* optional GL_TEXTURE_2D (RG16F or RG32F, the depth's size): per texel, the offset
                                        from this frame's position to the previous frame's (previous = current +

@@ -17,6 +17,21 @@ inline bool texture_has_target(const Table& gl, GLuint texture, GLenum target) {
     return ok;
 }
 
+// The level texelFetch's and an image unit's level 0 name of the texture bound to `target` on the active unit: its
+// GL_TEXTURE_BASE_LEVEL (a host building a pyramid in place may have moved it), clamped to an immutable texture's
+// levels (GL 4.3, 8.17). Multisample textures have one level.
+inline GLint texture_base_level(const Table& gl, GLenum target) {
+    if (target != GL_TEXTURE_2D) return 0;
+    GLint level = 0, immutable = GL_FALSE, levels = 0;
+    gl.GetTexParameteriv(target, GL_TEXTURE_BASE_LEVEL, &level);
+    gl.GetTexParameteriv(target, GL_TEXTURE_IMMUTABLE_FORMAT, &immutable);
+    if (immutable) {
+        gl.GetTexParameteriv(target, GL_TEXTURE_IMMUTABLE_LEVELS, &levels);
+        level = level < 0 ? 0 : (level > levels - 1 ? (levels > 1 ? levels - 1 : 0) : level);
+    }
+    return level;
+}
+
 inline GLenum binding_query(GLenum target) {
     switch (target) {
         case GL_TEXTURE_2D: return GL_TEXTURE_BINDING_2D;
