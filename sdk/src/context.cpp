@@ -400,10 +400,11 @@ Error Context::render(const obscura_input& input, const obscura_settings& settin
     bool recorded = false;  // record_frame succeeded: the view's history (with temporal on) is this frame's
     {
         gl::StateGuard guard(gl);
-        error = check_input_textures(gl, input, &frame);
-        if (!error) error = check_output_target(gl, output, frame.output_rect, &target);
+        const gl::TextureTargets targets = device_.texture_targets();
+        error = check_input_textures(targets, input, &frame);
+        if (!error) error = check_output_target(targets, output, frame.output_rect, &target);
         if (!error) error = check_attachment_aliasing(input, output, target);
-        if (!error) error = check_bent_normal_target(gl, output, frame.output_rect, &target);
+        if (!error) error = check_bent_normal_target(targets, output, frame.output_rect, &target);
         if (!error) error = record_frame(frame, resolved, target);
         recorded = !error;
         // A failed validation may leave a probing error (wrong texture target) behind: drain it.

@@ -45,10 +45,11 @@ int normal_mode_for_format(GLenum format) {
 
 // A texture that goes with the depth (normals, motion vectors): a GL_TEXTURE_2D of the depth's size, probed on
 // `unit` (the state guard restores it); its internal format in *format.
-Error check_companion_texture(const gl::Table& gl, GLuint texture, const char* field, int unit, const FrameInput& frame,
-                              GLenum* format) {
+Error check_companion_texture(const gl::TextureTargets& targets, GLuint texture, const char* field, int unit,
+                              const FrameInput& frame, GLenum* format) {
+    const gl::Table& gl = targets.gl;
     gl.ActiveTexture(GLenum(GL_TEXTURE0 + unit));
-    if (!gl.IsTexture(texture) || !texture_has_target(gl, texture, GL_TEXTURE_2D)) {
+    if (!gl.IsTexture(texture) || !texture_has_target(targets, texture, GL_TEXTURE_2D)) {
         return Error::make(OBSCURA_STATUS_INVALID_TEXTURE, "%s %u is not a GL_TEXTURE_2D", field, texture);
     }
     GLint width = 0, height = 0, internal_format = 0;
@@ -213,7 +214,8 @@ Error check_input_fields(const obscura_input& input, GLint max_texture_size, Fra
     return Error();
 }
 
-Error check_input_textures(const gl::Table& gl, const obscura_input& input, FrameInput* out) {
+Error check_input_textures(const gl::TextureTargets& targets, const obscura_input& input, FrameInput* out) {
+    const gl::Table& gl = targets.gl;
     FrameInput frame = *out;
 
     // Depth texture: a 2D or 2D multisample texture of the stated size and a readable format.
@@ -223,9 +225,9 @@ Error check_input_textures(const gl::Table& gl, const obscura_input& input, Fram
     }
     gl.ActiveTexture(GL_TEXTURE0 + OBSCURA_UNIT_DEPTH);
     GLenum target = GL_TEXTURE_2D;
-    if (!texture_has_target(gl, input.depth_texture, GL_TEXTURE_2D)) {
+    if (!texture_has_target(targets, input.depth_texture, GL_TEXTURE_2D)) {
         target = GL_TEXTURE_2D_MULTISAMPLE;
-        if (!texture_has_target(gl, input.depth_texture, GL_TEXTURE_2D_MULTISAMPLE)) {
+        if (!texture_has_target(targets, input.depth_texture, GL_TEXTURE_2D_MULTISAMPLE)) {
             return Error::make(OBSCURA_STATUS_INVALID_TEXTURE,
                                "depth_texture %u is neither GL_TEXTURE_2D nor GL_TEXTURE_2D_MULTISAMPLE",
                                input.depth_texture);
@@ -265,7 +267,7 @@ Error check_input_textures(const gl::Table& gl, const obscura_input& input, Fram
     // Optional normals: a 2D texture of the same size with a signed or unsigned-normalised RGB(A) format.
     if (input.normal_texture != 0) {
         GLenum normal_format = 0;
-        Error error = check_companion_texture(gl, input.normal_texture, "normal_texture", OBSCURA_UNIT_NORMALS, frame,
+        Error error = check_companion_texture(targets, input.normal_texture, "normal_texture", OBSCURA_UNIT_NORMALS, frame,
                                               &normal_format);
         if (error) return error;
         frame.normal_mode = normal_mode_for_format(normal_format);
@@ -281,7 +283,7 @@ Error check_input_textures(const gl::Table& gl, const obscura_input& input, Fram
     // Optional motion vectors: a 2D texture of the depth's size with two float channels.
     if (input.motion_vector_texture != 0) {
         GLenum motion_format = 0;
-        Error error = check_companion_texture(gl, input.motion_vector_texture, "motion_vector_texture",
+        Error error = check_companion_texture(targets, input.motion_vector_texture, "motion_vector_texture",
                                               OBSCURA_UNIT_MOTION, frame, &motion_format);
         if (error) return error;
         if (motion_format != GL_RG16F && motion_format != GL_RG32F) {

@@ -7,6 +7,7 @@
 
 #include "error.h"
 #include "gl/gl_objects.h"
+#include "gl/texture_probe.h"
 #include "projection.h"
 
 namespace obscura {
@@ -58,7 +59,7 @@ void set_reprojection(const double* previous, FrameInput* frame);
 Error check_input_fields(const obscura_input& input, GLint max_texture_size, FrameInput* out);
 // Stage 2: the textures `input` names (targets, sizes, formats), completing `*out` from stage 1.
 // Errors: INVALID_TEXTURE, UNSUPPORTED_FORMAT.
-Error check_input_textures(const gl::Table& gl, const obscura_input& input, FrameInput* out);
+Error check_input_textures(const gl::TextureTargets& targets, const obscura_input& input, FrameInput* out);
 
 }  // namespace obscura
 

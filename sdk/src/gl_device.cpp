@@ -100,6 +100,10 @@ Error GlDevice::initialize() {
     if (reset_query) {
         get_reset_status_ = reinterpret_cast<ResetStatusFn>(obscura_gl_lookup(&loader_, reset_query));
     }
+    if (version >= 40005 || has_extension(gl_, "GL_ARB_direct_state_access")) {
+        get_texture_parameteriv_ = reinterpret_cast<gl::TextureTargets::GetTextureParameterivFn>(
+            obscura_gl_lookup(&loader_, "glGetTextureParameteriv"));
+    }
     if (Error lost = check_context_lost()) return lost;
     // Every function the SDK calls must have loaded (a host loader may return NULL for some).
     struct Required { const void* fn; const char* name; };

@@ -7,6 +7,7 @@
 
 #include "error.h"
 #include "gl/gl_objects.h"
+#include "gl/texture_probe.h"
 
 namespace obscura {
 
@@ -30,6 +31,9 @@ public:
     // The context has GL_QUERY_BUFFER (GL 4.4, or GL_ARB_query_buffer_object), a binding that changes what
     // glGetQueryObject* does: the GPU timer sets the host's aside while it reads its queries.
     bool query_buffers() const { return query_buffers_; }
+    // How validation learns host textures' targets (gl/texture_probe.h): asked where the context can be, without
+    // the GL errors of probing binds.
+    gl::TextureTargets texture_targets() const { return {gl_, get_texture_parameteriv_}; }
 
     // WRONG_GL_CONTEXT unless the GL context this device was initialised on is current.
     Error check_gl_context() const;
@@ -67,6 +71,8 @@ private:
     bool gpu_code_paths_ = false;  // OBSCURA_CONTEXT_FLAG_GPU_CODE_PATHS
     // glGetGraphicsResetStatus (GL 4.5) or its KHR/ARB_robustness form; null when the context has neither.
     ResetStatusFn get_reset_status_ = nullptr;
+    // glGetTextureParameteriv (GL 4.5 or ARB_direct_state_access): texture targets without probing binds; null without.
+    gl::TextureTargets::GetTextureParameterivFn get_texture_parameteriv_ = nullptr;
     GLenum lost_reason_ = 0;  // the reset status (or GL_CONTEXT_LOST) that marked the context lost; 0: alive
     char identity_label_[32] = {};  // process-unique label of identity_framebuffer_
     gl::Object identity_framebuffer_;

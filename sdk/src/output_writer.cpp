@@ -15,13 +15,13 @@ using gl::texture_base_level;
 using gl::texture_has_target;
 
 // The target of an attached texture (GL_NONE if none binds), probed in the order hosts most often use.
-GLenum attached_texture_target(const gl::Table& gl, GLuint texture, GLenum cube_face) {
+GLenum attached_texture_target(const gl::TextureTargets& targets, GLuint texture, GLenum cube_face) {
     // Mesa reports a face for a cube-map-array layer too: only a cube map proper is attached by face.
-    if (cube_face != GL_NONE && ScopedTextureProbe(gl, texture, GL_TEXTURE_CUBE_MAP).bound()) return GL_TEXTURE_CUBE_MAP;
+    if (cube_face != GL_NONE && ScopedTextureProbe(targets, texture, GL_TEXTURE_CUBE_MAP).bound()) return GL_TEXTURE_CUBE_MAP;
     for (GLenum target : {GL_TEXTURE_2D, GL_TEXTURE_2D_ARRAY, GL_TEXTURE_3D, GL_TEXTURE_CUBE_MAP_ARRAY,
                           GL_TEXTURE_RECTANGLE, GL_TEXTURE_1D, GL_TEXTURE_1D_ARRAY, GL_TEXTURE_2D_MULTISAMPLE,
                           GL_TEXTURE_2D_MULTISAMPLE_ARRAY}) {
-        if (ScopedTextureProbe(gl, texture, target).bound()) return target;
+        if (ScopedTextureProbe(targets, texture, target).bound()) return target;
     }
     return GL_NONE;
 }
@@ -149,8 +149,9 @@ Error refuse_moved_base_level(GLint base, const char* what, GLuint texture) {
 
 }  // namespace
 
-Error check_output_target(const gl::Table& gl, const obscura_output& output, const obscura_rect& rect,
+Error check_output_target(const gl::TextureTargets& targets, const obscura_output& output, const obscura_rect& rect,
                           OutputTarget* out) {
+    const gl::Table& gl = targets.gl;
     OutputTarget target = *out;
     GLuint texture = output.texture;
     if (texture == 0 && output.framebuffer != 0) {
@@ -178,7 +179,7 @@ Error check_output_target(const gl::Table& gl, const obscura_output& output, con
                                output.framebuffer, unsigned(status));
         }
         gl.ActiveTexture(GL_TEXTURE0 + OBSCURA_UNIT_SOURCE);
-        if (type == GL_TEXTURE && level == 0 && !layered && texture_has_target(gl, GLuint(name), GL_TEXTURE_2D)) {
+        if (type == GL_TEXTURE && level == 0 && !layered && texture_has_target(targets, GLuint(name), GL_TEXTURE_2D)) {
             gl.BindTexture(GL_TEXTURE_2D, 0);
             GLint format = 0;
             gl.BindTexture(GL_TEXTURE_2D, GLuint(name));
@@ -207,7 +208,7 @@ Error check_output_target(const gl::Table& gl, const obscura_output& output, con
             if (type == GL_TEXTURE) {
                 gl.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
                                                        GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_CUBE_MAP_FACE, &cube_face);
-                texture_target = attached_texture_target(gl, GLuint(name), GLenum(cube_face));
+                texture_target = attached_texture_target(targets, GLuint(name), GLenum(cube_face));
             }
             if (type == GL_RENDERBUFFER) {
                 GLint renderbuffer = 0, previous = 0;
@@ -220,7 +221,7 @@ Error check_output_target(const gl::Table& gl, const obscura_output& output, con
                 gl.BindRenderbuffer(GL_RENDERBUFFER, GLuint(previous));
             } else if (type == GL_TEXTURE && !layered && texture_target != GL_NONE) {
                 // The attached image's size: a cube map's per face, a 1D array layer's is one row.
-                const ScopedTextureProbe bound(gl, GLuint(name), texture_target);
+                const ScopedTextureProbe bound(targets, GLuint(name), texture_target);
                 const GLenum level_target = texture_target == GL_TEXTURE_CUBE_MAP ? GLenum(cube_face) : texture_target;
                 gl.GetTexLevelParameteriv(level_target, level, GL_TEXTURE_WIDTH, &width);
                 gl.GetTexLevelParameteriv(level_target, level, GL_TEXTURE_HEIGHT, &height);
@@ -281,7 +282,7 @@ Error check_output_target(const gl::Table& gl, const obscura_output& output, con
     }
 
     gl.ActiveTexture(GL_TEXTURE0 + OBSCURA_UNIT_SOURCE);
-    if (!gl.IsTexture(texture) || !texture_has_target(gl, texture, GL_TEXTURE_2D)) {
+    if (!gl.IsTexture(texture) || !texture_has_target(targets, texture, GL_TEXTURE_2D)) {
         return Error::make(OBSCURA_STATUS_INVALID_TEXTURE, "output texture %u is not a GL_TEXTURE_2D", texture);
     }
     GLint width = 0, height = 0, format = 0;
@@ -308,12 +309,13 @@ Error check_output_target(const gl::Table& gl, const obscura_output& output, con
     return Error();
 }
 
-Error check_bent_normal_target(const gl::Table& gl, const obscura_output& output, const obscura_rect& rect,
+Error check_bent_normal_target(const gl::TextureTargets& targets, const obscura_output& output, const obscura_rect& rect,
                                OutputTarget* out) {
+    const gl::Table& gl = targets.gl;
     const GLuint texture = output.bent_normal_texture;
     if (texture == 0) return Error();
     gl.ActiveTexture(GL_TEXTURE0 + OBSCURA_UNIT_SOURCE);
-    if (!gl.IsTexture(texture) || !texture_has_target(gl, texture, GL_TEXTURE_2D)) {
+    if (!gl.IsTexture(texture) || !texture_has_target(targets, texture, GL_TEXTURE_2D)) {
         return Error::make(OBSCURA_STATUS_INVALID_TEXTURE, "output.bent_normal_texture %u is not a GL_TEXTURE_2D",
                            texture);
     }

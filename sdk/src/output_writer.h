@@ -54,12 +54,12 @@ Error check_output_aliasing(const obscura_input& input, const obscura_output& ou
 Error check_attachment_aliasing(const obscura_input& input, const obscura_output& output, const OutputTarget& target);
 // Stage 2: the texture, or the framebuffer and its attachment, for a result of `rect`'s size, completing `*out`
 // from stage 1. Errors: INVALID_TEXTURE, UNSUPPORTED_FORMAT, INVALID_RECT, INVALID_FRAMEBUFFER.
-Error check_output_target(const gl::Table& gl, const obscura_output& output, const obscura_rect& rect,
+Error check_output_target(const gl::TextureTargets& targets, const obscura_output& output, const obscura_rect& rect,
                           OutputTarget* out);
 
 // Stage 2 for output.bent_normal_texture (when set): a GL_TEXTURE_2D of a bent-normal format the result fits at
 // (x, y). Errors: INVALID_TEXTURE, UNSUPPORTED_FORMAT, INVALID_RECT.
-Error check_bent_normal_target(const gl::Table& gl, const obscura_output& output, const obscura_rect& rect,
+Error check_bent_normal_target(const gl::TextureTargets& targets, const obscura_output& output, const obscura_rect& rect,
                                OutputTarget* out);
 
 // GLSL image format qualifier for a texture internal format the composite pass can write, or nullptr.

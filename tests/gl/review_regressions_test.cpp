@@ -375,5 +375,73 @@ TEST_F(ReviewRegressions, OutputTexturesWithAMovedBaseLevel) {
     EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 }
 
+// Validation learns host textures' targets by asking GL 4.5's glGetTextureParameteriv where the context has it: no GL
+// error then reaches a host's debug output. Until 2026-12-06 it always probed by binding, and a multisampled depth
+// texture, or a framebuffer whose colour attachment is a cube face or an array layer, raised GL_INVALID_OPERATION
+// every frame (consumed, but a host breaking on debug errors stopped there; found by a read-only review). Without the
+// query (a loader that has none, as on a 4.3 context) the probes still find the targets.
+struct DebugErrors {
+    static int count;
+    static void GLAD_API_PTR callback(GLenum, GLenum type, GLuint, GLenum, GLsizei, const GLchar*, const void*) {
+        if (type == GL_DEBUG_TYPE_ERROR) ++count;
+    }
+};
+int DebugErrors::count = 0;
+
+obscura_gl_function without_texture_parameter_query(void*, const char* name) {
+    if (std::string(name) == "glGetTextureParameteriv") return nullptr;
+    return obscura::samples::HeadlessGL::get_proc_address(name);
+}
+
+TEST_F(ReviewRegressions, ValidationRaisesNoGlErrorWhereGlCanBeAsked) {
+    Camera camera(Projection::Perspective, kWidth, kHeight, Lens(), corner_view());
+    const CornerDepth corner = corner_depth(camera);
+    HostTexture depth = make_multisample_depth_texture(kWidth, kHeight, 4, corner.depth, 0.5f);
+    obscura_input input = make_input(depth.get(), kWidth, kHeight, camera.matrix());
+    HostTexture cube = HostTexture::create();
+    glBindTexture(GL_TEXTURE_CUBE_MAP, cube.get());
+    glTexStorage2D(GL_TEXTURE_CUBE_MAP, 1, GL_RGBA8, kWidth, kWidth);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
+    HostFramebuffer framebuffer = HostFramebuffer::create();
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.get());
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_CUBE_MAP_POSITIVE_Z, cube.get(), 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    ASSERT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+    obscura_settings settings = make_settings(1.0f);
+    obscura_output output = make_output(0);
+    output.framebuffer = framebuffer.get();
+
+    glEnable(GL_DEBUG_OUTPUT);
+    glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+    glDebugMessageCallback(&DebugErrors::callback, nullptr);
+    DebugErrors::count = 0;
+    glBindTexture(GL_TEXTURE_2D, depth.get());  // a multisampled texture to GL_TEXTURE_2D: the callback must see it
+    const int host_error = DebugErrors::count;
+    (void)glGetError();
+    DebugErrors::count = 0;
+    const obscura_status status = obscura_render(ctx(), &input, &settings, &output);
+    const int with_query = DebugErrors::count;
+
+    obscura_context_desc desc = make_desc();
+    desc.get_proc_address = nullptr;
+    desc.get_proc_address_with_user_data = &without_texture_parameter_query;
+    obscura_context* probing = nullptr;
+    ASSERT_EQ(obscura_create_context(&desc, &probing), OBSCURA_OK);
+    DebugErrors::count = 0;
+    const obscura_status probed = obscura_render(probing, &input, &settings, &output);
+    const int with_probes = DebugErrors::count;
+    obscura_destroy_context(probing);
+    glDebugMessageCallback(nullptr, nullptr);
+    glDisable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+    glDisable(GL_DEBUG_OUTPUT);
+
+    ASSERT_GT(host_error, 0) << "this context's debug output does not report API errors";
+    EXPECT_EQ(status, OBSCURA_OK) << obscura_get_last_error(ctx());
+    EXPECT_EQ(with_query, 0) << "GL errors raised by validation with glGetTextureParameteriv";
+    EXPECT_EQ(probed, OBSCURA_OK);
+    EXPECT_GT(with_probes, 0) << "the probing binds (no query) raise errors: the test's premise";
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+}
+
 }  // namespace
 }  // namespace obscura_test

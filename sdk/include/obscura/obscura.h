@@ -78,8 +78,10 @@
  *   active texture, pixel-store state) and leaves no GL error. It never calls glFinish or reads data
  *   back, except when OBSCURA_CONTEXT_FLAG_SYNC_TIMING is set. It issues a glMemoryBarrier (texture
  *   fetch, image access, framebuffer) before its first pass, so inputs the host wrote with image stores
- *   or compute just before the call are seen. One context per GL context, used from the thread where that
- *   GL context is current.
+ *   or compute just before the call are seen. Host textures' targets are asked of GL 4.5 (or
+ *   ARB_direct_state_access); a 4.3/4.4 context without it can only be probed by binding, whose refusals
+ *   (GL_INVALID_OPERATION, consumed) a host's debug output may report. One context per GL context, used
+ *   from the thread where that GL context is current.
  *
  * PERFORMANCE (docs/performance.md; NVIDIA H100, GL timer queries, 10 % guard band, median of 200 frames)
  *   method / settings            1280x720          1920x1080         3840x2160     GPU memory, 1080p

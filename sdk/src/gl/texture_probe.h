@@ -1,6 +1,8 @@
-// Texture probes: GL 4.3 cannot be asked a texture's target, only told it by binding the name to a target
-// and seeing whether GL accepts it. Shared by the input's and the output's validation (frame_input.cpp,
-// output_writer.cpp).
+// Texture probes: how validation learns a texture's target. GL 4.5 (and ARB_direct_state_access) answers it
+// directly, through glGetTextureParameteriv(GL_TEXTURE_TARGET); GL 4.3 can only be told it, by binding the name to a
+// target and seeing whether GL accepts it, which raises GL_INVALID_OPERATION for a wrong guess: consumed here, but a
+// host with debug output on sees an error every frame. Shared by the input's and the output's validation
+// (frame_input.cpp, output_writer.cpp).
 #ifndef OBSCURA_GL_TEXTURE_PROBE_H
 #define OBSCURA_GL_TEXTURE_PROBE_H
 
@@ -8,12 +10,33 @@
 
 namespace obscura::gl {
 
-// Binds `texture` to `target` on the current unit and reports whether GL accepted it: the only way in
-// GL 4.3 to learn a texture's target (binding a name to the wrong target raises INVALID_OPERATION).
-inline bool texture_has_target(const Table& gl, GLuint texture, GLenum target) {
-    gl.BindTexture(target, texture);
-    bool ok = gl.GetError() == GL_NO_ERROR;
-    if (!ok) gl.BindTexture(target, 0);
+// The GL table and, where the context has it (GlDevice), glGetTextureParameteriv (GL 4.5 or
+// ARB_direct_state_access; not in the SDK's 4.3 table).
+struct TextureTargets {
+    using GetTextureParameterivFn = void(GLAD_API_PTR*)(GLuint texture, GLenum name, GLint* value);
+    static constexpr GLenum kTextureTarget = 0x1006;  // GL_TEXTURE_TARGET (GL 4.5)
+
+    const Table& gl;
+    GetTextureParameterivFn get_texture_parameteriv = nullptr;
+
+    // Whether `texture` is a texture of `target`, without a GL error where the query exists (a name that is no
+    // texture object is asked nothing: the query would raise INVALID_OPERATION for it).
+    bool known_not(GLuint texture, GLenum target) const {
+        if (!get_texture_parameteriv) return false;
+        if (!gl.IsTexture(texture)) return true;
+        GLint actual = GL_NONE;
+        get_texture_parameteriv(texture, kTextureTarget, &actual);
+        return GLenum(actual) != target;
+    }
+};
+
+// Binds `texture` to `target` on the current unit and reports whether it is a texture of that target (asked first
+// where the context can be asked; else GL's refusal of the bind, INVALID_OPERATION, tells it).
+inline bool texture_has_target(const TextureTargets& targets, GLuint texture, GLenum target) {
+    if (targets.known_not(texture, target)) return false;
+    targets.gl.BindTexture(target, texture);
+    bool ok = targets.gl.GetError() == GL_NO_ERROR;
+    if (!ok) targets.gl.BindTexture(target, 0);
     return ok;
 }
 
@@ -51,10 +74,11 @@ inline GLenum binding_query(GLenum target) {
 // binding: the state guard restores only the targets the passes use, and a probe may touch any.
 class ScopedTextureProbe {
 public:
-    ScopedTextureProbe(const Table& gl, GLuint texture, GLenum target) : gl_(gl), target_(target) {
-        gl.GetIntegerv(binding_query(target), &previous_);
-        gl.BindTexture(target, texture);
-        bound_ = gl.GetError() == GL_NO_ERROR;
+    ScopedTextureProbe(const TextureTargets& targets, GLuint texture, GLenum target) : gl_(targets.gl), target_(target) {
+        gl_.GetIntegerv(binding_query(target), &previous_);
+        if (targets.known_not(texture, target)) return;
+        gl_.BindTexture(target, texture);
+        bound_ = gl_.GetError() == GL_NO_ERROR;
     }
     ~ScopedTextureProbe() { gl_.BindTexture(target_, GLuint(previous_)); }
     ScopedTextureProbe(const ScopedTextureProbe&) = delete;
