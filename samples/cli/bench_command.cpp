@@ -2,7 +2,8 @@
 //
 // The clock: on a GPU the SDK's GL timer queries (obscura_get_timings; "gpu-timer"). On software
 // renderers (llvmpipe, softpipe), whose timer queries read 0, the CPU clock around obscura_render +
-// glFinish ("wall"), with per-pass times from the SDK's sync timing (glFinish + CPU clock per pass).
+// glFinish ("wall"), with per-pass times from the SDK's sync timing (glFinish + CPU clock per pass), whose
+// glFinish after every pass the total includes (`--clock wall` on a GPU reads above the unsynchronised frame).
 #include <cstdio>
 #include <fstream>
 #include <memory>
@@ -65,11 +66,15 @@ BenchConfig take_bench_config(ArgumentList& arguments) {
     if (auto clock = arguments.take_value("--clock")) config.clock = parse_clock(*clock);
     config.json_path = arguments.take_value("--json");
     config.csv_path = arguments.take_value("--csv");
+    std::vector<OutputFile> outputs;
+    if (config.json_path) outputs.push_back({"--json", *config.json_path});
+    if (config.csv_path) outputs.push_back({"--csv", *config.csv_path});
     if (auto motion = arguments.take_value("--motion")) {
         if (config.scene.depth_file) throw UsageError("--motion needs a scene (a depth file has one camera)");
         config.motion_degrees = parse_double_in("--motion", *motion, -45.0, 45.0);
     }
     arguments.require_all_taken();
+    check_output_files(outputs);  // before the run: its numbers are what the files are for
     return config;
 }
 
@@ -187,33 +192,70 @@ int run_bench(ArgumentList& arguments) {
         std::fprintf(stderr, "obscura bench: warning: the timer queries of %s read 0; --clock wall measures it\n",
                      gl.renderer().c_str());
     }
+    // The wall clock's per-pass times come from the SDK's sync timing, a glFinish after every pass, which the total
+    // then includes: on a GPU it reads above what the frame costs unsynchronised (the gpu-timer clock measures that);
+    // on a software renderer, which runs each pass to its end anyway, it adds little. Said, not hidden.
     ObscuraSession session(clock == Clock::Wall ? uint32_t(OBSCURA_CONTEXT_FLAG_SYNC_TIMING) : 0u);
     std::printf("clock: %s (%s); median and min of %d frames after %d warm-up\n", clock_name(clock),
-                clock == Clock::Wall ? "CPU clock around obscura_render + glFinish; passes by glFinish + CPU clock"
+                clock == Clock::Wall ? "CPU clock around obscura_render + glFinish, with a glFinish after every pass; "
+                                       "passes by glFinish + CPU clock"
                                      : "GL timer queries of the SDK (obscura_get_timings)",
                 config.frames, config.warmup);
 
+    // A size this context cannot hold is a usage error found before the first size is timed, not after it.
+    for (const ImageSize& size : config.sizes) source.check_size(size);
+
     std::vector<BenchResult> results;
     size_t failures = 0;
+    const auto record_failure = [&](const MethodSpec& method, int width, int height, const std::string& error) {
+        BenchResult failed;
+        failed.scene = source.name();
+        failed.width = width;
+        failed.height = height;
+        failed.method = &method;
+        failed.error = error;
+        results.push_back(failed);
+        ++failures;
+    };
     for (const ImageSize& size : config.sizes) {
-        const samples::RenderedScene scene = source.render(source.camera(), size);
-        std::printf("\nscene: %s\n", source.describe(scene.frame()).c_str());
-        const AoTarget target(scene->output_rect.width, scene->output_rect.height, GL_R8);
+        // A size whose depth the samples cannot rasterise (a framebuffer GL refuses, out of memory) fails each method
+        // at that size, as a configuration the SDK refuses does: the other sizes still run and the files are written.
+        // A usage error (--msaa past the context's limit) fails every size alike: it ends the run.
+        std::optional<samples::RenderedScene> scene;
+        std::optional<AoTarget> target;
         // --motion: the camera moves every frame, back and forth between the scene's camera and one turned by that
         // much along the orbit, each frame reprojecting the other's history (temporal accumulation's moving path).
         // A camera that stays put while its previous_view_projection claims motion is a still camera to the SDK,
         // which reprojects from the camera its history was made with (the bench measured the still path so from
         // 2026-12-05, a3ec05a, until this was fixed).
         std::optional<samples::RenderedScene> turned;
-        if (config.motion_degrees != 0.0) {
-            turned.emplace(source.render(samples::orbit_camera(source.camera(), float(-config.motion_degrees)), size));
+        try {
+            scene.emplace(source.render(source.camera(), size));
+            std::printf("\nscene: %s\n", source.describe(scene->frame()).c_str());
+            target.emplace((*scene)->output_rect.width, (*scene)->output_rect.height, GL_R8);
+            if (config.motion_degrees != 0.0) {
+                const samples::Camera previous = samples::orbit_camera(source.camera(), float(-config.motion_degrees));
+                turned.emplace(source.render(previous, size));
+            }
+        } catch (const UsageError&) {
+            throw;
+        } catch (const std::exception& error) {
+            const ImageSize shown = source.is_depth_file() ? ImageSize{} : size;  // a depth file's size is its own
+            std::printf("\nscene: %s: %s\n", source.name().c_str(), error.what());
+            for (const MethodSpec& method : config.methods) {
+                record_failure(method, shown.width, shown.height, error.what());
+                std::printf("%s @ %dx%d, clock %s\n", method.text.c_str(), shown.width, shown.height,
+                            clock_name(clock));
+                print_result(results.back());
+            }
+            continue;
         }
         for (const MethodSpec& method : config.methods) {
             AoRenderRequest request;
-            request.scene = &scene.frame();
+            request.scene = &scene->frame();
             if (turned) request.previous_scene = &turned->frame();
             request.settings = &method.settings;
-            request.target = &target;
+            request.target = &*target;
             request.use_normals = source.use_normals();
             // A configuration the SDK refuses (FFAO at 4K over a software renderer's storage-block limit,
             // say) is reported and the rest still run: one refusal must not lose a long run's numbers.
@@ -222,20 +264,13 @@ int run_bench(ArgumentList& arguments) {
                 AoRenderRequest back = request;
                 if (turned) {
                     back.scene = &turned->frame();
-                    back.previous_scene = &scene.frame();
+                    back.previous_scene = &scene->frame();
                 }
                 const TimingSummary summary =
                     time_frames(session, request, config.warmup, config.frames, turned ? &back : nullptr);
-                results.push_back(make_result(source, scene.frame(), method, summary, clock));
+                results.push_back(make_result(source, scene->frame(), method, summary, clock));
             } catch (const ApiError& error) {
-                BenchResult failed;
-                failed.scene = source.name();
-                failed.width = scene->output_rect.width;
-                failed.height = scene->output_rect.height;
-                failed.method = &method;
-                failed.error = error.what();
-                results.push_back(failed);
-                ++failures;
+                record_failure(method, (*scene)->output_rect.width, (*scene)->output_rect.height, error.what());
             }
             std::printf("%s @ %dx%d, clock %s\n", method.text.c_str(), results.back().width, results.back().height,
                         clock_name(clock));

@@ -39,6 +39,13 @@ std::vector<std::string> ArgumentList::take_values(const std::string& name) {
     for (size_t i = 0; i < arguments_.size();) {
         if (arguments_[i] == name) {
             if (i + 1 >= arguments_.size()) throw UsageError(name + " needs a value");
+            // The next argument is another option when it starts with "--" (a value such as "-1,2,3" does not):
+            // taken as the value it went missing itself (`--json --sync-timing` wrote a report named
+            // "--sync-timing" and timed without sync). A value that does start with "--" is given as --name=VALUE.
+            if (arguments_[i + 1].compare(0, 2, "--") == 0) {
+                throw UsageError(name + " needs a value, not the option '" + arguments_[i + 1] + "' (give " + name +
+                                 "=VALUE for a value that starts with --)");
+            }
             values.push_back(arguments_[i + 1]);
             arguments_.erase(arguments_.begin() + long(i), arguments_.begin() + long(i) + 2);
         } else if (arguments_[i].compare(0, with_equals.size(), with_equals) == 0) {
@@ -121,6 +128,46 @@ const std::string& check_image_path(const std::string& option, const std::string
                           " (diff reads a .pfm name as PFM, any other as PNG)";
     if (other_option) message += "; " + std::string(other_option) + " writes " + (png ? "PFM" : "PNG");
     throw UsageError(message);
+}
+
+namespace {
+
+// The file `path` names, for telling two names of one file apart ("ao.png" and "./ao.png"): symbolic links resolved
+// where the path exists.
+std::filesystem::path file_identity(const std::string& path) {
+    // Absolute first: weakly_canonical leaves a relative path relative when its first element does not exist
+    // ("a.pfm"), and makes it absolute when it does ("./a.pfm").
+    const std::filesystem::path absolute = std::filesystem::absolute(path).lexically_normal();
+    std::error_code error;
+    const std::filesystem::path canonical = std::filesystem::weakly_canonical(absolute, error);
+    return error ? absolute : canonical;
+}
+
+}  // namespace
+
+void check_output_files(const std::vector<OutputFile>& outputs) {
+    for (size_t i = 0; i < outputs.size(); ++i) {
+        for (size_t j = 0; j < i; ++j) {
+            if (file_identity(outputs[i].path) == file_identity(outputs[j].path)) {
+                throw UsageError(outputs[j].option + " " + outputs[j].path + " and " + outputs[i].option + " " +
+                                 outputs[i].path + " name the same file: give each its own");
+            }
+        }
+    }
+    for (const OutputFile& output : outputs) {
+        std::error_code error;
+        const bool existed = std::filesystem::exists(output.path, error);
+        std::FILE* probe = std::fopen(output.path.c_str(), "ab");
+        if (!probe) throw UsageError(output.option + ": cannot open " + output.path + " for writing");
+        std::fclose(probe);
+        if (!existed) std::filesystem::remove(output.path, error);
+    }
+}
+
+void check_output_directory(const std::string& option, const std::string& path) {
+    std::error_code error;
+    std::filesystem::create_directories(path, error);
+    if (error) throw UsageError(option + ": cannot create the directory " + path + " (" + error.message() + ")");
 }
 
 std::vector<std::string> split_list(const std::string& option, const std::string& text) {

@@ -22,7 +22,8 @@ public:
 
     // Removes every "--name" and reports whether there was one.
     bool take_flag(const std::string& name);
-    // Removes every "--name VALUE" / "--name=VALUE" and returns the values in order.
+    // Removes every "--name VALUE" / "--name=VALUE" and returns the values in order. UsageError when "--name" is
+    // last or followed by an argument starting with "--" (another option; "-1,2,3" is a value).
     std::vector<std::string> take_values(const std::string& name);
     // The single value of "--name"; UsageError if given more than once.
     std::optional<std::string> take_value(const std::string& name);
@@ -52,6 +53,19 @@ ImageFormat image_format_of(const std::string& path);
 // option of the same command that writes the other format, named in the message.
 const std::string& check_image_path(const std::string& option, const std::string& path, ImageFormat format,
                                     const char* other_option = nullptr);
+
+// Checks, while the arguments are read, the files a command writes at the end of a long run, so that a wrong name
+// costs no minutes of tracing and leaves no half of a set of outputs behind. Each entry: the option and its path.
+struct OutputFile {
+    std::string option;
+    std::string path;
+};
+// UsageError when two of `outputs` name the same file (one would overwrite the other), or when one cannot be opened
+// for writing (a missing directory, no permission). Probing opens the file for appending and removes it again when
+// it did not exist; an existing file keeps its contents.
+void check_output_files(const std::vector<OutputFile>& outputs);
+// UsageError when the directory `path` cannot be created (`option` named in the message); creates it otherwise.
+void check_output_directory(const std::string& option, const std::string& path);
 
 // "a,b,c" -> {"a", "b", "c"}; an empty entry (",," or a leading/trailing ',') or an empty text is a
 // UsageError naming `option`.

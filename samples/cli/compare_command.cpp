@@ -85,6 +85,13 @@ CompareConfig take_compare_config(ArgumentList& arguments) {
     // --temporal on|off: every method's temporal accumulation (the setting `temporal.enabled`; a spec's own key wins).
     if (auto temporal = arguments.take_value("--temporal")) {
         if (*temporal != "on" && *temporal != "off") throw UsageError("--temporal takes on or off, not '" + *temporal + "'");
+        // Both set every method's temporal.enabled: one of them would win silently.
+        for (const std::string& set : sets) {
+            if (set.compare(0, set.find('='), "temporal.enabled") == 0) {
+                throw UsageError("--temporal " + *temporal + " and --set " + set +
+                                 " both set temporal.enabled: give one");
+            }
+        }
         sets.insert(sets.begin(), "temporal.enabled=" + *temporal);
     }
     config.methods = parse_method_specs("--methods", methods ? *methods : default_method_list(), sets);
@@ -299,12 +306,21 @@ std::vector<ClassErrors> measure_classes(const ComparedMethod& method, const Com
             errors.within_5pct = sum_within / double(errors.pixels);
         }
         // Flicker within the class (pixels of the class in both frames of a pair): the rest class holds what
-        // sampling noise does, apart from the moving edges whose error changes as they move.
+        // sampling noise does, apart from the moving edges whose error changes as they move. None such: unmeasured
+        // (samples::flicker's 0 would read as perfectly steady).
         if (classes.frames.size() > 1) {
             std::vector<std::vector<uint8_t>> masks(classes.frames.size());
             for (size_t f = 0; f < classes.frames.size(); ++f) {
                 masks[f].resize(classes.frames[f].size());
                 for (size_t i = 0; i < masks[f].size(); ++i) masks[f][i] = classes.frames[f][i] == uint8_t(value);
+            }
+            size_t paired_pixels = 0;
+            for (size_t f = 0; f + 1 < masks.size(); ++f) {
+                for (size_t i = 0; i < masks[f].size(); ++i) paired_pixels += masks[f][i] && masks[f + 1][i];
+            }
+            if (paired_pixels == 0) {
+                measured.push_back(errors);
+                continue;
             }
             errors.flicker = samples::flicker(method.frames, reference.frames, &masks);
             if (!method.converged_frames.empty()) {
@@ -550,12 +566,23 @@ void mark_still_geometry(const std::vector<std::vector<uint32_t>>& primary_trian
     }
 }
 
+// The outputs, checked before the truths are traced (minutes) rather than when they are written at the end. The
+// directory first: --json and --strip may name files in it.
+void check_outputs(const CompareConfig& config) {
+    check_output_directory("--out-dir", config.out_dir.string());
+    std::vector<OutputFile> files;
+    if (config.json_path) files.push_back({"--json", *config.json_path});
+    if (config.strip_path) files.push_back({"--strip", *config.strip_path});
+    check_output_files(files);
+}
+
 }  // namespace
 
 int run_compare(ArgumentList& arguments) {
     CompareConfig config = take_compare_config(arguments);
     const SceneSource source(config.scene);
     resolve_scene_defaults(config, source);
+    check_outputs(config);
 
     samples::HeadlessGL gl;
     std::printf("GL: %s\n", gl.describe().c_str());
@@ -614,6 +641,7 @@ int run_compare(ArgumentList& arguments) {
             if (kind == TruthKind::Geometry) {
                 // The geometry truth takes the falloff only: its own rays, and the scene's real thickness.
                 reference.settings.reference.rays = truth.rays;
+                reference.settings.reference.first_ray = 0;  // no screen-space rays: its own (--truth-seed)
                 reference.settings.reference.thickness = 0.0f;
             }
             reference.description = describe_reference(reference.settings);

@@ -412,8 +412,17 @@ void write_compare_json(const CompareResult& result, const std::string& path, ob
                     json.key(samples::thickness_class_name(kMeasuredClasses[c])).begin_object();
                     json.field("pixels", double(class_errors.pixels));
                     error_field("mean_abs", class_errors.mean_abs);
-                    if (class_errors.flicker) json.field("flicker", *class_errors.flicker);
-                    if (class_errors.noise_flicker) json.field("noise_flicker", *class_errors.noise_flicker);
+                    // With --frames (--converged): null where no pixel of the class was seen in both frames of a pair.
+                    const auto flicker_field = [&](const char* name, const std::optional<double>& value) {
+                        json.key(name);
+                        if (value) {
+                            json.value(*value);
+                        } else {
+                            json.null();
+                        }
+                    };
+                    if (result.frames > 1) flicker_field("flicker", class_errors.flicker);
+                    if (result.converged_frames > 0) flicker_field("noise_flicker", class_errors.noise_flicker);
                     error_field("signed_mean", class_errors.mean_signed);
                     error_field("within_5pct", class_errors.within_5pct);
                     json.end_object();

@@ -17,6 +17,13 @@ int run_demo(ArgumentList& arguments) {
                              "); run 'obscura compare' to choose them");
         }
     }
+    // A depth file's options: compare would say they need --depth, which demo refuses.
+    for (const char* depth_option : {"--depth-kind", "--near", "--far", "--reversed-z"}) {
+        if (arguments.contains(depth_option)) {
+            throw UsageError(std::string(depth_option) + " does not apply to demo (it renders the atrium; " +
+                             depth_option + " reads a depth file: obscura compare --depth FILE.pfm)");
+        }
+    }
     std::string methods;
     for (obscura_method method : comparable_methods()) {
         methods += std::string(methods.empty() ? "" : ",") + obscura_method_name(method);

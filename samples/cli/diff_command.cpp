@@ -32,6 +32,7 @@ struct DiffTolerance {
 DiffTolerance parse_tolerance(const std::string& text) {
     DiffTolerance tolerance;
     if (text.empty()) throw UsageError("--tolerance is empty (expected e.g. mean=0.005,pixels=0.005,threshold=4)");
+    std::vector<std::string> keys;  // given so far: a key given twice would keep its last value silently
     size_t start = 0;
     while (start <= text.size()) {
         const size_t end = std::min(text.find(',', start), text.size());
@@ -41,6 +42,10 @@ DiffTolerance parse_tolerance(const std::string& text) {
             throw UsageError("--tolerance: '" + item + "' is not KEY=VALUE (keys: mean, pixels, threshold)");
         }
         const std::string key = item.substr(0, equals);
+        if (std::find(keys.begin(), keys.end(), key) != keys.end()) {
+            throw UsageError("--tolerance gives " + key + " twice");
+        }
+        keys.push_back(key);
         const double value = parse_double("--tolerance " + key, item.substr(equals + 1));
         if (key == "mean" || key == "pixels") {
             if (value < 0.0 || value > 1.0) throw UsageError("--tolerance: " + key + " must be in [0, 1]");
@@ -89,6 +94,10 @@ int diff(ArgumentList& arguments) {
         throw UsageError("diff needs two images, IMAGE.png REFERENCE.png (got " + std::to_string(paths.size()) + ")");
     }
     const DiffTolerance tolerance = tolerance_text ? parse_tolerance(*tolerance_text) : DiffTolerance{};
+    std::vector<OutputFile> outputs;
+    if (heat_map_path) outputs.push_back({"--out", *heat_map_path});
+    if (json_path) outputs.push_back({"--json", *json_path});
+    check_output_files(outputs);
 
     const samples::FloatImage image = samples::luminance(read_image(paths[0]));
     const samples::FloatImage reference = samples::luminance(read_image(paths[1]));

@@ -68,7 +68,8 @@ compare renders each method and measures it against its truth with the same fall
   (obscura_reference_settings_for): --truth geometry (default for scenes) ray-traces the scene's
   triangles (--truth-rays per pixel, Embree on every core), screen (the only one for --depth files) is the
   SDK's screen-space REFERENCE through the depth buffer, infinitely thick unless reference:thickness is set
-  (--reference-rays per pixel), both reports each (--truth-rays and --truth-seed need the geometry truth,
+  (--reference-rays per pixel, from ray 2^23 of each pixel's sequence: not the rays of a compared reference
+  method, which start at 0), both reports each (--truth-rays and --truth-seed need the geometry truth,
   --reference-rays the screen-space one). Progress on stderr. Prints per truth and method: gpu and wall ms,
   mean_abs, within_5pct (fraction of pixels within 0.05), PSNR, max_abs and the signed mean
   (method - truth: > 0 too bright), over the geometry pixels (sky left out and its fraction printed;
@@ -103,10 +104,12 @@ truth ray-traces the geometry truth of one view (--falloff: a method spec whose 
   diff AO.pfm TRUTH.pfm.
 bench times warm frames, median and min, in total and per pass. Clock: GL timer queries on a GPU
   ("gpu-timer"), wall time around render + glFinish on llvmpipe/softpipe, whose timer queries read 0
-  ("wall"; passes then by glFinish + CPU clock). A configuration the SDK refuses is reported (JSON
-  "error", CSV pass "failed") and the others still run; the exit status is then 1. --motion DEG: the frames
-  alternate between the view's camera and one turned DEG degrees back along the orbit, each reprojecting the
-  other's history, so temporal accumulation times its moving path instead of a still camera's.
+  ("wall"; passes then by glFinish + CPU clock: the total includes a glFinish after every pass, which on a GPU
+  reads above the unsynchronised frame). A configuration the SDK refuses, or a size whose depth cannot be
+  rasterised, is reported (JSON "error", CSV pass "failed") and the others still run; the exit status is then 1.
+  A size whose depth texture (guard band included) exceeds GL_MAX_TEXTURE_SIZE is refused before any runs (2).
+  --motion DEG: the frames alternate between the view's camera and one turned DEG degrees back along the orbit,
+  each reprojecting the other's history, so temporal accumulation times its moving path instead of a still camera's.
 tune searches SPEC's settings, starting from them, for the lowest mean_abs against the geometry truth
   averaged over the --scenes views (e.g. atrium,objects,clutter@VIEWPOINT; default viewpoints otherwise), the
   truth weighed with each candidate's own falloff (obscura_reference_settings_for; one truth traced per
@@ -138,7 +141,10 @@ demo runs compare on the atrium at 640x360 with every available method against t
 diff compares luminance in [0, 1] without GL: it passes when the mean absolute error is <= mean and
 at most a fraction `pixels` of the pixels is off by more than threshold/255; exit 0 pass, 1 fail, 2 bad
 input. --out writes an error heat map (white 0, black >= 0.2).
-Exit status: 0 success, 1 an API, GL or file failure, 2 bad arguments.
+Options take a value as --name VALUE, or as --name=VALUE (a value that starts with "--" only so). Output files
+  are checked before the work: one that cannot be written, or two outputs naming one file, is a bad argument.
+Exit status: 0 success, 1 an API, GL or file failure, 2 bad arguments (a size or --msaa past the GL context's
+  limits included).
 Environment: OBSCURA_GL_BACKEND=auto|egl-device|egl-surfaceless|osmesa picks the headless GL backend.
 )";
 

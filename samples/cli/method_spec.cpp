@@ -1,5 +1,6 @@
 #include "method_spec.h"
 
+#include <algorithm>
 #include <utility>
 
 #include "cli_args.h"
@@ -54,9 +55,15 @@ std::vector<MethodSpec> parse_method_specs(const std::string& option, const std:
                                            const std::vector<std::string>& set_options) {
     std::vector<MethodSpec> specs;
     for (const std::string& text : split_list(option, list)) specs.push_back(parse_method_spec(text, set_options));
+    std::vector<std::string> set_keys;
     for (const std::string& set : set_options) {
         const samples::SettingAssignment assignment =
             with_cli_errors([&] { return samples::parse_assignment(set, "--set"); });
+        // Two values for one key: the last would win silently.
+        if (std::find(set_keys.begin(), set_keys.end(), assignment.key) != set_keys.end()) {
+            throw UsageError("--set " + assignment.key + " given more than once");
+        }
+        set_keys.push_back(assignment.key);
         bool used = false;
         std::string methods;
         for (const MethodSpec& spec : specs) {

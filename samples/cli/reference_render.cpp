@@ -37,7 +37,7 @@ obscura_settings reference_settings_for(const obscura_settings& method_settings,
     const obscura_status status = obscura_reference_settings_for(&method_settings, &reference);
     if (status != OBSCURA_OK) throw ApiError(api_error_message(status, "obscura_reference_settings_for", nullptr));
     reference.reference.rays = rays;
-    reference.reference.first_ray = 0;
+    reference.reference.first_ray = kReferenceTruthFirstRay;
     // How the rays are batched into dispatches is scheduling, not the picture: one reference serves
     // reference:rays_per_dispatch=4 and =64 alike (the default batch size traces it).
     reference.reference.rays_per_dispatch = 0;

@@ -54,6 +54,11 @@ RenderConfig take_render_config(ArgumentList& arguments) {
     if (!config.png_path && !config.pfm_path && !config.json_path) {
         throw UsageError("render needs --out FILE.png (and/or --pfm FILE.pfm, --json FILE.json)");
     }
+    std::vector<OutputFile> outputs;
+    if (config.png_path) outputs.push_back({"--out", *config.png_path});
+    if (config.pfm_path) outputs.push_back({"--pfm", *config.pfm_path});
+    if (config.json_path) outputs.push_back({"--json", *config.json_path});
+    check_output_files(outputs);
     return config;
 }
 

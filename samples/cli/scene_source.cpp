@@ -68,9 +68,17 @@ auto as_usage_error(Function&& function) -> decltype(function()) {
     }
 }
 
+// samples::render_scene: its std::invalid_argument is a request of the command line that this GL context cannot
+// meet (--msaa past the context's sample limit) and so a UsageError; the requests it also refuses that way
+// (motion vectors with MSAA) the commands refuse before any GL.
+samples::RenderedScene rasterise(const samples::SceneMesh& mesh, const samples::SceneRenderOptions& raster) {
+    return as_usage_error([&] { return samples::render_scene(mesh, raster); });
+}
+
 }  // namespace
 
-SceneSourceOptions take_scene_source_options(ArgumentList& arguments, bool takes_size) {
+SceneSourceOptions take_scene_source_options(ArgumentList& arguments, bool takes_size,
+                                             const std::string& depth_options_hint) {
     SceneSourceOptions options;
     const std::optional<std::string> depth = arguments.take_value("--depth");
     const std::optional<std::string> scene = arguments.take_value("--scene");
@@ -121,7 +129,7 @@ SceneSourceOptions take_scene_source_options(ArgumentList& arguments, bool takes
 
     reject({{"--depth-kind", depth_kind.has_value()}, {"--near", near_plane.has_value()},
             {"--far", far_plane.has_value()}, {"--reversed-z", reversed_z}},
-           "needs --depth FILE.pfm");
+           depth_options_hint);
     if (scene) options.scene = *scene;
     if (options.eye.has_value() != options.target.has_value()) throw UsageError("--eye and --target go together");
     if (options.eye && options.viewpoint) throw UsageError("--viewpoint and --eye/--target are alternatives: give one");
@@ -165,18 +173,37 @@ const std::string& SceneSource::name() const {
     return is_depth_file() ? options_.depth_file->path : scene_.name;
 }
 
+void SceneSource::check_size(ImageSize size) const {
+    if (is_depth_file()) return;
+    const samples::GuardBandLayout layout =
+        samples::guard_band_layout(size.width, size.height, options_.raster.guard_band);
+    GLint max_size = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+    if (layout.depth_width > max_size || layout.depth_height > max_size) {
+        char message[256];
+        std::snprintf(message, sizeof message,
+                      "%dx%d with guard band %g needs a %dx%d depth texture, past this GL context's "
+                      "GL_MAX_TEXTURE_SIZE of %d: give a smaller size or --guard-band",
+                      size.width, size.height, double(options_.raster.guard_band), layout.depth_width,
+                      layout.depth_height, int(max_size));
+        throw UsageError(message);
+    }
+}
+
 samples::RenderedScene SceneSource::render(const samples::Camera& camera, ImageSize size) const {
     if (is_depth_file()) return samples::load_depth_file(*options_.depth_file);
+    check_size(size);
     samples::SceneRenderOptions raster = options_.raster;
     raster.width = size.width;
     raster.height = size.height;
     raster.camera = camera;
-    return samples::render_scene(scene_.mesh, raster);
+    return rasterise(scene_.mesh, raster);
 }
 
 samples::RenderedScene SceneSource::render_frame(int frame, const samples::Camera& camera, ImageSize size,
                                                  const samples::Camera* previous_camera) const {
     if (is_depth_file()) return render(camera, size);
+    check_size(size);
     samples::SceneRenderOptions raster = options_.raster;
     raster.width = size.width;
     raster.height = size.height;
@@ -191,7 +218,7 @@ samples::RenderedScene SceneSource::render_frame(int frame, const samples::Camer
             raster.previous_mesh = &previous_mesh;
         }
     }
-    return samples::render_scene(mesh, raster);
+    return rasterise(mesh, raster);
 }
 
 std::string SceneSource::describe(const samples::SceneFrame& frame) const {

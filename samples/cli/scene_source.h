@@ -33,8 +33,11 @@ struct SceneSourceOptions {
 };
 
 // Takes the options above out of `arguments`, checking that they go together (UsageError otherwise).
-// `takes_size`: whether --size is one of this command's options.
-SceneSourceOptions take_scene_source_options(ArgumentList& arguments, bool takes_size);
+// `takes_size`: whether --size is one of this command's options. `depth_options_hint`: what the message says of a
+// depth file's option (--depth-kind, --near, --far, --reversed-z) given without --depth, after its name; commands
+// that take no --depth say where such options belong with them.
+SceneSourceOptions take_scene_source_options(ArgumentList& arguments, bool takes_size,
+                                             const std::string& depth_options_hint = "needs --depth FILE.pfm");
 
 class SceneSource {
 public:
@@ -55,8 +58,13 @@ public:
     // The guard band per side (scenes: --guard-band; depth files: what the file includes).
     float guard_band() const { return is_depth_file() ? options_.depth_file->guard_band : options_.raster.guard_band; }
 
+    // UsageError when the current GL context cannot hold a depth texture of `size` with the guard band (past
+    // GL_MAX_TEXTURE_SIZE). Scenes only (a depth file's texture is the file's size); render() checks it too, and a
+    // command that renders several sizes checks them all before the first.
+    void check_size(ImageSize size) const;
     // The depth (and normals) for obscura_render, with the current GL context: the scene rasterised at
-    // `size` through `camera`, or the depth file uploaded (then both are ignored).
+    // `size` through `camera`, or the depth file uploaded (then both are ignored). UsageError for a size or an
+    // MSAA sample count past the context's limits.
     samples::RenderedScene render(const samples::Camera& camera, ImageSize size) const;
     samples::RenderedScene render() const { return render(camera_, size()); }
 

@@ -39,7 +39,8 @@ TruthConfig take_truth_config(ArgumentList& arguments) {
     config.depth_path = arguments.take_value("--depth-out");
     config.png_path = arguments.take_value("--png");
     if (arguments.contains("--depth")) throw UsageError("truth needs a scene's triangles (--scene), not a depth file");
-    config.scene = take_scene_source_options(arguments, /*takes_size=*/true);
+    config.scene = take_scene_source_options(
+        arguments, /*takes_size=*/true, "does not apply to truth (it traces a scene's triangles, not a depth file)");
     arguments.require_all_taken();
     if (!out) throw UsageError("truth needs --out TRUTH.pfm (and optionally --depth-out DEPTH.pfm, --png TRUTH.png)");
     if (config.depth_path) {
@@ -54,6 +55,11 @@ TruthConfig take_truth_config(ArgumentList& arguments) {
     config.out_path = check_image_path("--out", *out, ImageFormat::Pfm, "--png");
     if (config.png_path) check_image_path("--png", *config.png_path, ImageFormat::Png, "--out");
     if (config.depth_path) check_image_path("--depth-out", *config.depth_path, ImageFormat::Pfm);
+    // Before the tracing, not after it: a capture is its files together (a truth without its depth is none).
+    std::vector<OutputFile> outputs = {{"--out", config.out_path}};
+    if (config.depth_path) outputs.push_back({"--depth-out", *config.depth_path});
+    if (config.png_path) outputs.push_back({"--png", *config.png_path});
+    check_output_files(outputs);
     return config;
 }
 
@@ -67,7 +73,10 @@ int run_truth(ArgumentList& arguments) {
     std::printf("scene: %s\n", source.describe(frame.frame()).c_str());
 
     const TruthTracer tracer(*source.scene());
-    const obscura_settings reference = reference_settings_for(config.falloff.settings, 0);
+    obscura_settings reference = reference_settings_for(config.falloff.settings, 0);
+    // The geometry truth takes the falloff only: the scene's real thickness, not the one a screen-space method
+    // assumes (FFAO's 0.4 m was printed as the truth's), as compare and tune describe it.
+    reference.reference.thickness = 0.0f;
     std::printf("geometry truth: %d triangles (built in %.2f s), %d rays per pixel, seed %u, falloff %s\n",
                 tracer.triangle_count(), tracer.build_seconds(), config.rays, config.seed,
                 describe_reference(reference).c_str());

@@ -19,7 +19,6 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
 #include <limits>
 #include <map>
 #include <memory>
@@ -156,7 +155,19 @@ TuneConfig take_tune_config(ArgumentList& arguments) {
     }
     if (scenes && captures) throw UsageError("--scenes and --captures are alternatives: give one");
     if (scenes) {
-        for (const std::string& text : split_list("--scenes", *scenes)) config.scenes.push_back(parse_scene_choice(text));
+        for (const std::string& text : split_list("--scenes", *scenes)) {
+            const SceneChoice choice = parse_scene_choice(text);
+            // A view given twice would weigh twice in the mean error and the cost, silently. NAME and NAME@default
+            // are one view.
+            const std::string viewpoint = choice.viewpoint.value_or("default");
+            for (const SceneChoice& earlier : config.scenes) {
+                if (earlier.name == choice.name && earlier.viewpoint.value_or("default") == viewpoint) {
+                    throw UsageError("--scenes names the view " + choice.label() + " twice (as " + earlier.label() +
+                                     " before)");
+                }
+            }
+            config.scenes.push_back(choice);
+        }
     }
     if (captures.has_value() != truths.has_value()) {
         throw UsageError("--captures DEPTH.pfm,... and --truths TRUTH.pfm,... go together (one truth per capture)");
@@ -169,7 +180,12 @@ TuneConfig take_tune_config(ArgumentList& arguments) {
             throw UsageError("--captures names " + std::to_string(depths.size()) + " depth files and --truths " +
                              std::to_string(truth_files.size()) + " truths: one truth per capture");
         }
-        for (size_t i = 0; i < depths.size(); ++i) config.captures.push_back(Capture{depths[i], truth_files[i]});
+        for (size_t i = 0; i < depths.size(); ++i) {
+            for (const Capture& earlier : config.captures) {
+                if (earlier.depth_path == depths[i]) throw UsageError("--captures names " + depths[i] + " twice");
+            }
+            config.captures.push_back(Capture{depths[i], truth_files[i]});
+        }
         // The depth options as render --depth takes them (--depth-kind, --near, --far, --reversed-z, --fovy,
         // --guard-band), one set for every capture.
         if (size) throw UsageError("--size does not apply to --captures (a capture's size is its file's)");
@@ -187,7 +203,8 @@ TuneConfig take_tune_config(ArgumentList& arguments) {
         config.capture_depth = *take_scene_source_options(depth_arguments, /*takes_size=*/false).depth_file;
         arguments = ArgumentList(depth_arguments.take_rest());
     }
-    config.scene = take_scene_source_options(arguments, /*takes_size=*/false);
+    config.scene = take_scene_source_options(arguments, /*takes_size=*/false,
+                                             "is a depth option of --captures (tune renders --scenes' depth itself)");
     const ImageSize visible = size ? parse_size("--size", *size) : kDefaultTuneSize;
     config.scene.raster.width = visible.width;
     config.scene.raster.height = visible.height;
@@ -207,14 +224,8 @@ TuneConfig take_tune_config(ArgumentList& arguments) {
     }
     if (auto seed = arguments.take_value("--seed")) config.seed = uint32_t(parse_int("--seed", *seed, 0, 1 << 30));
     config.json_path = arguments.take_value("--json");
-    if (config.json_path) {
-        // Found before the search, not after it: the file is opened for writing now (and written at the end).
-        const bool existed = std::filesystem::exists(*config.json_path);
-        std::FILE* probe = std::fopen(config.json_path->c_str(), "ab");
-        if (!probe) throw UsageError("--json: cannot open " + *config.json_path + " for writing");
-        std::fclose(probe);
-        if (!existed) std::filesystem::remove(*config.json_path);
-    }
+    // Found before the search, not after it (the report is written at the end).
+    if (config.json_path) check_output_files({{"--json", *config.json_path}});
     config.sync_timing = arguments.take_flag("--sync-timing");
     arguments.require_all_taken();
     return config;

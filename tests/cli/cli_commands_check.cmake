@@ -12,6 +12,7 @@
 #   orbit        report.json: methods[0] has a flicker and a last frame's error against the geometry truth in range
 #   classes      report.json of --classes 1,0.3: the "classes" block (radius, thickness, its image, the counts adding
 #                up to the geometry pixels) and each method's errors per class; the other keys as without it
+#   classes_empty  report.json of --classes 0.001 --frames 2: the empty halo class has null errors and flicker
 #   truth        the capture `truth` wrote reads back: `render --depth` of its depth with the guard band and fovy
 #                truth prints gives the scene's own image (160x90, that guard band) exactly (obscura diff), and the
 #                truth PFM has the visible size
@@ -325,6 +326,13 @@ elseif(CHECK STREQUAL "compare" OR CHECK STREQUAL "orbit" OR CHECK STREQUAL "orb
     expect_string(hbao:blur=off methods 1 method)
     expect_type(BOOLEAN methods 1 settings blur)
   endif()
+elseif(CHECK STREQUAL "classes_empty")
+  read_json(report.json)
+  expect_number(classes halo pixels MIN 0 MAX 0)
+  foreach(field mean_abs flicker)
+    expect_type(NULL methods 0 errors geometry classes halo ${field})
+  endforeach()
+  expect_number(methods 0 errors geometry classes rest flicker MIN 0 MAX 1)
 elseif(CHECK STREQUAL "classes")
   read_json(report.json)
   expect_string(analytic scene)

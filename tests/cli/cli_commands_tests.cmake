@@ -118,6 +118,40 @@ obscura_cli_command_test(bench_two_sizes 0
 obscura_cli_command_test(bench_refused_configuration 1
   "bench|--scene|analytic|--sizes|2560x1440|--methods|ffao:sectors=64:base_interval=2,hbao:directions=4:steps=4|--frames|1|--warmup|0|--json|bench.json|--csv|bench.csv"
   GL CHECK bench_refused EXPECT_FILES "bench.csv")
+# A size that cannot be rasterised fails its configurations, not the run: the others' results and the files are kept
+# (a depth file that cannot be read stands in for it here). Until 2026-12-06 it lost every result, wrote no file.
+obscura_cli_command_test(bench_scene_that_fails 1
+  "bench|--depth|no_such_depth.pfm|--methods|hbao,hbao:blur=off|--frames|1|--warmup|0|--json|bench.json|--csv|bench.csv"
+  GL EXPECT_FILES "bench.json|bench.csv" EXPECT_STDOUT "hbao:blur=off @ 0x0, clock [a-z-]+\n  failed: [^\n]*no_such_depth.pfm"
+  EXPECT_STDERR "^obscura bench: 2 of 2 configurations failed [(]see above[)]\n$")
+# A size whose depth texture (guard band included) is past GL_MAX_TEXTURE_SIZE is a usage error, for bench before the
+# first size is timed (it ran the sizes before it and then lost them, exit 1).
+obscura_cli_command_test(bench_size_past_max_texture_size 2
+  "bench|--scene|analytic|--sizes|96x54,16384x9000|--guard-band|0.99|--methods|hbao|--frames|1|--warmup|0|--json|bench.json"
+  GL EXPECT_STDERR "^obscura: 16384x9000 with guard band 0.99 needs a [0-9]+x[0-9]+ depth texture, past this GL context's GL_MAX_TEXTURE_SIZE of [0-9]+: [^\n]*\n$")
+obscura_cli_command_test(render_size_past_max_texture_size 2
+  "render|--scene|analytic|--size|16384x9000|--guard-band|0.99|--out|ao.png"
+  GL EXPECT_STDERR "^obscura: 16384x9000 with guard band 0.99 needs [^\n]*GL_MAX_TEXTURE_SIZE")
+if(NOT OBSCURA_CLI_COMMANDS_GPU)
+  # llvmpipe's depth textures take 4 samples at most: --msaa 32 is a usage error (it was exit 1).
+  obscura_cli_command_test(render_msaa_past_the_limit 2 "render|--scene|analytic|--size|32x18|--msaa|32|--out|ao.png"
+    GL EXPECT_STDERR "^obscura: MSAA 32 exceeds the context's limit of [0-9]+ [(]see 'obscura --help'[)]\n$")
+endif()
+# truth describes the falloff it weighs hits with and no thickness: the geometry truth has the scene's own (it printed
+# FFAO's 0.4 m).
+obscura_cli_command_test(truth_falloff_without_thickness 0
+  "truth|--scene|analytic|--size|32x18|--rays|1|--falloff|ffao|--out|truth.pfm"
+  GL EXPECT_FILES "truth.pfm" EXPECT_STDOUT "seed 1, falloff exponential r=1 m\n")
+# A class without pixels in a pair of frames has no flicker: "-" and null (it printed 0.00000, a perfect score).
+# --classes 0.001 leaves the halo empty.
+obscura_cli_command_test(compare_classes_empty_class_flicker 0
+  "compare|${scene}|--methods|hbao|--truth-rays|4|--classes|0.001|--orbit|4|--frames|2|--json|report.json"
+  GL CHECK classes_empty EXPECT_STDOUT "halo 0 px[^\n]*\n[^\n]*\nhbao +[0-9.]+ +[-+][0-9.]+ +[0-9.]+ +- +- +- +[0-9.]+ ")
+# The screen-space reference traces rays of its own: a REFERENCE method compared with it has an error (its image was
+# the reference's own, 0.00000 and PSNR inf, whatever its ray count).
+obscura_cli_command_test(compare_reference_method_against_screen_truth 0
+  "compare|${scene}|--methods|reference:rays=16|--truth|screen|--reference-rays|16"
+  GL EXPECT_STDOUT "\nreference:rays=16 +[0-9.]+ +[0-9.]+ +0[.]0*[1-9][0-9]* ")
 # Settings the SDK refuses as a whole are a usage error saying why, before any GL: the table falloff without
 # its table says to give falloff_table.
 obscura_cli_command_test(compare_refused_settings_say_why 2
@@ -286,6 +320,50 @@ obscura_cli_command_test(tune_captures_with_truth_rays 2 "tune|--method|hbao|--c
   EXPECT_STDERR "^obscura: --truth-rays does not apply to --captures")
 obscura_cli_command_test(tune_captures_with_depth 2 "tune|--method|hbao|--depth|d.pfm"
   EXPECT_STDERR "^obscura: tune takes depth buffers as --captures")
+# An option's value is never the next option (`--json --sync-timing` wrote a report named "--sync-timing" and timed
+# without sync; `bench --json --csv b.csv` said b.csv was unknown); a negative number is a value.
+obscura_cli_command_test(option_value_is_another_option 2
+  "compare|--scene|analytic|--size|32x18|--methods|hbao|--truth-rays|1|--json|--sync-timing"
+  EXPECT_STDERR "^obscura: --json needs a value, not the option '--sync-timing' [(]give --json=VALUE [^\n]*\n$")
+obscura_cli_command_test(bench_option_value_is_another_option 2 "bench|--json|--csv|b.csv"
+  EXPECT_STDERR "^obscura: --json needs a value, not the option '--csv'")
+obscura_cli_command_test(negative_number_is_a_value 2 "render|--eye|-1,2,3|--out|ao.png"
+  EXPECT_STDERR "^obscura: --eye and --target go together")
+# Output files are checked before the work (truth left half a capture, compare and bench lost minutes of it).
+obscura_cli_command_test(compare_json_unwritable 2
+  "compare|--scene|analytic|--size|32x18|--methods|hbao|--truth-rays|1|--json|no_such_dir/report.json"
+  EXPECT_STDERR "^obscura: --json: cannot open no_such_dir/report.json for writing")
+obscura_cli_command_test(compare_out_dir_uncreatable 2
+  "compare|--scene|analytic|--size|32x18|--methods|hbao|--truth-rays|1|--out-dir|/dev/null/out"
+  EXPECT_STDERR "^obscura: --out-dir: cannot create the directory /dev/null/out")
+obscura_cli_command_test(truth_depth_out_unwritable 2
+  "truth|--scene|analytic|--size|32x18|--rays|1|--out|truth.pfm|--depth-out|no_such_dir/depth.pfm"
+  EXPECT_STDERR "^obscura: --depth-out: cannot open no_such_dir/depth.pfm for writing")
+obscura_cli_command_test(bench_csv_unwritable 2
+  "bench|--scene|analytic|--sizes|32x18|--frames|1|--warmup|0|--csv|no_such_dir/bench.csv"
+  EXPECT_STDERR "^obscura: --csv: cannot open no_such_dir/bench.csv for writing")
+# Two outputs naming one file: one would overwrite the other.
+obscura_cli_command_test(truth_outputs_name_one_file 2
+  "truth|--scene|analytic|--size|32x18|--rays|1|--out|a.pfm|--depth-out|./a.pfm"
+  EXPECT_STDERR "^obscura: --out a.pfm and --depth-out ./a.pfm name the same file")
+obscura_cli_command_test(render_outputs_name_one_file 2 "render|--scene|analytic|--size|32x18|--out|ao.png|--json|ao.png"
+  EXPECT_STDERR "^obscura: --out ao.png and --json ao.png name the same file")
+# A depth file's options given to a command without --depth say where they belong with it.
+obscura_cli_command_test(tune_depth_option_with_scenes 2 "tune|--method|hbao|--scenes|analytic|--near|0.2"
+  EXPECT_STDERR "^obscura: --near is a depth option of --captures")
+obscura_cli_command_test(demo_depth_option 2 "demo|--depth-kind|linear"
+  EXPECT_STDERR "^obscura: --depth-kind does not apply to demo [(]it renders the atrium")
+obscura_cli_command_test(truth_depth_option 2 "truth|--scene|analytic|--near|0.2|--out|t.pfm"
+  EXPECT_STDERR "^obscura: --near does not apply to truth")
+# A setting given twice, or by two options, is refused (the last won silently).
+obscura_cli_command_test(diff_tolerance_key_twice 2 "diff|a.png|b.png|--tolerance|mean=0.001,mean=0.5"
+  EXPECT_STDERR "^obscura diff: --tolerance gives mean twice")
+obscura_cli_command_test(compare_temporal_and_set_temporal 2 "compare|--temporal|on|--set|temporal.enabled=off"
+  EXPECT_STDERR "^obscura: --temporal on and --set temporal.enabled=off both set temporal.enabled")
+obscura_cli_command_test(set_key_twice 2 "compare|--methods|hbao|--set|radius=1|--set|radius=2"
+  EXPECT_STDERR "^obscura: --set radius given more than once")
+obscura_cli_command_test(tune_scene_twice 2 "tune|--method|hbao|--scenes|analytic,analytic@default"
+  EXPECT_STDERR "^obscura: --scenes names the view analytic@default twice")
 # Motion vectors are rasterised single-sample only: with --msaa a usage error before any GL, whether asked for or the
 # animated scene's default.
 obscura_cli_command_test(compare_motion_vectors_msaa 2 "compare|--scene|analytic|--motion-vectors|on|--frames|3|--msaa|2"
