@@ -652,6 +652,66 @@ TEST_F(Contexts, GpuTimingsNeverBlockAndArrive) {
     EXPECT_EQ(take_gl_error(), GLenum(GL_NO_ERROR));
 }
 
+// The timer reads a query's result only once GL says it is available (a read before would wait for the GPU): a
+// loader that answers "not available" must get no result read, and the frame's timings then arrive once it answers
+// the truth. (Under llvmpipe, queries complete at glFinish: the stand-in is what makes "never block" observable.)
+struct PendingQueries {
+    static bool pending;
+    static int result_reads;
+    static void (*real_get_uiv)(GLuint, GLenum, GLuint*);
+    static void (*real_get_ui64v)(GLuint, GLenum, GLuint64*);
+    static void GLAD_API_PTR get_uiv(GLuint query, GLenum name, GLuint* value) {
+        real_get_uiv(query, name, value);
+        if (name == GL_QUERY_RESULT_AVAILABLE && pending) *value = GL_FALSE;
+    }
+    static void GLAD_API_PTR get_ui64v(GLuint query, GLenum name, GLuint64* value) {
+        if (name == GL_QUERY_RESULT) ++result_reads;
+        real_get_ui64v(query, name, value);
+    }
+    static obscura_gl_function loader(void*, const char* name) {
+        if (std::strcmp(name, "glGetQueryObjectuiv") == 0) return reinterpret_cast<obscura_gl_function>(&get_uiv);
+        if (std::strcmp(name, "glGetQueryObjectui64v") == 0) return reinterpret_cast<obscura_gl_function>(&get_ui64v);
+        return obscura::samples::HeadlessGL::get_proc_address(name);
+    }
+};
+bool PendingQueries::pending = false;
+int PendingQueries::result_reads = 0;
+void (*PendingQueries::real_get_uiv)(GLuint, GLenum, GLuint*) = nullptr;
+void (*PendingQueries::real_get_ui64v)(GLuint, GLenum, GLuint64*) = nullptr;
+
+TEST_F(Contexts, GpuTimingsReadNoQueryBeforeItIsAvailable) {
+    PendingQueries::real_get_uiv = reinterpret_cast<void (*)(GLuint, GLenum, GLuint*)>(
+        obscura::samples::HeadlessGL::get_proc_address("glGetQueryObjectuiv"));
+    PendingQueries::real_get_ui64v = reinterpret_cast<void (*)(GLuint, GLenum, GLuint64*)>(
+        obscura::samples::HeadlessGL::get_proc_address("glGetQueryObjectui64v"));
+    obscura_context_desc desc = make_desc();
+    desc.get_proc_address = nullptr;
+    desc.get_proc_address_with_user_data = &PendingQueries::loader;
+    obscura_context* raw = nullptr;
+    ASSERT_EQ(obscura_create_context(&desc, &raw), OBSCURA_OK);
+    ContextPtr context(raw);
+    Frame frame = box_frame(96, 64);
+    PendingQueries::pending = true;
+    PendingQueries::result_reads = 0;
+    for (int i = 0; i < 8; ++i) {
+        ASSERT_FALSE(render(context.get(), frame).empty());
+        glFinish();
+        uint32_t count = 99;
+        ASSERT_EQ(obscura_get_timings(context.get(), nullptr, 0, &count, nullptr), OBSCURA_OK);
+        EXPECT_EQ(count, 0u) << "a result of a query GL called unavailable, frame " << i;
+    }
+    EXPECT_EQ(PendingQueries::result_reads, 0) << "query results read before they were available (a stall on a GPU)";
+    PendingQueries::pending = false;
+    ASSERT_FALSE(render(context.get(), frame).empty());
+    glFinish();
+    obscura_timing timings[kTimingCapacity] = {};
+    uint32_t count = 0;
+    ASSERT_EQ(obscura_get_timings(context.get(), timings, kTimingCapacity, &count, nullptr), OBSCURA_OK);
+    EXPECT_GT(count, 0u) << "the timings must arrive once the queries are available";
+    EXPECT_GT(PendingQueries::result_reads, 0);
+    EXPECT_EQ(take_gl_error(), GLenum(GL_NO_ERROR));
+}
+
 TEST_F(SyncTimings, FrameIndexCountsRendersAndZeroBeforeAny) {
     obscura_timing timings[8] = {};
     uint32_t count = 0;
