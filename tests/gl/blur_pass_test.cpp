@@ -3,6 +3,7 @@
 // GPUs one pixel (OBSCURA_BLUR_RUN_* / OBSCURA_SAO_BLUR_RUN_*): for every compiled-in radius and stride both must
 // give the same image, bit for bit, over exactly the pass's region; HBAO's x pass must also match the filter's
 // formula computed here.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -253,6 +254,66 @@ TEST_F(SaoBlur, CpuAndGpuRunLengthsGiveTheSameImage) {
                         changed += std::fabs(cpu[size_t(y) * kWidth + x] - noise(x, y)) > 1e-2f;
                 EXPECT_GT(changed, output.width * output.height / 2) << name;
             }
+        }
+    }
+}
+
+// The filter's formula (sao_blur.comp), computed here: per pass the centre plus the weighted mean of the differences
+// over taps j = -R..R, `stride` texels apart, weights exp(-j^2 / (2 sigma^2)) max(0, 1 - sharpness |key difference|)
+// with sigma = (R + 1) / 2, taps outside the texture or on sky left out, sky passed through; the first pass stores
+// RGBA8 (the AO rounded to 8 bits, the key kept), the second R16F.
+TEST_F(SaoBlur, MatchesTheFormula) {
+    constexpr float kSharpness = 200.0f;  // blur() sets it
+    const auto key_of = [](int x, int y) {
+        const float d = scene_depth(x, y);
+        return d == OBSCURA_SKY_DEPTH ? 1.0 : double(int(d / kDepthRange * 65535.0f)) / 65535.0;
+    };
+    const auto sky = [](int x, int y) { return scene_depth(x, y) == OBSCURA_SKY_DEPTH; };
+    for (int radius : {1, 3}) {
+        for (int stride : {1, 3}) {
+            const obscura::Region output = kRegions[1];
+            const std::vector<float> got = blur(radius, stride, output);
+            const double sigma = 0.5 * (radius + 1), spatial = 1.0 / (2.0 * sigma * sigma);
+            const auto filter = [&](const std::vector<double>& in, int dx, int dy) {
+                std::vector<double> out(in);
+                for (int y = 0; y < kHeight; ++y) {
+                    for (int x = 0; x < kWidth; ++x) {
+                        if (sky(x, y)) continue;
+                        const size_t i = size_t(y) * kWidth + x;
+                        double delta = 0.0, weights = 1.0;
+                        for (int j = -radius; j <= radius; ++j) {
+                            const int qx = x + j * stride * dx, qy = y + j * stride * dy;
+                            if (j == 0 || qx < 0 || qy < 0 || qx >= kWidth || qy >= kHeight || sky(qx, qy)) continue;
+                            const double w = std::exp(-double(j * j) * spatial) *
+                                             std::max(0.0, 1.0 - kSharpness * std::fabs(key_of(qx, qy) - key_of(x, y)));
+                            delta += w * (in[size_t(qy) * kWidth + qx] - in[i]);
+                            weights += w;
+                        }
+                        out[i] = in[i] + delta / weights;
+                    }
+                }
+                return out;
+            };
+            std::vector<double> source(size_t(kWidth) * kHeight);
+            for (int y = 0; y < kHeight; ++y)
+                for (int x = 0; x < kWidth; ++x) source[size_t(y) * kWidth + x] = std::round(noise(x, y) * 255.0) / 255.0;
+            std::vector<double> horizontal = filter(source, 1, 0);
+            for (double& v : horizontal) v = std::round(v * 255.0) / 255.0;  // the RGBA8 intermediate
+            const std::vector<double> expected = filter(horizontal, 0, 1);
+            int checked = 0, far_off = 0;
+            double worst = 0.0;
+            for (int y = output.y; y < output.y + output.height; ++y) {
+                for (int x = output.x; x < output.x + output.width; ++x) {
+                    if (sky(x, y)) continue;
+                    const double error = std::fabs(got[size_t(y) * kWidth + x] - expected[size_t(y) * kWidth + x]);
+                    worst = std::max(worst, std::isfinite(error) ? error : 1.0);
+                    // The 8-bit intermediate may round the other way: one step of 1/255, plus R16F's rounding.
+                    far_off += !(error <= 1.0 / 255.0 + 1e-3);
+                    ++checked;
+                }
+            }
+            EXPECT_GT(checked, output.width * output.height / 2);
+            EXPECT_EQ(far_off, 0) << "radius " << radius << ", stride " << stride << ": worst " << worst;
         }
     }
 }
