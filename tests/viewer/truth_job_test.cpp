@@ -113,6 +113,14 @@ TEST(ViewerTruthJob, CancelDropsTheEstimateAndARestartReusesTheScene) {
     EXPECT_TRUE(job.key().empty());
     TruthSnapshot snapshot;
     EXPECT_FALSE(job.latest(0, &snapshot));
+    // The worker stops early: once joined, it traced fewer than its rays (a cancel that let the 1.5e8 rays finish
+    // would pass a time limit on a fast machine, not this).
+    job.wait();
+    EXPECT_FALSE(job.busy());
+    const TruthProgress cancelled = job.progress();
+    EXPECT_EQ(cancelled.phase, "cancelled");
+    EXPECT_FALSE(cancelled.done);
+    EXPECT_LT(cancelled.rays_done, cancelled.rays_total);
     const auto before = std::chrono::steady_clock::now();
     job.start(request("short", 8, 8), atrium().mesh);  // joins the cancelled worker first
     job.wait();
