@@ -51,14 +51,22 @@ load_start="$(cut -d' ' -f1 /proc/loadavg 2>/dev/null || echo "?")"
 # Settings that act only when another one is set: every value of the setting is rendered with these
 # (compare --set).
 declare -A context=(
-  [lsao.step_length]="pattern=2"             # D_S is the free pattern's; the aligned one steps texel by texel
+  [lsao.step_length]="pattern=2"             # the free pattern walks D_S itself; the aligned ones whole template steps
   [lsao.warmup_tolerance]="segment_steps=16" # segments only; on CPU renderers the default sweeps whole lines
   [lsao.warmup_stride]="segment_steps=16"
   [lsao.normal_threshold]="normal_test=on"
   [ffao.saao_blur]="saao=on"
-  [lsao.tangent]="tangent_strategy=fixed"  # the receiver's tangent (the default) does not read it
+  [lsao.tangent]="tangent_strategy=fixed"  # the receiver's tangent (the default) does not read it; fixed_hull does
   [gtao.thickness]="thickness_mode=bitmask"  # horizon mode's occluders are infinitely thick
   [gtao.sectors]="thickness_mode=bitmask"
+)
+# What the guide says of an override where "the setting acts only with it" is not the whole story.
+declare -A context_note=(
+  [lsao.step_length]="Rendered with \`pattern=2\` (free) for every value: there D_S is the value itself; with the aligned patterns (the
+default) the setting acts in whole template steps only (at K = 8, 1.41 px each), so values that round to the same
+number of steps render alike."
+  [lsao.tangent]="Rendered with \`tangent_strategy=fixed\` for every value: the setting acts with it (hull and occlusion) and with
+\`fixed_hull\` (the hull's only), not with the receiver's tangent (the default)."
 )
 # Values where the automatic rule gives a useless picture.
 declare -A fixed_values=(
@@ -312,7 +320,10 @@ for method in "${methods[@]}"; do
 
     {
       echo
-      if [[ -n "${context[$key]:-}" ]]; then
+      if [[ -n "${context_note[$key]:-}" ]]; then
+        echo "${context_note[$key]}"
+        echo
+      elif [[ -n "${context[$key]:-}" ]]; then
         echo "Rendered with \`${context[$key]}\` for every value: the setting acts only with it."
         echo
       fi
@@ -375,13 +386,15 @@ software=""
   echo
   echo "## How to read it"
   echo
-  echo "Each method's section opens with the method at its defaults beside what it is measured against (the AO"
-  echo "is visibility: white is open): the geometry truth (rays against the scene's triangles: what a viewer sees)"
-  echo "and the screen-space reference (REFERENCE, rays through the depth buffer, infinitely thick: the ceiling of"
-  echo "what a screen-space method can compute). Each setting is then one \`obscura compare --truth both\` run,"
-  echo "whose command is under its table; the picture is that run's \`--strip\` sheet: the method at each value,"
-  echo "labelled \`setting=value\`. Settings that change the falloff (radius, decay rate, C, the falloff itself)"
-  echo "are measured against one truth per value, which follow the values (\`truth: setting=value\`)."
+  echo "Each method's section opens with the method at its defaults beside what it is measured against (the AO is"
+  echo "visibility: white is open): the geometry truth (rays against the scene's triangles: what a viewer sees) and the"
+  echo "screen-space reference (REFERENCE, rays through the depth buffer, with the method's falloff and thickness as"
+  echo "\`obscura_reference_settings_for\` maps them: FFAO's thickness and GTAO's bitmask thickness, infinitely thick for"
+  echo "HBAO, SAO, LSAO and GTAO's horizon mode; the ceiling of what a screen-space method can compute). Each setting is"
+  echo "then one \`obscura compare --truth both\` run, whose command is under its table; the picture is that run's"
+  echo "\`--strip\` sheet: the method at each value, labelled \`setting=value\`. Settings that change the falloff (radius,"
+  echo "decay rate, C, the falloff itself) are measured against one truth per value, which follow the values (\`truth:"
+  echo "setting=value\`)."
   echo
   echo "In the tables, **gpu ms** is the SDK's total of its passes and **wall ms** the time around"
   echo "\`obscura_render\` + \`glFinish\`, medians of 5 warm frames; **wall vs default** divides by the default's"

@@ -582,7 +582,7 @@ TEST_F(OutputTargets, DefaultFramebufferWithoutSurface) {
 // MULTIPLY into the default framebuffer reads back the buffer it draws to, whatever the host's read buffer (it read
 // the read buffer: a host reading GL_FRONT while drawing to GL_BACK got the front's colour times the AO), and leaves
 // the host's read buffer as it was. Needs a context with a default framebuffer: ctest runs it under OSMesa
-// (OutputTargets.DefaultFramebufferMultiplyOsmesa); surfaceless EGL has none and skips.
+// (OutputTargets.DefaultFramebufferUnderOsmesa); surfaceless EGL has none and skips.
 TEST_F(OutputTargets, DefaultFramebufferMultiplyReadsTheDrawBuffer) {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     if (glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
