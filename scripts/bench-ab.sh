@@ -3,6 +3,7 @@
 # see the same machine; prints a markdown table of the medians (docs/performance.md, "The core rebuild").
 #   scripts/bench-ab.sh OLD/obscura NEW/obscura [METHOD ...]   (default: every method at 1280x720 on the atrium)
 set -euo pipefail
+command -v python3 > /dev/null || { echo "bench-ab: needs python3 (apt-get install python3)" >&2; exit 1; }
 old="$1"; new="$2"; shift 2
 methods=("$@")
 [[ ${#methods[@]} -gt 0 ]] || methods=(hbao sao lsao ffao ffao:saao=on reference:rays=16)

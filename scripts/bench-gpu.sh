@@ -45,7 +45,8 @@ for what in "$@"; do
       # The goldens of this checkout (the tests' compiled-in path is the staging machine's).
       export OBSCURA_GOLDEN_DIR="$root/tests/golden"
       for t in obscura_unit_tests obscura_pass_tests obscura_gl_tests; do
-        [[ -x "$build/tests/$t" ]] || continue
+        # A test binary missing from the staged build is a failure, not a pass.
+        [[ -x "$build/tests/$t" ]] || { echo "== $t: missing from $build/tests" >&2; status=1; continue; }
         echo "== $t"
         "$build/tests/$t" --gtest_brief=1 > "$out/$t.txt" 2>&1 || status=1
         grep -E '^\[  (PASSED|FAILED) |^\[  FAILED  \]|tests ran' "$out/$t.txt" | head -40

@@ -18,7 +18,14 @@ required=(
   clang libclang-rt-14-dev               # the libFuzzer targets (tests/fuzz); libclang-rt-14-dev holds libFuzzer's
                                          # runtime, only a recommendation of clang (skipped by --no-install-recommends)
 )
-# python3-glad is only needed to regenerate third_party/glad*, never to build.
+# python3-glad is only needed to regenerate third_party/glad*, never to build. The measurement helpers need two more
+# tools, not installed here (neither demo.sh nor test.sh runs them): jq (parameter-guide.sh) and python3
+# (bench-ab.sh); `apt-get install jq python3`.
+
+# The viewer compiles Dear ImGui's GLFW and OpenGL 3 backends from the examples libimgui-dev ships under
+# /usr/share/doc, which slim images (debian:12-slim) tell dpkg to leave out: a package installed there lacks them.
+imgui_backends=/usr/share/doc/libimgui-dev/examples/backends
+imgui_backends_present() { [[ -f "$imgui_backends/imgui_impl_glfw.cpp" && -f "$imgui_backends/imgui_impl_opengl3.cpp" ]]; }
 
 missing=()
 for package in "${required[@]}"; do
@@ -27,8 +34,12 @@ for package in "${required[@]}"; do
     missing+=("$package")
   fi
 done
+reinstall=()
+if [[ ! " ${missing[*]} " =~ " libimgui-dev " ]] && ! imgui_backends_present; then
+  reinstall=(libimgui-dev)  # installed, but without the backends' sources
+fi
 
-if ((${#missing[@]} == 0)); then
+if ((${#missing[@]} == 0 && ${#reinstall[@]} == 0)); then
   echo "install-deps: all ${#required[@]} packages present"
   exit 0
 fi
@@ -42,6 +53,18 @@ if [[ "$(id -u)" -ne 0 ]]; then
   as_root=(sudo)
 fi
 
-echo "install-deps: installing ${missing[*]}"
-"${as_root[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update
-"${as_root[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "${missing[@]}"
+if [[ -d /etc/dpkg/dpkg.cfg.d ]] && grep -qs 'path-exclude.*/usr/share/doc' /etc/dpkg/dpkg.cfg.d/*; then
+  # Let the backends through the image's exclusion of /usr/share/doc (dpkg applies the last matching rule).
+  echo "path-include=$imgui_backends/*" | "${as_root[@]}" tee /etc/dpkg/dpkg.cfg.d/zz-obscura-imgui-backends >/dev/null
+fi
+# A fresh VM's apt-daily may hold the dpkg lock for minutes: wait for it. An image whose lists predate a release
+# change (bookworm from stable to oldstable) needs that change accepted.
+apt=(env DEBIAN_FRONTEND=noninteractive apt-get -o DPkg::Lock::Timeout=600)
+echo "install-deps: installing ${missing[*]} ${reinstall[*]}"
+"${as_root[@]}" "${apt[@]}" update --allow-releaseinfo-change
+if ((${#missing[@]} > 0)); then
+  "${as_root[@]}" "${apt[@]}" install -y --no-install-recommends "${missing[@]}"
+fi
+if ((${#reinstall[@]} > 0)) || ! imgui_backends_present; then
+  "${as_root[@]}" "${apt[@]}" install -y --no-install-recommends --reinstall libimgui-dev
+fi

@@ -21,7 +21,7 @@
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-bin="${OBSCURA_BIN:-$root/build/bin/obscura}"
+bin="${OBSCURA_BIN:-${OBSCURA_BUILD_DIR:-$root/build}/bin/obscura}"
 size="${GUIDE_SIZE:-320x180}"
 rays="${GUIDE_RAYS:-64}"
 truth_rays="${GUIDE_TRUTH_RAYS:-256}"

@@ -22,7 +22,8 @@ build_dir="${OBSCURA_BUILD_DIR:-$root/build}"
 # The viewer and its tests are built only where ImGui's backends (/usr/share/doc/libimgui-dev/examples, absent from
 # images that drop /usr/share/doc) and xvfb-run exist: CMake then warns and leaves them out. Here that is a failure,
 # not a suite that passes without them.
-if [[ ! -x "$build_dir/bin/obscura-viewer" ]] || ! command -v xvfb-run > /dev/null; then
+# (The configure's own verdict, not the binary: a stale one from an earlier configure may lie in a reused build dir.)
+if ! grep -q '^OBSCURA_HAVE_VIEWER:INTERNAL=ON' "$build_dir/CMakeCache.txt" || ! command -v xvfb-run > /dev/null; then
   echo "test.sh: obscura-viewer was not built or xvfb-run is missing, so the viewer tests would not run" >&2
   exit 1
 fi

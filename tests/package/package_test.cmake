@@ -1,5 +1,6 @@
 # cmake -DSOURCE_DIR=<repo> -DBUILD_DIR=<this build> -DWORK_DIR=<scratch> -DC_COMPILER=<cc> -DNM=<nm>
-#       -DPKG_CONFIG=<pkg-config> -DJOBS=<n> -P package_test.cmake
+#       -DPKG_CONFIG=<pkg-config> -DJOBS=<n> [-DLIBDIR=<CMAKE_INSTALL_LIBDIR>] [-DCXX_COMPILER=<c++>]
+#       [-DGENERATOR=<generator>] -P package_test.cmake
 #
 # What a studio does with a release, checked end to end outside the source tree:
 #   1. `cmake --install` the static library of this build; the integration program (samples/integration) is
@@ -15,6 +16,18 @@ foreach(var SOURCE_DIR BUILD_DIR WORK_DIR C_COMPILER NM PKG_CONFIG)
 endforeach()
 if(NOT JOBS)
   set(JOBS 2)
+endif()
+# Where the build installs its libraries (GNUInstallDirs: lib, lib64, lib/<multiarch> for a /usr prefix).
+if(NOT LIBDIR)
+  set(LIBDIR lib)
+endif()
+# The shared rebuild uses the build's own toolchain and generator.
+set(rebuild_options "")
+if(CXX_COMPILER)
+  list(APPEND rebuild_options "-DCMAKE_CXX_COMPILER=${CXX_COMPILER}" "-DCMAKE_C_COMPILER=${C_COMPILER}")
+endif()
+if(GENERATOR)
+  list(APPEND rebuild_options -G "${GENERATOR}")
 endif()
 
 function(run what)
@@ -50,7 +63,7 @@ endfunction()
 
 # Compiles the program with only what pkg-config says about obscura (plus the host's own EGL and GL).
 function(build_with_pkg_config prefix output static)
-  set(ENV{PKG_CONFIG_PATH} "${prefix}/lib/pkgconfig")
+  set(ENV{PKG_CONFIG_PATH} "${prefix}/${LIBDIR}/pkgconfig")
   set(flags --cflags --libs obscura)
   if(static)
     list(PREPEND flags --static)
@@ -60,7 +73,7 @@ function(build_with_pkg_config prefix output static)
   separate_arguments(obscura_flags UNIX_COMMAND "${obscura_flags}")
   set(rpath "")
   if(NOT static)
-    set(rpath "-Wl,-rpath,${prefix}/lib")
+    set(rpath "-Wl,-rpath,${prefix}/${LIBDIR}")
   endif()
   run("cc with pkg-config (${output})" "${C_COMPILER}" -std=c99 -Wall -Wextra -Werror
       "${SOURCE_DIR}/samples/integration/obscura_integration.c" ${obscura_flags} ${rpath} -lEGL -lOpenGL -lm
@@ -73,9 +86,9 @@ file(MAKE_DIRECTORY "${WORK_DIR}")
 # ---- 1. The static library of this build -----------------------------------------------------------------
 set(static_prefix "${WORK_DIR}/static-prefix")
 run("install the static library" "${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${static_prefix}")
-foreach(file include/obscura/obscura.h lib/libobscura.a lib/cmake/Obscura/ObscuraConfig.cmake
-             lib/cmake/Obscura/ObscuraConfigVersion.cmake lib/cmake/Obscura/ObscuraTargets.cmake
-             lib/pkgconfig/obscura.pc)
+foreach(file include/obscura/obscura.h ${LIBDIR}/libobscura.a ${LIBDIR}/cmake/Obscura/ObscuraConfig.cmake
+             ${LIBDIR}/cmake/Obscura/ObscuraConfigVersion.cmake ${LIBDIR}/cmake/Obscura/ObscuraTargets.cmake
+             ${LIBDIR}/pkgconfig/obscura.pc)
   if(NOT EXISTS "${static_prefix}/${file}")
     message(FATAL_ERROR "cmake --install did not install ${file}")
   endif()
@@ -88,6 +101,10 @@ run_program("run it" "${WORK_DIR}/consumer-static/obscura_integration")
 check_needs_shared("${WORK_DIR}/consumer-static/obscura_integration" FALSE)
 build_with_pkg_config("${static_prefix}" "${WORK_DIR}/pkg-config-static" TRUE)
 run_program("run the pkg-config build (static)" "${WORK_DIR}/pkg-config-static")
+# Without --static too: the install holds only the static library, so plain `pkg-config --libs` must link it
+# (the C++ runtime is in Libs).
+build_with_pkg_config("${static_prefix}" "${WORK_DIR}/pkg-config-static-plain" FALSE)
+run_program("run the plain pkg-config build (static library)" "${WORK_DIR}/pkg-config-static-plain")
 
 # A version the package does not satisfy is refused: 0.x packages accept requests of their own major only.
 file(WRITE "${WORK_DIR}/version-check/CMakeLists.txt"
@@ -99,14 +116,15 @@ run("find_package version check" "${CMAKE_COMMAND}" -S "${WORK_DIR}/version-chec
 
 # ---- 2. A shared build from the sources --------------------------------------------------------------------
 set(shared_prefix "${WORK_DIR}/shared-prefix")
-run("configure the shared library" "${CMAKE_COMMAND}" -S "${SOURCE_DIR}" -B "${WORK_DIR}/shared-build"
-    -DCMAKE_BUILD_TYPE=Release -DOBSCURA_SHARED=ON -DOBSCURA_BUILD_TESTS=OFF -DOBSCURA_BUILD_SAMPLES=OFF)
+run("configure the shared library" "${CMAKE_COMMAND}" -S "${SOURCE_DIR}" -B "${WORK_DIR}/shared-build" ${rebuild_options}
+    -DCMAKE_BUILD_TYPE=Release -DOBSCURA_SHARED=ON -DOBSCURA_BUILD_TESTS=OFF -DOBSCURA_BUILD_SAMPLES=OFF
+    -DCMAKE_INSTALL_LIBDIR=${LIBDIR})
 run("build the shared library" "${CMAKE_COMMAND}" --build "${WORK_DIR}/shared-build" --parallel ${JOBS})
 run("install the shared library" "${CMAKE_COMMAND}" --install "${WORK_DIR}/shared-build" --prefix "${shared_prefix}")
-file(GLOB shared_files "${shared_prefix}/lib/libobscura.so.*.*.*")
+file(GLOB shared_files "${shared_prefix}/${LIBDIR}/libobscura.so.*.*.*")
 list(LENGTH shared_files count)
 if(NOT count EQUAL 1)
-  message(FATAL_ERROR "expected one libobscura.so.X.Y.Z in ${shared_prefix}/lib, found: ${shared_files}")
+  message(FATAL_ERROR "expected one libobscura.so.X.Y.Z in ${shared_prefix}/${LIBDIR}, found: ${shared_files}")
 endif()
 run("nm: the shared library exports the C API only" "${CMAKE_COMMAND}" -DNM=${NM} -DLIBRARY=${shared_files}
     -DSHARED=ON -DHEADER=${SOURCE_DIR}/sdk/include/obscura/obscura.h -P "${SOURCE_DIR}/tests/check_no_gl_symbols.cmake")
