@@ -141,6 +141,10 @@ vec3 reconstruct_normal(ivec2 p, float dx[5], float kx[5], float dy[5], float ky
     vec3 tx = one_sided_derivative(center, dx, kx, p + ivec2(1, 0), p - ivec2(1, 0));
     vec3 ty = one_sided_derivative(center, dy, ky, p + ivec2(0, 1), p - ivec2(0, 1));
     vec3 c = cross(dot(tx, tx) > 0.0 ? tx : cross(ty, eye), dot(ty, ty) > 0.0 ? ty : cross(eye, tx));
+    // Scaled to its largest component first: the product of two tangents grows with the depth squared, and its squared
+    // length overflowed past about 1e9 view units (inf passed the test below, and normalize returned 0, then NaN).
+    float largest = max(max(abs(c.x), abs(c.y)), abs(c.z));
+    c *= largest > 0.0 ? 1.0 / largest : 0.0;
     if (!(dot(c, c) > 0.0)) return eye;
     // The cross product's sign depends on the projection's handedness (flipped x or y): a visible surface faces the
     // eye.
@@ -148,12 +152,18 @@ vec3 reconstruct_normal(ivec2 p, float dx[5], float kx[5], float dy[5], float ky
     return dot(n, eye) < 0.0 ? -n : n;
 }
 
-// The normal the host gives at its texel for p, or +z where it is not a finite non-zero vector.
-vec3 host_normal(ivec2 p) {
+// The normal the host gives at its texel for p (depth `depth`), facing the eye, or +z where it is not a finite non-zero
+// vector. A normal facing away is the other side's (a two-sided surface's back face written with its geometric
+// normal): negated, as a reconstructed normal is. The methods assume a visible surface faces the eye: GTAO's slices
+// came out unoccluded (visibility 1 whatever the geometry) for a normal at -V, and HBAO's tangent took the wrong sign.
+vec3 host_normal(ivec2 p, float depth) {
     vec3 host = texelFetch(u_host_normals, p << resolution.x, 0).xyz;
     if (OBSCURA_NORMAL_SOURCE == OBSCURA_NORMALS_UNSIGNED) host = host * 2.0 - 1.0;
     bool finite = obscura_is_finite(host.x) && obscura_is_finite(host.y) && obscura_is_finite(host.z);
-    return finite && dot(host, host) > 1e-12 ? normalize(host) : vec3(0.0, 0.0, 1.0);
+    if (!(finite && dot(host, host) > 1e-12)) return vec3(0.0, 0.0, 1.0);
+    vec3 n = normalize(host);
+    if (obscura_is_sky(depth)) return n;
+    return dot(n, obscura_towards_eye(obscura_view_position(p, depth))) < 0.0 ? -n : n;
 }
 
 void store(ivec2 p, float depth, vec3 normal) {
@@ -217,7 +227,7 @@ void main() {
         }
         vec3 n = reconstruct_normal(p, dx, kx, dy, ky);
 #else
-        vec3 n = host_normal(p);
+        vec3 n = host_normal(p, d[i]);
 #endif
         // Texels of the block past the rectangle's end (the texture's last row or column) are not written.
         if (all(lessThan(p, end))) store(p, d[i], n);
@@ -243,7 +253,7 @@ void main() {
         }
         n = reconstruct_normal(p, dx, kx, dy, ky);
     } else {
-        n = host_normal(p);
+        n = host_normal(p, depth_or_sky(p));
     }
     store(p, depth_or_sky(p), n);
 #endif

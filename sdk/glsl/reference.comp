@@ -42,6 +42,8 @@ layout(binding = OBSCURA_IMAGE_OUT0, r32f) uniform image2D u_accumulator;
 // Per dispatch (a program uniform, not host state): first ray index of this batch, rays in it,
 // 1 if it is the frame's first batch, 1 if it is the frame's last.
 layout(location = 0) uniform ivec4 u_batch;
+// The dispatch's tile of the work rectangle: its offset in it (ReferencePass dispatches the rectangle in tiles).
+layout(location = 1) uniform ivec2 u_tile;
 
 const float kMiss = -1.0;
 
@@ -211,8 +213,9 @@ void reference_basis(vec3 n, out vec3 b1, out vec3 b2) {
 }
 
 void main() {
-    ivec2 p = work_rect.xy + ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(gl_GlobalInvocationID.xy, uvec2(work_rect.zw)))) return;
+    ivec2 offset = u_tile + ivec2(gl_GlobalInvocationID.xy);
+    ivec2 p = work_rect.xy + offset;
+    if (any(greaterThanEqual(offset, work_rect.zw))) return;
     bool first_batch = u_batch.z != 0, last_batch = u_batch.w != 0;
     float sum = first_batch ? 0.0 : imageLoad(u_accumulator, p).r;
 

@@ -12,7 +12,7 @@
 //      frames, exponential once it reaches max_frames.
 // The history texel (rg32f) holds the visibility and the linear depth it was computed at, with the age (frames) in
 // the depth's 6 lowest mantissa bits: one gather reads age and depth for the 2x2 block, and 32-bit floats need no
-// conversion on CPU rasterisers. With bent normals (OBSCURA_TEMPORAL_BENT_NORMALS) a second history (rgba16f) holds
+// conversion on CPU rasterisers. With bent normals (OBSCURA_TEMPORAL_BENT_NORMALS) a second history (rgba32f) holds
 // visibility and the bent normal, rotated from the previous view into this one.
 // With OBSCURA_TEMPORAL_TARGET (full resolution, no debug view) the pass also writes the visibility into the host's
 // target (OUTPUT_FORMAT, OUTPUT_MULTIPLY: composite.comp's write) at image unit OUT2, in the composite's place: the
@@ -37,7 +37,7 @@ layout(binding = OBSCURA_IMAGE_OUT0, rg32f) writeonly uniform image2D u_next;
 #if OBSCURA_TEMPORAL_BENT_NORMALS
 layout(binding = OBSCURA_UNIT_BENT_SOURCE) uniform sampler2D u_bent_source;
 layout(binding = OBSCURA_UNIT_BENT_HISTORY) uniform sampler2D u_bent_history;
-layout(binding = OBSCURA_IMAGE_OUT1, rgba16f) writeonly uniform image2D u_bent_next;
+layout(binding = OBSCURA_IMAGE_OUT1, rgba32f) writeonly uniform image2D u_bent_next;
 #endif
 
 mat4 columns(vec4 c[4]) { return mat4(c[0], c[1], c[2], c[3]); }

@@ -553,6 +553,45 @@ TEST_F(DepthPrepare, LinearDepthInvalidValuesAreSky) {
     }
 }
 
+// Far depths: a host's "miss" distance of 1e20 (a ray tracer's tmax) is sky, and geometry far away but nearer than
+// the sky threshold (1e12 view units) gets finite normals. Until 2026-12-06 1e20 was geometry whose squared lengths
+// overflowed (NaN normals, FFAO's scale inf), and reconstruction overflowed past about 1e9 (found by a read-only
+// review).
+TEST_F(DepthPrepare, FarLinearDepthsGiveFiniteNormalsAndAo) {
+    Camera camera(Projection::LinearView, kWidth, kHeight, Lens(), glm::dmat4(1.0));
+    for (const float far : {1e12f, 1e20f}) {
+        std::vector<float> depth(size_t(kWidth) * kHeight, far);
+        for (int y = 0; y < kHeight; ++y)
+            for (int x = 0; x < kWidth / 2; ++x) depth[size_t(y) * kWidth + x] = 3.0f + 0.02f * float(x);  // a slanted wall
+        HostTexture texture = make_red_texture(GL_R32F, kWidth, kHeight, depth);
+        obscura_input input = make_input(texture.get(), kWidth, kHeight, camera.matrix());
+        input.depth_kind = OBSCURA_DEPTH_LINEAR_VIEW;
+        const std::vector<float> normals =
+            render_to_new_texture(ctx(), input, make_settings(5.0f), GL_RGBA32F, 4, OBSCURA_DEBUG_NORMALS);
+        ASSERT_FALSE(normals.empty());
+        int bad_normals = 0;
+        for (size_t i = 0; i < normals.size() / 4; ++i) {
+            const glm::dvec3 n = decoded_normal(normals, i);
+            bad_normals += !(std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z) &&
+                             std::fabs(glm::length(n) - 1.0) < 0.01 && n.z > 0.0);
+        }
+        EXPECT_EQ(bad_normals, 0) << "far " << far;
+        for (obscura_method method : {OBSCURA_METHOD_HBAO, OBSCURA_METHOD_GTAO, OBSCURA_METHOD_FFAO, OBSCURA_METHOD_LSAO}) {
+            obscura_settings settings;
+            ASSERT_EQ(obscura_default_settings(method, &settings), OBSCURA_OK);
+            const std::vector<float> ao = render_to_new_texture(ctx(), input, settings, GL_R32F, 1);
+            ASSERT_FALSE(ao.empty()) << obscura_method_name(method) << ": " << obscura_get_last_error(ctx());
+            int bad = 0, far_not_open = 0;
+            for (size_t i = 0; i < ao.size(); ++i) {
+                bad += !(std::isfinite(ao[i]) && ao[i] >= 0.0f && ao[i] <= 1.0f);
+                if (far > 1e18f && depth[i] == far) far_not_open += ao[i] != 1.0f;
+            }
+            EXPECT_EQ(bad, 0) << obscura_method_name(method) << ", far " << far;
+            EXPECT_EQ(far_not_open, 0) << obscura_method_name(method) << ": 1e20 is sky";
+        }
+    }
+}
+
 TEST_F(DepthPrepare, LinearDepthR16F) {
     DepthScene scene = make_scene(Projection::LinearView);
     HostTexture texture = make_red_texture(GL_R16F, kWidth, kHeight, scene.depth);
@@ -589,6 +628,44 @@ TEST_F(DepthPrepare, HostNormalsSignedAreUsed) {
         worst = std::max(worst, angle_degrees(g, n));
     }
     EXPECT_LT(worst, 0.1) << "host normals (normalised) must pass through; 0.1 degree covers RGBA16F + encoding";
+}
+
+// A host normal that faces away from the eye (a two-sided surface's back face written with its geometric normal) is
+// the other side's: negated, as reconstruction does. Until 2026-12-06 it passed through, and GTAO's slices came out
+// unoccluded whatever the geometry (found by a read-only review): its AO now equals that of the same normals facing
+// the eye.
+TEST_F(DepthPrepare, HostNormalsFacingAwayAreTurnedToTheEye) {
+    DepthScene scene = make_scene(Projection::Perspective);
+    InputTexture in = upload(scene, GL_DEPTH_COMPONENT32F);
+    HostTexture towards = make_texture(GL_RGBA16F, kWidth, kHeight), away = make_texture(GL_RGBA16F, kWidth, kHeight);
+    fill_texture(towards.get(), kWidth, kHeight, 0.0f, 0.0f, 1.0f, 1.0f);
+    fill_texture(away.get(), kWidth, kHeight, 0.0f, 0.0f, -1.0f, 1.0f);
+    in.input.normal_texture = away.get();
+    const std::vector<float> normals =
+        render_to_new_texture(ctx(), in.input, make_settings(5.0f), GL_RGBA32F, 4, OBSCURA_DEBUG_NORMALS);
+    ASSERT_FALSE(normals.empty());
+    double worst = 0.0;
+    int geometry = 0;
+    for (size_t i = 0; i < normals.size() / 4; ++i) {
+        if (!scene.hits[i].hit) continue;
+        worst = std::max(worst, angle_degrees(decoded_normal(normals, i), glm::dvec3(0.0, 0.0, 1.0)));
+        ++geometry;
+    }
+    ASSERT_GT(geometry, 100);
+    EXPECT_LT(worst, 0.1) << "a normal at -z must come back as +z";
+    obscura_settings gtao;
+    ASSERT_EQ(obscura_default_settings(OBSCURA_METHOD_GTAO, &gtao), OBSCURA_OK);
+    const std::vector<float> from_away = render_to_new_texture(ctx(), in.input, gtao, GL_R32F, 1);
+    in.input.normal_texture = towards.get();
+    const std::vector<float> from_towards = render_to_new_texture(ctx(), in.input, gtao, GL_R32F, 1);
+    ASSERT_EQ(from_away.size(), from_towards.size());
+    ASSERT_FALSE(from_away.empty());
+    int occluded = 0;
+    for (size_t i = 0; i < from_away.size(); ++i) {
+        ASSERT_EQ(from_away[i], from_towards[i]) << i;
+        occluded += from_towards[i] < 0.95f;
+    }
+    EXPECT_GT(occluded, 0) << "the scene must hold occlusion for the comparison to mean something";
 }
 
 TEST_F(DepthPrepare, HostNormalsUnsignedAreDecoded) {

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 #include "ao_test_scene.h"
 #include "demo_scene.h"
@@ -134,6 +135,36 @@ TEST_F(Reference, DispatchSizeDoesNotChangeTheResult) {
     std::vector<float> b = render_visibility(ctx(), scene.input, many);
     ASSERT_EQ(a.size(), b.size());
     EXPECT_LT(max_abs_difference(a, b), 1e-5);  // the same rays; only the summation order differs
+}
+
+// A batch is dispatched in tiles of 512 x 512 pixels (a watchdog bounds a submission's time): a 1100 x 24 image, three
+// tiles wide, equals its two halves rendered alone (tiled elsewhere), pixel for pixel, and every pixel is written.
+TEST_F(Reference, TilesGiveTheImageOfItsParts) {
+    constexpr int kWide = 1100, kLow = 24;
+    AoScene scene = make_ao_scene(Projection::Perspective, look_at(glm::dvec3(0.9, 2.4, 3.2), glm::dvec3(0.0, 0.3, 0.0)),
+                                  {plane(1, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0)),
+                                   box(2, glm::dvec3(-0.5, 0.0, -0.5), glm::dvec3(0.5, 0.8, 0.5))},
+                                  Lens(), kWide, kLow);
+    const obscura_settings settings = reference_settings(8);
+    const std::vector<float> whole = render_visibility(ctx(), scene.input, settings);
+    ASSERT_EQ(whole.size(), size_t(kWide) * kLow);
+    obscura_input left = scene.input, right = scene.input;
+    left.output_rect = obscura_rect{0, 0, 550, kLow};
+    right.output_rect = obscura_rect{550, 0, kWide - 550, kLow};
+    const std::vector<float> a = render_visibility(ctx(), left, settings), b = render_visibility(ctx(), right, settings);
+    ASSERT_EQ(a.size(), size_t(550) * kLow);
+    ASSERT_EQ(b.size(), size_t(kWide - 550) * kLow);
+    int differing = 0, occluded = 0;
+    for (int y = 0; y < kLow; ++y) {
+        for (int x = 0; x < kWide; ++x) {
+            const float part = x < 550 ? a[size_t(y) * 550 + x] : b[size_t(y) * (kWide - 550) + x - 550];
+            const float got = whole[size_t(y) * kWide + x];
+            differing += std::memcmp(&part, &got, sizeof got) != 0;
+            occluded += got < 0.99f;
+        }
+    }
+    EXPECT_EQ(differing, 0);
+    EXPECT_GT(occluded, 0);
 }
 
 TEST_F(Reference, FramesWithConsecutiveFirstRaysAverageToOneRender) {

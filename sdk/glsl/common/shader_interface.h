@@ -134,9 +134,11 @@
 
 // ---- Conventions ---------------------------------------------------------------------------------
 // Linear view depth is a positive distance from the eye plane in view units; sky pixels (far-plane
-// clear value, NaN, inf, behind the eye) are stored as OBSCURA_SKY_DEPTH and never occlude.
+// clear value, NaN, inf, behind the eye, 1e18 view units or farther) are stored as OBSCURA_SKY_DEPTH and never occlude.
+// The threshold keeps every position's squared length finite in 32-bit floats (to 1.8e19): a host's "miss" distance of
+// 1e20 (a ray tracer's tmax) was geometry whose lengths overflowed (inf, then NaN normals and FFAO's scale).
 #define OBSCURA_SKY_DEPTH 1.0e30
-#define OBSCURA_SKY_THRESHOLD 1.0e29
+#define OBSCURA_SKY_THRESHOLD 1.0e18
 
 // Depth-source kinds (FrameConstants.depth_mode.x).
 #define OBSCURA_DEPTH_SOURCE_HARDWARE 0

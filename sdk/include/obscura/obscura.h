@@ -61,9 +61,10 @@
  *     validated ("looks transposed" is reported as such). The SDK reads a GL_TEXTURE_2D at its
  *     GL_TEXTURE_BASE_LEVEL (texelFetch's level 0), whose size must be the depth size; so do the normal
  *     and motion-vector textures.
- *   - Pixels at the far-plane clear value (1, or 0 with reversed-Z), NaN or inf, and linear depths that are
- *     zero, negative or denormal, are "sky": they receive visibility 1, occlude nothing and do not enter
- *     their neighbours' normals or filters. Every input depth gives finite AO in [0, 1].
+ *   - Pixels at the far-plane clear value (1, or 0 with reversed-Z), NaN or inf, linear depths that are
+ *     zero, negative or denormal, and distances of 1e18 view units or more (a ray tracer's "miss"), are
+ *     "sky": they receive visibility 1, occlude nothing and do not enter their neighbours' normals or
+ *     filters. Every input depth gives finite AO in [0, 1].
  *   - Guard band: the depth texture covers more than the visible image. Occluders are read from the
  *     whole depth texture; AO is written only for `output_rect`. The papers use 10-20 % per side.
  *   - Units: view units are the units of the host's view space; settings distances are metres and
@@ -533,7 +534,7 @@ typedef struct obscura_gtao_settings {
    reset flag (a camera cut) still drops it once the input's and output's fields and the view are valid (a refusal
    of its textures, its output target or what its settings need).
    Timing label "temporal" (after the method's passes; at full resolution it also writes the output, the bent-normal
-   texture and a blit target's blit included, and the frame has no "composite"). Memory: 16 bytes per depth texel per view, 32 with bent
+   texture and a blit target's blit included, and the frame has no "composite"). Memory: 16 bytes per depth texel per view, 48 with bent
    normals (per texel of the reduced grid at half or quarter resolution), allocated by the first temporal render
    of the view (obscura_prepare does not know the views).
    Every field: 0 selects the default given after it. */

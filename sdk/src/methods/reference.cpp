@@ -77,8 +77,8 @@ public:
     }
 
     Error record(const Frame& frame, PassRecorder& recorder, TechniqueOutput* out) override {
-        // Each batch is flushed so the GPU starts on it while the next is recorded, and no single submission
-        // runs long (watchdogs, a responsive desktop).
+        // Each batch's tiles (ReferencePass::kTile) are flushed so the GPU starts on them while the next are recorded,
+        // and no single submission runs long (watchdogs, a responsive desktop).
         pass_.run(frame.env, frame.uniforms.ao, pass_constants_, frame.regions.ao, frame.settings.reference,
                   frame.input.frame_index, frame.resources, accumulator_, [&] { recorder.flush(); });
         out->raw = out->result = &accumulator_;

@@ -6,6 +6,8 @@
 #ifndef OBSCURA_REFERENCE_H
 #define OBSCURA_REFERENCE_H
 
+#include <algorithm>
+
 #include "frame_input.h"
 #include "passes/pass_common.h"
 
@@ -26,7 +28,11 @@ public:
         return uint32_t(settings.first_ray) + frame_index * uint32_t(settings.rays);
     }
     // Traces settings.rays rays per pixel of `region` into `accumulator` (R32F), which then holds visibility.
-    // `between_batches` runs after every dispatch but the last (the context flushes and marks timings there).
+    // `between_batches` runs after every dispatch but the last (the context flushes there). A batch is dispatched in
+    // tiles of kTile x kTile pixels: a ray walks up to the whole texture (the falloffs that never reach zero), so one
+    // dispatch of a large image (8K: 6.7e7 pixels x 16 rays x thousands of texels) ran for seconds, past the watchdogs
+    // that reset a GPU whose submission runs long (2 s on Windows), and the host's context with it.
+    static constexpr int kTile = 512;
     template <class Callback>
     void run(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const Region& region,
              const obscura_reference_settings& settings, uint32_t frame_index, FrameResources& resources,
@@ -37,15 +43,24 @@ public:
         for (int done = 0; done < total; done += per_batch) {
             const int count = total - done < per_batch ? total - done : per_batch;
             const bool last = done + count >= total;
-            dispatch(env, region, first + uint32_t(done), count, done == 0, last);
-            if (!last) between_batches();
+            for (int y = region.y; y < region.y + region.height; y += kTile) {
+                for (int x = region.x; x < region.x + region.width; x += kTile) {
+                    const Region tile{x, y, std::min(kTile, region.x + region.width - x),
+                                      std::min(kTile, region.y + region.height - y)};
+                    dispatch_tile(env, region, tile, first + uint32_t(done), count, done == 0, last);
+                    const bool final_tile = tile.x + tile.width >= region.x + region.width &&
+                                            tile.y + tile.height >= region.y + region.height;
+                    if (!(last && final_tile)) between_batches();
+                }
+            }
         }
     }
 
 private:
     void bind(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const FrameResources& resources,
               const gl::Texture2D& accumulator);
-    void dispatch(const PassEnv& env, const Region& region, uint32_t first_ray, int count, bool first, bool last);
+    void dispatch_tile(const PassEnv& env, const Region& region, const Region& tile, uint32_t first_ray, int count,
+                       bool first, bool last);
     gl::Object program_;
 };
 

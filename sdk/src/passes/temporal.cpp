@@ -22,8 +22,11 @@ Error TemporalHistory::prepare(const PassEnv& env, const FrameInput& input, bool
     if (bent_normals != static_cast<bool>(bent_[0])) {
         valid_ = false;  // the bent-normal history starts with this frame
         if (bent_normals) {
-            bent_[0] = env.create_texture(GL_RGBA16F, width, height);
-            bent_[1] = env.create_texture(GL_RGBA16F, width, height);
+            // 32-bit: the history is a running average read back every frame, and GPUs that truncate fp32 -> fp16 image
+            // stores (NVIDIA) lose up to 2^-11 a component a frame, which the average amplifies by (1 - a) / a: the bent
+            // normal drifted by up to 2 degrees at 64 frames (found by a read-only review; llvmpipe rounds).
+            bent_[0] = env.create_texture(GL_RGBA32F, width, height);
+            bent_[1] = env.create_texture(GL_RGBA32F, width, height);
             if (!bent_[0] || !bent_[1]) {
                 release();
                 return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating the %dx%d bent-normal history failed",
@@ -121,7 +124,7 @@ void TemporalPass::run(const PassEnv& env, const UniformRange& frame, const Unif
     if (bent) {
         env.bind_texture(OBSCURA_UNIT_BENT_SOURCE, GL_TEXTURE_2D, bent_source->name());
         env.bind_texture(OBSCURA_UNIT_BENT_HISTORY, GL_TEXTURE_2D, history.previous_bent().name());
-        gl.BindImageTexture(OBSCURA_IMAGE_OUT1, history.next_bent().name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        gl.BindImageTexture(OBSCURA_IMAGE_OUT1, history.next_bent().name(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     }
     env.bind_uniforms(OBSCURA_UBO_FRAME, frame);
     env.bind_uniforms(OBSCURA_UBO_PASS, pass);

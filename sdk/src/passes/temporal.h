@@ -1,6 +1,6 @@
 // TemporalPass: temporal accumulation after every method (sdk/glsl/temporal_accumulate.comp), and the history it
 // reads and writes, one per view (obscura_view). The history ping-pongs between two RG32F textures (visibility;
-// linear depth with the age in its low mantissa bits), two more (RGBA16F) with bent normals.
+// linear depth with the age in its low mantissa bits), two more (RGBA32F) with bent normals.
 #ifndef OBSCURA_TEMPORAL_H
 #define OBSCURA_TEMPORAL_H
 
