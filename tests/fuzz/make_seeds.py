@@ -10,7 +10,12 @@ only spells out what differs from zero. Run it again after changing a decoder:
 The seeds give the fuzzer a successful call of every kind to mutate from: default settings of every method at
 every released struct size, renders of every method from every depth format into every target kind (with
 settings of every released size), prepare, the queries, a host GL error, another GL context current (with valid
-and with invalid fields) and NULL arguments.
+and with invalid fields) and NULL arguments; and the 0.5 per-frame fields: GTAO with bent normals, temporal
+sequences (matrices, motion vectors, views, camera cuts), reduced resolution, views created and destroyed, and
+the refusals of each.
+
+The script deletes every other file in corpus/<target>/: inputs that once failed live in regressions/<target>/,
+which it never touches.
 """
 import os
 import struct
@@ -101,19 +106,44 @@ NORMALS = {"none": 0, "rgba16f": 1, "rgba8": 2, "rg8": 3, "rgba16f_8x6": 4, "buf
 OUTPUT = {"r8": 0, "rgba16f": 1, "rgb8": 2, "r8_4x4": 3, "fbo_texture": 4, "fbo_renderbuffer": 5,
           "fbo_incomplete": 6, "default_framebuffer": 7, "never_generated_fbo": 8, "linear_depth": 9, "buffer": 10,
           "rgba32f_40x40": 11}
-# decode_settings' method byte: index into {DEFAULT, HBAO, SAO, LSAO, FFAO, REFERENCE, COUNT_, -1}; its version
-# byte: 12 0.1, 13 0.2, 14 0.3 (defaults from the 0.3 symbol), 15 a raw u32 size, anything else this header's.
-SETTINGS_VERSIONS = {"0.4": 0, "0.1": 12, "0.2": 13, "0.3": 14}
-OPS = {"render": 0, "prepare": 8, "release": 10, "queries": 11, "wrong_context": 12, "render_host_error": 13,
-       "resolve": 14, "null": 15}
+# Motion vectors and bent normals, as make_pools() lists them ("output", "depth", "normals", "motion": that field's
+# texture in the same frame).
+MOTION = {"rg16f": 0, "rg32f_large": 1, "rg32f_wild": 2, "rg16f_8x6": 3, "rg32f_33x5": 4, "rg16f_1x1": 5,
+          "rg16f_7x9": 6, "rg8": 7, "rgba16f": 8, "r32f": 9, "output": 10, "depth": 11, "normals": 12, "buffer": 13,
+          "deleted": 14, "texture_3d": 15, "multisample": 16}
+BENT = {"rgba16f": 0, "rgba8": 1, "rgba32f_40x40": 2, "rgba16f_8x6": 3, "rgba8_1x1": 4, "r8": 5, "rg16f": 6, "rgb8": 7,
+        "output": 8, "depth": 9, "normals": 10, "motion": 11, "fbo_texture": 12, "buffer": 13, "deleted": 14,
+        "multisample": 15}
+# decode_settings' method byte: index into {DEFAULT, HBAO, SAO, LSAO, FFAO, REFERENCE, GTAO, COUNT_}; its version
+# byte: 12 0.1, 13 0.2, 14 0.3 (defaults from the 0.3 symbol), 11 0.4, 15 a raw u32 size, anything else this header's.
+RENDER_METHODS = dict(METHODS, gtao=6)
+SETTINGS_VERSIONS = {"0.5": 0, "0.1": 12, "0.2": 13, "0.3": 14, "0.4": 11}
+# An operation's byte: the low 4 bits pick it, bit 4 the context (FRAME_FIELDS: a render's 0.5 per-frame fields
+# follow its structs, decode_frame_fields); 10 with bits 5-6 = 1 creates a view, = 2 destroys one.
+OPS = {"render": 0, "prepare": 8, "release": 10, "create_view": 0x2A, "destroy_view": 0x4A, "queries": 11,
+       "wrong_context": 12, "render_host_error": 13, "resolve": 14, "null": 15}
+SECOND_CONTEXT = 0x10
+FRAME_FIELDS = 0x20
+# decode_settings: an edit's row byte 192 + i is row i of obscura_get_shared_setting_infos.
+SHARED = {"temporal.enabled": 192, "temporal.max_frames": 193, "temporal.clamp": 194, "temporal.plane_tolerance": 195,
+          "resolution.scale": 196, "resolution.upsample_tolerance": 197}
+# pick_setting_value's selectors: 0 the minimum, 1 the maximum, 7 the middle of the range (resolution.scale: HALF).
+TEMPORAL_ON = (SHARED["temporal.enabled"], 1)
+HALF = (SHARED["resolution.scale"], 7)
+QUARTER = (SHARED["resolution.scale"], 1)
 
 
-def settings_block(method, edits=(), defaults=True, version="0.4", pokes=()):
-    """edits: (setting index, value selector) pairs; selectors as in pick_setting_value (0 min, 1 max, ...);
-    pokes: (byte offset, u32 XORed there) pairs."""
-    out = bytes([METHODS[method] | (0 if defaults else 8), SETTINGS_VERSIONS[version], len(edits)])
+def settings_block(method, edits=(), defaults=True, version="0.5", pokes=(), shared=None):
+    """edits: (setting index, value selector) pairs (192 + i: shared row i); selectors as in pick_setting_value (0 min,
+    1 max, ...); shared: the byte of shared settings (bit 0 temporal on, bits 1-2 resolution.scale, bits 3-5
+    temporal.max_frames 1 + 9n), which bit 7 of the version byte announces; pokes: (byte offset, u32 XORed there)
+    pairs."""
+    version_byte = SETTINGS_VERSIONS[version] | (0x80 if shared is not None else 0)
+    out = bytes([RENDER_METHODS[method] | (0 if defaults else 8), version_byte, len(edits)])
     for index, selector in edits:
         out += bytes([index, selector])
+    if shared is not None:
+        out += bytes([shared])
     out += bytes([len(pokes)])
     for offset, bits in pokes:
         out += struct.pack("<HI", offset, bits)
@@ -141,8 +171,47 @@ def output_block(target, blend=0, view=0, position=None):
     return out + bytes([blend, 160 + view if view else 0])
 
 
-def render_op(settings, inputs, output, op="render"):
-    return bytes([OPS[op]]) + settings + inputs + output
+VIEWS = {"none": 0, "live": 96, "destroyed": 192, "other": 216, "never_a_view": 240}
+FRAMES = {"keep": 0, "advance": 96}
+
+
+def perturbation(index, how, extra=b""):
+    """One entry of a matrix's perturbation: how < 96 scales entry `index` by 1 + extra/256, 96-127 scales the whole
+    matrix (96: 1e30, 97: 1e-12, 98: -1, 99: 1e-30), 128 and above special_float (128 NaN, 129 +inf, 133 FLT_MAX)."""
+    return bytes([index, how]) + extra
+
+
+def frame_block(view="none", pick=0, frame="advance", flags=0, current=0, previous=0, camera=(0, 0, 0, 0),
+                nudge=(0, 0, 0), current_perturbations=(), previous_perturbations=(), motion=None, units=0,
+                bent=None, raw_flags=None):
+    """The 0.5 per-frame fields (decode_frame_fields). current: 0 none, 1 projection * camera, 2 that perturbed, 3 raw;
+    previous: 0 none, 1 the same, 2 the camera nudged, 3 that perturbed. camera: yaw and translation bytes (signed)."""
+    out = bytes([VIEWS[view], pick, FRAMES[frame]])
+    out += bytes([240]) + struct.pack("<I", raw_flags) if raw_flags is not None else bytes([192 if flags else 0])
+    out += bytes([current | previous << 2]) + bytes(v & 0xFF for v in camera)
+    if current == 2:
+        out += bytes([len(current_perturbations) - 1]) + b"".join(current_perturbations)
+    if previous >= 2:
+        out += bytes(v & 0xFF for v in nudge)
+    if previous == 3:
+        out += bytes([len(previous_perturbations) - 1]) + b"".join(previous_perturbations)
+    out += bytes([0]) if motion is None else bytes([160, MOTION[motion]])
+    out += bytes([units]) if units in (0, 1) else bytes([250]) + struct.pack("<i", units)
+    out += bytes([0]) if bent is None else bytes([160, BENT[bent]])
+    return out
+
+
+def render_op(settings, inputs, output, op="render", frame=None, context=0):
+    """frame: a frame_block, which sets FRAME_FIELDS in the operation's byte; context 1: the second context."""
+    code = OPS[op] | (FRAME_FIELDS if frame is not None else 0) | (SECOND_CONTEXT if context else 0)
+    return bytes([code]) + settings + inputs + output + (frame or b"")
+
+
+def view_op(kind, context=0, selector=0, pick=0, other_gl=False):
+    """create_view, or destroy_view of the view `selector` names (0 a live one, 128 NULL, 160 a destroyed one, 192 the
+    other context's, 224 a pointer that never was a view), with the other GL context current."""
+    code = OPS[kind] | (SECOND_CONTEXT if context else 0)
+    return bytes([code]) + (bytes([selector, pick, 224 if other_gl else 0]) if kind == "destroy_view" else b"")
 
 
 def seed(*operations):
@@ -226,6 +295,96 @@ def render_seeds():
                   op="wrong_context") + bytes([0]),
         render_op(bad_radius, input_block("d32f"), output_block("r8"), op="wrong_context") + bytes([1]))
     seeds["null_arguments"] = seed(bytes([OPS["null"]]) + settings_block("hbao") + bytes([1]))
+    seeds.update(frame_field_seeds())
+    return seeds
+
+
+def frame_field_seeds():
+    """The 0.5 per-frame fields and views: GTAO with bent normals, temporal sequences (matrices, motion vectors, views,
+    camera cuts), reduced resolution, and the refusals (views, flags, matrices, motion vectors, bent normals)."""
+    seeds = {}
+    d32f, rgba16f = input_block("d32f"), output_block("rgba16f")
+    camera = (12, 20, -8, 40)
+    moving = dict(current=1, previous=2, camera=camera, nudge=(3, 4, -2))
+    seeds["render_gtao"] = seed(render_op(settings_block("gtao"), d32f, output_block("r8")))
+    seeds["render_gtao_bent_normals"] = seed(
+        render_op(settings_block("gtao"), d32f, rgba16f, frame=frame_block(bent="rgba16f")))
+    seeds["render_gtao_bent_normals_offset_rgba32f"] = seed(
+        render_op(settings_block("gtao"), input_block("d32f_33x5", normals="none"),
+                  output_block("rgba32f_40x40", position=(3, 2)), frame=frame_block(bent="rgba32f_40x40")))
+    seeds["render_gtao_bent_normals_half"] = seed(
+        render_op(settings_block("gtao", edits=[HALF]), input_block("d24s8", normals="rgba16f"), rgba16f,
+                  frame=frame_block(bent="rgba16f")),
+        render_op(settings_block("gtao", edits=[HALF]), d32f, output_block("rgba16f", view=3),
+                  frame=frame_block(bent="rgba8")))
+    seeds["render_bent_normals_refused"] = seed(
+        render_op(settings_block("hbao"), d32f, rgba16f, frame=frame_block(bent="rgba16f")),          # not GTAO
+        render_op(settings_block("gtao"), d32f, rgba16f, frame=frame_block(bent="output")),           # aliases
+        render_op(settings_block("gtao"), d32f, rgba16f, frame=frame_block(bent="rgba16f_8x6")),      # too small
+        render_op(settings_block("gtao"), d32f, output_block("fbo_texture"), frame=frame_block(bent="fbo_texture")))
+    # Temporal accumulation over a view's frames: matrices of a moving camera, then motion vectors.
+    temporal = settings_block("hbao", edits=[TEMPORAL_ON])
+    seeds["temporal_view_matrices"] = seed(
+        view_op("create_view"),
+        *[render_op(temporal, d32f, rgba16f, frame=frame_block(view="live", pick=255, **moving)) for _ in range(3)])
+    seeds["temporal_motion_vectors"] = seed(
+        *[render_op(settings_block("gtao", edits=[TEMPORAL_ON]), d32f, rgba16f,
+                    frame=frame_block(current=1, previous=1, camera=camera, motion=m, units=u, bent="rgba16f"))
+          for m, u in (("rg16f", 0), ("rg32f_large", 1), ("rg32f_wild", 0), ("rg16f", 0))])
+    seeds["temporal_reset_and_debug_view"] = seed(
+        render_op(settings_block("sao", edits=[TEMPORAL_ON, (SHARED["temporal.max_frames"], 0)]), d32f, rgba16f,
+                  frame=frame_block(**moving)),
+        render_op(settings_block("sao", edits=[TEMPORAL_ON]), d32f, output_block("rgba16f", view=1),
+                  frame=frame_block(**moving)),
+        render_op(settings_block("sao", edits=[TEMPORAL_ON]), d32f, rgba16f, frame=frame_block(flags=1, **moving)),
+        render_op(settings_block("sao", edits=[TEMPORAL_ON]), d32f, output_block("rgba16f", blend=1),
+                  frame=frame_block(frame="keep", **moving)))
+    # The same through the shared-settings byte: temporal on (bit 0), half (2 << 1) or quarter (3 << 1), max_frames.
+    seeds["temporal_reduced_lsao_ffao"] = seed(
+        render_op(settings_block("lsao", shared=1 | 2 << 1), d32f, rgba16f, frame=frame_block(**moving)),
+        render_op(settings_block("ffao", shared=1 | 3 << 1 | 2 << 3), d32f, rgba16f, frame=frame_block(**moving)),
+        render_op(settings_block("reference", shared=1 | 2 << 1), d32f, rgba16f, frame=frame_block(**moving)),
+        render_op(settings_block("gtao", shared=1 | 2 << 1), input_block("d32f_33x5"), output_block("rgba32f_40x40"),
+                  frame=frame_block(current=1, previous=1, camera=camera, motion="rg32f_33x5")))
+    # Matrices that are valid but extreme: scaled by 1e30, one entry a little off.
+    seeds["temporal_extreme_matrices"] = seed(
+        render_op(temporal, d32f, rgba16f, frame=frame_block(current=2, previous=1, camera=camera,
+                                                             current_perturbations=[perturbation(0, 96)])),
+        render_op(temporal, d32f, rgba16f, frame=frame_block(current=1, previous=3, camera=camera,
+                                                             previous_perturbations=[perturbation(12, 5, b"\x40")])))
+    # Reduced resolution alone, odd sizes and a target offset.
+    seeds["reduced_resolution"] = seed(
+        render_op(settings_block("hbao", edits=[HALF]), d32f, rgba16f),
+        render_op(settings_block("sao", edits=[QUARTER]), input_block("d32f_33x5"), output_block("rgba32f_40x40",
+                                                                                                 position=(5, 7))),
+        render_op(settings_block("gtao", edits=[QUARTER]), input_block("d32f_1x1"), rgba16f),
+        render_op(settings_block("ffao", edits=[HALF]), input_block("linear_r16f_7x9"), rgba16f))
+    # Views: a destroyed one, the other context's, a pointer that never was one; destroying them.
+    seeds["views_refused"] = seed(
+        view_op("create_view"), view_op("destroy_view", selector=0),
+        render_op(temporal, d32f, rgba16f, frame=frame_block(view="destroyed", **moving)),
+        render_op(temporal, d32f, rgba16f, frame=frame_block(view="never_a_view")))
+    seeds["views_of_the_other_context"] = seed(
+        view_op("create_view", context=1),
+        render_op(temporal, d32f, rgba16f, frame=frame_block(view="other")),
+        view_op("destroy_view", selector=192),
+        view_op("destroy_view", context=1, selector=0, other_gl=True))
+    seeds["views_refused_before_host_state"] = seed(
+        render_op(temporal, d32f, rgba16f, op="render_host_error", frame=frame_block(view="never_a_view")),
+        render_op(temporal, d32f, rgba16f, op="wrong_context", frame=b"\x00" + frame_block(view="never_a_view")),
+        view_op("destroy_view", selector=224), view_op("destroy_view", selector=128))
+    # Fields refused: unknown flag bits, a non-finite or singular matrix, motion vectors of the wrong kind.
+    seeds["frame_fields_refused"] = seed(
+        render_op(temporal, d32f, rgba16f, frame=frame_block(raw_flags=2)),
+        render_op(temporal, d32f, rgba16f,
+                  frame=frame_block(current=1, previous=3, camera=camera,
+                                    previous_perturbations=[perturbation(5, 128)])),
+        render_op(temporal, d32f, rgba16f,
+                  frame=frame_block(current=2, previous=1, camera=camera, current_perturbations=[perturbation(0, 99)])),
+        render_op(temporal, d32f, rgba16f, frame=frame_block(units=7)))
+    seeds["motion_vectors_refused"] = seed(
+        *[render_op(temporal, d32f, rgba16f, frame=frame_block(current=1, previous=2, camera=camera, motion=m))
+          for m in ("rg16f_8x6", "rgba16f", "output", "multisample")])
     return seeds
 
 

@@ -1,23 +1,29 @@
 // libFuzzer target for the per-frame API on a real GL context: obscura_render, obscura_prepare,
-// obscura_release_resources, obscura_get_timings, obscura_get_memory_usage and obscura_resolve_settings with a
-// context, fed with fuzzed input / output / settings structs that name host GL objects from fixed pools.
+// obscura_release_resources, obscura_get_timings, obscura_get_memory_usage, obscura_resolve_settings with a
+// context, obscura_create_view and obscura_destroy_view, fed with fuzzed input / output / settings structs that name
+// host GL objects (and views) from fixed pools.
 //
 // LLVMFuzzerInitialize creates one headless GL 4.3 context (llvmpipe in CI), two obscura contexts with
 // OBSCURA_CONTEXT_FLAG_VALIDATE_PASSES, the second also with OBSCURA_CONTEXT_FLAG_GPU_CODE_PATHS (the shader variants
-// GPUs run: shared-memory tiles, storage buffers, runs of one pixel, at the fuzzer's odd sizes), the pools (depth-like textures of every kind the SDK must accept or
-// refuse, normals, output targets) and then binds sentinel objects everywhere an SDK call may touch GL state.
+// GPUs run: shared-memory tiles, storage buffers, runs of one pixel, at the fuzzer's odd sizes), the pools
+// (depth-like textures of every kind the SDK must accept or refuse, normals, output targets, motion vectors,
+// bent-normal targets) and then binds sentinel objects (or sets non-default values) everywhere an SDK call may touch
+// GL state.
 // Each input is a short list of operations (see run_operation: the low 4 bits of an operation's byte pick it, bit 4
-// the context it runs on); after every call the fuzzer checks that the
-// status is a known code and one this call may return, that a failure left a message (and went to the log),
+// the context it runs on, bit 5 adds the 0.5 per-frame fields to a render); after every call the fuzzer checks that
+// the status is a known code and one this call may return, that a failure left a message (and went to the log),
 // that glGetError() is GL_NO_ERROR, and that every sentinel binding is still in place. It traps otherwise.
 // Settings structs come in every released size (0.1 ... this header's), each in a heap buffer of exactly that
-// size (AddressSanitizer reports a read past the caller's struct); a call refused on its fields (settings, input
-// and output fields: stage 1, no GL) must answer that before WRONG_GL_CONTEXT or HOST_GL_ERROR.
+// size (AddressSanitizer reports a read past the caller's struct); edits reach the method's rows and the shared ones
+// (temporal accumulation, reduced resolution). A call refused on its fields (settings, input and output fields and
+// the view: stage 1, no GL) must answer that before WRONG_GL_CONTEXT or HOST_GL_ERROR. The float targets (output and
+// bent normals) are filled with a sentinel before each render: outside the result, and everywhere after a refusal, it
+// must stay.
 //
 // Renders stay cheap: the depth textures are at most 16x12, REFERENCE traces at most 4 rays (a 0.1 struct, which
 // has no REFERENCE block, its default 256), obscura_prepare gets either a size up to 64x64 or an invalid one (never
 // a valid large size, which would allocate gigabytes).
-// The context keeps its resources and compiled variants from one input to the next, like a host's does: a
+// The context keeps its resources, compiled variants and views from one input to the next, like a host's does: a
 // crash input replays the operations of one input on a fresh process, which normally reproduces it.
 #include <algorithm>
 #include <cmath>
@@ -168,13 +174,55 @@ struct OutputEntry {
     bool read_back = false;    // a float texture whose result a successful render must leave in [0, 1]
 };
 
+// Motion vectors (obscura_input.motion_vector_texture) and bent normals (obscura_output.bent_normal_texture): textures
+// of the formats each takes and others, and names that alias another field of the same frame (resolved when decoded).
+enum class Alias { None, Output, Depth, Normals, Motion };
+struct CompanionEntry {
+    const char* label;
+    GLuint name;
+    int width, height;
+    bool supported;              // a GL_TEXTURE_2D of a format the field takes (usable when its size fits)
+    bool not_a_texture = false;  // a buffer's or a deleted texture's name
+    bool read_back = false;      // a float RGBA bent-normal target whose texels a render is checked against
+    Alias alias = Alias::None;   // the name of that field of the frame instead (0 there: none)
+};
+
 struct Pools {
     std::vector<DepthEntry> depth;
     std::vector<NormalEntry> normals;
     std::vector<OutputEntry> outputs;
+    std::vector<CompanionEntry> motion, bent;
     GLuint stencil_mode_texture = 0;  // DEPTH24_STENCIL8 whose GL_DEPTH_STENCIL_TEXTURE_MODE the host set to stencil
     GLuint any_framebuffer = 0;       // a complete framebuffer, given beside an output texture
+    GLuint any_framebuffer_texture = 0;  // its colour attachment 0
 };
+
+// RG motion vectors: small offsets in texels ("small"), offsets up to the texture's size and beyond ("large"), or
+// NaN, infinities and huge values ("wild": they must not reach the AO).
+GLuint make_motion(GLenum format, int width, int height, int pattern) {
+    GLuint texture = make_color(format, width, height);
+    const float wild[] = {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(),
+                          -std::numeric_limits<float>::infinity(), 1e30f, -1e30f, std::numeric_limits<float>::max(),
+                          std::numeric_limits<float>::denorm_min(), 0.0f, 0.5f};
+    std::vector<float> rg(size_t(width) * size_t(height) * 2);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            float* v = &rg[(size_t(y) * size_t(width) + size_t(x)) * 2];
+            if (pattern == 0) {
+                v[0] = 0.25f * float(x % 3 - 1);
+                v[1] = -0.5f * float(y % 2);
+            } else if (pattern == 1) {
+                v[0] = 1.5f * float(x - width / 2);
+                v[1] = 2.0f * float(y - height / 2);
+            } else {
+                v[0] = wild[size_t(x + 3 * y) % (sizeof wild / sizeof wild[0])];
+                v[1] = wild[size_t(2 * x + y) % (sizeof wild / sizeof wild[0])];
+            }
+        }
+    }
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, GL_RG, GL_FLOAT, rg.data());
+    return texture;
+}
 
 Pools make_pools() {
     Pools p;
@@ -277,6 +325,46 @@ Pools make_pools() {
         {"buffer object name as texture", buffer, 0, w, h, false, true},
         {"RGBA32F texture 40x40", out_large, 0, 40, 40, true, false, true},
     };
+    p.any_framebuffer_texture = fb_texture;
+
+    p.motion = {
+        {"RG16F 16x12 (small)", make_motion(GL_RG16F, w, h, 0), w, h, true},
+        {"RG32F 16x12 (large)", make_motion(GL_RG32F, w, h, 1), w, h, true},
+        {"RG32F 16x12 (NaN, inf, 1e30)", make_motion(GL_RG32F, w, h, 2), w, h, true},
+        {"RG16F 8x6", make_motion(GL_RG16F, 8, 6, 0), 8, 6, true},
+        {"RG32F 33x5", make_motion(GL_RG32F, 33, 5, 1), 33, 5, true},
+        {"RG16F 1x1", make_motion(GL_RG16F, 1, 1, 1), 1, 1, true},
+        {"RG16F 7x9", make_motion(GL_RG16F, 7, 9, 0), 7, 9, true},
+        {"RG8 16x12 (unsupported)", make_color(GL_RG8, w, h), w, h, false},
+        {"RGBA16F 16x12 (unsupported)", make_color(GL_RGBA16F, w, h), w, h, false},
+        {"R32F 16x12 (unsupported)", make_color(GL_R32F, w, h), w, h, false},
+        {"the output texture", 0, 0, 0, false, false, false, Alias::Output},
+        {"the depth texture", 0, 0, 0, false, false, false, Alias::Depth},
+        {"the normal texture", 0, 0, 0, false, false, false, Alias::Normals},
+        {"buffer object name", buffer, w, h, false, true},
+        {"deleted texture name", deleted, w, h, false, true},
+        {"R32F 3D texture", texture_3d, w, h, false},
+        {"D32F 4x multisample texture", multisample, w, h, false},
+    };
+    p.bent = {
+        {"RGBA16F 16x12", make_color(GL_RGBA16F, w, h), w, h, true, false, true},
+        {"RGBA8 16x12", make_color(GL_RGBA8, w, h), w, h, true},
+        {"RGBA32F 40x40", make_color(GL_RGBA32F, 40, 40), 40, 40, true, false, true},
+        {"RGBA16F 8x6", make_color(GL_RGBA16F, 8, 6), 8, 6, true},
+        {"RGBA8 1x1", make_color(GL_RGBA8, 1, 1), 1, 1, true},
+        {"R8 16x12 (unsupported)", make_color(GL_R8, w, h), w, h, false},
+        {"RG16F 16x12 (unsupported)", make_color(GL_RG16F, w, h), w, h, false},
+        {"RGB8 16x12 (unsupported)", make_color(GL_RGB8, w, h), w, h, false},
+        {"the output texture", 0, 0, 0, false, false, false, Alias::Output},
+        {"the depth texture", 0, 0, 0, false, false, false, Alias::Depth},
+        {"the normal texture", 0, 0, 0, false, false, false, Alias::Normals},
+        {"the motion-vector texture", 0, 0, 0, false, false, false, Alias::Motion},
+        // Usable, except beside the output framebuffer it is attached to.
+        {"the RGBA8 texture of the output FBO", fb_texture, w, h, true},
+        {"buffer object name", buffer, w, h, false, true},
+        {"deleted texture name", deleted, w, h, false, true},
+        {"D32F 4x multisample texture", multisample, w, h, false},
+    };
     glBindTexture(GL_TEXTURE_2D, 0);
     glBindTexture(GL_TEXTURE_3D, 0);
     glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, 0);
@@ -284,22 +372,108 @@ Pools make_pools() {
 }
 
 // ---- Sentinel state: host bindings the SDK must leave as it found them -----------------------------------------
+// The same state as the GL tests' snapshot (tests/gl/gl_state_snapshot.cpp, which needs GoogleTest and is not built
+// here), read through a fixed table of queries: program, active texture, every texture target, sampler and image
+// unit (name, level, layering, layer, access, format) the SDK may touch and beyond, indexed and generic uniform and
+// storage buffer bindings, the other buffer bindings (array, pixel pack / unpack, dispatch indirect, copy read /
+// write, texture buffer), the vertex array, framebuffers with their read and draw buffers, renderbuffer, viewport,
+// scissor box and test, blend, depth test, rasterizer discard, colour mask and the pixel store.
 
-struct IndexedBinding {
-    GLenum target;
-    GLuint index;
-    GLint name;
-    GLint64 start, size;
-};
+constexpr int kSentinelUnits = 8;
 
-struct Sentinels {
-    GLint program = 0, active_texture = 0, draw_framebuffer = 0, read_framebuffer = 0, renderbuffer = 0;
-    GLint uniform_buffer = 0, storage_buffer = 0, pixel_unpack = 0, pack_alignment = 0, unpack_alignment = 0;
-    GLboolean scissor = GL_FALSE, discard = GL_FALSE;
-    GLint texture_2d[8] = {}, texture_ms[8] = {}, texture_3d[8] = {}, texture_buffer[8] = {}, sampler[8] = {};
-    GLint image[8] = {};
-    std::vector<IndexedBinding> indexed;
+enum class QueryKind { Integer, Component, Enabled, Indexed, Indexed64, Unit };
+struct StateQuery {
+    std::string name;
+    QueryKind kind;
+    GLenum pname;
+    GLuint index;  // the component, the indexed binding's index or the texture unit
 };
+using StateValues = std::vector<long long>;
+
+std::vector<StateQuery> make_state_queries() {
+    std::vector<StateQuery> q;
+    auto integer = [&](const char* name, GLenum pname) { q.push_back({name, QueryKind::Integer, pname, 0}); };
+    auto enabled = [&](const char* name, GLenum cap) { q.push_back({name, QueryKind::Enabled, cap, 0}); };
+    integer("GL_ACTIVE_TEXTURE", GL_ACTIVE_TEXTURE);  // first: read_state restores it
+    integer("GL_CURRENT_PROGRAM", GL_CURRENT_PROGRAM);
+    integer("GL_DRAW_FRAMEBUFFER_BINDING", GL_DRAW_FRAMEBUFFER_BINDING);
+    integer("GL_READ_FRAMEBUFFER_BINDING", GL_READ_FRAMEBUFFER_BINDING);
+    integer("GL_READ_BUFFER (of the read framebuffer)", GL_READ_BUFFER);
+    integer("GL_DRAW_BUFFER0 (of the draw framebuffer)", GL_DRAW_BUFFER0);
+    integer("GL_RENDERBUFFER_BINDING", GL_RENDERBUFFER_BINDING);
+    integer("GL_VERTEX_ARRAY_BINDING", GL_VERTEX_ARRAY_BINDING);
+    integer("GL_ARRAY_BUFFER_BINDING", GL_ARRAY_BUFFER_BINDING);
+    integer("GL_UNIFORM_BUFFER_BINDING", GL_UNIFORM_BUFFER_BINDING);
+    integer("GL_SHADER_STORAGE_BUFFER_BINDING", GL_SHADER_STORAGE_BUFFER_BINDING);
+    integer("GL_PIXEL_PACK_BUFFER_BINDING", GL_PIXEL_PACK_BUFFER_BINDING);
+    integer("GL_PIXEL_UNPACK_BUFFER_BINDING", GL_PIXEL_UNPACK_BUFFER_BINDING);
+    integer("GL_DISPATCH_INDIRECT_BUFFER_BINDING", GL_DISPATCH_INDIRECT_BUFFER_BINDING);
+    integer("GL_COPY_READ_BUFFER_BINDING", GL_COPY_READ_BUFFER_BINDING);
+    integer("GL_COPY_WRITE_BUFFER_BINDING", GL_COPY_WRITE_BUFFER_BINDING);
+    integer("GL_TEXTURE_BUFFER (buffer binding)", GL_TEXTURE_BUFFER);
+    integer("GL_PACK_ALIGNMENT", GL_PACK_ALIGNMENT);
+    integer("GL_PACK_ROW_LENGTH", GL_PACK_ROW_LENGTH);
+    integer("GL_PACK_SKIP_ROWS", GL_PACK_SKIP_ROWS);
+    integer("GL_PACK_SKIP_PIXELS", GL_PACK_SKIP_PIXELS);
+    integer("GL_UNPACK_ALIGNMENT", GL_UNPACK_ALIGNMENT);
+    integer("GL_UNPACK_ROW_LENGTH", GL_UNPACK_ROW_LENGTH);
+    integer("GL_UNPACK_SKIP_ROWS", GL_UNPACK_SKIP_ROWS);
+    integer("GL_UNPACK_SKIP_PIXELS", GL_UNPACK_SKIP_PIXELS);
+    integer("GL_UNPACK_IMAGE_HEIGHT", GL_UNPACK_IMAGE_HEIGHT);
+    enabled("GL_SCISSOR_TEST", GL_SCISSOR_TEST);
+    enabled("GL_RASTERIZER_DISCARD", GL_RASTERIZER_DISCARD);
+    enabled("GL_BLEND", GL_BLEND);
+    enabled("GL_DEPTH_TEST", GL_DEPTH_TEST);
+    static const char* const kViewport[4] = {"GL_VIEWPORT x", "GL_VIEWPORT y", "GL_VIEWPORT width",
+                                             "GL_VIEWPORT height"};
+    static const char* const kScissor[4] = {"GL_SCISSOR_BOX x", "GL_SCISSOR_BOX y", "GL_SCISSOR_BOX width",
+                                            "GL_SCISSOR_BOX height"};
+    static const char* const kMask[4] = {"GL_COLOR_WRITEMASK red", "GL_COLOR_WRITEMASK green",
+                                         "GL_COLOR_WRITEMASK blue", "GL_COLOR_WRITEMASK alpha"};
+    for (GLuint c = 0; c < 4; ++c) {
+        q.push_back({kViewport[c], QueryKind::Component, GL_VIEWPORT, c});
+        q.push_back({kScissor[c], QueryKind::Component, GL_SCISSOR_BOX, c});
+        q.push_back({kMask[c], QueryKind::Component, GL_COLOR_WRITEMASK, c});
+    }
+    const struct { GLenum binding, start, size; const char* name; } buffers[] = {
+        {GL_UNIFORM_BUFFER_BINDING, GL_UNIFORM_BUFFER_START, GL_UNIFORM_BUFFER_SIZE, "uniform buffer"},
+        {GL_SHADER_STORAGE_BUFFER_BINDING, GL_SHADER_STORAGE_BUFFER_START, GL_SHADER_STORAGE_BUFFER_SIZE,
+         "shader storage buffer"},
+    };
+    for (const auto& kind : buffers) {
+        for (GLuint index = 0; index < 4; ++index) {
+            const std::string at = std::string("indexed ") + kind.name + " " + std::to_string(index);
+            q.push_back({at + " binding", QueryKind::Indexed, kind.binding, index});
+            q.push_back({at + " start", QueryKind::Indexed64, kind.start, index});
+            q.push_back({at + " size", QueryKind::Indexed64, kind.size, index});
+        }
+    }
+    const std::pair<GLenum, const char*> images[] = {
+        {GL_IMAGE_BINDING_NAME, "name"},       {GL_IMAGE_BINDING_LEVEL, "level"},
+        {GL_IMAGE_BINDING_LAYERED, "layered"}, {GL_IMAGE_BINDING_LAYER, "layer"},
+        {GL_IMAGE_BINDING_ACCESS, "access"},   {GL_IMAGE_BINDING_FORMAT, "format"},
+    };
+    for (GLuint unit = 0; unit < kSentinelUnits; ++unit) {
+        for (const auto& [pname, name] : images) {
+            q.push_back({"image unit " + std::to_string(unit) + " " + name, QueryKind::Indexed, pname, unit});
+        }
+    }
+    const std::pair<GLenum, const char*> targets[] = {
+        {GL_TEXTURE_BINDING_2D, "GL_TEXTURE_BINDING_2D"},
+        {GL_TEXTURE_BINDING_2D_MULTISAMPLE, "GL_TEXTURE_BINDING_2D_MULTISAMPLE"},
+        {GL_TEXTURE_BINDING_3D, "GL_TEXTURE_BINDING_3D"},
+        {GL_TEXTURE_BINDING_2D_ARRAY, "GL_TEXTURE_BINDING_2D_ARRAY"},
+        {GL_TEXTURE_BINDING_CUBE_MAP, "GL_TEXTURE_BINDING_CUBE_MAP"},
+        {GL_TEXTURE_BINDING_BUFFER, "GL_TEXTURE_BINDING_BUFFER"},
+        {GL_SAMPLER_BINDING, "GL_SAMPLER_BINDING"},
+    };
+    for (GLuint unit = 0; unit < kSentinelUnits; ++unit) {
+        for (const auto& [pname, name] : targets) {
+            q.push_back({std::string(name) + " of unit " + std::to_string(unit), QueryKind::Unit, pname, unit});
+        }
+    }
+    return q;
+}
 
 GLint get_integer(GLenum pname) {
     GLint value = 0;
@@ -307,50 +481,81 @@ GLint get_integer(GLenum pname) {
     return value;
 }
 
-// Reads the state that `Sentinels` describes (switching the active unit and switching it back).
-Sentinels read_state() {
-    Sentinels s;
-    s.program = get_integer(GL_CURRENT_PROGRAM);
-    s.active_texture = get_integer(GL_ACTIVE_TEXTURE);
-    s.draw_framebuffer = get_integer(GL_DRAW_FRAMEBUFFER_BINDING);
-    s.read_framebuffer = get_integer(GL_READ_FRAMEBUFFER_BINDING);
-    s.renderbuffer = get_integer(GL_RENDERBUFFER_BINDING);
-    s.uniform_buffer = get_integer(GL_UNIFORM_BUFFER_BINDING);
-    s.storage_buffer = get_integer(GL_SHADER_STORAGE_BUFFER_BINDING);
-    s.pixel_unpack = get_integer(GL_PIXEL_UNPACK_BUFFER_BINDING);
-    s.pack_alignment = get_integer(GL_PACK_ALIGNMENT);
-    s.unpack_alignment = get_integer(GL_UNPACK_ALIGNMENT);
-    s.scissor = glIsEnabled(GL_SCISSOR_TEST);
-    s.discard = glIsEnabled(GL_RASTERIZER_DISCARD);
-    for (int unit = 0; unit < 8; ++unit) {
-        glActiveTexture(GLenum(GL_TEXTURE0 + unit));
-        s.texture_2d[unit] = get_integer(GL_TEXTURE_BINDING_2D);
-        s.texture_ms[unit] = get_integer(GL_TEXTURE_BINDING_2D_MULTISAMPLE);
-        s.texture_3d[unit] = get_integer(GL_TEXTURE_BINDING_3D);
-        s.texture_buffer[unit] = get_integer(GL_TEXTURE_BINDING_BUFFER);
-        s.sampler[unit] = get_integer(GL_SAMPLER_BINDING);
-        glGetIntegeri_v(GL_IMAGE_BINDING_NAME, GLuint(unit), &s.image[unit]);
-    }
-    glActiveTexture(GLenum(s.active_texture));
-    const struct { GLenum target, binding, start, size; GLuint count; } kinds[] = {
-        {GL_UNIFORM_BUFFER, GL_UNIFORM_BUFFER_BINDING, GL_UNIFORM_BUFFER_START, GL_UNIFORM_BUFFER_SIZE, 4},
-        {GL_SHADER_STORAGE_BUFFER, GL_SHADER_STORAGE_BUFFER_BINDING, GL_SHADER_STORAGE_BUFFER_START,
-         GL_SHADER_STORAGE_BUFFER_SIZE, 4},
-    };
-    for (const auto& kind : kinds) {
-        for (GLuint index = 0; index < kind.count; ++index) {
-            IndexedBinding b{kind.target, index, 0, 0, 0};
-            glGetIntegeri_v(kind.binding, index, &b.name);
-            glGetInteger64i_v(kind.start, index, &b.start);
-            glGetInteger64i_v(kind.size, index, &b.size);
-            s.indexed.push_back(b);
+// Reads every query (switching the active unit for the per-unit ones, and switching it back).
+StateValues read_state(const std::vector<StateQuery>& queries) {
+    StateValues values;
+    values.reserve(queries.size());
+    const GLint active = get_integer(GL_ACTIVE_TEXTURE);
+    GLint unit_set = active;
+    for (const StateQuery& query : queries) {
+        GLint value[4] = {};
+        GLint64 value64 = 0;
+        switch (query.kind) {
+            case QueryKind::Integer: values.push_back(get_integer(query.pname)); break;
+            case QueryKind::Component:
+                glGetIntegerv(query.pname, value);
+                values.push_back(value[query.index]);
+                break;
+            case QueryKind::Enabled: values.push_back(glIsEnabled(query.pname)); break;
+            case QueryKind::Indexed:
+                glGetIntegeri_v(query.pname, query.index, value);
+                values.push_back(value[0]);
+                break;
+            case QueryKind::Indexed64:
+                glGetInteger64i_v(query.pname, query.index, &value64);
+                values.push_back(value64);
+                break;
+            case QueryKind::Unit:
+                if (unit_set != GLint(GL_TEXTURE0 + query.index)) {
+                    unit_set = GLint(GL_TEXTURE0 + query.index);
+                    glActiveTexture(GLenum(unit_set));
+                }
+                values.push_back(get_integer(query.pname));
+                break;
         }
     }
-    return s;
+    if (unit_set != active) glActiveTexture(GLenum(active));
+    return values;
 }
 
-// Binds a sentinel object at every place Sentinels reads: the SDK's units and more, so that a leak shows.
-Sentinels install_sentinels() {
+// The fuzzer's own uploads and read-backs run with a neutral pixel store and no pixel buffer bound (the sentinels
+// bind some); the host's values come back when the scope ends.
+class NeutralPixelStore {
+public:
+    NeutralPixelStore() {
+        for (size_t i = 0; i < kCount; ++i) saved_[i] = get_integer(kParams[i].pname);
+        pack_buffer_ = get_integer(GL_PIXEL_PACK_BUFFER_BINDING);
+        unpack_buffer_ = get_integer(GL_PIXEL_UNPACK_BUFFER_BINDING);
+        for (const Param& p : kParams) glPixelStorei(p.pname, p.neutral);
+        glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+    }
+    ~NeutralPixelStore() {
+        for (size_t i = 0; i < kCount; ++i) glPixelStorei(kParams[i].pname, saved_[i]);
+        glBindBuffer(GL_PIXEL_PACK_BUFFER, GLuint(pack_buffer_));
+        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, GLuint(unpack_buffer_));
+    }
+    NeutralPixelStore(const NeutralPixelStore&) = delete;
+    NeutralPixelStore& operator=(const NeutralPixelStore&) = delete;
+
+private:
+    struct Param {
+        GLenum pname;
+        GLint neutral;
+    };
+    static constexpr size_t kCount = 9;
+    static constexpr Param kParams[kCount] = {
+        {GL_PACK_ALIGNMENT, 4},     {GL_PACK_ROW_LENGTH, 0},    {GL_PACK_SKIP_ROWS, 0},
+        {GL_PACK_SKIP_PIXELS, 0},   {GL_UNPACK_ALIGNMENT, 4},   {GL_UNPACK_ROW_LENGTH, 0},
+        {GL_UNPACK_SKIP_ROWS, 0},   {GL_UNPACK_SKIP_PIXELS, 0}, {GL_UNPACK_IMAGE_HEIGHT, 0},
+    };
+    GLint saved_[kCount] = {};
+    GLint pack_buffer_ = 0, unpack_buffer_ = 0;
+};
+
+// Binds a sentinel object, or sets a value other than GL's default, at every place read_state reads: the SDK's units
+// and more, so that a leak shows.
+StateValues install_sentinels(const std::vector<StateQuery>& queries) {
     static const char* kCompute = "#version 430\nlayout(local_size_x = 1) in;\nvoid main() {}\n";
     GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
     glShaderSource(shader, 1, &kCompute, nullptr);
@@ -365,10 +570,15 @@ Sentinels install_sentinels() {
 
     GLuint tex_2d = make_color(GL_RGBA8, 4, 4);
     GLuint tex_2d_other = make_color(GL_RGBA8, 2, 2);
+    GLuint tex_r32f = make_color(GL_R32F, 4, 4);
     GLuint tex_ms = gen_texture(GL_TEXTURE_2D_MULTISAMPLE);
     glTexImage2DMultisample(GL_TEXTURE_2D_MULTISAMPLE, 2, GL_RGBA8, 4, 4, GL_TRUE);
     GLuint tex_3d = gen_texture(GL_TEXTURE_3D);
     glTexStorage3D(GL_TEXTURE_3D, 1, GL_RGBA8, 2, 2, 2);
+    GLuint tex_array = gen_texture(GL_TEXTURE_2D_ARRAY);
+    glTexStorage3D(GL_TEXTURE_2D_ARRAY, 2, GL_RGBA8, 8, 8, 4);
+    GLuint tex_cube = gen_texture(GL_TEXTURE_CUBE_MAP);
+    glTexStorage2D(GL_TEXTURE_CUBE_MAP, 1, GL_RGBA8, 4, 4);
     GLuint texel_buffer = make_buffer(GL_TEXTURE_BUFFER, 256);
     GLuint tex_buffer = gen_texture(GL_TEXTURE_BUFFER);
     glTexBuffer(GL_TEXTURE_BUFFER, GL_R32F, texel_buffer);
@@ -378,22 +588,46 @@ Sentinels install_sentinels() {
     GLint ssbo_alignment = get_integer(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT);
     GLuint ubo = make_buffer(GL_UNIFORM_BUFFER, 4096);
     GLuint ssbo = make_buffer(GL_SHADER_STORAGE_BUFFER, 4096);
+    // Framebuffers with two colour attachments: the read one reads attachment 1, the draw one draws to it.
     GLuint draw_fb = make_framebuffer(make_color(GL_RGBA8, 4, 4), 0);
     GLuint read_fb = make_framebuffer(make_color(GL_RGBA8, 4, 4), 0);
+    for (GLuint fb : {draw_fb, read_fb}) {
+        glBindFramebuffer(GL_FRAMEBUFFER, fb);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, make_color(GL_RGBA8, 4, 4), 0);
+        const GLenum attachment1 = GL_COLOR_ATTACHMENT1;
+        if (fb == read_fb) glReadBuffer(attachment1);
+        else glDrawBuffers(1, &attachment1);
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
     GLuint renderbuffer = 0;
     glGenRenderbuffers(1, &renderbuffer);
     glBindRenderbuffer(GL_RENDERBUFFER, renderbuffer);
     glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 4, 4);
     GLuint unpack_buffer = make_buffer(GL_PIXEL_UNPACK_BUFFER, 64);
+    GLuint pack_buffer = make_buffer(GL_PIXEL_PACK_BUFFER, 64);
+    GLuint indirect_buffer = make_buffer(GL_DISPATCH_INDIRECT_BUFFER, 64);
+    GLuint copy_read = make_buffer(GL_COPY_READ_BUFFER, 64);
+    GLuint copy_write = make_buffer(GL_COPY_WRITE_BUFFER, 64);
+    GLuint array_buffer = make_buffer(GL_ARRAY_BUFFER, 64);
+    GLuint vao = 0;
+    glGenVertexArrays(1, &vao);
 
-    for (int unit = 0; unit < 8; ++unit) {
+    for (int unit = 0; unit < kSentinelUnits; ++unit) {
         glActiveTexture(GLenum(GL_TEXTURE0 + unit));
         glBindTexture(GL_TEXTURE_2D, unit == 0 ? tex_2d : tex_2d_other);
         glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, tex_ms);
         glBindTexture(GL_TEXTURE_3D, tex_3d);
+        glBindTexture(GL_TEXTURE_2D_ARRAY, tex_array);
+        glBindTexture(GL_TEXTURE_CUBE_MAP, tex_cube);
         glBindTexture(GL_TEXTURE_BUFFER, tex_buffer);
         glBindSampler(GLuint(unit), sampler);
-        glBindImageTexture(GLuint(unit), tex_2d, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA8);
+        // Image units: level, layering, layer, access and format unlike GL's defaults (and unlike each other).
+        switch (unit % 4) {
+            case 0: glBindImageTexture(GLuint(unit), tex_array, 1, GL_FALSE, 2, GL_READ_ONLY, GL_RGBA8); break;
+            case 1: glBindImageTexture(GLuint(unit), tex_r32f, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F); break;
+            case 2: glBindImageTexture(GLuint(unit), tex_3d, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA8); break;
+            default: glBindImageTexture(GLuint(unit), tex_2d, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA8); break;
+        }
     }
     for (GLuint index = 0; index < 4; ++index) {
         glBindBufferRange(GL_UNIFORM_BUFFER, index, ubo, GLintptr(ubo_alignment) * index, 256);
@@ -402,16 +636,34 @@ Sentinels install_sentinels() {
     glBindBuffer(GL_UNIFORM_BUFFER, ubo);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, ssbo);
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, unpack_buffer);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, pack_buffer);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, indirect_buffer);
+    glBindBuffer(GL_COPY_READ_BUFFER, copy_read);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, copy_write);
+    glBindBuffer(GL_TEXTURE_BUFFER, texel_buffer);
+    glBindVertexArray(vao);
+    glBindBuffer(GL_ARRAY_BUFFER, array_buffer);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glPixelStorei(GL_PACK_ROW_LENGTH, 13);
+    glPixelStorei(GL_PACK_SKIP_ROWS, 3);
+    glPixelStorei(GL_PACK_SKIP_PIXELS, 2);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, 17);
+    glPixelStorei(GL_UNPACK_SKIP_ROWS, 1);
+    glPixelStorei(GL_UNPACK_SKIP_PIXELS, 5);
+    glPixelStorei(GL_UNPACK_IMAGE_HEIGHT, 3);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, draw_fb);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, read_fb);
+    glViewport(3, 5, 77, 41);
     glEnable(GL_SCISSOR_TEST);
-    glScissor(0, 0, 1, 1);
+    glScissor(1, 2, 30, 40);
     glEnable(GL_RASTERIZER_DISCARD);
+    glEnable(GL_BLEND);
+    glEnable(GL_DEPTH_TEST);
+    glColorMask(GL_TRUE, GL_FALSE, GL_TRUE, GL_FALSE);
     glUseProgram(program);
     glActiveTexture(GL_TEXTURE5);
-    return read_state();
+    return read_state(queries);
 }
 
 using obscura::samples::gl_error_name;
@@ -423,6 +675,11 @@ struct CallStats {
     unsigned long counts[OBSCURA_STATUS_COUNT_] = {};
 };
 CallStats g_stats[] = {{"obscura_render"}, {"obscura_prepare"}};
+// How many successful renders reached the 0.5 features.
+struct FeatureStats {
+    unsigned long temporal = 0, matrices = 0, motion = 0, view = 0, reduced = 0, bent = 0;
+};
+FeatureStats g_features;
 
 // OBSCURA_FUZZ_TRACE=1 prints every render and prepare with its status (to replay a crash input by hand).
 bool g_trace = false;
@@ -445,6 +702,11 @@ void print_stats() {
         }
         std::fprintf(stderr, "\n");
     }
+    std::fprintf(stderr,
+                 "render_fuzzer: successful renders with temporal accumulation %lu (matrices %lu, motion vectors %lu, "
+                 "a view %lu), reduced resolution %lu, bent normals %lu\n",
+                 g_features.temporal, g_features.matrices, g_features.motion, g_features.view, g_features.reduced,
+                 g_features.bent);
 }
 
 // ---- The process-wide fixture -----------------------------------------------------------------------------------
@@ -474,7 +736,10 @@ struct Fixture {
     uint64_t last_frame_index = 0;
     LogRecord log;
     Pools pools;
-    Sentinels sentinels;
+    std::vector<StateQuery> state_queries;
+    StateValues sentinels;            // read_state(state_queries) as install_sentinels left it
+    GLint sentinel_active_texture = 0;
+    GLint sentinel_unit7_texture_2d = 0;
     GLint max_texture_size = 0;
 
     // Both contexts; `selected` is the one whose state the fields above hold.
@@ -493,59 +758,39 @@ struct Fixture {
         baseline_memory = states[index].baseline_memory;
         last_frame_index = states[index].last_frame_index;
     }
+
+    // Each context's live views (obscura_create_view), oldest first, and the frame index its renders advance; handles
+    // of destroyed views (never dereferenced: the SDK tells views apart by address, and may reuse one).
+    static constexpr size_t kMaxViews = 4;
+    struct Views {
+        std::vector<obscura_view*> live;
+        uint32_t frame_index = 0;
+    };
+    Views views[2];
+    std::vector<obscura_view*> destroyed_views;
+    Views& own_views() { return views[selected]; }
+    Views& other_views() { return views[1 - selected]; }
+    bool is_live_view(const obscura_view* view) const {
+        const std::vector<obscura_view*>& live = views[selected].live;
+        return std::find(live.begin(), live.end(), view) != live.end();
+    }
 };
 Fixture* g_fixture = nullptr;
 
 void check_sentinels(const char* call) {
-    const Sentinels now = read_state();
-    const Sentinels& want = g_fixture->sentinels;
-    auto same = [&](const char* what, GLint64 got, GLint64 expected) {
-        FUZZ_CHECK(got == expected, "%s changed the host's %s: %lld, was %lld", call, what, (long long)got,
-                   (long long)expected);
-    };
-    same("current program", now.program, want.program);
-    same("active texture", now.active_texture, want.active_texture);
-    same("draw framebuffer", now.draw_framebuffer, want.draw_framebuffer);
-    same("read framebuffer", now.read_framebuffer, want.read_framebuffer);
-    same("renderbuffer binding", now.renderbuffer, want.renderbuffer);
-    same("GL_UNIFORM_BUFFER binding", now.uniform_buffer, want.uniform_buffer);
-    same("GL_SHADER_STORAGE_BUFFER binding", now.storage_buffer, want.storage_buffer);
-    same("GL_PIXEL_UNPACK_BUFFER binding", now.pixel_unpack, want.pixel_unpack);
-    same("GL_PACK_ALIGNMENT", now.pack_alignment, want.pack_alignment);
-    same("GL_UNPACK_ALIGNMENT", now.unpack_alignment, want.unpack_alignment);
-    same("scissor test", now.scissor, want.scissor);
-    same("rasterizer discard", now.discard, want.discard);
-    char what[96];
-    for (int unit = 0; unit < 8; ++unit) {
-        std::snprintf(what, sizeof what, "GL_TEXTURE_BINDING_2D of unit %d", unit);
-        same(what, now.texture_2d[unit], want.texture_2d[unit]);
-        std::snprintf(what, sizeof what, "GL_TEXTURE_BINDING_2D_MULTISAMPLE of unit %d", unit);
-        same(what, now.texture_ms[unit], want.texture_ms[unit]);
-        std::snprintf(what, sizeof what, "GL_TEXTURE_BINDING_3D of unit %d", unit);
-        same(what, now.texture_3d[unit], want.texture_3d[unit]);
-        std::snprintf(what, sizeof what, "GL_TEXTURE_BINDING_BUFFER of unit %d", unit);
-        same(what, now.texture_buffer[unit], want.texture_buffer[unit]);
-        std::snprintf(what, sizeof what, "sampler of unit %d", unit);
-        same(what, now.sampler[unit], want.sampler[unit]);
-        std::snprintf(what, sizeof what, "image unit %d", unit);
-        same(what, now.image[unit], want.image[unit]);
-    }
-    for (size_t i = 0; i < want.indexed.size(); ++i) {
-        const IndexedBinding& a = now.indexed[i];
-        const IndexedBinding& b = want.indexed[i];
-        const char* target = b.target == GL_UNIFORM_BUFFER ? "uniform" : "storage";
-        FUZZ_CHECK(a.name == b.name && a.start == b.start && a.size == b.size,
-                   "%s changed the host's indexed %s buffer binding %u: buffer %d [%lld, +%lld], was %d [%lld, +%lld]",
-                   call, target, b.index, a.name, (long long)a.start, (long long)a.size, b.name, (long long)b.start,
-                   (long long)b.size);
+    const StateValues now = read_state(g_fixture->state_queries);
+    const StateValues& want = g_fixture->sentinels;
+    for (size_t i = 0; i < want.size(); ++i) {
+        FUZZ_CHECK(now[i] == want[i], "%s changed the host's %s: %lld, was %lld", call,
+                   g_fixture->state_queries[i].name.c_str(), now[i], want[i]);
     }
     // The SDK switches a depth-stencil texture to depth for a frame and must switch it back.
     glActiveTexture(GL_TEXTURE7);
     glBindTexture(GL_TEXTURE_2D, g_fixture->pools.stencil_mode_texture);
     GLint mode = 0;
     glGetTexParameteriv(GL_TEXTURE_2D, GL_DEPTH_STENCIL_TEXTURE_MODE, &mode);
-    glBindTexture(GL_TEXTURE_2D, GLuint(want.texture_2d[7]));
-    glActiveTexture(GLenum(want.active_texture));
+    glBindTexture(GL_TEXTURE_2D, GLuint(g_fixture->sentinel_unit7_texture_2d));
+    glActiveTexture(GLenum(g_fixture->sentinel_active_texture));
     FUZZ_CHECK(mode == GL_STENCIL_INDEX,
                "%s left the host's depth-stencil texture in GL_DEPTH_STENCIL_TEXTURE_MODE 0x%04X", call,
                unsigned(mode));
@@ -601,7 +846,8 @@ DecodedSettings decode_settings(Reader& in) {
     int32_t method = kMethods[mode % 8];
     if ((mode & 0xF8) == 0xF8) method = in.i32();
     // The struct's version: mostly this header's, or an older released one (0.3's from the 0.3 symbol), or any size.
-    const uint8_t version = in.u8() & 15;
+    const uint8_t version_byte = in.u8();
+    const uint8_t version = version_byte & 15;
     uint32_t size = sizeof(obscura_settings);
     bool raw_size = false;
     uint32_t raw = 0;
@@ -627,16 +873,41 @@ DecodedSettings decode_settings(Reader& in) {
         std::memcpy(reinterpret_cast<unsigned char*>(settings) + offsetof(obscura_settings, method), &method,
                     sizeof method);
     }
-    // Edits through the metadata (any value: out-of-range ones are refused and leave the struct as it was).
+    // Edits through the metadata (any value: out-of-range ones are refused and leave the struct as it was): a row byte
+    // below 192 picks one of the method's rows, 192 and above one of the rows every method shares (temporal.*,
+    // resolution.*, which a struct older than 0.5 does not have: UNKNOWN_SETTING, nothing changed).
     const int32_t info_method = valid_method(method) ? method : int32_t(OBSCURA_METHOD_HBAO);
     const obscura_setting_info* infos = nullptr;
     uint32_t count = 0;
     fuzz_get_setting_infos(info_method, &infos, &count);
+    const obscura_setting_info* shared = nullptr;
+    uint32_t shared_count = 0;
+    FUZZ_CHECK(obscura_get_shared_setting_infos(&shared, &shared_count) == OBSCURA_OK && shared_count > 0,
+               "obscura_get_shared_setting_infos failed");
     const int edits = in.u8() % 8;
     for (int i = 0; i < edits; ++i) {
-        const obscura_setting_info& info = infos[in.index(count)];
+        const uint8_t row = in.u8();
+        const obscura_setting_info& info = row >= 192 ? shared[(row - 192u) % shared_count] : infos[row % count];
         const double value = obscura_fuzz::pick_setting_value(info, in.u8(), in);
-        obscura_set_setting(settings, info.name, value);
+        const int32_t status = status_code(obscura_set_setting(settings, info.name, value));
+        if (g_trace) {
+            std::fprintf(stderr, "render_fuzzer: edit %s = %.17g: %s\n", info.name, value, fuzz_status_string(status));
+        }
+    }
+    // Bit 7 of the version byte: a byte of shared settings follows, set through their names (refused by a struct older
+    // than 0.5): bit 0 temporal accumulation on, bits 1-2 resolution.scale (0 leaves it), bits 3-5
+    // temporal.max_frames 1 + 9n, so that temporal accumulation and reduced resolution are reached often.
+    if (version_byte & 0x80) {
+        const uint8_t shared_bits = in.u8();
+        auto set = [&](const char* name, double value) {
+            const int32_t status = status_code(obscura_set_setting(settings, name, value));
+            if (g_trace) {
+                std::fprintf(stderr, "render_fuzzer: edit %s = %g: %s\n", name, value, fuzz_status_string(status));
+            }
+        };
+        if (shared_bits & 1) set("temporal.enabled", 1.0);
+        if (shared_bits & 6) set("resolution.scale", double((shared_bits >> 1) & 3));
+        if (shared_bits & 0x38) set("temporal.max_frames", 1.0 + 9.0 * ((shared_bits >> 3) & 7));
     }
     // Raw pokes anywhere in the struct (other methods' fields, the falloff tables, the flags, the method and size).
     const int pokes = in.u8() % 4;
@@ -746,6 +1017,12 @@ struct DecodedInput {
     // Every field was decoded from a valid choice (no raw size, rect, enum, projection or units): the fields alone
     // (stage 1) pass, whatever the textures they name.
     bool fields_valid = true;
+    // The 0.5 per-frame fields (decode_frame_fields; without them all zero: the context's own view, no matrices).
+    bool frame_fields = false;
+    bool view_valid = true;                  // NULL or a live view of the context the call runs on
+    const char* view_label = "none";
+    const char* matrices_label = "none";
+    const CompanionEntry* motion = nullptr;  // NULL: none
 };
 
 DecodedInput decode_input(Reader& in) {
@@ -856,6 +1133,7 @@ struct DecodedOutput {
     obscura_output output;
     const OutputEntry* target;
     bool fields_valid = true;  // blend, debug view and position decoded from valid choices (stage 1 passes)
+    const CompanionEntry* bent = nullptr;  // NULL: none
 };
 
 DecodedOutput decode_output(Reader& in) {
@@ -886,6 +1164,174 @@ DecodedOutput decode_output(Reader& in) {
     return d;
 }
 
+// ---- The 0.5 per-frame fields ---------------------------------------------------------------------------------
+
+// Column-major 4x4 product a * b.
+void multiply(const float a[16], const float b[16], float out[16]) {
+    for (int column = 0; column < 4; ++column) {
+        for (int row = 0; row < 4; ++row) {
+            double sum = 0.0;
+            for (int k = 0; k < 4; ++k) sum += double(a[k * 4 + row]) * double(b[column * 4 + k]);
+            out[column * 4 + row] = float(sum);
+        }
+    }
+}
+
+void transpose(float m[16]) {
+    for (int r = 0; r < 4; ++r)
+        for (int c = r + 1; c < 4; ++c) std::swap(m[c * 4 + r], m[r * 4 + c]);
+}
+
+// A camera's world -> view matrix (column-major): a turn about y by `yaw` radians, then a move.
+void view_matrix(double yaw, double tx, double ty, double tz, float out[16]) {
+    std::memset(out, 0, 16 * sizeof(float));
+    const double c = std::cos(yaw), s = std::sin(yaw);
+    out[0] = float(c), out[2] = float(-s);
+    out[5] = 1.0f;
+    out[8] = float(s), out[10] = float(c);
+    out[12] = float(tx), out[13] = float(ty), out[14] = float(tz), out[15] = 1.0f;
+}
+
+// A few entries off a little, the whole matrix scaled to the extremes, or an entry replaced by NaN, an infinity, 0,
+// a denormal, FLT_MAX, -1 or any float.
+void perturb(float m[16], Reader& in) {
+    const int count = 1 + in.u8() % 3;
+    for (int i = 0; i < count; ++i) {
+        float& value = m[in.u8() % 16];
+        const uint8_t how = in.u8();
+        if (how < 96) {
+            value *= 1.0f + float(int8_t(in.u8())) / 256.0f;
+        } else if (how < 128) {
+            static const float kScales[4] = {1e30f, 1e-12f, -1.0f, 1e-30f};
+            for (int k = 0; k < 16; ++k) m[k] *= kScales[how % 4];
+        } else {
+            value = special_float(how, in);
+        }
+    }
+}
+
+// Resolves an aliasing pool entry to the name the other field holds (0: none, so the entry is none too).
+const CompanionEntry* resolve_alias(const CompanionEntry* entry, GLuint* name, const DecodedInput& input,
+                                    const DecodedOutput& output) {
+    switch (entry->alias) {
+        case Alias::None: *name = entry->name; break;
+        case Alias::Output: *name = output.output.texture; break;
+        case Alias::Depth: *name = input.input.depth_texture; break;
+        case Alias::Normals: *name = input.input.normal_texture; break;
+        case Alias::Motion: *name = input.input.motion_vector_texture; break;
+    }
+    return *name ? entry : nullptr;
+}
+
+// Decodes the fields 0.5 added to obscura_input (view, frame_index, flags, the two view-projection matrices, motion
+// vectors and their units) and obscura_output (bent_normal_texture), after the rest of both structs:
+//   view: u8 (< 96 NULL, < 192 one of the context's live views, < 216 a destroyed view's handle, < 240 a view of
+//         the other context, else a pointer that never was a view), u8 which one (NULL where the list is empty);
+//   frame_index: u8 (< 96 the context's counter as it is, < 224 the counter advanced, else a raw u32);
+//   flags: u8 (< 192 none, < 240 RESET_HISTORY, else a raw u32);
+//   matrices: u8, bits 0-1 view_projection (0 none, 1 projection * a camera, 2 that perturbed, 3 raw floats), bits 2-3
+//         previous_view_projection (0 none, 1 the same, 2 the camera nudged, 3 that perturbed), with the camera's
+//         bytes and the perturbations after it;
+//   motion vectors: u8 (< 160 none, else a pool entry by the next byte), units: u8 (< 250 PIXELS / NDC, else raw);
+//   bent normals: u8 (< 160 none, else a pool entry by the next byte).
+void decode_frame_fields(Reader& in, DecodedInput& d, DecodedOutput& o) {
+    Fixture& fx = *g_fixture;
+    const Pools& pools = fx.pools;
+    obscura_input& input = d.input;
+    d.frame_fields = true;
+
+    static int never_a_view = 0;
+    const uint8_t view = in.u8();
+    const uint8_t pick = in.u8();  // which one of a list (read always: the layout never depends on earlier inputs)
+    if (view < 96) {
+        input.view = nullptr;
+    } else if (view < 192) {
+        const std::vector<obscura_view*>& live = fx.own_views().live;
+        input.view = live.empty() ? nullptr : live[pick % live.size()];
+        d.view_label = live.empty() ? "none (no view yet)" : "a live view";
+    } else if (view < 216) {
+        const std::vector<obscura_view*>& gone = fx.destroyed_views;
+        input.view = gone.empty() ? nullptr : gone[pick % gone.size()];
+        d.view_label = gone.empty() ? "none (none destroyed yet)" : "a destroyed view";
+    } else if (view < 240) {
+        const std::vector<obscura_view*>& other = fx.other_views().live;
+        input.view = other.empty() ? nullptr : other[pick % other.size()];
+        d.view_label = other.empty() ? "none (the other context has none)" : "the other context's view";
+    } else {
+        input.view = reinterpret_cast<obscura_view*>(&never_a_view);
+        d.view_label = "a pointer that never was a view";
+    }
+    // A destroyed view's address may have been reused by a view created since: then it names that view.
+    d.view_valid = input.view == nullptr || fx.is_live_view(input.view);
+
+    const uint8_t frame = in.u8();
+    Fixture::Views& counter = fx.own_views();
+    if (frame < 96) input.frame_index = counter.frame_index;
+    else if (frame < 224) input.frame_index = ++counter.frame_index;
+    else input.frame_index = in.u32();
+
+    const uint8_t flags = in.u8();
+    input.flags = flags < 192 ? 0u : flags < 240 ? uint32_t(OBSCURA_INPUT_FLAG_RESET_HISTORY) : in.u32();
+    if (input.flags & ~uint32_t(OBSCURA_INPUT_FLAG_RESET_HISTORY)) d.fields_valid = false;
+
+    // The matrices, in the projection's layout: the projection times a camera.
+    const uint8_t matrices = in.u8();
+    const int current = matrices & 3, previous = (matrices >> 2) & 3;
+    static const char* const kCurrent[4] = {"none", "camera", "camera perturbed", "raw"};
+    static const char* const kPrevious[4] = {"none", "same", "nudged", "nudged perturbed"};
+    static char label[64];
+    std::snprintf(label, sizeof label, "%s / %s", kCurrent[current], kPrevious[previous]);
+    d.matrices_label = label;
+    const bool row_major = load_raw(input.projection_layout) == OBSCURA_MATRIX_ROW_MAJOR;
+    float projection[16];
+    std::memcpy(projection, input.projection, sizeof projection);
+    if (row_major) transpose(projection);
+    const double yaw = double(int8_t(in.u8())) / 128.0 * 0.3;
+    const double tx = double(int8_t(in.u8())) / 64.0, ty = double(int8_t(in.u8())) / 64.0,
+                 tz = double(int8_t(in.u8())) / 64.0;
+    float camera[16], camera_view_projection[16];
+    view_matrix(yaw, tx, ty, tz, camera);
+    multiply(projection, camera, camera_view_projection);
+    if (current == 1 || current == 2) {
+        std::memcpy(input.view_projection, camera_view_projection, sizeof camera_view_projection);
+        if (row_major) transpose(input.view_projection);
+        if (current == 2) perturb(input.view_projection, in);
+    } else if (current == 3) {
+        for (float& value : input.view_projection) value = in.f32();
+    }
+    if (previous == 1) {
+        std::memcpy(input.previous_view_projection, input.view_projection, sizeof input.view_projection);
+    } else if (previous >= 2) {  // the camera a little elsewhere (a near-identity reprojection)
+        float nudged[16];
+        view_matrix(yaw + double(int8_t(in.u8())) / 4096.0, tx + double(int8_t(in.u8())) / 1024.0, ty,
+                    tz + double(int8_t(in.u8())) / 1024.0, nudged);
+        multiply(projection, nudged, input.previous_view_projection);
+        if (row_major) transpose(input.previous_view_projection);
+        if (previous == 3) perturb(input.previous_view_projection, in);
+    }
+    if (current >= 2 || previous == 3) d.fields_valid = false;  // may be non-finite or singular
+
+    // Motion vectors, then the bent normals (which may name them).
+    const uint8_t motion = in.u8();
+    if (motion >= 160) {
+        d.motion = &pools.motion[in.index(uint32_t(pools.motion.size()))];
+        GLuint name = 0;
+        d.motion = resolve_alias(d.motion, &name, d, o);
+        input.motion_vector_texture = name;
+    }
+    const uint8_t units = in.u8();
+    if (units >= 250) d.fields_valid = false;
+    store_raw(&input.motion_vector_units, units < 250 ? int32_t(units & 1) : in.i32());
+
+    const uint8_t bent = in.u8();
+    if (bent >= 160) {
+        o.bent = &pools.bent[in.index(uint32_t(pools.bent.size()))];
+        GLuint name = 0;
+        o.bent = resolve_alias(o.bent, &name, d, o);
+        o.output.bent_normal_texture = name;
+    }
+}
+
 // ---- Operations --------------------------------------------------------------------------------------------------
 
 // Statuses a render of host-made structs may return here (a GL 4.3 context that is current and never lost, every
@@ -897,7 +1343,7 @@ bool render_status_allowed(int32_t status, bool host_error_pending) {
         case OBSCURA_STATUS_INVALID_SIZE: case OBSCURA_STATUS_INVALID_RECT: case OBSCURA_STATUS_INVALID_TEXTURE:
         case OBSCURA_STATUS_UNSUPPORTED_FORMAT: case OBSCURA_STATUS_INVALID_PROJECTION:
         case OBSCURA_STATUS_PROJECTION_TRANSPOSED: case OBSCURA_STATUS_INVALID_SETTING:
-        case OBSCURA_STATUS_INVALID_ENUM:
+        case OBSCURA_STATUS_INVALID_ENUM: case OBSCURA_STATUS_INVALID_VIEW:
         case OBSCURA_STATUS_INVALID_FRAMEBUFFER:
             return true;
         case OBSCURA_STATUS_HOST_GL_ERROR: return host_error_pending;
@@ -911,27 +1357,36 @@ bool stage_one_status(int32_t status) {
     switch (status) {
         case OBSCURA_STATUS_INVALID_STRUCT_SIZE: case OBSCURA_STATUS_INVALID_SETTING: case OBSCURA_STATUS_INVALID_ENUM:
         case OBSCURA_STATUS_INVALID_SIZE: case OBSCURA_STATUS_INVALID_RECT: case OBSCURA_STATUS_INVALID_PROJECTION:
-        case OBSCURA_STATUS_PROJECTION_TRANSPOSED:
+        case OBSCURA_STATUS_PROJECTION_TRANSPOSED: case OBSCURA_STATUS_INVALID_VIEW:
             return true;
         default: return false;
     }
 }
 
 // What a render's arguments promise about stage 1: known sizes (settings: any released size) and settings that
-// resolve; `passes`: also fields decoded from valid choices, so stage 1 must pass.
+// resolve; `fields_pass`: also fields decoded from valid choices, so only the view (checked last) may fail stage 1;
+// `passes`: and a valid view, so stage 1 must pass.
 struct StageOne {
     bool sizes_valid = false;
     int32_t resolve_status = -1;
+    bool fields_pass = false;
+    bool view_valid = true;
     bool passes = false;
 };
+
+// Whether the SDK reads the 0.5 fields: a struct of the 0.4 size ends before them (they read as zero).
+bool reads_05_fields(const DecodedInput& input) { return input.input.struct_size == sizeof(obscura_input); }
+bool reads_05_fields(const DecodedOutput& output) { return output.output.struct_size == sizeof(obscura_output); }
+
 StageOne stage_one(const DecodedInput& input, const DecodedOutput& output, const DecodedSettings& settings) {
     StageOne s;
-    // The decoders never set the fields past the 0.4 layouts, so those sizes render as today's do.
     s.sizes_valid = is_released_input_size(input.input.struct_size) &&
                     is_released_output_size(output.output.struct_size) &&
                     is_released_settings_size(settings.struct_size());
     s.resolve_status = resolve_status_of(settings);
-    s.passes = s.sizes_valid && s.resolve_status == kOk && input.fields_valid && output.fields_valid;
+    s.fields_pass = s.sizes_valid && s.resolve_status == kOk && input.fields_valid && output.fields_valid;
+    s.view_valid = input.view_valid || !reads_05_fields(input);
+    s.passes = s.fields_pass && s.view_valid;
     return s;
 }
 
@@ -945,43 +1400,149 @@ std::string describe(const DecodedInput& in, const DecodedOutput& out, const Dec
                   in.input.output_rect.height, in.normals->label, out.target->label, out.output.x, out.output.y,
                   load_raw(out.output.blend), load_raw(out.output.debug_view), settings.method(),
                   settings.struct_size());
-    return text;
+    std::string described = text;
+    if (in.frame_fields) {  // only then, so that the trace of an input without them reads as it always did
+        std::snprintf(text, sizeof text,
+                      "; 0.5 fields: view %s (%s), frame_index %u, flags 0x%x, matrices %s, motion vectors %s (units "
+                      "%d), bent normals %s",
+                      in.view_label, in.view_valid ? "valid" : "invalid", in.input.frame_index, in.input.flags,
+                      in.matrices_label, in.motion ? in.motion->label : "none",
+                      load_raw(in.input.motion_vector_units), out.bent ? out.bent->label : "none");
+        described += text;
+    }
+    return described;
 }
 
-// The visible result of a successful render into the RGBA16F target: finite and within [0, 1] (every debug view
-// is scaled into [0, 1] too; MULTIPLY keeps [0, 1] contents within it).
-void check_float_result(const DecodedInput& in, const DecodedOutput& out) {
-    if (!out.target->read_back || out.output.texture != out.target->texture) return;
-    const int w = out.target->width, h = out.target->height;
-    std::vector<float> rgba(size_t(w) * size_t(h) * 4);
+// ---- What a render wrote ------------------------------------------------------------------------------------------
+
+// Every texel of a checked float target holds this before a render (exact in RGBA16F): what a render leaves outside
+// its result, and what a refused render leaves everywhere.
+constexpr float kTargetSentinel[4] = {0.3125f, 0.4375f, 0.5625f, 0.6875f};
+
+// Uploads to / reads back a host texture through unit 7, leaving the sentinel bindings as they were.
+void fill_with_sentinel(GLuint texture, int width, int height) {
+    const NeutralPixelStore store;
+    std::vector<float> rgba(size_t(width) * size_t(height) * 4);
+    for (size_t i = 0; i < rgba.size(); ++i) rgba[i] = kTargetSentinel[i % 4];
     glActiveTexture(GL_TEXTURE7);
-    glBindTexture(GL_TEXTURE_2D, out.target->texture);
-    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    glBindTexture(GL_TEXTURE_2D, texture);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, rgba.data());
+    glBindTexture(GL_TEXTURE_2D, GLuint(g_fixture->sentinel_unit7_texture_2d));
+    glActiveTexture(GLenum(g_fixture->sentinel_active_texture));
+}
+
+std::vector<float> read_rgba(GLuint texture, int width, int height) {
+    const NeutralPixelStore store;
+    std::vector<float> rgba(size_t(width) * size_t(height) * 4);
+    glActiveTexture(GL_TEXTURE7);
+    glBindTexture(GL_TEXTURE_2D, texture);
     glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, rgba.data());
-    glBindTexture(GL_TEXTURE_2D, GLuint(g_fixture->sentinels.texture_2d[7]));
-    glActiveTexture(GLenum(g_fixture->sentinels.active_texture));
+    glBindTexture(GL_TEXTURE_2D, GLuint(g_fixture->sentinel_unit7_texture_2d));
+    glActiveTexture(GLenum(g_fixture->sentinel_active_texture));
+    return rgba;
+}
+
+// The float targets a render is checked against: the output's (RGBA16F, RGBA32F) and the bent normals' (RGBA16F,
+// RGBA32F).
+bool output_checked(const DecodedOutput& out) {
+    return out.target->read_back && out.output.texture == out.target->texture;
+}
+bool bent_checked(const DecodedOutput& out) { return out.bent && out.bent->read_back && reads_05_fields(out); }
+
+void fill_checked_targets(const DecodedOutput& out) {
+    if (output_checked(out)) fill_with_sentinel(out.target->texture, out.target->width, out.target->height);
+    if (bent_checked(out)) fill_with_sentinel(out.bent->name, out.bent->width, out.bent->height);
+}
+
+// After a render: texels outside the result (the output rectangle's size at output.x, output.y) and every texel after
+// a failure keep the sentinel; inside, a successful render wrote finite visibility in [0, 1] (every debug view is
+// scaled into [0, 1] too, but the tap count, taps / 256, which may pass 1; MULTIPLY keeps [0, 1] contents within it)
+// and unit bent normals (view space) with the visibility in alpha.
+void check_targets(int32_t status, const DecodedInput& in, const DecodedOutput& out) {
+    const bool tap_count = load_raw(out.output.debug_view) == OBSCURA_DEBUG_TAP_COUNT;
     obscura_rect rect = in.input.output_rect;
     if (rect.width == 0 && rect.height == 0 && rect.x == 0 && rect.y == 0) {
         rect = {0, 0, in.input.depth_width, in.input.depth_height};
     }
-    for (int y = 0; y < rect.height; ++y) {
-        for (int x = 0; x < rect.width; ++x) {
-            const int tx = out.output.x + x, ty = out.output.y + y;
-            const float value = rgba[(size_t(ty) * size_t(w) + size_t(tx)) * 4];
-            FUZZ_CHECK(std::isfinite(value) && value >= 0.0f && value <= 1.0f,
-                       "a successful render wrote %g at (%d, %d) of the RGBA16F target (debug view %d)", double(value),
-                       tx, ty, load_raw(out.output.debug_view));
+    auto check = [&](GLuint texture, int width, int height, bool bent, const char* label) {
+        const std::vector<float> rgba = read_rgba(texture, width, height);
+        for (int y = 0; y < height; ++y) {
+            for (int x = 0; x < width; ++x) {
+                const float* v = &rgba[(size_t(y) * size_t(width) + size_t(x)) * 4];
+                const bool inside = status == kOk && x >= out.output.x && y >= out.output.y &&
+                                    x - out.output.x < rect.width && y - out.output.y < rect.height;
+                if (!inside) {
+                    FUZZ_CHECK(v[0] == kTargetSentinel[0] && v[1] == kTargetSentinel[1] && v[2] == kTargetSentinel[2] &&
+                                   v[3] == kTargetSentinel[3],
+                               "obscura_render (%s) wrote (%g, %g, %g, %g) at (%d, %d) of the %s target %s, outside "
+                               "its %dx%d result at (%d, %d)",
+                               fuzz_status_string(status), double(v[0]), double(v[1]), double(v[2]), double(v[3]), x,
+                               y, bent ? "bent-normal" : "output", label, rect.width, rect.height, out.output.x,
+                               out.output.y);
+                } else if (!bent) {
+                    FUZZ_CHECK(std::isfinite(v[0]) && v[0] >= 0.0f && (v[0] <= 1.0f || tap_count),
+                               "a successful render wrote %g at (%d, %d) of the %s target (debug view %d)",
+                               double(v[0]), x, y, label, load_raw(out.output.debug_view));
+                } else {
+                    const double length = std::sqrt(double(v[0]) * v[0] + double(v[1]) * v[1] + double(v[2]) * v[2]);
+                    FUZZ_CHECK(std::isfinite(length) && std::fabs(length - 1.0) <= 0.01 && std::isfinite(v[3]) &&
+                                   v[3] >= 0.0f && v[3] <= 1.0f,
+                               "a successful render wrote the bent normal (%g, %g, %g) (length %g), visibility %g at "
+                               "(%d, %d) of the %s bent-normal target (debug view %d)",
+                               double(v[0]), double(v[1]), double(v[2]), length, double(v[3]), x, y, label,
+                               load_raw(out.output.debug_view));
+                }
+            }
         }
+    };
+    if (output_checked(out)) {
+        check(out.target->texture, out.target->width, out.target->height, false, out.target->label);
     }
+    if (bent_checked(out)) check(out.bent->name, out.bent->width, out.bent->height, true, out.bent->label);
 }
 
-void op_render(Reader& in, bool inject_host_error) {
+// A texture the frame writes (the output texture or its framebuffer's attachment, the bent normals) that is also one
+// it reads or the other one it writes: INVALID_TEXTURE.
+bool frame_aliases(const DecodedInput& in, const DecodedOutput& out) {
+    const Pools& pools = g_fixture->pools;
+    const GLuint motion = reads_05_fields(in) ? in.input.motion_vector_texture : 0;
+    const GLuint bent = reads_05_fields(out) ? out.output.bent_normal_texture : 0;
+    GLuint target = out.output.texture;
+    if (target == 0 && out.output.framebuffer == pools.any_framebuffer) target = pools.any_framebuffer_texture;
+    for (GLuint written : {target, bent}) {
+        if (written == 0) continue;
+        if (written == in.input.depth_texture || written == in.input.normal_texture || written == motion) return true;
+    }
+    return target != 0 && target == bent;
+}
+
+// The method the settings resolve to (-1 when they do not resolve).
+int32_t resolved_method(const DecodedSettings& settings) {
+    SettingsBuffer out(0, settings.buffer.size());
+    if (status_code(obscura_resolve_settings(nullptr, settings.get(), out.get())) != kOk) return -1;
+    int32_t method;
+    std::memcpy(&method, out.bytes() + offsetof(obscura_settings, method), sizeof method);
+    return method;
+}
+
+// Stage 1 ends with the view: fields that pass and a view that is not a live one of this context are INVALID_VIEW,
+// and INVALID_VIEW means such a view.
+void check_view_status(const char* what, int32_t status, const StageOne& stage, const DecodedInput& input) {
+    FUZZ_CHECK(status != OBSCURA_STATUS_INVALID_VIEW || !stage.view_valid, "%s returned INVALID_VIEW for view %s",
+               what, input.view_label);
+    FUZZ_CHECK(!stage.fields_pass || stage.view_valid || status == OBSCURA_STATUS_INVALID_VIEW,
+               "%s returned %s for view %s, not INVALID_VIEW", what, fuzz_status_string(status), input.view_label);
+}
+
+void op_render(Reader& in, bool inject_host_error, bool frame_fields) {
     Fixture& fx = *g_fixture;
     const DecodedSettings settings = decode_settings(in);
-    const DecodedInput input = decode_input(in);
-    const DecodedOutput output = decode_output(in);
+    DecodedInput input = decode_input(in);
+    DecodedOutput output = decode_output(in);
+    if (frame_fields) decode_frame_fields(in, input, output);
     const std::string what = describe(input, output, settings);
     obscura_fuzz::set_failure_context(what);
+    fill_checked_targets(output);
 
     const NoContextMessage message;
     if (inject_host_error) glEnable(0xBAD);  // GL_INVALID_ENUM, pending when the SDK is called
@@ -1013,6 +1574,7 @@ void op_render(Reader& in, bool inject_host_error) {
     check_after_call("obscura_render", status, log_before, true);
     FUZZ_CHECK(render_status_allowed(status, inject_host_error), "obscura_render returned %s (\"%s\")",
                fuzz_status_string(status), obscura_get_last_error(fx.context));
+    check_view_status("obscura_render", status, stage, input);
 
     // Settings the SDK refuses make the render fail the same way (after the struct sizes, before the host state).
     FUZZ_CHECK(!stage.sizes_valid || stage.resolve_status == kOk || status == stage.resolve_status,
@@ -1020,11 +1582,15 @@ void op_render(Reader& in, bool inject_host_error) {
                fuzz_status_string(stage.resolve_status));
     FUZZ_CHECK(status != kOk || stage.sizes_valid, "obscura_render accepted struct sizes %u / %u / %u",
                input.input.struct_size, output.output.struct_size, settings.struct_size());
+    check_targets(status, input, output);
     // A buffer's or a deleted texture's number may have become a texture since (GL reuses names, the SDK's own
     // textures included): then nothing is known about it.
-    const bool names_known = !(input.depth->not_a_texture && glIsTexture(input.depth->name)) &&
-                             !(input.normals->not_a_texture && glIsTexture(input.normals->name)) &&
-                             !(output.target->not_a_texture && glIsTexture(output.target->texture));
+    auto known = [](bool not_a_texture, GLuint name) { return !(not_a_texture && glIsTexture(name)); };
+    const bool names_known = known(input.depth->not_a_texture, input.depth->name) &&
+                             known(input.normals->not_a_texture, input.normals->name) &&
+                             known(output.target->not_a_texture, output.target->texture) &&
+                             (!input.motion || known(input.motion->not_a_texture, input.motion->name)) &&
+                             (!output.bent || known(output.bent->not_a_texture, output.bent->name));
     if (status == kOk && names_known) {
         // Success needs a usable depth texture of the kind given, normals that fit, and a usable target.
         const int32_t kind = load_raw(input.input.depth_kind);
@@ -1038,14 +1604,122 @@ void op_render(Reader& in, bool inject_host_error) {
         FUZZ_CHECK(input.input.depth_width == input.depth->width && input.input.depth_height == input.depth->height,
                    "obscura_render accepted size %dx%d for the %s", input.input.depth_width, input.input.depth_height,
                    input.depth->label);
-        check_float_result(input, output);
+        // ... and, of the 0.5 fields, a live view, RG16F / RG32F motion vectors of the depth's size, a bent-normal
+        // target of a format it takes that holds the result (for a method that writes bent normals), and no texture
+        // both written and read (or written twice).
+        FUZZ_CHECK(stage.view_valid, "obscura_render accepted view %s", input.view_label);
+        FUZZ_CHECK(!frame_aliases(input, output), "obscura_render accepted a frame that writes a texture it reads");
+        if (input.motion && reads_05_fields(input)) {
+            FUZZ_CHECK(input.motion->supported && input.motion->width == input.depth->width &&
+                           input.motion->height == input.depth->height,
+                       "obscura_render accepted motion vectors %s with depth %s", input.motion->label,
+                       input.depth->label);
+        }
+        if (output.bent && reads_05_fields(output)) {
+            const obscura_rect rect = input.input.output_rect.width ? input.input.output_rect
+                                                                    : obscura_rect{0, 0, input.input.depth_width,
+                                                                                   input.input.depth_height};
+            FUZZ_CHECK(output.bent->supported && rect.width <= output.bent->width - output.output.x &&
+                           rect.height <= output.bent->height - output.output.y,
+                       "obscura_render accepted bent normals %s for a %dx%d result at (%d, %d)", output.bent->label,
+                       rect.width, rect.height, output.output.x, output.output.y);
+            const int32_t method = resolved_method(settings);
+            FUZZ_CHECK(valid_method(method) && obscura_method_writes_bent_normals(static_cast<obscura_method>(method)),
+                       "obscura_render accepted bent normals for method %d", method);
+        }
     }
     if (status == kOk) {
+        SettingsBuffer resolved(0, settings.buffer.size());
+        if (settings.buffer.size() == sizeof(obscura_settings) &&
+            status_code(obscura_resolve_settings(nullptr, settings.get(), resolved.get())) == kOk) {
+            const obscura_settings& r = *resolved.get();
+            const bool temporal = r.temporal.enabled == OBSCURA_TOGGLE_ON && load_raw(output.output.debug_view) == 0;
+            g_features.temporal += temporal;
+            const float* m = input.input.view_projection;
+            g_features.matrices += temporal && reads_05_fields(input) &&
+                                   std::any_of(m, m + 16, [](float v) { return v != 0.0f; });
+            g_features.motion += temporal && reads_05_fields(input) && input.input.motion_vector_texture != 0;
+            g_features.view += temporal && reads_05_fields(input) && input.input.view != nullptr;
+            g_features.reduced += load_raw(r.resolution.scale) > OBSCURA_RESOLUTION_FULL;
+        }
+        g_features.bent += reads_05_fields(output) && output.output.bent_normal_texture != 0;
         uint64_t memory = 0;
         FUZZ_CHECK(obscura_get_memory_usage(fx.context, &memory) == OBSCURA_OK && memory > fx.baseline_memory,
                    "after a successful render the context reports %llu bytes (baseline %llu)",
                    (unsigned long long)memory, (unsigned long long)fx.baseline_memory);
     }
+}
+
+// obscura_create_view / obscura_destroy_view on the selected context. `kind` 1: create a view (at most kMaxViews
+// live: the oldest is destroyed first); 2: destroy one by a selector byte (< 128 a live view, < 160 NULL, < 192 a
+// destroyed view's handle, < 224 the other context's view, else a pointer that never was a view; NULL where the list
+// is empty), a byte for which one of the list, and with the other GL context current when the next byte is 224 or
+// more (WRONG_GL_CONTEXT: nothing destroyed).
+void destroy_view(obscura_view* view, bool other_gl_current, const char* label) {
+    Fixture& fx = *g_fixture;
+    char what[160];
+    std::snprintf(what, sizeof what, "obscura_destroy_view(%s)%s", label,
+                  other_gl_current ? " with another GL context current" : "");
+    obscura_fuzz::set_failure_context(what);
+    const bool live = fx.is_live_view(view);
+    const NoContextMessage message;
+    const int log_before = fx.log.count;
+    if (other_gl_current) fx.other_gl->make_current();
+    const int32_t status = status_code(obscura_destroy_view(fx.context, view));
+    if (other_gl_current) fx.gl->make_current();
+    message.check("obscura_destroy_view");
+    check_after_call("obscura_destroy_view", status, log_before, true);
+    const int32_t expected = view == nullptr ? kOk
+                             : !live         ? int32_t(OBSCURA_STATUS_INVALID_VIEW)
+                             : other_gl_current ? int32_t(OBSCURA_STATUS_WRONG_GL_CONTEXT)
+                                                : kOk;
+    FUZZ_CHECK(status == expected, "%s returned %s, not %s", what, fuzz_status_string(status),
+               fuzz_status_string(expected));
+    if (status == kOk && view) {
+        std::vector<obscura_view*>& views = fx.own_views().live;
+        views.erase(std::find(views.begin(), views.end(), view));
+        if (fx.destroyed_views.size() >= 8) fx.destroyed_views.erase(fx.destroyed_views.begin());
+        fx.destroyed_views.push_back(view);
+    }
+}
+
+void op_view(Reader& in, int kind) {
+    Fixture& fx = *g_fixture;
+    Fixture::Views& own = fx.own_views();
+    static int never_a_view = 0;
+    if (kind == 2) {
+        const uint8_t selector = in.u8();
+        const uint8_t pick = in.u8();
+        const bool other_gl = in.u8() >= 224;
+        obscura_view* view = nullptr;
+        const char* label = "NULL";
+        if (selector < 128 && !own.live.empty()) {
+            view = own.live[pick % own.live.size()], label = "a live view";
+        } else if (selector >= 160 && selector < 192 && !fx.destroyed_views.empty()) {
+            view = fx.destroyed_views[pick % fx.destroyed_views.size()], label = "a destroyed view";
+        } else if (selector >= 192 && selector < 224 && !fx.other_views().live.empty()) {
+            view = fx.other_views().live[pick % fx.other_views().live.size()];
+            label = "the other context's view";
+        } else if (selector >= 224) {
+            view = reinterpret_cast<obscura_view*>(&never_a_view), label = "a pointer that never was a view";
+        }
+        destroy_view(view, other_gl, label);
+        return;
+    }
+    if (own.live.size() >= Fixture::kMaxViews) destroy_view(own.live.front(), false, "the oldest live view");
+    obscura_fuzz::set_failure_context("obscura_create_view");
+    const NoContextMessage message;
+    obscura_view* view = nullptr;
+    const int32_t status = status_code(obscura_create_view(fx.context, &view));
+    message.check("obscura_create_view");
+    check_after_call("obscura_create_view", status, fx.log.count, false);
+    FUZZ_CHECK(status == kOk && view != nullptr, "obscura_create_view returned %s (view %p)",
+               fuzz_status_string(status), static_cast<void*>(view));
+    FUZZ_CHECK(!fx.is_live_view(view) && std::find(fx.other_views().live.begin(), fx.other_views().live.end(), view) ==
+                                             fx.other_views().live.end(),
+               "obscura_create_view returned a live view's handle");
+    own.live.push_back(view);
+    // The address may be a destroyed view's: from now on that handle names this view (is_live_view says so).
 }
 
 void op_prepare(Reader& in) {
@@ -1165,12 +1839,13 @@ void op_resolve_with_context(Reader& in) {
 }
 
 // A call while another GL context is current: WRONG_GL_CONTEXT, and nothing done in either context.
-void op_wrong_context(Reader& in) {
+void op_wrong_context(Reader& in, bool frame_fields) {
     Fixture& fx = *g_fixture;
     const DecodedSettings settings = decode_settings(in);
-    const DecodedInput input = decode_input(in);
-    const DecodedOutput output = decode_output(in);
+    DecodedInput input = decode_input(in);
+    DecodedOutput output = decode_output(in);
     const bool prepare = in.u8() & 1;
+    if (frame_fields) decode_frame_fields(in, input, output);
     const std::string what = std::string(prepare ? "obscura_prepare(16, 12)" : describe(input, output, settings)) +
                              ", with another GL context current";
     obscura_fuzz::set_failure_context(what);
@@ -1207,6 +1882,7 @@ void op_wrong_context(Reader& in) {
     FUZZ_CHECK(!stage.sizes_valid || stage.resolve_status == kOk || status == stage.resolve_status,
                "%s returned %s for settings that resolve to %s", what.c_str(), fuzz_status_string(status),
                fuzz_status_string(stage.resolve_status));
+    check_view_status(what.c_str(), status, stage, input);
 }
 
 // NULL arguments on a live context: NULL_ARGUMENT with a message, nothing touched.
@@ -1302,15 +1978,25 @@ void op_null_arguments(Reader& in) {
     check_after_call("the calls without a context", kOk, fx.log.count, false);
 }
 
+// An operation's byte: the low 4 bits pick the operation, bit 4 the context; bit 5 adds the 0.5 per-frame fields to a
+// render's structs (decode_frame_fields, after the rest); operation 10 is obscura_release_resources, or with bits 5-6
+// 1 obscura_create_view and 2 obscura_destroy_view (op_view).
 void run_operation(uint8_t op, Reader& in) {
     g_fixture->select((op >> 4) & 1);
+    if (g_trace) std::fprintf(stderr, "render_fuzzer: operation 0x%02x\n", unsigned(op));
+    const bool frame_fields = (op & 0x20) != 0;
     switch (op % 16) {
-        case 0: case 1: case 2: case 3: case 4: case 5: case 6: case 7: op_render(in, false); break;
+        case 0: case 1: case 2: case 3: case 4: case 5: case 6: case 7: op_render(in, false, frame_fields); break;
         case 8: case 9: op_prepare(in); break;
-        case 10: op_release(); break;
+        case 10: {
+            const int kind = (op >> 5) & 3;
+            if (kind == 1 || kind == 2) op_view(in, kind);
+            else op_release();
+            break;
+        }
         case 11: op_queries(in); break;
-        case 12: op_wrong_context(in); break;
-        case 13: op_render(in, true); break;
+        case 12: op_wrong_context(in, frame_fields); break;
+        case 13: op_render(in, true, frame_fields); break;
         case 14: op_resolve_with_context(in); break;
         default: op_null_arguments(in); break;
     }
@@ -1357,7 +2043,12 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
     fx.pools = make_pools();
     GLenum error = glGetError();
     FUZZ_CHECK(error == GL_NO_ERROR, "render_fuzzer setup raised %s", gl_error_name(error));
-    fx.sentinels = install_sentinels();
+    fx.state_queries = make_state_queries();
+    fx.sentinels = install_sentinels(fx.state_queries);
+    fx.sentinel_active_texture = get_integer(GL_ACTIVE_TEXTURE);
+    glActiveTexture(GL_TEXTURE7);
+    fx.sentinel_unit7_texture_2d = get_integer(GL_TEXTURE_BINDING_2D);
+    glActiveTexture(GLenum(fx.sentinel_active_texture));
     error = glGetError();
     FUZZ_CHECK(error == GL_NO_ERROR, "render_fuzzer setup of the sentinels raised %s", gl_error_name(error));
     check_sentinels("render_fuzzer setup");
