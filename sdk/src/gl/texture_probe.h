@@ -6,6 +6,8 @@
 #ifndef OBSCURA_GL_TEXTURE_PROBE_H
 #define OBSCURA_GL_TEXTURE_PROBE_H
 
+#include <algorithm>
+
 #include "gl/gl_objects.h"
 
 namespace obscura::gl {
@@ -19,8 +21,9 @@ struct TextureTargets {
     const Table& gl;
     GetTextureParameterivFn get_texture_parameteriv = nullptr;
 
-    // Whether `texture` is a texture of `target`, without a GL error where the query exists (a name that is no
-    // texture object is asked nothing: the query would raise INVALID_OPERATION for it).
+    // Whether `texture` is known not to be a texture of `target`, asked without a GL error where the query exists (a
+    // name that is no texture object is asked nothing: the query would raise INVALID_OPERATION for it); false where
+    // it cannot be asked, and the caller's bind tells.
     bool known_not(GLuint texture, GLenum target) const {
         if (!get_texture_parameteriv) return false;
         if (!gl.IsTexture(texture)) return true;
@@ -50,7 +53,7 @@ inline GLint texture_base_level(const Table& gl, GLenum target) {
     gl.GetTexParameteriv(target, GL_TEXTURE_IMMUTABLE_FORMAT, &immutable);
     if (immutable) {
         gl.GetTexParameteriv(target, GL_TEXTURE_IMMUTABLE_LEVELS, &levels);
-        level = level < 0 ? 0 : (level > levels - 1 ? (levels > 1 ? levels - 1 : 0) : level);
+        level = std::clamp(level, 0, std::max(levels - 1, 0));
     }
     return level;
 }
