@@ -50,17 +50,14 @@ void ReferencePass::bind(const PassEnv& env, const UniformRange& frame, const Un
 }
 
 void ReferencePass::dispatch_tile(const PassEnv& env, const Region& region, const Region& tile, uint32_t first_ray,
-                                  int count, bool first, bool last) {
+                                  int count, bool first, bool last, bool batch_done) {
     const gl::Table& gl = env.gl;
     // The first ray's index as the int's bits: the shader reads it back as a uint (the sequence wraps modulo 2^32).
     gl.Uniform4i(kBatchLocation, int32_t(first_ray), count, first ? 1 : 0, last ? 1 : 0);
     gl.Uniform2i(kTileLocation, tile.x - region.x, tile.y - region.y);
     env.dispatch(tile.width, tile.height, OBSCURA_REFERENCE_GROUP_X, OBSCURA_REFERENCE_GROUP_Y);
-    // The next batch reads what this one accumulated; after the last, the composite samples it. (Tiles of one batch
-    // touch disjoint texels.)
-    if (tile.x + tile.width >= region.x + region.width && tile.y + tile.height >= region.y + region.height) {
-        gl.MemoryBarrier(last ? GL_TEXTURE_FETCH_BARRIER_BIT : GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    }
+    // The next batch reads what this one accumulated; after the last, the composite samples it.
+    if (batch_done) gl.MemoryBarrier(last ? GL_TEXTURE_FETCH_BARRIER_BIT : GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
 }  // namespace obscura

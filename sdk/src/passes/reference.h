@@ -47,10 +47,9 @@ public:
                 for (int x = region.x; x < region.x + region.width; x += kTile) {
                     const Region tile{x, y, std::min(kTile, region.x + region.width - x),
                                       std::min(kTile, region.y + region.height - y)};
-                    dispatch_tile(env, region, tile, first + uint32_t(done), count, done == 0, last);
-                    const bool final_tile = tile.x + tile.width >= region.x + region.width &&
-                                            tile.y + tile.height >= region.y + region.height;
-                    if (!(last && final_tile)) between_batches();
+                    const bool batch_done = x + kTile >= region.x + region.width && y + kTile >= region.y + region.height;
+                    dispatch_tile(env, region, tile, first + uint32_t(done), count, done == 0, last, batch_done);
+                    if (!(last && batch_done)) between_batches();
                 }
             }
         }
@@ -59,8 +58,9 @@ public:
 private:
     void bind(const PassEnv& env, const UniformRange& frame, const UniformRange& pass, const FrameResources& resources,
               const gl::Texture2D& accumulator);
+    // `batch_done`: the batch's last tile, after which its barrier goes (tiles of one batch touch disjoint texels).
     void dispatch_tile(const PassEnv& env, const Region& region, const Region& tile, uint32_t first_ray, int count,
-                       bool first, bool last);
+                       bool first, bool last, bool batch_done);
     gl::Object program_;
 };
 
