@@ -105,4 +105,70 @@ std::string diff(const Snapshot& before, const Snapshot& after) {
     return out.str();
 }
 
+SentinelObjects::SentinelObjects(int textures_2d, int multisample_textures, int framebuffer_texture,
+                                 ReadAttachment read) {
+    const char* source = "#version 430 core\nlayout(local_size_x = 1) in;\nvoid main() {}\n";
+    program_ = HostProgram::create();
+    GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
+    glShaderSource(shader, 1, &source, nullptr);
+    glCompileShader(shader);
+    glAttachShader(program_.get(), shader);
+    glLinkProgram(program_.get());
+    glDeleteShader(shader);
+    for (int i = 0; i < textures_2d; ++i) textures_2d_.push_back(make_texture(GL_RGBA8, 4, 4));
+    for (int i = 0; i < multisample_textures; ++i) {
+        HostTexture t = HostTexture::create();
+        glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, t.get());
+        glTexImage2DMultisample(GL_TEXTURE_2D_MULTISAMPLE, 2, GL_RGBA8, 4, 4, GL_TRUE);
+        glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, 0);
+        multisample_.push_back(std::move(t));
+    }
+    texture_3d_ = HostTexture::create();
+    glBindTexture(GL_TEXTURE_3D, texture_3d_.get());
+    glTexStorage3D(GL_TEXTURE_3D, 1, GL_RGBA16F, 4, 4, 4);
+    glBindTexture(GL_TEXTURE_3D, 0);
+    texture_array_ = HostTexture::create();
+    glBindTexture(GL_TEXTURE_2D_ARRAY, texture_array_.get());
+    glTexStorage3D(GL_TEXTURE_2D_ARRAY, 2, GL_RGBA8, 8, 8, 4);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+    texture_cube_ = HostTexture::create();
+    glBindTexture(GL_TEXTURE_CUBE_MAP, texture_cube_.get());
+    glTexStorage2D(GL_TEXTURE_CUBE_MAP, 1, GL_RGBA8, 4, 4);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
+    image_r32f_ = make_texture(GL_R32F, 4, 4);
+    for (int i = 0; i < kBuffers; ++i) {
+        HostBuffer b = HostBuffer::create();
+        glBindBuffer(GL_COPY_WRITE_BUFFER, b.get());
+        glBufferData(GL_COPY_WRITE_BUFFER, 4096, nullptr, GL_STATIC_DRAW);
+        buffers_.push_back(std::move(b));
+    }
+    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+    texture_buffer_ = HostTexture::create();
+    glBindTexture(GL_TEXTURE_BUFFER, texture_buffer_.get());
+    glTexBuffer(GL_TEXTURE_BUFFER, GL_R32F, buffers_[0].get());
+    glBindTexture(GL_TEXTURE_BUFFER, 0);
+    glGenSamplers(kSamplers, samplers_);
+    vertex_array_ = HostVertexArray::create();
+    for (int i = 0; i < kFramebuffers; ++i) {
+        HostFramebuffer f = HostFramebuffer::create();
+        glBindFramebuffer(GL_FRAMEBUFFER, f.get());
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
+                               texture_2d(framebuffer_texture + i), 0);
+        if (read == ReadAttachment::One) {
+            glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D,
+                                   texture_2d(framebuffer_texture + kFramebuffers), 0);
+            if (i == 0) glReadBuffer(GL_COLOR_ATTACHMENT1);
+        }
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        framebuffers_.push_back(std::move(f));
+    }
+    renderbuffer_ = HostRenderbuffer::create();
+    glBindRenderbuffer(GL_RENDERBUFFER, renderbuffer_.get());
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 4, 4);
+    glBindRenderbuffer(GL_RENDERBUFFER, 0);
+}
+
+// Samplers have no owner type of their own in host_gl_objects.h; everything else deletes itself.
+SentinelObjects::~SentinelObjects() { glDeleteSamplers(kSamplers, samplers_); }
+
 }  // namespace obscura_test

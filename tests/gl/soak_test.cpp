@@ -91,90 +91,33 @@ std::unique_ptr<SizedInputs> make_inputs(int width, int height) {
 // pixel store without pixel buffers (the test then applies the sentinels again before the next SDK call).
 class HostSentinels {
 public:
-    HostSentinels() {
-        const char* source = "#version 430 core\nlayout(local_size_x = 1) in;\nvoid main() {}\n";
-        program_ = HostProgram::create();
-        GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
-        glShaderSource(shader, 1, &source, nullptr);
-        glCompileShader(shader);
-        glAttachShader(program_.get(), shader);
-        glLinkProgram(program_.get());
-        glDeleteShader(shader);
-        for (int i = 0; i < kSnapshotTextureUnits + 3; ++i) textures_2d_.push_back(make_texture(GL_RGBA8, 4, 4));
-        multisample_ = HostTexture::create();
-        glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, multisample_.get());
-        glTexImage2DMultisample(GL_TEXTURE_2D_MULTISAMPLE, 2, GL_RGBA8, 4, 4, GL_TRUE);
-        glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, 0);
-        texture_3d_ = HostTexture::create();
-        glBindTexture(GL_TEXTURE_3D, texture_3d_.get());
-        glTexStorage3D(GL_TEXTURE_3D, 1, GL_RGBA16F, 4, 4, 4);
-        glBindTexture(GL_TEXTURE_3D, 0);
-        texture_array_ = HostTexture::create();
-        glBindTexture(GL_TEXTURE_2D_ARRAY, texture_array_.get());
-        glTexStorage3D(GL_TEXTURE_2D_ARRAY, 2, GL_RGBA8, 8, 8, 4);
-        glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
-        texture_cube_ = HostTexture::create();
-        glBindTexture(GL_TEXTURE_CUBE_MAP, texture_cube_.get());
-        glTexStorage2D(GL_TEXTURE_CUBE_MAP, 1, GL_RGBA8, 4, 4);
-        glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
-        image_r32f_ = make_texture(GL_R32F, 4, 4);
-        for (int i = 0; i < 5; ++i) {
-            HostBuffer b = HostBuffer::create();
-            glBindBuffer(GL_COPY_WRITE_BUFFER, b.get());
-            glBufferData(GL_COPY_WRITE_BUFFER, 4096, nullptr, GL_STATIC_DRAW);
-            buffers_.push_back(std::move(b));
-        }
-        glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
-        texture_buffer_ = HostTexture::create();
-        glBindTexture(GL_TEXTURE_BUFFER, texture_buffer_.get());
-        glTexBuffer(GL_TEXTURE_BUFFER, GL_R32F, buffers_[0].get());
-        glBindTexture(GL_TEXTURE_BUFFER, 0);
-        glGenSamplers(GLsizei(sizeof samplers_ / sizeof samplers_[0]), samplers_);
-        vao_ = HostVertexArray::create();
-        // Framebuffers with two colour attachments; the read one reads attachment 1.
-        for (int i = 0; i < 2; ++i) {
-            HostFramebuffer f = HostFramebuffer::create();
-            glBindFramebuffer(GL_FRAMEBUFFER, f.get());
-            glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
-                                   textures_2d_[size_t(kSnapshotTextureUnits + i)].get(), 0);
-            glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D,
-                                   textures_2d_[size_t(kSnapshotTextureUnits + 2)].get(), 0);
-            if (i == 0) glReadBuffer(GL_COLOR_ATTACHMENT1);
-            glBindFramebuffer(GL_FRAMEBUFFER, 0);
-            framebuffers_.push_back(std::move(f));
-        }
-        renderbuffer_ = HostRenderbuffer::create();
-        glBindRenderbuffer(GL_RENDERBUFFER, renderbuffer_.get());
-        glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 4, 4);
-        glBindRenderbuffer(GL_RENDERBUFFER, 0);
-    }
-    ~HostSentinels() { glDeleteSamplers(GLsizei(sizeof samplers_ / sizeof samplers_[0]), samplers_); }
-    HostSentinels(const HostSentinels&) = delete;
-    HostSentinels& operator=(const HostSentinels&) = delete;
+    // 2D textures for every unit and three more for the framebuffers, whose read one reads attachment 1.
+    HostSentinels()
+        : objects_(kSnapshotTextureUnits + 3, 1, kSnapshotTextureUnits, SentinelObjects::ReadAttachment::One) {}
 
     void apply() const {
-        glUseProgram(program_.get());
+        glUseProgram(objects_.program());
         for (int unit = 0; unit < kSnapshotTextureUnits; ++unit) {
             glActiveTexture(GLenum(GL_TEXTURE0 + unit));
-            glBindTexture(GL_TEXTURE_2D, textures_2d_[size_t(unit)].get());
-            glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, unit % 3 == 0 ? multisample_.get() : 0);
-            glBindTexture(GL_TEXTURE_3D, unit % 2 == 1 ? texture_3d_.get() : 0);
-            glBindTexture(GL_TEXTURE_2D_ARRAY, unit % 3 == 1 ? texture_array_.get() : 0);
-            glBindTexture(GL_TEXTURE_CUBE_MAP, unit % 4 == 0 ? texture_cube_.get() : 0);
-            glBindTexture(GL_TEXTURE_BUFFER, unit >= 4 ? texture_buffer_.get() : 0);
-            glBindSampler(GLuint(unit), samplers_[unit % 5]);
+            glBindTexture(GL_TEXTURE_2D, objects_.texture_2d(unit));
+            glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, unit % 3 == 0 ? objects_.multisample(0) : 0);
+            glBindTexture(GL_TEXTURE_3D, unit % 2 == 1 ? objects_.texture_3d() : 0);
+            glBindTexture(GL_TEXTURE_2D_ARRAY, unit % 3 == 1 ? objects_.texture_array() : 0);
+            glBindTexture(GL_TEXTURE_CUBE_MAP, unit % 4 == 0 ? objects_.texture_cube() : 0);
+            glBindTexture(GL_TEXTURE_BUFFER, unit >= 4 ? objects_.texture_buffer() : 0);
+            glBindSampler(GLuint(unit), objects_.sampler(unit % 5));
         }
         // Image units: level / layering / layer / access / format unlike GL's defaults.
         for (int unit = 0; unit < kSnapshotImageUnits; ++unit) {
             switch (unit % 3) {
                 case 0:
-                    glBindImageTexture(GLuint(unit), texture_array_.get(), 1, GL_FALSE, 2, GL_READ_ONLY, GL_RGBA8);
+                    glBindImageTexture(GLuint(unit), objects_.texture_array(), 1, GL_FALSE, 2, GL_READ_ONLY, GL_RGBA8);
                     break;
                 case 1:
-                    glBindImageTexture(GLuint(unit), image_r32f_.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+                    glBindImageTexture(GLuint(unit), objects_.image_r32f(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
                     break;
                 default:
-                    glBindImageTexture(GLuint(unit), texture_3d_.get(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA16F);
+                    glBindImageTexture(GLuint(unit), objects_.texture_3d(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA16F);
                     break;
             }
         }
@@ -182,23 +125,23 @@ public:
         glGetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &ubo_align);
         glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &ssbo_align);
         for (int index = 0; index < kSnapshotBufferIndices; ++index) {
-            glBindBufferRange(GL_UNIFORM_BUFFER, GLuint(index), buffers_[size_t(1 + index % 2)].get(),
+            glBindBufferRange(GL_UNIFORM_BUFFER, GLuint(index), objects_.buffer(1 + index % 2),
                               ubo_align * (index + 1), 256);
-            glBindBufferRange(GL_SHADER_STORAGE_BUFFER, GLuint(index), buffers_[size_t(3 + index % 2)].get(),
+            glBindBufferRange(GL_SHADER_STORAGE_BUFFER, GLuint(index), objects_.buffer(3 + index % 2),
                               ssbo_align * (index + 1), 128);
         }
-        glBindBuffer(GL_UNIFORM_BUFFER, buffers_[0].get());
-        glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers_[3].get());
-        glBindBuffer(GL_TEXTURE_BUFFER, buffers_[2].get());
-        glBindVertexArray(vao_.get());
-        glBindBuffer(GL_ARRAY_BUFFER, buffers_[4].get());
-        glBindBuffer(GL_PIXEL_PACK_BUFFER, buffers_[2].get());
-        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, buffers_[1].get());
-        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, buffers_[0].get());
-        glBindBuffer(GL_COPY_READ_BUFFER, buffers_[3].get());
-        glBindRenderbuffer(GL_RENDERBUFFER, renderbuffer_.get());
-        glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffers_[0].get());
-        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffers_[1].get());
+        glBindBuffer(GL_UNIFORM_BUFFER, objects_.buffer(0));
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, objects_.buffer(3));
+        glBindBuffer(GL_TEXTURE_BUFFER, objects_.buffer(2));
+        glBindVertexArray(objects_.vertex_array());
+        glBindBuffer(GL_ARRAY_BUFFER, objects_.buffer(4));
+        glBindBuffer(GL_PIXEL_PACK_BUFFER, objects_.buffer(2));
+        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, objects_.buffer(1));
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, objects_.buffer(0));
+        glBindBuffer(GL_COPY_READ_BUFFER, objects_.buffer(3));
+        glBindRenderbuffer(GL_RENDERBUFFER, objects_.renderbuffer());
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, objects_.framebuffer(0));
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, objects_.framebuffer(1));
         glViewport(3, 5, 77, 41);
         glScissor(1, 2, 30, 40);
         glEnable(GL_SCISSOR_TEST);
@@ -261,14 +204,7 @@ public:
     }
 
 private:
-    HostProgram program_;
-    std::vector<HostTexture> textures_2d_;
-    HostTexture multisample_, texture_3d_, texture_array_, texture_cube_, image_r32f_, texture_buffer_;
-    std::vector<HostBuffer> buffers_;
-    GLuint samplers_[5] = {};
-    HostVertexArray vao_;
-    std::vector<HostFramebuffer> framebuffers_;
-    HostRenderbuffer renderbuffer_;
+    SentinelObjects objects_;
 };
 
 // Settings the random draw leaves alone or bounds, so 2,000 frames stay within a minute or two on llvmpipe:

@@ -2,6 +2,7 @@
 // host made as they found it, and no GL error. The host sets distinctive sentinel values for all the
 // state listed below, the SDK runs, and everything is queried back and compared field by field.
 #include <cstring>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -82,119 +83,65 @@ protected:
     }
 
     void build_host_objects() {
-        const char* source = "#version 430 core\nlayout(local_size_x = 1) in;\nvoid main() {}\n";
-        program_ = HostProgram::create();
-        GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
-        glShaderSource(shader, 1, &source, nullptr);
-        glCompileShader(shader);
-        glAttachShader(program_.get(), shader);
-        glLinkProgram(program_.get());
-        glDeleteShader(shader);
-        for (int i = 0; i < 8; ++i) textures_2d_.push_back(make_texture(GL_RGBA8, 4, 4));
-        for (int i = 0; i < 3; ++i) {
-            HostTexture t = HostTexture::create();
-            glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, t.get());
-            glTexImage2DMultisample(GL_TEXTURE_2D_MULTISAMPLE, 2, GL_RGBA8, 4, 4, GL_TRUE);
-            glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, 0);
-            textures_ms_.push_back(std::move(t));
-        }
-        texture_3d_ = HostTexture::create();
-        glBindTexture(GL_TEXTURE_3D, texture_3d_.get());
-        glTexStorage3D(GL_TEXTURE_3D, 1, GL_RGBA16F, 4, 4, 4);
-        glBindTexture(GL_TEXTURE_3D, 0);
-        texture_array_ = HostTexture::create();
-        glBindTexture(GL_TEXTURE_2D_ARRAY, texture_array_.get());
-        glTexStorage3D(GL_TEXTURE_2D_ARRAY, 2, GL_RGBA8, 8, 8, 4);
-        glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
-        texture_cube_ = HostTexture::create();
-        glBindTexture(GL_TEXTURE_CUBE_MAP, texture_cube_.get());
-        glTexStorage2D(GL_TEXTURE_CUBE_MAP, 1, GL_RGBA8, 4, 4);
-        glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
-        image_r32f_ = make_texture(GL_R32F, 4, 4);
-        for (int i = 0; i < 5; ++i) {
-            GLuint sampler = 0;
-            glGenSamplers(1, &sampler);
-            samplers_.push_back(sampler);
-        }
-        for (int i = 0; i < 5; ++i) {
-            HostBuffer b = HostBuffer::create();
-            glBindBuffer(GL_COPY_WRITE_BUFFER, b.get());
-            glBufferData(GL_COPY_WRITE_BUFFER, 4096, nullptr, GL_STATIC_DRAW);
-            buffers_.push_back(std::move(b));
-        }
-        texture_buffer_ = HostTexture::create();
-        glBindTexture(GL_TEXTURE_BUFFER, texture_buffer_.get());
-        glTexBuffer(GL_TEXTURE_BUFFER, GL_R32F, buffers_[0].get());
-        glBindTexture(GL_TEXTURE_BUFFER, 0);
-        glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
-        vao_ = HostVertexArray::create();
-        for (int i = 0; i < 2; ++i) {
-            HostFramebuffer f = HostFramebuffer::create();
-            glBindFramebuffer(GL_FRAMEBUFFER, f.get());
-            glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, textures_2d_[size_t(6 + i)].get(), 0);
-            glBindFramebuffer(GL_FRAMEBUFFER, 0);
-            host_framebuffers_.push_back(std::move(f));
-        }
-        host_renderbuffer_ = HostRenderbuffer::create();
-        glBindRenderbuffer(GL_RENDERBUFFER, host_renderbuffer_.get());
-        glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 4, 4);
-        glBindRenderbuffer(GL_RENDERBUFFER, 0);
+        // A 2D texture for every unit, the last two also the framebuffers' (which read GL's default attachment), and
+        // multisample textures for the three units set_sentinel_state() binds them on.
+        host_.emplace(kSnapshotTextureUnits, 3, kSnapshotTextureUnits - 2, SentinelObjects::ReadAttachment::Zero);
         ASSERT_EQ(take_gl_error(), GLenum(GL_NO_ERROR)) << "building the host objects";
     }
 
     void set_sentinel_state() {
-        glUseProgram(program_.get());
+        glUseProgram(host_->program());
         for (int unit = 0; unit < kSnapshotTextureUnits; ++unit) {
             glActiveTexture(GLenum(GL_TEXTURE0 + unit));
-            glBindTexture(GL_TEXTURE_2D, textures_2d_[size_t(unit)].get());
+            glBindTexture(GL_TEXTURE_2D, host_->texture_2d(unit));
         }
         // Multisample textures on units the SDK uses (0, 2) and one it does not (5); other targets too.
         glActiveTexture(GL_TEXTURE0);
-        glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, textures_ms_[0].get());
-        glBindTexture(GL_TEXTURE_CUBE_MAP, texture_cube_.get());
+        glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, host_->multisample(0));
+        glBindTexture(GL_TEXTURE_CUBE_MAP, host_->texture_cube());
         glActiveTexture(GL_TEXTURE2);
-        glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, textures_ms_[1].get());
+        glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, host_->multisample(1));
         glActiveTexture(GL_TEXTURE3);
-        glBindTexture(GL_TEXTURE_3D, texture_3d_.get());
+        glBindTexture(GL_TEXTURE_3D, host_->texture_3d());
         glActiveTexture(GL_TEXTURE4);  // where FFAO binds its 3D table
-        glBindTexture(GL_TEXTURE_3D, texture_3d_.get());
+        glBindTexture(GL_TEXTURE_3D, host_->texture_3d());
         glActiveTexture(GL_TEXTURE1);
-        glBindTexture(GL_TEXTURE_2D_ARRAY, texture_array_.get());
+        glBindTexture(GL_TEXTURE_2D_ARRAY, host_->texture_array());
         glActiveTexture(GL_TEXTURE5);
-        glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, textures_ms_[2].get());
+        glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, host_->multisample(2));
         // Buffer textures on the units LSAO reads its lines and values through (4, 5) and on one it does not.
         for (int unit : {4, 5, 7}) {
             glActiveTexture(GLenum(GL_TEXTURE0 + unit));
-            glBindTexture(GL_TEXTURE_BUFFER, texture_buffer_.get());
+            glBindTexture(GL_TEXTURE_BUFFER, host_->texture_buffer());
         }
-        glBindBuffer(GL_TEXTURE_BUFFER, buffers_[2].get());
-        for (int unit = 0; unit < kSnapshotSamplerUnits; ++unit) glBindSampler(GLuint(unit), samplers_[size_t(unit)]);
-        glBindSampler(6, samplers_[4]);
+        glBindBuffer(GL_TEXTURE_BUFFER, host_->buffer(2));
+        for (int unit = 0; unit < kSnapshotSamplerUnits; ++unit) glBindSampler(GLuint(unit), host_->sampler(unit));
+        glBindSampler(6, host_->sampler(4));
         // Image units: level / layer / access / format all distinctive.
-        glBindImageTexture(0, texture_array_.get(), 1, GL_FALSE, 2, GL_READ_ONLY, GL_RGBA8);
-        glBindImageTexture(1, image_r32f_.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
-        glBindImageTexture(2, texture_3d_.get(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA16F);
+        glBindImageTexture(0, host_->texture_array(), 1, GL_FALSE, 2, GL_READ_ONLY, GL_RGBA8);
+        glBindImageTexture(1, host_->image_r32f(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+        glBindImageTexture(2, host_->texture_3d(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA16F);
         // Uniform and storage buffers: indexed ranges and bases, then the generic bindings.
         GLint ubo_align = 256, ssbo_align = 256;
         glGetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &ubo_align);
         glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &ssbo_align);
-        glBindBufferRange(GL_UNIFORM_BUFFER, 0, buffers_[1].get(), ubo_align, 256);
-        glBindBufferRange(GL_UNIFORM_BUFFER, 1, buffers_[2].get(), 2 * ubo_align, 512);
-        glBindBufferBase(GL_UNIFORM_BUFFER, 2, buffers_[1].get());
-        glBindBuffer(GL_UNIFORM_BUFFER, buffers_[0].get());
-        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 0, buffers_[3].get(), ssbo_align, 128);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, buffers_[4].get());
-        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 2, buffers_[2].get(), 2 * ssbo_align, 64);
-        glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers_[3].get());
-        glBindBuffer(GL_ARRAY_BUFFER, buffers_[4].get());
-        glBindBuffer(GL_PIXEL_PACK_BUFFER, buffers_[2].get());
-        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, buffers_[1].get());
-        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, buffers_[0].get());
-        glBindBuffer(GL_COPY_READ_BUFFER, buffers_[3].get());
-        glBindVertexArray(vao_.get());
-        glBindRenderbuffer(GL_RENDERBUFFER, host_renderbuffer_.get());
-        glBindFramebuffer(GL_READ_FRAMEBUFFER, host_framebuffers_[0].get());
-        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, host_framebuffers_[1].get());
+        glBindBufferRange(GL_UNIFORM_BUFFER, 0, host_->buffer(1), ubo_align, 256);
+        glBindBufferRange(GL_UNIFORM_BUFFER, 1, host_->buffer(2), 2 * ubo_align, 512);
+        glBindBufferBase(GL_UNIFORM_BUFFER, 2, host_->buffer(1));
+        glBindBuffer(GL_UNIFORM_BUFFER, host_->buffer(0));
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 0, host_->buffer(3), ssbo_align, 128);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, host_->buffer(4));
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 2, host_->buffer(2), 2 * ssbo_align, 64);
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, host_->buffer(3));
+        glBindBuffer(GL_ARRAY_BUFFER, host_->buffer(4));
+        glBindBuffer(GL_PIXEL_PACK_BUFFER, host_->buffer(2));
+        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, host_->buffer(1));
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, host_->buffer(0));
+        glBindBuffer(GL_COPY_READ_BUFFER, host_->buffer(3));
+        glBindVertexArray(host_->vertex_array());
+        glBindRenderbuffer(GL_RENDERBUFFER, host_->renderbuffer());
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, host_->framebuffer(0));
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, host_->framebuffer(1));
         glViewport(3, 5, 77, 41);
         glScissor(1, 2, 30, 40);
         glEnable(GL_SCISSOR_TEST);
@@ -275,19 +222,7 @@ protected:
     HostTexture output_texture_;
     RenderbufferTarget blit_target_;  // the output as a framebuffer with a renderbuffer
 
-    HostProgram program_;
-    std::vector<HostTexture> textures_2d_, textures_ms_;
-    HostTexture texture_3d_, texture_array_, texture_cube_, texture_buffer_, image_r32f_;
-    std::vector<GLuint> samplers_;
-    std::vector<HostBuffer> buffers_;
-    HostVertexArray vao_;
-    std::vector<HostFramebuffer> host_framebuffers_;
-    HostRenderbuffer host_renderbuffer_;
-
-public:
-    ~StatePreservation() override {
-        if (!samplers_.empty()) glDeleteSamplers(GLsizei(samplers_.size()), samplers_.data());
-    }
+    std::optional<SentinelObjects> host_;  // made in SetUp, once the shared context is current
 };
 
 TEST_P(StatePreservation, SentinelStateIsDistinctive) {
@@ -432,7 +367,7 @@ TEST_P(StatePreservation, FailedRenderOnWrongTextureTarget) {
     set_sentinel_state();
     Snapshot before = capture();
     obscura_input input = input_;
-    input.depth_texture = texture_3d_.get();
+    input.depth_texture = host_->texture_3d();
     input.depth_width = input.depth_height = 4;
     obscura_output output = texture_output();
     ASSERT_EQ(obscura_render(ctx(), &input, &settings_, &output), OBSCURA_STATUS_INVALID_TEXTURE);
