@@ -18,7 +18,10 @@
 // (temporal accumulation, reduced resolution). A call refused on its fields (settings, input and output fields and
 // the view: stage 1, no GL) must answer that before WRONG_GL_CONTEXT or HOST_GL_ERROR. The float targets (output and
 // bent normals) are filled with a sentinel before each render: outside the result, and everywhere after a refusal, it
-// must stay.
+// must stay. A camera cut (OBSCURA_INPUT_FLAG_RESET_HISTORY) on a frame refused once its fields and view passed
+// still drops the view's history (obscura.h, TEMPORAL ACCUMULATION): the view's next accepted frame in the same input
+// (debug views aside) must equal that frame rendered with the flag through a view no fuzzed call names
+// (check_frame_after_cut).
 //
 // Renders stay cheap: the depth textures are at most 16x12, REFERENCE traces at most 4 rays (a 0.1 struct, which
 // has no REFERENCE block, its default 256), obscura_prepare gets either a size up to 64x64 or an invalid one (never
@@ -678,6 +681,10 @@ CallStats g_stats[] = {{"obscura_render"}, {"obscura_prepare"}};
 // How many successful renders reached the 0.5 features.
 struct FeatureStats {
     unsigned long temporal = 0, matrices = 0, motion = 0, view = 0, reduced = 0, bent = 0;
+    // Camera cuts on refused frames (Fixture::pending_cuts): refused after stage 1; the view's next accepted frame
+    // compared with a fresh history; or not compared (temporal accumulation off, which frees the history, or a
+    // target the fuzzer does not read back).
+    unsigned long cuts_refused = 0, cuts_checked = 0, cuts_unchecked = 0;
 };
 FeatureStats g_features;
 
@@ -707,6 +714,10 @@ void print_stats() {
                  "a view %lu), reduced resolution %lu, bent normals %lu\n",
                  g_features.temporal, g_features.matrices, g_features.motion, g_features.view, g_features.reduced,
                  g_features.bent);
+    std::fprintf(stderr,
+                 "render_fuzzer: camera cuts on refused frames %lu; the next accepted frame compared with a fresh "
+                 "history %lu, not compared %lu\n",
+                 g_features.cuts_refused, g_features.cuts_checked, g_features.cuts_unchecked);
 }
 
 // ---- The process-wide fixture -----------------------------------------------------------------------------------
@@ -774,6 +785,28 @@ struct Fixture {
         const std::vector<obscura_view*>& live = views[selected].live;
         return std::find(live.begin(), live.end(), view) != live.end();
     }
+
+    // Camera cuts on refused frames (obscura.h, TEMPORAL ACCUMULATION): a frame with OBSCURA_INPUT_FLAG_RESET_HISTORY
+    // that is refused once its fields and its view are valid (stage 1 passed: a refusal of its textures, its target,
+    // what its settings need, a host GL error, another GL context current) still drops its view's history, so the
+    // view's next accepted frame that is not a debug view (which leaves the history as it is) starts a new one. The
+    // views with such a cut pending, per context; cleared at the start of every input, so that an input that fails
+    // the check holds the cut it checks.
+    struct PendingCut {
+        int context = 0;               // index into states
+        obscura_view* view = nullptr;  // NULL: the context's own view
+        int32_t status = 0;            // how the cut's frame was refused
+        std::string frame;             // describe() of it
+    };
+    std::vector<PendingCut> pending_cuts;
+    std::vector<PendingCut>::iterator find_cut(int context_index, const obscura_view* view) {
+        return std::find_if(pending_cuts.begin(), pending_cuts.end(), [&](const PendingCut& cut) {
+            return cut.context == context_index && cut.view == view;
+        });
+    }
+    // Per context, a view that no fuzzed call names: the fresh history a frame after a cut is compared with is the
+    // same frame rendered through it with RESET_HISTORY.
+    obscura_view* fresh_views[2] = {};
 };
 Fixture* g_fixture = nullptr;
 
@@ -1420,15 +1453,19 @@ std::string describe(const DecodedInput& in, const DecodedOutput& out, const Dec
 constexpr float kTargetSentinel[4] = {0.3125f, 0.4375f, 0.5625f, 0.6875f};
 
 // Uploads to / reads back a host texture through unit 7, leaving the sentinel bindings as they were.
-void fill_with_sentinel(GLuint texture, int width, int height) {
+void write_rgba(GLuint texture, int width, int height, const std::vector<float>& rgba) {
     const NeutralPixelStore store;
-    std::vector<float> rgba(size_t(width) * size_t(height) * 4);
-    for (size_t i = 0; i < rgba.size(); ++i) rgba[i] = kTargetSentinel[i % 4];
     glActiveTexture(GL_TEXTURE7);
     glBindTexture(GL_TEXTURE_2D, texture);
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, rgba.data());
     glBindTexture(GL_TEXTURE_2D, GLuint(g_fixture->sentinel_unit7_texture_2d));
     glActiveTexture(GLenum(g_fixture->sentinel_active_texture));
+}
+
+void fill_with_sentinel(GLuint texture, int width, int height) {
+    std::vector<float> rgba(size_t(width) * size_t(height) * 4);
+    for (size_t i = 0; i < rgba.size(); ++i) rgba[i] = kTargetSentinel[i % 4];
+    write_rgba(texture, width, height, rgba);
 }
 
 std::vector<float> read_rgba(GLuint texture, int width, int height) {
@@ -1534,6 +1571,118 @@ void check_view_status(const char* what, int32_t status, const StageOne& stage, 
                "%s returned %s for view %s, not INVALID_VIEW", what, fuzz_status_string(status), input.view_label);
 }
 
+// ---- Camera cuts on refused frames (Fixture::pending_cuts) ----------------------------------------------------------
+
+// The view whose history a frame reads and writes: a 0.4 input has no view field (the context's own).
+obscura_view* history_view(const DecodedInput& input) { return reads_05_fields(input) ? input.input.view : nullptr; }
+
+// A refused frame with RESET_HISTORY whose fields and view passed (stage 1) has dropped its view's history: the view's
+// next accepted frame must start a new one. A cut refused in stage 1 (its fields or its view) leaves the history as it
+// was, as does any other refused frame (a pending cut stays pending).
+void note_refused_cut(int32_t status, const StageOne& stage, const DecodedInput& input, const std::string& what) {
+    Fixture& fx = *g_fixture;
+    if (status == kOk || !stage.passes || !reads_05_fields(input) ||
+        (input.input.flags & OBSCURA_INPUT_FLAG_RESET_HISTORY) == 0) {
+        return;
+    }
+    ++g_features.cuts_refused;
+    auto cut = fx.find_cut(fx.selected, input.input.view);
+    if (cut == fx.pending_cuts.end()) {
+        fx.pending_cuts.push_back(Fixture::PendingCut{fx.selected, input.input.view, status, what});
+    } else {
+        cut->status = status, cut->frame = what;
+    }
+}
+
+// The texture of the pool that a render of `out` writes and the fuzzer can read back and restore (the 2D textures,
+// also the one attached to the output FBO); 0 for the others (a renderbuffer, the default framebuffer, ...).
+struct ReadableTarget {
+    GLuint texture = 0;
+    int width = 0, height = 0;
+};
+ReadableTarget readable_target(const DecodedOutput& out) {
+    const Pools& pools = g_fixture->pools;
+    if (out.output.texture != 0) {
+        if (out.output.texture != out.target->texture || !out.target->usable || out.target->not_a_texture) return {};
+        return {out.target->texture, out.target->width, out.target->height};
+    }
+    if (out.output.framebuffer != 0 && out.output.framebuffer == pools.any_framebuffer) {
+        return {pools.any_framebuffer_texture, kDepthWidth, kDepthHeight};  // make_pools: the 16x12 RGBA8 attachment
+    }
+    return {};
+}
+
+// Whether the settings, as obscura_render reads them, accumulate frames (a struct older than 0.5 has no temporal block).
+bool accumulates(const DecodedSettings& settings) {
+    if (settings.struct_size() != sizeof(obscura_settings) || settings.buffer.size() != sizeof(obscura_settings)) {
+        return false;
+    }
+    SettingsBuffer resolved(0, sizeof(obscura_settings));
+    if (status_code(obscura_resolve_settings(nullptr, settings.get(), resolved.get())) != kOk) return false;
+    return resolved.get()->temporal.enabled == OBSCURA_TOGGLE_ON;
+}
+
+// After an accepted frame of a view with a pending cut: unless it is a debug view (the cut stays pending), the frame
+// must equal the same frame rendered with RESET_HISTORY through the context's fresh view, into the target as it was
+// before (`target_before`, read from `readable` before the frame). Both start a new history, so the renders are the
+// same computation (deterministic: bit for bit, as tests/gl/robustness_test.cpp's Determinism checks); a frame that
+// continued the history from before the cut differs wherever that history moved the blend. One more render and three
+// small transfers, only on such a frame.
+void check_frame_after_cut(const DecodedInput& input, const DecodedOutput& output, const DecodedSettings& settings,
+                           const ReadableTarget& readable, const std::vector<float>& target_before,
+                           const std::string& what) {
+    Fixture& fx = *g_fixture;
+    auto pending = fx.find_cut(fx.selected, history_view(input));
+    if (pending == fx.pending_cuts.end() || load_raw(output.output.debug_view) != OBSCURA_DEBUG_NONE) return;
+    const Fixture::PendingCut cut = *pending;
+    fx.pending_cuts.erase(pending);
+    // Without accumulation the frame frees the history; a target not read back cannot be compared.
+    if (!accumulates(settings) || readable.texture == 0) {
+        ++g_features.cuts_unchecked;
+        return;
+    }
+    ++g_features.cuts_checked;
+    const std::vector<float> accepted = read_rgba(readable.texture, readable.width, readable.height);
+    write_rgba(readable.texture, readable.width, readable.height, target_before);
+    // The frame as obscura_render read it (a 0.4 input's 0.5 fields read 0), through the fresh view, with the cut.
+    obscura_input fresh = input.input;
+    if (!reads_05_fields(input)) {
+        std::memset(reinterpret_cast<unsigned char*>(&fresh) + obscura_fuzz::kInputSize04, 0,
+                    sizeof fresh - obscura_fuzz::kInputSize04);
+    }
+    fresh.struct_size = sizeof fresh;
+    fresh.view = fx.fresh_views[fx.selected];
+    fresh.flags |= OBSCURA_INPUT_FLAG_RESET_HISTORY;
+    const std::string context = what + "; rendered again through a fresh view with RESET_HISTORY, after the camera cut "
+                                       "on the refused frame (" + fuzz_status_string(cut.status) + ") " + cut.frame;
+    obscura_fuzz::set_failure_context(context);
+    const NoContextMessage message;
+    const int log_before = fx.log.count;
+    const int32_t status = status_code(obscura_render(fx.context, &fresh, settings.get(), &output.output));
+    message.check("obscura_render");
+    check_after_call("obscura_render (a fresh history)", status, log_before, true);
+    FUZZ_CHECK(status == kOk, "an accepted frame, rendered again through a fresh view with RESET_HISTORY, returned %s "
+               "(\"%s\")", fuzz_status_string(status), obscura_get_last_error(fx.context));
+    const std::vector<float> fresh_image = read_rgba(readable.texture, readable.width, readable.height);
+    for (size_t i = 0; i < accepted.size(); ++i) {
+        if (accepted[i] == fresh_image[i] || (std::isnan(accepted[i]) && std::isnan(fresh_image[i]))) continue;
+        double largest = 0.0;
+        size_t differing = 0;
+        for (size_t j = 0; j < accepted.size(); ++j) {
+            const double difference = std::fabs(double(accepted[j]) - double(fresh_image[j]));
+            differing += accepted[j] != fresh_image[j];
+            if (difference > largest) largest = difference;
+        }
+        const size_t texel = i / 4;
+        obscura_fuzz::fail("the frame after a camera cut on a refused frame (%s) did not start a new history: "
+                           "channel %zu of texel (%zu, %zu) of the %s target is %.9g, %.9g from a fresh history (%zu "
+                           "of %zu values differ, by up to %.9g)",
+                           fuzz_status_string(cut.status), i % 4, texel % size_t(readable.width),
+                           texel / size_t(readable.width), output.target->label, double(accepted[i]),
+                           double(fresh_image[i]), differing, accepted.size(), largest);
+    }
+}
+
 void op_render(Reader& in, bool inject_host_error, bool frame_fields) {
     Fixture& fx = *g_fixture;
     const DecodedSettings settings = decode_settings(in);
@@ -1543,6 +1692,12 @@ void op_render(Reader& in, bool inject_host_error, bool frame_fields) {
     const std::string what = describe(input, output, settings);
     obscura_fuzz::set_failure_context(what);
     fill_checked_targets(output);
+    // A frame of a view with a camera cut pending may have to be rendered again into its target as it is now.
+    const ReadableTarget readable = readable_target(output);
+    std::vector<float> target_before;
+    if (readable.texture && fx.find_cut(fx.selected, history_view(input)) != fx.pending_cuts.end()) {
+        target_before = read_rgba(readable.texture, readable.width, readable.height);
+    }
 
     const NoContextMessage message;
     if (inject_host_error) glEnable(0xBAD);  // GL_INVALID_ENUM, pending when the SDK is called
@@ -1647,7 +1802,9 @@ void op_render(Reader& in, bool inject_host_error, bool frame_fields) {
         FUZZ_CHECK(obscura_get_memory_usage(fx.context, &memory) == OBSCURA_OK && memory > fx.baseline_memory,
                    "after a successful render the context reports %llu bytes (baseline %llu)",
                    (unsigned long long)memory, (unsigned long long)fx.baseline_memory);
+        check_frame_after_cut(input, output, settings, readable, target_before, what);
     }
+    note_refused_cut(status, stage, input, what);
 }
 
 // obscura_create_view / obscura_destroy_view on the selected context. `kind` 1: create a view (at most kMaxViews
@@ -1678,6 +1835,8 @@ void destroy_view(obscura_view* view, bool other_gl_current, const char* label) 
     if (status == kOk && view) {
         std::vector<obscura_view*>& views = fx.own_views().live;
         views.erase(std::find(views.begin(), views.end(), view));
+        auto cut = fx.find_cut(fx.selected, view);  // its address may name a new view from now on
+        if (cut != fx.pending_cuts.end()) fx.pending_cuts.erase(cut);
         if (fx.destroyed_views.size() >= 8) fx.destroyed_views.erase(fx.destroyed_views.begin());
         fx.destroyed_views.push_back(view);
     }
@@ -1883,6 +2042,7 @@ void op_wrong_context(Reader& in, bool frame_fields) {
                "%s returned %s for settings that resolve to %s", what.c_str(), fuzz_status_string(status),
                fuzz_status_string(stage.resolve_status));
     check_view_status(what.c_str(), status, stage, input);
+    note_refused_cut(status, stage, input, what);  // the fields and the view come before the GL context
 }
 
 // NULL arguments on a live context: NULL_ARGUMENT with a message, nothing touched.
@@ -2033,6 +2193,8 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
         const int32_t status = status_code(obscura_create_context(&desc, &state.context));
         FUZZ_CHECK(status == kOk, "render_fuzzer setup: obscura_create_context returned %s", fuzz_status_string(status));
         FUZZ_CHECK(obscura_get_memory_usage(state.context, &state.baseline_memory) == OBSCURA_OK, "memory usage failed");
+        FUZZ_CHECK(obscura_create_view(state.context, &fx.fresh_views[i]) == OBSCURA_OK && fx.fresh_views[i],
+                   "render_fuzzer setup: obscura_create_view failed");
     }
     fx.selected = 0;
     fx.context = fx.states[0].context;
@@ -2061,6 +2223,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     Reader in(data, size);
+    g_fixture->pending_cuts.clear();  // the histories stay, but a check needs its cut in the input that fails it
     const int operations = 1 + in.u8() % 4;
     for (int i = 0; i < operations; ++i) run_operation(in.u8(), in);
     return 0;

@@ -532,7 +532,8 @@ typedef struct obscura_gtao_settings {
    fails while rendering (GL_ERROR, OUT_OF_MEMORY, SHADER_COMPILE_FAILED ...) leaves no history, the next starts
    anew; one refused before rendering (an invalid input or output) leaves the history as it was, except that its
    reset flag (a camera cut) still drops it once the input's and output's fields and the view are valid (a refusal
-   of its textures, its output target or what its settings need).
+   of its textures, its output target or what its settings need, a host GL error left pending, another GL context
+   current).
    Timing label "temporal" (after the method's passes; at full resolution it also writes the output, the bent-normal
    texture and a blit target's blit included, and the frame has no "composite"). Memory: 16 bytes per depth texel per view, 48 with bent
    normals (per texel of the reduced grid at half or quarter resolution), allocated by the first temporal render
