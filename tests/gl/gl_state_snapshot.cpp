@@ -171,4 +171,22 @@ SentinelObjects::SentinelObjects(int textures_2d, int multisample_textures, int 
 // Samplers have no owner type of their own in host_gl_objects.h; everything else deletes itself.
 SentinelObjects::~SentinelObjects() { glDeleteSamplers(kSamplers, samplers_); }
 
+void set_sentinel_pixel_store() {
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glPixelStorei(GL_PACK_ROW_LENGTH, 13);
+    glPixelStorei(GL_PACK_SKIP_ROWS, 3);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, 17);
+    glPixelStorei(GL_UNPACK_SKIP_PIXELS, 5);
+}
+
+void set_default_pixel_store() {
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glPixelStorei(GL_PACK_ROW_LENGTH, 0);
+    glPixelStorei(GL_PACK_SKIP_ROWS, 0);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+    glPixelStorei(GL_UNPACK_SKIP_PIXELS, 0);
+}
+
 }  // namespace obscura_test

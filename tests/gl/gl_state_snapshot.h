@@ -31,6 +31,11 @@ Snapshot capture();
 // Names of the entries that differ, with both values; empty when none does.
 std::string diff(const Snapshot& before, const Snapshot& after);
 
+// The pixel-store state of the sentinel setups (pack and unpack alignment, row length and skips, none of them GL's
+// default), and GL's defaults for it.
+void set_sentinel_pixel_store();
+void set_default_pixel_store();
+
 // The host's objects that sentinel state binds, of every kind a snapshot's bindings name: a program (an empty
 // compute shader), 4x4 RGBA8 2D and multisample textures, a 3D, an array, a cube-map, an R32F (for an image unit)
 // and a buffer texture (on buffer(0)), 4 KiB buffers, samplers, a vertex array, two framebuffers and a

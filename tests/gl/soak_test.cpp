@@ -149,24 +149,14 @@ public:
         glEnable(GL_DEPTH_TEST);
         glEnable(GL_RASTERIZER_DISCARD);
         glColorMask(GL_TRUE, GL_FALSE, GL_TRUE, GL_FALSE);
-        glPixelStorei(GL_PACK_ALIGNMENT, 1);
-        glPixelStorei(GL_PACK_ROW_LENGTH, 13);
-        glPixelStorei(GL_PACK_SKIP_ROWS, 3);
-        glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
-        glPixelStorei(GL_UNPACK_ROW_LENGTH, 17);
-        glPixelStorei(GL_UNPACK_SKIP_PIXELS, 5);
+        set_sentinel_pixel_store();
         glActiveTexture(GL_TEXTURE5);
     }
 
     static void neutral() {
         glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
         glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
-        glPixelStorei(GL_PACK_ALIGNMENT, 4);
-        glPixelStorei(GL_PACK_ROW_LENGTH, 0);
-        glPixelStorei(GL_PACK_SKIP_ROWS, 0);
-        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-        glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-        glPixelStorei(GL_UNPACK_SKIP_PIXELS, 0);
+        set_default_pixel_store();
     }
 
     // Back to GL's defaults (before the objects are deleted), with the viewport and scissor box `initial` held.

@@ -47,12 +47,7 @@ protected:
         glDisable(GL_BLEND);
         glDisable(GL_DEPTH_TEST);
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-        glPixelStorei(GL_PACK_ALIGNMENT, 4);
-        glPixelStorei(GL_PACK_ROW_LENGTH, 0);
-        glPixelStorei(GL_PACK_SKIP_ROWS, 0);
-        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-        glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-        glPixelStorei(GL_UNPACK_SKIP_PIXELS, 0);
+        set_default_pixel_store();
         for (GLenum target : {GL_ARRAY_BUFFER, GL_PIXEL_PACK_BUFFER, GL_PIXEL_UNPACK_BUFFER,
                               GL_DISPATCH_INDIRECT_BUFFER, GL_COPY_READ_BUFFER, GL_UNIFORM_BUFFER,
                               GL_SHADER_STORAGE_BUFFER})
@@ -148,12 +143,7 @@ protected:
         glEnable(GL_BLEND);
         glEnable(GL_DEPTH_TEST);
         glColorMask(GL_TRUE, GL_FALSE, GL_TRUE, GL_FALSE);
-        glPixelStorei(GL_PACK_ALIGNMENT, 1);
-        glPixelStorei(GL_PACK_ROW_LENGTH, 13);
-        glPixelStorei(GL_PACK_SKIP_ROWS, 3);
-        glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
-        glPixelStorei(GL_UNPACK_ROW_LENGTH, 17);
-        glPixelStorei(GL_UNPACK_SKIP_PIXELS, 5);
+        set_sentinel_pixel_store();
         glActiveTexture(GL_TEXTURE5);
         ASSERT_EQ(take_gl_error(), GLenum(GL_NO_ERROR)) << "setting the sentinel state";
     }
