@@ -33,7 +33,8 @@ Error BilateralBlurPass::prepare(const PassEnv& env, int radius, const TargetWri
 
 BlurConstants BilateralBlurPass::constants(int radius, float sharpness, int axis_x, int axis_y) {
     BlurConstants c = {};
-    // sigma = (radius + 1) / 2 keeps the outermost tap at a weight of about e^-2.
+    // sigma = (radius + 1) / 2: the outermost tap weighs exp(-2 R^2 / (R + 1)^2), e^-0.5 at R = 1 and e^-2 only for
+    // large R.
     float sigma = 0.5f * float(radius + 1);
     c.params[0] = sharpness;
     c.params[1] = 1.0f / (2.0f * sigma * sigma);

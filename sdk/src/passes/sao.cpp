@@ -143,7 +143,8 @@ Error SaoBlurPass::prepare(const PassEnv& env, int radius, const TargetWrite& ta
 
 SaoBlurConstants SaoBlurPass::constants(const obscura_sao_settings& settings, int axis_x, int axis_y) {
     SaoBlurConstants c = {};
-    // sigma = (R + 1) / 2 taps keeps the outermost tap at a weight of about e^-2, as the HBAO blur.
+    // sigma = (R + 1) / 2 taps, as the HBAO blur: the outermost tap weighs exp(-2 R^2 / (R + 1)^2), 0.32 at the
+    // default R = 3 (e^-2 only for large R).
     const float sigma = 0.5f * float(settings.blur_radius + 1);
     c.params[0] = settings.blur_sharpness;
     c.params[1] = 1.0f / (2.0f * sigma * sigma);
