@@ -103,7 +103,9 @@ float table_l(float a, float beta, float c) {
 // cosine: most points stay below it, and for those the test is a dot product instead of an arctangent (the
 // cosine falls as the angle grows on [0, pi]; points behind the zenith count as angle 0). A finite thickness
 // t (sec. 11) ends the slab t deeper than h, as the reference's field ends: rays below its bottom pass under
-// it, so the paper replaces a_{i-1} with the larger of it and the bottom's angle.
+// it, so a_{i-1} becomes the bottom's angle where that is the smaller angle from the zenith (the slab hides the
+// arc from its top down to its bottom only; sec. 11's max(), taken literally in these angles, would hide the whole
+// arc down to a_{i-1}, as infinite thickness does).
 // slab_cosine is the test, raise_horizon the slab's share for a point known to rise.
 float slab_cosine(vec2 h) {
     vec2 v = h - g_p;

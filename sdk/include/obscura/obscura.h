@@ -344,7 +344,8 @@ typedef struct obscura_lsao_settings {
     int32_t pattern;      /* 1: aligned 8n directions on texel centres (sec. 5.2); 2: free: any K, interpolated
                              depth, snapped at depth edges, [1, 2]. Default 1 */
     int32_t directions;   /* K, [1, 64]; aligned: a multiple of 8. Derived: the preset's */
-    float step_length;    /* D_S in texels, [0.5, 16]; free pattern only (aligned ones derive it). Derived: preset's */
+    float step_length;    /* D_S in texels, [0.5, 16]; aligned patterns walk the nearest whole number of template
+                             steps (at least 1). Derived: the preset's */
     float line_spacing;   /* D_L in texels, [0.5, 16]. Derived: the preset's */
     float tangent;        /* the fixed sin(t), [-1, 0.5]; read with tangent_strategy 3 (and 2's hull). Default -0.85 */
     int32_t tangent_strategy; /* sec. 4.1: 1 the receiver's tangent for hull and occlusion, 2 fixed for the hull

@@ -81,7 +81,7 @@ private:
     TargetWrite target_;
     int gather_group_[2] = {OBSCURA_LSAO_GATHER_GROUP_X, OBSCURA_LSAO_GATHER_GROUP_Y};
     bool collect_stats_ = false;
-    // What the layout was built for (D_S matters only for the free pattern, but is compared anyway).
+    // What the layout was built for (D_S: the free pattern's step, an aligned pattern's whole template steps).
     struct LayoutKey {
         int width = 0, height = 0, pattern = 0, directions = 0;
         float step_length = 0.0f, line_spacing = 0.0f;
