@@ -85,9 +85,9 @@
  *   from the thread where that GL context is current.
  *
  * PERFORMANCE (docs/performance.md; NVIDIA H100, GL timer queries, 10 % guard band, median of 200 frames)
- *   method / settings            1280x720          1920x1080         3840x2160     GPU memory, 1080p
- *   HBAO K=8  N=12, blur         0.35 ms           0.82 ms           3.83 ms       39.9 MiB
- *   HBAO K=16 N=48, blur         1.86 ms           4.01 ms          15.74 ms       39.9 MiB
+ *   method / settings            1280x720          1920x1080         3840x2160     GPU memory, 1080p (0.5)
+ *   HBAO K=8  N=12, blur         0.35 ms           0.82 ms           3.83 ms       34.2 MiB
+ *   HBAO K=16 N=48, blur         1.86 ms           4.01 ms          15.74 ms       34.2 MiB
  */
 #ifndef OBSCURA_OBSCURA_H
 #define OBSCURA_OBSCURA_H
@@ -538,7 +538,8 @@ typedef struct obscura_gtao_settings {
    Timing label "temporal" (after the method's passes; at full resolution it also writes the output, the bent-normal
    texture and a blit target's blit included, and the frame has no "composite"). Memory: 16 bytes per depth texel per view, 48 with bent
    normals (per texel of the reduced grid at half or quarter resolution), allocated by the first temporal render
-   of the view (obscura_prepare does not know the views).
+   of the view (obscura_prepare does not know the views); and once per context, for methods whose last pass would
+   otherwise write the target (HBAO, SAO, GTAO, LSAO), 2 bytes per texel for the result the temporal pass reads.
    Every field: 0 selects the default given after it. */
 typedef struct obscura_temporal_settings {
     obscura_toggle enabled; /* accumulate frames. Default off */
