@@ -547,6 +547,24 @@ void split_into_classes(const std::vector<samples::RenderedScene>& frames,
 // Per frame and pixel: whether the camera sees the still part of the scene there, and whether the moving part was
 // there the frame before (it has just uncovered the pixel).
 // Whether a primary ray's triangle belongs to an animated scene's moving part (Scene::first_moving_triangle on).
+// Each pixel's surface normal in world space: the geometric normal of the triangle its primary ray hit (a zero vector
+// on sky), so that surface_flicker can tell a crease's two faces apart.
+std::vector<glm::vec3> primary_normals(const samples::SceneMesh& mesh, const std::vector<uint32_t>& triangles) {
+    std::vector<glm::vec3> normals(triangles.size(), glm::vec3(0.0f));
+    const auto vertex = [&](size_t v) {
+        return glm::vec3(mesh.vertices[v * 6], mesh.vertices[v * 6 + 1], mesh.vertices[v * 6 + 2]);
+    };
+    for (size_t i = 0; i < triangles.size(); ++i) {
+        const uint32_t t = triangles[i];
+        if (t == samples::GeometryTruth::kSky || int64_t(t) >= int64_t(mesh.triangle_count())) continue;
+        const glm::vec3 a = vertex(size_t(t) * 3), b = vertex(size_t(t) * 3 + 1), c = vertex(size_t(t) * 3 + 2);
+        const glm::vec3 n = glm::cross(b - a, c - a);
+        const float length = glm::length(n);
+        if (length > 0.0f) normals[i] = n / length;
+    }
+    return normals;
+}
+
 bool on_moving_part(uint32_t triangle, int first_moving_triangle) {
     return triangle != samples::GeometryTruth::kSky && triangle >= uint32_t(first_moving_triangle);
 }
@@ -690,6 +708,10 @@ int run_compare(ArgumentList& arguments) {
             geometry.depth_height = frame.depth_height;
             geometry.rect_x = frame.output_rect.x;
             geometry.rect_y = frame.output_rect.y;
+            if (primary_triangles[f].size() == size_t(geometry.view_depth.width) * size_t(geometry.view_depth.height)) {
+                geometry.normal = primary_normals(animated ? source.scene()->mesh_at(int(f)) : source.scene()->mesh,
+                                                  primary_triangles[f]);
+            }
             if (animated && f > 0) {
                 // The moving part's pixels (their primary rays' triangles), one frame's motion since the last.
                 geometry.moving.resize(primary_triangles[f].size());

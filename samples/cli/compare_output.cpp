@@ -296,7 +296,8 @@ void print_compare_table(const CompareResult& result) {
         if (t < result.truth_surface_flicker.size()) {
             const std::optional<double>& floor = result.truth_surface_flicker[t];
             std::printf("surface flicker: how much a surface point's AO changes from frame to frame (reprojected); the "
-                        "%s's own: %s (its sampling noise: the floor)\n",
+                        "%s's own: %s (its first falloff's; the floor its rays' noise and the previous frame's bilinear "
+                        "read set)\n",
                         truth.kind == TruthKind::Geometry ? "truth" : "reference",
                         floor ? format_fixed(*floor, 5).c_str() : "- (no pixel could be followed)");
         }

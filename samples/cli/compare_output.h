@@ -136,7 +136,7 @@ struct CompareResult {
     std::vector<std::vector<uint8_t>> still_geometry;
     // With --frames on a scene: each frame's view depth (the truth's primary hits) and matrices (surface_flicker).
     std::vector<samples::FrameGeometry> geometry;
-    std::vector<std::optional<double>> truth_surface_flicker;  // per truth, its first reference's: the floor its own noise sets
+    std::vector<std::optional<double>> truth_surface_flicker;  // per truth, its first reference's: the floor its rays' noise and the bilinear read set
     std::vector<std::vector<uint8_t>> uncovered;
     // With --orbit and --converged: each frame's per-pixel frames since the pixel's surface point came into view
     // (samples::frames_since_disocclusion). Empty: no orbit ghosting.

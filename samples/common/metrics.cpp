@@ -319,6 +319,9 @@ Reprojection reproject(const FrameGeometry& now, const FrameGeometry& before, in
     const float depth = now.view_depth.at(x, y);
     if (!sees_surface(depth)) return r;
     r.what = Previously::Elsewhere;
+    // A moving part translates: its normal is the same in both frames.
+    const bool with_normals = !now.normal.empty() && !before.normal.empty();
+    const glm::vec3 point_normal = with_normals ? now.normal[size_t(y) * size_t(width) + size_t(x)] : glm::vec3(0.0f);
     glm::dvec3 world = pixel_to_world(now, x, y, double(depth));
     if (!now.moving.empty() && now.moving[size_t(y) * size_t(width) + size_t(x)]) world -= now.motion;
     const glm::dvec4 clip = before.projection * before.view * glm::dvec4(world, 1.0);
@@ -339,6 +342,10 @@ Reprojection reproject(const FrameGeometry& now, const FrameGeometry& before, in
         const float texel_depth = before.view_depth.at(texels[k].first, texels[k].second);
         r.matches[k] = sees_surface(texel_depth) &&
                        std::fabs(double(texel_depth) - expected_depth) <= depth_tolerance * expected_depth;
+        if (with_normals && r.matches[k]) {
+            const glm::vec3 texel_normal = before.normal[size_t(texels[k].second) * size_t(width) + size_t(texels[k].first)];
+            r.matches[k] = std::fabs(double(glm::dot(point_normal, texel_normal))) >= kSameSurfaceMinCosine;
+        }
         // Below 1e-9 of weight a texel's value changes the reading by less than the images' float precision.
         all = all && (r.matches[k] || weights[k] < 1e-9);
     }
@@ -353,6 +360,9 @@ void check_geometry(const char* what, const std::vector<FrameGeometry>& geometry
         }
         if (!frame.moving.empty() && frame.moving.size() != size_t(width) * size_t(height)) {
             throw std::invalid_argument(std::string(what) + ": a moving mask of another size than the frames");
+        }
+        if (!frame.normal.empty() && frame.normal.size() != size_t(width) * size_t(height)) {
+            throw std::invalid_argument(std::string(what) + ": normals of another size than the frames");
         }
     }
 }

@@ -94,12 +94,22 @@ struct FrameGeometry {
     // back to where it was.
     std::vector<uint8_t> moving;
     glm::dvec3 motion{0.0};
+    // The world-space unit normal of each pixel's surface (one per pixel, as view_depth; empty: the depth alone
+    // decides what is the same surface). Either facing counts: the scene's faces are seen from both sides.
+    std::vector<glm::vec3> normal;
 };
+
+// Two texels see the same surface only if their normals are within 45 degrees (either facing), when both frames
+// carry normals: at a crease the other face's texels lie within any depth tolerance of the point, and reading the
+// previous image across the fold measured the fold's AO kink as flicker (a view-independent truth "flickered" twice
+// as much as accumulated HBAO on the atrium's orbit). Curved meshes' neighbouring facets stay well inside it.
+constexpr double kSameSurfaceMinCosine = 0.70710678;
 
 // Flicker as a viewer sees it: how much the AO of a surface point changes from one frame to the next. Each geometry
 // pixel of frame f is taken to the world through its view depth (on a moving part, moved back by its motion),
 // projected into frame f - 1 and compared with frame f - 1's image there (bilinear), where every texel around that
-// point with bilinear weight sees the same surface (its view depth within depth_tolerance of the point's, relative);
+// point with bilinear weight sees the same surface (its view depth within depth_tolerance of the point's, relative,
+// and, with normals, its normal within kSameSurfaceMinCosine of the point's);
 // other pixels (disoccluded, off screen, sky) do not count. The mean of |difference| over the counted pixels and frame
 // pairs (first channels); nullopt when none counts (nothing was measured, which is not "no flicker"). A still camera
 // and scene make it the plain mean change per geometry pixel. `frames` and `geometry` of one count, >= 2, and one

@@ -405,6 +405,39 @@ TEST(SurfaceFlicker, FollowsAMovingPartToWhereItWas) {
     EXPECT_THROW(surface_flicker(frames, {wall_frame(0.0), moved}), std::invalid_argument);
 }
 
+// A crease within the depth tolerance: the wall's left half (world x < 0) faces +z, its right half +x (a fold seen
+// head-on, every pixel at the same depth), and each face has its own constant AO, 0.2 and 0.8: a view-independent
+// image. The camera moves a quarter metre: frame 1's pixel 3 (world x = -0.25) lies between frame 0's texels 3 and 4,
+// one on each face, so reading across the fold measured 0.15 there. With normals the fold's other face does not count
+// as the point's surface, and what remains is the truth's 0; without them the old figure, 0.15 / 7 per row.
+TEST(SurfaceFlicker, ACreaseIsNotOneSurface) {
+    using obscura::samples::surface_flicker;
+    std::vector<float> values(64);
+    for (int y = 0; y < 8; ++y) {
+        for (int x = 0; x < 8; ++x) values[size_t(y * 8 + x)] = x < 4 ? 0.2f : 0.8f;
+    }
+    const std::vector<FloatImage> frames = {make_image(8, 8, values), make_image(8, 8, values)};
+    obscura::samples::FrameGeometry before = wall_frame(0.0), after = wall_frame(0.25);
+    EXPECT_NEAR(surface_flicker(frames, {before, after}).value_or(-1.0), 0.15 / 7.0, 1e-6);
+    for (obscura::samples::FrameGeometry* frame : {&before, &after}) {
+        frame->normal.resize(64);
+        for (int y = 0; y < 8; ++y) {
+            for (int x = 0; x < 8; ++x) frame->normal[size_t(y * 8 + x)] = x < 4 ? glm::vec3(0, 0, 1) : glm::vec3(1, 0, 0);
+        }
+    }
+    EXPECT_NEAR(surface_flicker(frames, {before, after}).value_or(-1.0), 0.0, 1e-9);
+    // Facets of one curved surface (here 30 degrees apart) and a face seen from behind stay one surface.
+    for (int y = 0; y < 8; ++y) {
+        for (int x = 4; x < 8; ++x) {
+            before.normal[size_t(y * 8 + x)] = glm::vec3(0.5f, 0.0f, -0.8660254f);
+            after.normal[size_t(y * 8 + x)] = glm::vec3(0.5f, 0.0f, -0.8660254f);
+        }
+    }
+    EXPECT_NEAR(surface_flicker(frames, {before, after}).value_or(-1.0), 0.15 / 7.0, 1e-6);
+    before.normal.resize(10);
+    EXPECT_THROW(surface_flicker(frames, {before, after}), std::invalid_argument);
+}
+
 // ---- frames_since_disocclusion ---------------------------------------------------------------------------
 
 TEST(FramesSinceDisocclusion, CountsFromWhereAPointCameIntoView) {
