@@ -18,7 +18,7 @@
 #define OBSCURA_UNIT_MOTION 0       // the temporal pass: host motion vectors (the host depth is read only before)
 #define OBSCURA_UNIT_HISTORY 4      // the temporal pass: the view's AO history (RG32F)
 #define OBSCURA_UNIT_BENT_SOURCE 5  // the temporal pass: this frame's bent normals (RGBA16F)
-#define OBSCURA_UNIT_BENT_HISTORY 6 // the temporal pass: the view's bent-normal history (RGBA16F)
+#define OBSCURA_UNIT_BENT_HISTORY 6 // the temporal pass: the view's bent-normal history (RGBA32F)
 #define OBSCURA_TEXTURE_UNIT_COUNT 7
 
 // Image units (imageStore / imageLoad).

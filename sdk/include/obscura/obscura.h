@@ -57,7 +57,10 @@
  *     with `projection`, or linear view depth (R16F/R32F: positive distance from the eye plane,
  *     in view units). Hardware depth may come from any projection GL can express: perspective or
  *     orthographic, standard or reversed-Z, finite or infinite far plane, [-1,1] or [0,1] clip depth
- *     (glClipControl). The projection is decoded from the matrix itself; its near/far layout is
+ *     (glClipControl), written with the default glDepthRange(0, 1) (a reversed or narrowed depth range is not
+ *     in the matrix and is not seen). Not supported: an oblique near plane (a clip plane folded into the
+ *     depth row) is refused, possibly as PROJECTION_TRANSPOSED; an oblique orthographic projection (m8, m9
+ *     non-zero) is accepted but its view direction taken as -z. The projection is decoded from the matrix itself; its near/far layout is
  *     validated ("looks transposed" is reported as such). The SDK reads a GL_TEXTURE_2D at its
  *     GL_TEXTURE_BASE_LEVEL (texelFetch's level 0), whose size must be the depth size; so do the normal
  *     and motion-vector textures.
@@ -71,7 +74,10 @@
  *     are multiplied by `meters_to_view_units` (default 1).
  *   - Normals (optional): view-space normals in a GL_TEXTURE_2D (RGB, signed float and snorm formats as
  *     is; unsigned formats, R11F_G11F_B10F included since it has no sign bit, decoded as n*2-1) the size
- *     of the depth texture. Without them the SDK reconstructs face normals from depth.
+ *     of the depth texture. Without them the SDK reconstructs face normals from depth. A normal facing away
+ *     from the eye is taken for a back face's and negated; a zero or non-finite one reads as +z. Smooth-shaded
+ *     silhouettes whose interpolated normals face slightly away should be bent towards the eye before they are
+ *     passed (e.g. n - min(0, dot(n, v)) v, v towards the eye), or negation turns them into the surface.
  *
  * GL STATE CONTRACT
  *   obscura_render() leaves every GL binding it touches as it found it (program, texture and
@@ -517,7 +523,8 @@ typedef struct obscura_gtao_settings {
 
 /* TEMPORAL ACCUMULATION (0.5), for every method: a pass after the method blends its result into a history kept per
    view (obscura_view), reprojected from the frame's depth and the two view-projection matrices of obscura_input (or
-   its motion vectors; the projection is taken as unchanged between the two frames, jitter aside). A history pixel
+   its motion vectors; the projection is taken as unchanged between the two frames, jitter aside: a changed near
+   or far plane or field of view moves the history's expected depths and fails the disocclusion test everywhere). A history pixel
    is dropped where the reprojected surface does not lie on the stored one's plane (disocclusion), clamped to the
    current frame's neighbourhood (7 texels: mean +- clamp * deviation, and the pixel's own value) to bound
    ghosting, and blended with weight 1 / (frames seen + 1) up to max_frames, so a static view converges to the
