@@ -168,6 +168,9 @@ float reference_trace(vec3 origin, vec3 direction) {
 
     // g = ray key - field key in the key's "towards the eye" orientation: > 0 in front of the field.
     float previous_t = 0.0, previous_g = 0.0;
+    // The field's key at the last two samples and where they were (key 0: sky or none), for the continuity test
+    // below; the receiver, on the field at t = 0, is the first.
+    float previous_key = perspective ? k0 : -origin.z, earlier_key = 0.0, earlier_t = 0.0;
     int steps = int(floor(major_length));
     int column_limit = x_major ? depth_size.x : depth_size.y;
     for (int i = 1; i <= steps; ++i) {
@@ -181,8 +184,11 @@ float reference_trace(vec3 origin, vec3 direction) {
         vec3 point = mix(q0, q1, t) / k;
         float ray_depth = -point.z;
         if (obscura_is_sky(field.depth)) {
+            earlier_t = previous_t;
+            earlier_key = previous_key;
             previous_t = t;
             previous_g = 1.0;
+            previous_key = 0.0;
             continue;
         }
         float ray_key = perspective ? k : ray_depth;
@@ -190,14 +196,37 @@ float reference_trace(vec3 origin, vec3 direction) {
         // Behind the surface by more than rounding (relative 1e-5 of the key).
         bool behind = g < -1e-5 * abs(ray_key);
         bool hit = behind && (thickness <= 0.0 || ray_depth <= field.depth + thickness);
+        // With a thickness, a ray more than that far behind the field passes under it, unless it crossed the field's
+        // front between the last sample and this one where the field is one surface. A skirt across a depth edge
+        // (foreground and background texels joined) jumps in one step by far more than the steps on either side of
+        // it; a plane (the key, 1/w, affine in the screen parameter), a fold (a crease) or a steep distant floor
+        // changes by no more than about its neighbouring steps. Without this, continuous surfaces whose depth changes
+        // by more than the thickness per texel let rays through: a floor-and-wall scene, which has no silhouette,
+        // came out 0.003 too bright over its geometry at 320x180 with 0.3 m (0.03 over its occluded pixels).
+        if (behind && !hit && previous_g >= 0.0 && previous_key != 0.0 && earlier_key != 0.0) {
+            float rate_now = abs(field.key - previous_key) / (t - previous_t);
+            float rate_before = abs(previous_key - earlier_key) / max(previous_t - earlier_t, 1e-30);
+            float rate_after = 0.0;
+            int next_column = column + int(major_sign);
+            if (i < steps && next_column >= 0 && next_column < column_limit) {
+                float next_t = (float(next_column) + 0.5 - major0) / (major_sign * major_length);
+                vec2 next_q = p0 + delta * next_t;
+                FieldSample next = reference_field(next_column, x_major ? next_q.y : next_q.x, x_major);
+                if (!obscura_is_sky(next.depth)) rate_after = abs(next.key - field.key) / (next_t - t);
+            }
+            hit = rate_now <= 2.0 * max(rate_before, rate_after);
+        }
         if (hit) {
             float hit_t = t;
             if (previous_g >= 0.0) hit_t = mix(previous_t, t, previous_g / (previous_g - g));
             vec3 hit_point = mix(q0, q1, hit_t) / mix(k0, k1, hit_t);
             return length(hit_point - origin);
         }
+        earlier_t = previous_t;
+        earlier_key = previous_key;
         previous_t = t;
         previous_g = g;
+        previous_key = field.key;
     }
     return kMiss;
 }
