@@ -524,8 +524,9 @@ typedef struct obscura_gtao_settings {
 
 /* TEMPORAL ACCUMULATION (0.5), for every method: a pass after the method blends its result into a history kept per
    view (obscura_view), reprojected from the frame's depth and the two view-projection matrices of obscura_input (or
-   its motion vectors; the projection is taken as unchanged between the two frames, jitter aside: a changed near
-   or far plane or field of view moves the history's expected depths and fails the disocclusion test everywhere). A history pixel
+   its motion vectors; the projection is taken as unchanged between the two frames, jitter and, under perspective,
+   the near and far planes aside: a changed field of view moves the history's expected depths and fails the
+   disocclusion test everywhere). A history pixel
    is dropped where the reprojected surface does not lie on the stored one's plane (disocclusion), clamped to the
    current frame's neighbourhood (7 texels: mean +- clamp * deviation, and the pixel's own value) to bound
    ghosting, and blended with weight 1 / (frames seen + 1) up to max_frames, so a static view converges to the
