@@ -143,6 +143,14 @@ FieldSample reference_field(int column, float minor, bool x_major) {
 }
 
 // ---- Ray marching ----------------------------------------------------------------------------------
+// The march's sample at `column`: its screen parameter t along the ray's screen segment (p0 + delta t, from major
+// coordinate major0, major_step = +-|delta| along the major axis) and the depth field there.
+FieldSample reference_sample(int column, vec2 p0, vec2 delta, float major0, float major_step, bool x_major, out float t) {
+    t = (float(column) + 0.5 - major0) / major_step;
+    vec2 q = p0 + delta * t;
+    return reference_field(column, x_major ? q.y : q.x, x_major);
+}
+
 // Distance from `origin` (a receiver at a texel centre) along the unit `direction` to where the ray first
 // enters the depth field, or kMiss.
 float reference_trace(vec3 origin, vec3 direction) {
@@ -176,10 +184,8 @@ float reference_trace(vec3 origin, vec3 direction) {
     for (int i = 1; i <= steps; ++i) {
         int column = receiver_column + int(major_sign) * i;
         if (column < 0 || column >= column_limit) break;
-        float t = (float(column) + 0.5 - major0) / (major_sign * major_length);
-        vec2 q = p0 + delta * t;
-        float minor = x_major ? q.y : q.x;
-        FieldSample field = reference_field(column, minor, x_major);
+        float t;
+        FieldSample field = reference_sample(column, p0, delta, major0, major_sign * major_length, x_major, t);
         float k = mix(k0, k1, t);
         vec3 point = mix(q0, q1, t) / k;
         float ray_depth = -point.z;
@@ -209,9 +215,9 @@ float reference_trace(vec3 origin, vec3 direction) {
             float rate_after = 0.0;
             int next_column = column + int(major_sign);
             if (i < steps && next_column >= 0 && next_column < column_limit) {
-                float next_t = (float(next_column) + 0.5 - major0) / (major_sign * major_length);
-                vec2 next_q = p0 + delta * next_t;
-                FieldSample next = reference_field(next_column, x_major ? next_q.y : next_q.x, x_major);
+                float next_t;
+                FieldSample next =
+                    reference_sample(next_column, p0, delta, major0, major_sign * major_length, x_major, next_t);
                 if (!obscura_is_sky(next.depth)) rate_after = abs(next.key - field.key) / (next_t - t);
             }
             hit = rate_now <= 2.0 * max(rate_before, rate_after);

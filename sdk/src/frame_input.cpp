@@ -153,7 +153,8 @@ void set_reprojection(const double* previous, FrameInput* frame) {
     // Equal matrices (a static camera): the identity, read by its own program variant (exact: both are the host's
     // floats converted).
     frame->identity_reprojection = std::memcmp(previous, frame->view_projection, sizeof frame->view_projection) == 0;
-    glm::dmat4 reprojection = glm::inverse(projection) * previous_matrix * glm::inverse(view_projection) * projection;
+    glm::dmat4 reprojection;
+    bool through_shared_rows = false;
     if (frame->projection.perspective) {
         // Under perspective the previous view point comes from the previous clip coordinates through the rows this
         // frame's projection shares with the last one (x, y and w = -z), not its depth row: a near or far plane that
@@ -181,7 +182,11 @@ void set_reprojection(const double* previous, FrameInput* frame) {
             rows[0][3] = rows[1][3] = rows[2][3] = 0.0;
             rows[3][3] = 1.0;
             reprojection = rows;
+            through_shared_rows = true;
         }
+    }
+    if (!through_shared_rows) {  // orthographic (or a degenerate w row): this frame's projection inverted
+        reprojection = glm::inverse(projection) * previous_matrix * glm::inverse(view_projection) * projection;
     }
     store_matrix(frame->identity_reprojection ? glm::dmat4(1.0) : reprojection, frame->reprojection);
 }

@@ -60,7 +60,8 @@
  *     (glClipControl), written with the default glDepthRange(0, 1) (a reversed or narrowed depth range is not
  *     in the matrix and is not seen). Not supported: an oblique near plane (a clip plane folded into the
  *     depth row) is refused, possibly as PROJECTION_TRANSPOSED; an oblique orthographic projection (m8, m9
- *     non-zero) is accepted but its view direction taken as -z. The projection is decoded from the matrix itself; its near/far layout is
+ *     non-zero) is accepted but its view direction taken as -z.
+ *     The projection is decoded from the matrix itself; its near/far layout is
  *     validated ("looks transposed" is reported as such). The SDK reads a GL_TEXTURE_2D at its
  *     GL_TEXTURE_BASE_LEVEL (texelFetch's level 0), whose size must be the depth size; so do the normal
  *     and motion-vector textures.

@@ -154,17 +154,9 @@ public:
         // Visibility and the bent normal travel together: the pass's output, and with the denoise (debug views aside,
         // as the plan) its x pass and the result; denoise=off frees those two.
         const bool denoises = gtao_denoises(settings.gtao, false);
-        if (bent_raw_.width() != resources.width || bent_raw_.height() != resources.height) {
-            bent_raw_ = env.create_texture(GL_RGBA16F, resources.width, resources.height);
-        }
-        if (!denoises) {
-            bent_temp_ = gl::Texture2D();
-            bent_ = gl::Texture2D();
-        } else if (bent_.width() != resources.width || bent_.height() != resources.height) {
-            bent_temp_ = env.create_texture(GL_RGBA16F, resources.width, resources.height);
-            bent_ = env.create_texture(GL_RGBA16F, resources.width, resources.height);
-        }
-        if (!bent_raw_ || (denoises && (!bent_temp_ || !bent_))) {
+        if (!env.fit_texture(&bent_raw_, true, GL_RGBA16F, resources.width, resources.height) ||
+            !env.fit_texture(&bent_temp_, denoises, GL_RGBA16F, resources.width, resources.height) ||
+            !env.fit_texture(&bent_, denoises, GL_RGBA16F, resources.width, resources.height)) {
             release();
             return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating the %dx%d GTAO bent-normal textures failed",
                                resources.width, resources.height);

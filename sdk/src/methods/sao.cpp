@@ -93,15 +93,8 @@ public:
         // The blur's intermediate only where the settings blur (debug views aside, as the plan: a debug view does not
         // reallocate); blur=off frees it, so the memory report holds what the configuration needs.
         const bool blurs = sao_blurs(settings.sao, false);
-        if (packed_ao_.width() != resources.width || packed_ao_.height() != resources.height) {
-            packed_ao_ = env.create_texture(GL_RGBA8, resources.width, resources.height);
-        }
-        if (!blurs) {
-            packed_temp_ = gl::Texture2D();
-        } else if (packed_temp_.width() != resources.width || packed_temp_.height() != resources.height) {
-            packed_temp_ = env.create_texture(GL_RGBA8, resources.width, resources.height);
-        }
-        if (!packed_ao_ || (blurs && !packed_temp_)) {
+        if (!env.fit_texture(&packed_ao_, true, GL_RGBA8, resources.width, resources.height) ||
+            !env.fit_texture(&packed_temp_, blurs, GL_RGBA8, resources.width, resources.height)) {
             release();
             return Error::make(OBSCURA_STATUS_OUT_OF_MEMORY, "allocating the %dx%d SAO textures failed",
                                resources.width, resources.height);

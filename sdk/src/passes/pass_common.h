@@ -95,6 +95,18 @@ struct PassEnv {
         gl.ActiveTexture(GLenum(GL_TEXTURE0 + OBSCURA_UNIT_SOURCE));
         return gl::Texture2D::create(gl, internal_format, width, height, levels);
     }
+    // A working texture that the configuration `needed` or not: kept at width x height, created at that size, or
+    // freed (so the memory report holds what the configuration uses). False only when a needed one failed.
+    bool fit_texture(gl::Texture2D* texture, bool needed, GLenum internal_format, int width, int height) const {
+        if (!needed) {
+            *texture = gl::Texture2D();
+            return true;
+        }
+        if (!*texture || texture->width() != width || texture->height() != height) {
+            *texture = create_texture(internal_format, width, height);
+        }
+        return static_cast<bool>(*texture);
+    }
     void dispatch(int width, int height, int group_x, int group_y) const {
         if (width <= 0 || height <= 0) return;
         gl.DispatchCompute(GLuint((width + group_x - 1) / group_x), GLuint((height + group_y - 1) / group_y), 1);
